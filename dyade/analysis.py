@@ -1,0 +1,131 @@
+"""What a mechanism file calls for (``plan``) and the sweep that does it (``run``).
+
+The plan is decided from the data before anything runs, and printed by ``describe``:
+masses, loads or springs → kinetostatics; a friction coefficient → friction
+iteration; a slider with friction → self-locking test. Stages the scene does not call
+for are not run.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from dyade import kinematics
+from dyade.errors import AssemblyError
+from dyade.model import FloatArray, Mechanism
+
+
+@dataclass(frozen=True, slots=True)
+class Plan:
+    """The stages a sweep will run."""
+
+    kinematics: bool = True
+    kinetostatics: bool = False
+    """masses, loads or springs present"""
+
+    def effects(self) -> list[str]:
+        """One line per simulated effect, for ``describe``."""
+        out = ["kinematics: positions, velocities, accelerations of every link, joint and point"]
+        if self.kinetostatics:
+            out.append("kinetostatics: joint forces, driving torque, shaking force (d'Alembert)")
+        return out
+
+    def skipped(self) -> list[str]:
+        """Effects the file does not call for, and what would turn them on."""
+        out = []
+        if not self.kinetostatics:
+            out.append("kinetostatics: no masses, loads or springs in the file")
+        return out
+
+
+def plan(mechanism: Mechanism) -> Plan:
+    """Decide the stages from the data (SPEC §1: only what the scene calls for)."""
+    return Plan(kinematics=True, kinetostatics=mechanism.has_dynamics)
+
+
+@dataclass(slots=True)
+class Result:
+    """Everything a sweep computed, in SI units."""
+
+    mechanism: Mechanism
+    plan: Plan
+    kinematics: kinematics.Kinematics
+    rows: FloatArray
+    """(n,) bool: positions that are reported (all, or with --allow-partial the closing ones)"""
+    notes: list[str] = field(default_factory=list)
+    """warnings for stderr: dead centres, partial sweeps, skipped stages"""
+
+    @property
+    def crank_angle(self) -> FloatArray:
+        return self.kinematics.crank_angle
+
+
+def ranges(crank_angle: FloatArray, mask: FloatArray) -> list[tuple[float, float]]:
+    """Crank-angle ranges [rad] (first, last) of runs of True in ``mask``."""
+    if not mask.any():
+        return []
+    padded = np.concatenate(([False], mask, [False])).astype(np.int8)
+    edges = np.flatnonzero(np.diff(padded))
+    return [(float(crank_angle[a]), float(crank_angle[b - 1])) for a, b in zip(edges[::2], edges[1::2])]
+
+
+def format_ranges(crank_angle: FloatArray, mask: FloatArray, limit: int = 6) -> str:
+    """'212.0°–247.5°, 300.0°' for the runs of True in ``mask``."""
+    parts = []
+    for first, last in ranges(crank_angle, mask):
+        a, b = np.rad2deg(first), np.rad2deg(last)
+        parts.append(f"{a:.1f}°" if first == last else f"{a:.1f}°–{b:.1f}°")
+    if len(parts) > limit:
+        parts = parts[:limit] + [f"and {len(parts) - limit} more"]
+    return ", ".join(parts)
+
+
+def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool = False,
+        crank_angle: FloatArray | None = None) -> Result:
+    """Run the planned stages over the crank sweep."""
+    the_plan = the_plan or plan(mechanism)
+    kin = kinematics.sweep(mechanism, crank_angle)
+    notes: list[str] = []
+    rows = _check_assembly(mechanism, kin, allow_partial, notes)
+    _dead_centres(mechanism, kin, rows, notes)
+    return Result(mechanism, the_plan, kin, rows, notes)
+
+
+def _check_assembly(mechanism: Mechanism, kin: kinematics.Kinematics, allow_partial: bool,
+                    notes: list[str]) -> FloatArray:
+    """Rows that close; an AssemblyError naming dyads and ranges unless allowed."""
+    upstream = np.ones(kin.crank_angle.shape[0], dtype=bool)
+    problems = []
+    for col, dyad in enumerate(mechanism.dyads):
+        fails = upstream & ~kin.closes[:, col]
+        if fails.any():
+            what = "is blocked" if dyad.kind in (4, 5) else "cannot close"
+            problems.append(f"{dyad.label} {what} for crank angles "
+                            f"{format_ranges(kin.crank_angle, fails)}")
+        upstream = upstream & kin.closes[:, col]
+    if not problems:
+        return np.ones(kin.crank_angle.shape[0], dtype=bool)
+    if not allow_partial:
+        raise AssemblyError("; ".join(problems) + ". Change the dimensions or the sweep, or "
+                            "use --allow-partial to analyse only where it closes.")
+    kept = int(upstream.sum())
+    notes.append("; ".join(problems) + f". Those positions are left out ({kept} of "
+                 f"{upstream.size} kept).")
+    if kept == 0:
+        raise AssemblyError("the mechanism closes at no crank angle of the sweep: "
+                            + "; ".join(problems) + ".")
+    return upstream
+
+
+def _dead_centres(mechanism: Mechanism, kin: kinematics.Kinematics, rows: FloatArray,
+                  notes: list[str]) -> None:
+    band = np.sin(mechanism.dead_centre_angle)
+    for col, dyad in enumerate(mechanism.dyads):
+        near = rows & (np.abs(np.sin(kin.transmission[:, col])) <= band)
+        if near.any():
+            word = "blocked position" if dyad.kind in (4, 5) else "dead centre"
+            notes.append(f"{dyad.label} is within {np.rad2deg(mechanism.dead_centre_angle):g}° of "
+                         f"a {word} (transmission angle near 0° or 180°) at crank angles "
+                         f"{format_ranges(kin.crank_angle, near)}.")

@@ -1,0 +1,111 @@
+"""The five dyad kinds (SPEC §1): closed-form position closures.
+
+Each kind module has ``close(dyad, motion) -> Closure``: it writes the poses of the
+dyad's links i and j into ``motion`` (NaN where the dyad does not close) and returns
+where it closes and its transmission angle. Velocities, accelerations and forces do
+not depend on the kind: they come from the joint constraints (``dyade.joints``).
+
+The transmission angle μ of a dyad is the angle between the two columns of its
+2×2 closure Jacobian, so sin μ = 0 exactly at a dead centre or blocked position:
+
+====  =====================================  ==========================
+kind  μ is the angle between                 μ = 0° or 180° means
+====  =====================================  ==========================
+RRR   B−A and B−C (link i and link j at B)   stretched / folded dyad
+RRP   B−A and the normal of guide C          link i normal to the guide
+RPR   normal of guide B and (pivot − pivot)  slider at the foot point
+PRP   guide A and guide C                    parallel guides: blocked
+PPR   guide A and guide B                    parallel guides: blocked
+====  =====================================  ==========================
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from types import ModuleType
+
+import numpy as np
+
+from dyade.joints import Motion, cross, dot, perp
+from dyade.model import FloatArray, Prismatic, Revolute, Vec
+
+SINGULAR_SIN = 1e-10  # [-] |sin μ| below this: the closure Jacobian is singular
+
+
+@dataclass(slots=True)
+class Closure:
+    """Where a dyad closes, and its transmission angle."""
+
+    closes: FloatArray
+    """(n,) bool: the dyad can be assembled (and is not blocked)"""
+    transmission: FloatArray
+    """(n,) transmission angle μ in [0, π] [rad]; NaN where it does not close"""
+
+
+def angle_between(u: FloatArray, v: FloatArray) -> FloatArray:
+    """Angle between two vectors in [0, π] [rad]."""
+    return np.arctan2(np.abs(cross(u, v)), dot(u, v))
+
+
+def polar_angle(v: FloatArray | Vec) -> FloatArray:
+    v = np.asarray(v, dtype=np.float64)
+    return np.arctan2(v[..., 1], v[..., 0])
+
+
+def pin(joint: Revolute, unknown: int, motion: Motion) -> tuple[FloatArray, Vec]:
+    """World position of a revolute joint, from its known side, and its local point on
+    the ``unknown`` link."""
+    (p, q), (u_p, u_q) = joint.links, joint.points
+    if p == unknown:
+        return motion.point(q, u_q), u_p
+    return motion.point(p, u_p), u_q
+
+
+def carry_angle(joint: Prismatic, known: int, motion: Motion) -> FloatArray:
+    """Angle of the link across a prismatic joint from ``known`` (φ_s − φ_c = κ)."""
+    if joint.carrier == known:
+        return motion.angle[:, known] + joint.relative_angle
+    return motion.angle[:, known] - joint.relative_angle
+
+
+def guide_line(joint: Prismatic, unknown: int, motion: Motion) -> tuple[FloatArray, FloatArray]:
+    """The prismatic constraint as a line for the origin of a translating link.
+
+    The ``unknown`` link's angle must already be in ``motion``, the other link's whole
+    pose too. Returns (normal, c) with normal·r_unknown = c, shapes (n, 2) and (n,).
+    """
+    normal = perp(motion.direction(joint.carrier, joint.guide_angle))
+    if joint.slider == unknown:
+        other = motion.point(joint.carrier, joint.guide_point)
+        own = motion.rotated(unknown, joint.slider_point)
+    else:
+        other = motion.point(joint.slider, joint.slider_point)
+        own = motion.rotated(unknown, joint.guide_point)
+    return normal, dot(normal, other - own)
+
+
+def place(motion: Motion, link: int, angle: FloatArray, world: FloatArray, local: Vec) -> None:
+    """Set a link's angle and put its origin so that ``local`` lands on ``world``."""
+    motion.angle[:, link] = angle
+    motion.origin[:, link] = world - motion.rotated(link, local)
+
+
+def solve_lines(n1: FloatArray, c1: FloatArray, n2: FloatArray, c2: FloatArray
+                ) -> tuple[FloatArray, FloatArray]:
+    """Intersection of n1·x = c1 and n2·x = c2, shape (n, 2); and the sine of the angle
+    between the lines (0: parallel, blocked)."""
+    det = cross(n1, n2)
+    sin = det / np.sqrt(dot(n1, n1) * dot(n2, n2))
+    blocked = np.abs(sin) < SINGULAR_SIN
+    with np.errstate(divide="ignore", invalid="ignore"):  # blocked rows become NaN below
+        x = (c1 * n2[:, 1] - c2 * n1[:, 1]) / det
+        y = (n1[:, 0] * c2 - n2[:, 0] * c1) / det
+    point = np.stack((x, y), axis=-1)
+    point[blocked] = np.nan
+    return point, sin
+
+
+from dyade.dyads import ppr, prp, rpr, rrp, rrr  # noqa: E402  (registry below needs them)
+
+DYAD_KINDS: dict[int, ModuleType] = {1: rrr, 2: rrp, 3: rpr, 4: prp, 5: ppr}
+"""kind number -> module with ``close``; see the table in the module docstring."""

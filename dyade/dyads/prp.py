@@ -1,0 +1,30 @@
+"""Kind 4, PRP: the pin B is where two guide lines cross (SPEC §1); linear, one
+closure; blocked when the guides are parallel."""
+
+from __future__ import annotations
+
+from dyade import dyads
+from dyade.joints import Motion, dot, perp
+from dyade.model import Dyad
+
+NAME = "PRP"
+JOINTS = "PRP"
+HAS_VARIANT = False
+
+
+def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
+    i, j = dyad.links
+    g, h = dyad.known
+    joint_a, joint_b, joint_c = dyad.joints
+    b_i, b_j = (joint_b.points if joint_b.links[0] == i else joint_b.points[::-1])
+    motion.angle[:, i] = dyads.carry_angle(joint_a, g, motion)
+    motion.angle[:, j] = dyads.carry_angle(joint_c, h, motion)
+    n_a, c_a = dyads.guide_line(joint_a, i, motion)
+    n_c, c_c = dyads.guide_line(joint_c, j, motion)
+    c_a = c_a + dot(n_a, motion.rotated(i, b_i))
+    c_c = c_c + dot(n_c, motion.rotated(j, b_j))
+    b, sin = dyads.solve_lines(n_a, c_a, n_c, c_c)
+    motion.origin[:, i] = b - motion.rotated(i, b_i)
+    motion.origin[:, j] = b - motion.rotated(j, b_j)
+    closes = abs(sin) >= dyads.SINGULAR_SIN
+    return dyads.Closure(closes, dyads.angle_between(-perp(n_a), -perp(n_c)))

@@ -1,0 +1,44 @@
+"""Kind 3, RPR: both links turn about their pivots, the guide of one passes the slider
+point of the other (SPEC §1): ρ·sin(β0 − ψ) = c0, a tangent to an offset circle.
+
+Variant +1: the guide direction points from the guide link's pivot towards the other
+link's pivot (d·(O_slider − O_guide) > 0).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from dyade import dyads
+from dyade.joints import Motion, rotate
+from dyade.model import Dyad
+
+NAME = "RPR"
+JOINTS = "RPR"
+HAS_VARIANT = True
+
+
+def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
+    i, j = dyad.links
+    joint_a, joint_b, joint_c = dyad.joints
+    pins = {i: dyads.pin(joint_a, i, motion), j: dyads.pin(joint_c, j, motion)}
+    c, s = joint_b.carrier, joint_b.slider
+    (o_c, p_c), (o_s, p_s) = pins[c], pins[s]
+    theta, kappa = joint_b.guide_angle, joint_b.relative_angle
+    n_local = np.array([-np.sin(theta), np.cos(theta)])
+    slider_arm = rotate(np.array(kappa), np.subtract(joint_b.slider_point, p_s))
+    c0 = float(n_local @ np.subtract(joint_b.guide_point, p_c) - n_local @ slider_arm)
+    d = o_s - o_c
+    rho = np.hypot(d[:, 0], d[:, 1])
+    with np.errstate(divide="ignore", invalid="ignore"):  # pivots on top of each other
+        ratio = c0 / rho
+    closes = np.abs(ratio) <= 1.0 + 1e-12
+    tilt = np.arcsin(np.clip(np.where(closes, ratio, np.nan), -1.0, 1.0))
+    beta0 = dyads.polar_angle(d)
+    psi = beta0 - tilt if dyad.variant > 0 else beta0 - np.pi + tilt
+    phi_c = psi - theta
+    dyads.place(motion, c, phi_c, o_c, p_c)
+    dyads.place(motion, s, phi_c + kappa, o_s, p_s)
+    normal = np.stack((-np.sin(psi), np.cos(psi)), axis=-1)
+    return dyads.Closure(closes, dyads.angle_between(normal, d))
+

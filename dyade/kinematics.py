@@ -1,0 +1,150 @@
+"""Kinematics over the whole crank sweep at once (SPEC §1).
+
+The crank first, then the dyads in assembly order: each dyad's closure in closed form
+(``dyade.dyads``), then its velocities and accelerations from one batched linear
+solve of the joint constraints (``dyade.joints``), J·q̇ = −J_known·q̇_known and
+J·q̈ = γ − J_known·q̈_known. Loops run over dyads, never over crank angles.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from dyade import dyads as dyad_kinds
+from dyade.joints import Constraint, Motion, constraint, travel
+from dyade.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Prismatic, Revolute
+
+
+@dataclass(slots=True)
+class Kinematics:
+    """Result of the kinematic sweep."""
+
+    crank_angle: FloatArray
+    """(n,) crank angle φ21 [rad]"""
+    motion: Motion
+    """poses, velocities and accelerations of every link frame"""
+    closes: FloatArray
+    """(n, dyads) bool: dyad k closes at this position (column k−2)"""
+    transmission: FloatArray
+    """(n, dyads) transmission angle μ of each dyad [rad], NaN where it does not close"""
+    singular: FloatArray
+    """(n, dyads) bool: the dyad is exactly at a dead centre / blocked (velocities NaN)"""
+
+    @property
+    def valid(self) -> FloatArray:
+        """(n,) bool: every dyad closes and none is singular."""
+        return self.closes.all(axis=1) & ~self.singular.any(axis=1)
+
+
+def crank_motion(mechanism: Mechanism, crank_angle: FloatArray) -> Motion:
+    """Motion with the frame at rest and the crank turning at constant speed."""
+    n = crank_angle.shape[0]
+    motion = Motion.at_rest(n, mechanism.max_link + 1)
+    motion.origin[:, CRANK] = mechanism.crank.pivot
+    motion.angle[:, CRANK] = crank_angle
+    motion.velocity[:, CRANK] = 0.0
+    motion.omega[:, CRANK] = mechanism.crank.speed
+    motion.acceleration[:, CRANK] = 0.0
+    motion.alpha[:, CRANK] = 0.0
+    return motion
+
+
+def generalized(vector: FloatArray, scalar: FloatArray) -> FloatArray:
+    """Stack (x, y) and φ parts of a link's coordinates, shape (n, 3)."""
+    return np.concatenate((vector, scalar[:, None]), axis=1)
+
+
+def assemble(joints: tuple[Joint, ...] | list[Joint], own: tuple[int, ...], motion: Motion,
+             with_gamma: bool) -> tuple[FloatArray, list[Constraint]]:
+    """Jacobian of ``joints`` by the coordinates of the ``own`` links, shape
+    (n, 2·joints, 3·links), and each joint's constraint."""
+    n = motion.angle.shape[0]
+    matrix = np.zeros((n, 2 * len(joints), 3 * len(own)))
+    parts = []
+    for row, joint in enumerate(joints):
+        part = constraint(joint, motion, with_gamma)
+        parts.append(part)
+        for col, link in enumerate(own):
+            if link in part.blocks:
+                matrix[:, 2 * row:2 * row + 2, 3 * col:3 * col + 3] = part.blocks[link]
+    return matrix, parts
+
+
+def batched_solve(matrix: FloatArray, rhs: FloatArray, usable: FloatArray) -> FloatArray:
+    """Solve matrix·x = rhs at the ``usable`` positions; NaN elsewhere.
+
+    ``rhs`` has shape (n, m) or (n, m, k)."""
+    vector = rhs.ndim == 2
+    b = rhs[..., None] if vector else rhs
+    out = np.full(b.shape, np.nan)
+    if usable.any():
+        out[usable] = np.linalg.solve(matrix[usable], b[usable])
+    return out[..., 0] if vector else out
+
+
+def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinematics:
+    """Positions, velocities and accelerations of every link over the crank sweep."""
+    if crank_angle is None:
+        crank_angle = mechanism.sweep.angles()
+    crank_angle = np.asarray(crank_angle, dtype=np.float64)
+    n = crank_angle.shape[0]
+    motion = crank_motion(mechanism, crank_angle)
+    count = len(mechanism.dyads)
+    closes = np.ones((n, count), dtype=bool)
+    transmission = np.full((n, count), np.nan)
+    singular = np.zeros((n, count), dtype=bool)
+    upstream_ok = np.ones(n, dtype=bool)
+    for col, dyad in enumerate(mechanism.dyads):
+        closure = dyad_kinds.DYAD_KINDS[dyad.kind].close(dyad, motion)
+        ok = closure.closes & upstream_ok
+        closes[:, col] = closure.closes
+        transmission[:, col] = np.where(ok, closure.transmission, np.nan)
+        singular[:, col] = ok & (np.abs(np.sin(closure.transmission)) < dyad_kinds.SINGULAR_SIN)
+        usable = ok & ~singular[:, col]
+        _derivatives(dyad.joints, dyad.links, motion, usable)
+        for link in dyad.links:
+            motion.origin[~ok, link] = np.nan
+            motion.angle[~ok, link] = np.nan
+        upstream_ok = usable
+    return Kinematics(crank_angle, motion, closes, transmission, singular)
+
+
+def _derivatives(joints: tuple[Joint, ...], own: tuple[int, ...], motion: Motion,
+                 usable: FloatArray) -> None:
+    """Velocities, then accelerations, of the ``own`` links of one group."""
+    matrix, parts = assemble(joints, own, motion, with_gamma=False)
+    rhs = np.zeros(matrix.shape[:2])
+    for row, part in enumerate(parts):
+        for link, block in part.blocks.items():
+            if link not in own:
+                qdot = generalized(motion.velocity[:, link], motion.omega[:, link])
+                rhs[:, 2 * row:2 * row + 2] -= np.einsum("nij,nj->ni", block, qdot)
+    qdot = batched_solve(matrix, rhs, usable)
+    for col, link in enumerate(own):
+        motion.velocity[:, link] = qdot[:, 3 * col:3 * col + 2]
+        motion.omega[:, link] = qdot[:, 3 * col + 2]
+    rhs = np.zeros(matrix.shape[:2])
+    for row, joint in enumerate(joints):
+        part = constraint(joint, motion, with_gamma=True)
+        rhs[:, 2 * row:2 * row + 2] = part.gamma
+        for link, block in part.blocks.items():
+            if link not in own:
+                qddot = generalized(motion.acceleration[:, link], motion.alpha[:, link])
+                rhs[:, 2 * row:2 * row + 2] -= np.einsum("nij,nj->ni", block, qddot)
+    qddot = batched_solve(matrix, rhs, usable)
+    for col, link in enumerate(own):
+        motion.acceleration[:, link] = qddot[:, 3 * col:3 * col + 2]
+        motion.alpha[:, link] = qddot[:, 3 * col + 2]
+
+
+# -- derived quantities the reports use --------------------------------------------
+def joint_point(joint: Revolute, motion: Motion) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Position, velocity, acceleration of a revolute joint (on its first link)."""
+    link, local = joint.links[0], joint.points[0]
+    if link == FRAME:
+        link, local = joint.links[1], joint.points[1]
+    return (motion.point(link, local), motion.point_velocity(link, local),
+            motion.point_acceleration(link, local))
+

@@ -1,0 +1,261 @@
+"""The mechanism as dyade sees it inside: frozen dataclasses, SI units, validated.
+
+Every link has its own frame (origin and ξ axis, SPEC §1); every joint is stated in
+the frames of the two links it joins. The file reader (``toml_input``) turns the
+designer's per-kind description into these objects, so the engine never needs to
+know which link of a prismatic pair was written as guide and which as slider.
+
+Link frames of the links a dyad places (documented in ``mechanisms/README.md``):
+
+====  ==========================================  =======================================
+kind  link i                                      link j
+====  ==========================================  =======================================
+RRR   origin A, ξ towards B                       origin C, ξ towards B
+RRP   origin A, ξ towards B                       origin B, ξ along the guide at C
+RPR   origin A, ξ along the guide at B            origin C, ξ along the guide at B
+PRP   origin B, ξ along the guide at A            origin B, ξ along the guide at C
+PPR   origin on guide A, ξ along the guide at A   origin C, ξ along the guide at B
+====  ==========================================  =======================================
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Union
+
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+Vec = tuple[float, float]
+
+FRAME = 1  # link number of the frame
+CRANK = 2  # link number of the crank
+
+KIND_NAMES = {1: "RRR", 2: "RRP", 3: "RPR", 4: "PRP", 5: "PPR"}
+
+
+def joint_name(a: int, b: int) -> tuple[int, int]:
+    """A joint's name: the two links it joins, lower number first."""
+    return (a, b) if a < b else (b, a)
+
+
+@dataclass(frozen=True, slots=True)
+class Revolute:
+    """A revolute joint (Drehgelenk): point ``points[0]`` of ``links[0]`` coincides with
+    point ``points[1]`` of ``links[1]`` (link-fixed coordinates ξ, η [m])."""
+
+    links: tuple[int, int]
+    points: tuple[Vec, Vec]
+    pin_radius: float | None = None
+    """Pin radius r_z [m] for Coulomb friction (None: not given)."""
+    friction: float = 0.0
+    """Coulomb friction coefficient μ [-]."""
+
+    @property
+    def name(self) -> tuple[int, int]:
+        return joint_name(*self.links)
+
+    @property
+    def kind(self) -> str:
+        return "R"
+
+
+@dataclass(frozen=True, slots=True)
+class Prismatic:
+    """A prismatic joint (Schubgelenk) between a guide and a slider.
+
+    The ``carrier`` link carries a guide line through ``guide_point`` with direction
+    angle ``guide_angle`` (both in the carrier's frame); point ``slider_point`` of the
+    ``slider`` link stays on that line, and the two links keep the relative angle
+    φ_slider − φ_carrier = ``relative_angle``. The slider travel is
+    s = (S − G)·d, with S the slider point, G the guide point and d the guide direction.
+    """
+
+    carrier: int
+    slider: int
+    guide_point: Vec
+    guide_angle: float
+    slider_point: Vec
+    relative_angle: float
+    slider_length: float | None = None
+    """Slider length L [m] for friction and self-locking (None: not given)."""
+    slider_height: float | None = None
+    """Slider height H [m] for friction (None: not given)."""
+    friction: float = 0.0
+    """Coulomb friction coefficient μ [-]."""
+
+    @property
+    def links(self) -> tuple[int, int]:
+        return (self.carrier, self.slider)
+
+    @property
+    def name(self) -> tuple[int, int]:
+        return joint_name(self.carrier, self.slider)
+
+    @property
+    def kind(self) -> str:
+        return "P"
+
+
+Joint = Union[Revolute, Prismatic]
+
+
+@dataclass(frozen=True, slots=True)
+class Load:
+    """An applied force and/or moment on a link, constant or tabulated over the crank
+    angle (interpolated periodically)."""
+
+    link: int
+    point: Vec
+    """Point of application, link-fixed (ξ, η) [m]."""
+    angles: FloatArray | None
+    """Crank angles of the table [rad], ascending within one period; None: constant."""
+    fx: FloatArray
+    """Force x components [N] (world frame), one per table row (or one value)."""
+    fy: FloatArray
+    moment: FloatArray
+    """Moment [N·m], counter-clockwise positive."""
+    local: bool = False
+    """True: (fx, fy) are given in the link frame (ξ, η) and turn with it."""
+
+
+@dataclass(frozen=True, slots=True)
+class Spring:
+    """A linear spring between a point of one link and a point of another."""
+
+    links: tuple[int, int]
+    points: tuple[Vec, Vec]
+    stiffness: float
+    """[N/m]"""
+    free_length: float
+    """[m]"""
+    name: str
+
+
+@dataclass(frozen=True, slots=True)
+class Link:
+    """A link: its named points and (optionally) its mass data."""
+
+    number: int
+    points: dict[str, Vec] = field(default_factory=dict)
+    """Named link points (coupler points), link-fixed (ξ, η) [m]."""
+    mass: float = 0.0
+    """[kg]"""
+    centre: Vec = (0.0, 0.0)
+    """Centre of mass (ξ_s, η_s) [m]."""
+    inertia: float = 0.0
+    """Moment of inertia about the centre of mass J_s [kg·m²]."""
+
+    @property
+    def has_mass(self) -> bool:
+        return self.mass > 0.0 or self.inertia > 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class Dyad:
+    """A two-link group: links i, j placed by joints A (i–g), B (i–j), C (j–h)."""
+
+    number: int
+    """k in the paper: the crank is dyad 1, the first file dyad is 2."""
+    kind: int
+    """1 RRR, 2 RRP, 3 RPR, 4 PRP, 5 PPR."""
+    links: tuple[int, int]
+    known: tuple[int, int]
+    """(g, h): the already-placed links that A and C attach to."""
+    joints: tuple[Joint, Joint, Joint]
+    """A, B, C."""
+    variant: int
+    """Assembly variant ±1 for kinds 1–3, 0 for kinds 4 and 5 (one closure)."""
+
+    @property
+    def kind_name(self) -> str:
+        return KIND_NAMES[self.kind]
+
+    @property
+    def label(self) -> str:
+        i, j = self.links
+        return f"dyad {self.number} (kind {self.kind} {self.kind_name}, links {i}-{j})"
+
+
+@dataclass(frozen=True, slots=True)
+class Crank:
+    """Link 2, turning about a frame point at constant speed."""
+
+    pivot: Vec
+    """Frame point of joint (1,2) [m]."""
+    length: float
+    """[m]; the point ``tip`` of the crank is (length, 0) in its frame."""
+    speed: float
+    """Ω [rad/s], counter-clockwise positive."""
+    joint: Revolute
+    """Joint (1,2)."""
+
+
+@dataclass(frozen=True, slots=True)
+class Sweep:
+    """Crank angles φ21 from ``start`` to ``stop`` (inclusive) in steps of ``step`` [rad]."""
+
+    start: float
+    stop: float
+    step: float
+
+    def angles(self) -> FloatArray:
+        count = int(np.floor((self.stop - self.start) / self.step + 1e-9)) + 1
+        return self.start + self.step * np.arange(count, dtype=np.float64)
+
+
+@dataclass(frozen=True, slots=True)
+class Mechanism:
+    """A whole linkage in assembly order, SI units."""
+
+    name: str
+    source: Path | None
+    crank: Crank
+    dyads: tuple[Dyad, ...]
+    links: dict[int, Link]
+    sweep: Sweep
+    gravity: Vec = (0.0, 0.0)
+    """Gravitational acceleration (x, y) [m/s²]; (0, 0): off."""
+    loads: tuple[Load, ...] = ()
+    springs: tuple[Spring, ...] = ()
+    dead_centre_angle: float = np.deg2rad(2.0)
+    """Band around transmission angles 0° and 180° treated as dead centre [rad]."""
+    friction_tol: float = 1e-9
+    friction_max_iter: int = 50
+
+    @property
+    def joints(self) -> list[Joint]:
+        """Every joint: (1,2) first, then A, B, C of each dyad in assembly order."""
+        out: list[Joint] = [self.crank.joint]
+        for dyad in self.dyads:
+            out.extend(dyad.joints)
+        return out
+
+    @property
+    def moving_links(self) -> list[int]:
+        """Moving links in assembly order: the crank, then i, j of each dyad."""
+        out = [CRANK]
+        for dyad in self.dyads:
+            out.extend(dyad.links)
+        return out
+
+    @property
+    def max_link(self) -> int:
+        return max(self.moving_links)
+
+    @property
+    def named_points(self) -> list[tuple[str, int, Vec]]:
+        """(name, link, local point) of every named link point; the frame's points and
+        the crank's built-in ``tip`` (it is joint (2,3) or wherever A attaches) excluded."""
+        return [(name, link.number, point)
+                for link in self.links.values() if link.number != FRAME
+                for name, point in link.points.items()
+                if not (link.number == CRANK and name == "tip")]
+
+    @property
+    def has_dynamics(self) -> bool:
+        """True when something loads the mechanism: masses, loads or springs."""
+        return (any(link.has_mass for link in self.links.values())
+                or bool(self.loads) or bool(self.springs))

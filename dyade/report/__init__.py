@@ -1,0 +1,1 @@
+"""Reports: result -> named columns (SI, angles in degrees) -> CSV, JSON, rich tables."""

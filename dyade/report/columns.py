@@ -1,0 +1,67 @@
+"""The CSV contract: result -> ordered named columns.
+
+One row per reported crank position; SI units except angles in degrees. The names are
+documented in ``mechanisms/README.md`` and are stable: scripts rely on them.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from dyade.analysis import Result
+from dyade.joints import travel
+from dyade.kinematics import joint_point
+from dyade.model import FloatArray, Prismatic, Revolute
+
+Columns = dict[str, FloatArray]
+
+UNITS = {"angle_deg": "°", "phi": "°", "omega": "rad/s", "alpha": "rad/s²", "x": "m", "y": "m",
+         "vx": "m/s", "vy": "m/s", "ax": "m/s²", "ay": "m/s²", "s": "m", "v": "m/s",
+         "a": "m/s²", "mu": "°"}
+
+
+def _tag(name: tuple[int, int]) -> str:
+    return f"{name[0]}_{name[1]}"
+
+
+def kinematic_columns(result: Result) -> Columns:
+    """Every kinematic column of the sweep, in contract order."""
+    kin, mech, rows = result.kinematics, result.mechanism, result.rows
+    motion = kin.motion
+    out: Columns = {"angle_deg": np.rad2deg(kin.crank_angle)}
+    for link in mech.moving_links:
+        out[f"phi_{link}_deg"] = np.rad2deg(motion.angle[:, link])
+        out[f"omega_{link}"] = motion.omega[:, link]
+        out[f"alpha_{link}"] = motion.alpha[:, link]
+    for joint in mech.joints:
+        tag = _tag(joint.name)
+        if isinstance(joint, Revolute):
+            pos, vel, acc = joint_point(joint, motion)
+            for prefix, value in (("x", pos[:, 0]), ("y", pos[:, 1]), ("vx", vel[:, 0]),
+                                  ("vy", vel[:, 1]), ("ax", acc[:, 0]), ("ay", acc[:, 1])):
+                out[f"{prefix}_{tag}"] = value
+        elif isinstance(joint, Prismatic):
+            s, v, a = travel(joint, motion)
+            out[f"s_{tag}"], out[f"v_{tag}"], out[f"a_{tag}"] = s, v, a
+    for name, link, local in mech.named_points:
+        pos = motion.point(link, local)
+        vel = motion.point_velocity(link, local)
+        acc = motion.point_acceleration(link, local)
+        for prefix, value in (("x", pos[:, 0]), ("y", pos[:, 1]), ("vx", vel[:, 0]),
+                              ("vy", vel[:, 1]), ("ax", acc[:, 0]), ("ay", acc[:, 1])):
+            out[f"{prefix}_{name}"] = value
+    for col, dyad in enumerate(mech.dyads):
+        out[f"mu_{dyad.number}_deg"] = np.rad2deg(kin.transmission[:, col])
+    return {key: value[rows] for key, value in out.items()}
+
+
+def columns(result: Result) -> Columns:
+    """All columns of a result, in contract order."""
+    return kinematic_columns(result)
+
+
+def unit_of(column: str) -> str:
+    """Unit of a column, for table headers."""
+    if column.endswith("_deg"):
+        return "°"
+    return UNITS.get(column.split("_", 1)[0], "")

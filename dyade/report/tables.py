@@ -1,0 +1,89 @@
+"""Result -> rich renderables: the sweep summary and the mechanism description."""
+
+from __future__ import annotations
+
+import numpy as np
+from rich.table import Table
+from rich.tree import Tree
+
+from dyade.analysis import Plan, Result
+from dyade.model import FRAME, KIND_NAMES, Mechanism, Prismatic, Revolute
+from dyade.report.columns import Columns, unit_of
+
+
+def sweep_summary(result: Result, cols: Columns) -> Table:
+    """Per column: min and max over the sweep and the crank angle of each."""
+    angle = cols["angle_deg"]
+    table = Table(title=f"{result.mechanism.name}: {angle.size} crank positions "
+                        f"{angle[0]:.1f}°–{angle[-1]:.1f}°", title_justify="left")
+    table.add_column("quantity")
+    table.add_column("unit")
+    for head in ("min", "at φ21 [°]", "max", "at φ21 [°]"):
+        table.add_column(head, justify="right")
+    for name, values in cols.items():
+        if name == "angle_deg":
+            continue
+        finite = np.isfinite(values)
+        if not finite.any():
+            table.add_row(name, unit_of(name), "—", "", "—", "")
+            continue
+        masked = np.where(finite, values, np.nan)
+        lo, hi = int(np.nanargmin(masked)), int(np.nanargmax(masked))
+        table.add_row(name, unit_of(name), f"{values[lo]:.6g}", f"{angle[lo]:.1f}",
+                      f"{values[hi]:.6g}", f"{angle[hi]:.1f}")
+    return table
+
+
+def _joint_label(joint: Revolute | Prismatic) -> str:
+    a, b = joint.name
+    if isinstance(joint, Revolute):
+        return f"({a},{b}) revolute"
+    return (f"({a},{b}) prismatic, guide on link {joint.carrier}, slider link {joint.slider}, "
+            f"guide angle {np.rad2deg(joint.guide_angle):g}°")
+
+
+def describe(mechanism: Mechanism, the_plan: Plan) -> Tree:
+    """The mechanism in assembly order, its mobility and the effects to simulate."""
+    tree = Tree(f"[bold]{mechanism.name}[/bold]"
+                + (f"  ({mechanism.source})" if mechanism.source else ""))
+    frame_points = mechanism.links[FRAME].points
+    frame = tree.add("link 1: frame")
+    for name, (x, y) in frame_points.items():
+        frame.add(f"point {name} = ({x * 1e3:g}, {y * 1e3:g}) mm")
+    crank = mechanism.crank
+    rpm = abs(crank.speed) * 60.0 / (2.0 * np.pi)
+    sense = "counter-clockwise" if crank.speed > 0 else "clockwise"
+    node = tree.add(f"dyad 1: link 2 crank, length {crank.length * 1e3:g} mm, {rpm:g} rpm {sense}")
+    node.add(f"joint {_joint_label(crank.joint)} at ({crank.pivot[0] * 1e3:g}, "
+             f"{crank.pivot[1] * 1e3:g}) mm")
+    _points(node, mechanism, 2)
+    for dyad in mechanism.dyads:
+        i, j = dyad.links
+        g, h = dyad.known
+        variant = f", assembly variant {dyad.variant:+d}" if dyad.variant else ""
+        node = tree.add(f"dyad {dyad.number}: kind {dyad.kind} {KIND_NAMES[dyad.kind]}, "
+                        f"links i={i}, j={j}, attached to links {g} and {h}{variant}")
+        for letter, joint in zip("ABC", dyad.joints):
+            node.add(f"{letter}: joint {_joint_label(joint)}")
+        for link in dyad.links:
+            _points(node, mechanism, link)
+    links = 1 + len(mechanism.moving_links)
+    revolute = sum(isinstance(j, Revolute) for j in mechanism.joints)
+    prismatic = len(mechanism.joints) - revolute
+    mobility = 3 * (links - 1) - 2 * len(mechanism.joints)
+    tree.add(f"mobility (Grübler) F = 3·({links}−1) − 2·{len(mechanism.joints)} = {mobility}"
+             f"  [{links} links, {revolute} revolute, {prismatic} prismatic joints]")
+    effects = tree.add("effects simulated")
+    for line in the_plan.effects():
+        effects.add(line)
+    for line in the_plan.skipped():
+        effects.add(f"[dim]not simulated — {line}[/dim]")
+    sweep = mechanism.sweep
+    tree.add(f"sweep: crank angle {np.rad2deg(sweep.start):g}° to {np.rad2deg(sweep.stop):g}° "
+             f"in steps of {np.rad2deg(sweep.step):g}° ({sweep.angles().size} positions)")
+    return tree
+
+
+def _points(node: Tree, mechanism: Mechanism, link: int) -> None:
+    for name, (xi, eta) in mechanism.links[link].points.items():
+        node.add(f"link {link} point {name} = ({xi * 1e3:g}, {eta * 1e3:g}) mm (ξ, η)")

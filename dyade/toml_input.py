@@ -1,0 +1,551 @@
+"""Read a mechanism file (TOML), validate it, and convert it to SI model objects.
+
+Every error names the file, the key path, what was expected (with its unit) and what
+was found; unknown keys get a "Did you mean" (``mechanisms/README.md`` documents every
+key). Link frames of the dyad links follow the table in ``dyade.model``.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import tomllib
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from dyade.errors import InputError
+from dyade.model import (CRANK, FRAME, KIND_NAMES, Crank, Dyad, Joint, Link, Load, Mechanism,
+                         Prismatic, Revolute, Spring, Sweep, Vec)
+from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS, rpm_to_rad_per_s
+
+KIND_BY_NAME = {name: number for number, name in KIND_NAMES.items()}
+
+TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
+            "gravity", "load", "spring", "friction"}
+UNIT_KEYS = {"length", "angle"}
+SWEEP_KEYS = {"start", "stop", "step", "dead_centre"}
+FRAME_KEYS = {"points"}
+CRANK_KEYS = {"link", "pivot", "length", "speed_rpm", "direction", "points", "pin_radius",
+              "friction"}
+LINK_KEYS = {"points", "mass", "centre", "inertia", "radius_of_gyration"}
+REVOLUTE_KEYS = {"link", "point", "pin_radius", "friction"}
+PRISMATIC_KEYS = {"link", "point", "angle", "offset", "guide", "slider_length",
+                  "slider_height", "friction"}
+MIDDLE_R_KEYS = {"pin_radius", "friction"}
+MIDDLE_P_KEYS = {"guide", "offset", "angle", "point", "slider_length", "slider_height",
+                 "friction"}
+DYAD_KEYS_COMMON = {"kind", "links", "A", "B", "C", "variant", "name"}
+GRAVITY_KEYS = {"x", "y"}
+STANDARD_GRAVITY = 9.80665  # [m/s²]
+
+
+def read_mechanism(path: Path | str, overrides: dict[str, Any] | None = None) -> Mechanism:
+    """Read and validate a mechanism file; ``overrides`` replace keys (dotted paths)."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as err:
+        raise InputError(f"{path}: cannot read the file ({err.strerror}).") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise InputError(f"{path}: not valid TOML: {err}.") from None
+    for key, value in (overrides or {}).items():
+        _set_dotted(data, key, value)
+    return Reader(path.name, path).mechanism(data)
+
+
+def _set_dotted(data: dict[str, Any], dotted: str, value: Any) -> None:
+    parts = dotted.split(".")
+    target: Any = data
+    for part in parts[:-1]:
+        if isinstance(target, list):
+            target = target[int(part) - 1]
+        else:
+            target = target.setdefault(part, {})
+    target[parts[-1]] = value
+
+
+def _suggest(key: str, allowed: set[str]) -> str:
+    close = difflib.get_close_matches(key, sorted(allowed), n=1, cutoff=0.6)
+    return f" Did you mean `{close[0]}`?" if close else f" Allowed: {', '.join(sorted(allowed))}."
+
+
+class Reader:
+    """Walks the parsed TOML with key paths for the error messages."""
+
+    def __init__(self, label: str, source: Path | None = None) -> None:
+        self.label = label
+        self.source = source
+        self.length = 1.0
+        self.angle = math.pi / 180.0
+        self.length_unit = "m"
+        self.angle_unit = "deg"
+
+    # -- primitives --------------------------------------------------------------------
+    def fail(self, key: str, message: str) -> InputError:
+        return InputError(f"{self.label}: `{key}` {message}")
+
+    def keys(self, table: Any, key: str, allowed: set[str]) -> dict[str, Any]:
+        if not isinstance(table, dict):
+            raise self.fail(key, f"must be a table, got {_show(table)}.")
+        for name in table:
+            if name not in allowed:
+                where = f"{key}.{name}" if key else name
+                raise InputError(f"{self.label}: unknown key `{where}`.{_suggest(name, allowed)}")
+        return table
+
+    def required(self, table: dict[str, Any], key: str, path: str) -> Any:
+        if key not in table:
+            raise self.fail(f"{path}.{key}" if path else key, "is missing.")
+        return table[key]
+
+    def number(self, value: Any, key: str, unit: str, positive: bool = False,
+               non_negative: bool = False) -> float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise self.fail(key, f"must be a number [{unit}], got {_show(value)}.")
+        value = float(value)
+        if not math.isfinite(value):
+            raise self.fail(key, f"must be a finite number [{unit}], got {value}.")
+        if positive and value <= 0.0:
+            raise self.fail(key, f"must be positive [{unit}], got {_fmt(value)}.")
+        if non_negative and value < 0.0:
+            raise self.fail(key, f"must not be negative [{unit}], got {_fmt(value)}.")
+        return value
+
+    def length_of(self, value: Any, key: str, positive: bool = False,
+                  non_negative: bool = False) -> float:
+        return self.number(value, key, self.length_unit, positive, non_negative) * self.length
+
+    def angle_of(self, value: Any, key: str) -> float:
+        return self.number(value, key, self.angle_unit) * self.angle
+
+    def pair(self, value: Any, key: str) -> Vec:
+        if (not isinstance(value, list) or len(value) != 2
+                or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)):
+            raise self.fail(key, f"must be a pair of numbers [ξ, η] [{self.length_unit}], "
+                                 f"got {_show(value)}.")
+        return (float(value[0]) * self.length, float(value[1]) * self.length)
+
+    def integer(self, value: Any, key: str) -> int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise self.fail(key, f"must be a whole number, got {_show(value)}.")
+        return value
+
+    # -- whole file ----------------------------------------------------------------
+    def mechanism(self, data: dict[str, Any]) -> Mechanism:
+        self.keys(data, "", TOP_KEYS)
+        self.units(data.get("units", {}))
+        name = data.get("name", self.source.stem if self.source else "mechanism")
+        if not isinstance(name, str):
+            raise self.fail("name", f"must be a string, got {_show(name)}.")
+        sweep, dead_centre = self.sweep(data.get("sweep", {}))
+        friction = data.get("friction", {})
+        self.keys(friction, "friction", {"coefficient", "tol", "max_iter"})
+        self.default_mu = self.number(friction.get("coefficient", 0.0), "friction.coefficient",
+                                      "-", non_negative=True)
+        friction_tol = self.number(friction.get("tol", 1e-9), "friction.tol", "-", positive=True)
+        friction_max_iter = self.integer(friction.get("max_iter", 50), "friction.max_iter")
+        if friction_max_iter < 1:
+            raise self.fail("friction.max_iter", f"must be at least 1, got {friction_max_iter}.")
+        frame_table = self.keys(data.get("frame", {}), "frame", FRAME_KEYS)
+        links_table = data.get("links", {})
+        if not isinstance(links_table, dict):
+            raise self.fail("links", f"must be a table of [links.N] tables, got {_show(links_table)}.")
+        self.points: dict[int, dict[str, Vec]] = {FRAME: self.named_points(
+            frame_table.get("points", {}), "frame.points")}
+        crank = self.crank(self.required(data, "crank", ""))
+        dyad_tables = data.get("dyad", [])
+        if not isinstance(dyad_tables, list) or not dyad_tables:
+            raise self.fail("dyad", "must list at least one dyad as [[dyad]] tables "
+                                    "(the crank alone is no linkage).")
+        self.placed = [FRAME, CRANK]
+        link_data = self.link_tables(links_table)
+        dyads = tuple(self.dyad(table, number) for number, table in enumerate(dyad_tables, start=2))
+        for number in link_data:
+            if number not in self.placed:
+                raise self.fail(f"links.{number}", f"describes link {number}, which no dyad "
+                                f"places (placed links: {', '.join(map(str, self.placed))}).")
+        links = {}
+        for number in self.placed:
+            extra = link_data.get(number, {})
+            points = dict(self.points.get(number, {}))
+            links[number] = Link(number, points, **extra)
+        self.check_names(links)
+        self.check_joints(crank, dyads)
+        gravity = self.gravity(data.get("gravity", None))
+        loads = tuple(self.load(t, f"load.{k}", links)
+                      for k, t in enumerate(_list(data.get("load", []), "load", self), 1))
+        springs = tuple(self.spring(t, f"spring.{k}", links)
+                        for k, t in enumerate(_list(data.get("spring", []), "spring", self), 1))
+        return Mechanism(name, self.source, crank, dyads, links, sweep, gravity, loads, springs,
+                         dead_centre, friction_tol, friction_max_iter)
+
+    def units(self, table: Any) -> None:
+        self.keys(table, "units", UNIT_KEYS)
+        length = table.get("length", "m")
+        if length not in LENGTH_FACTORS:
+            raise self.fail("units.length", f"must be one of {', '.join(LENGTH_FACTORS)}, "
+                                            f"got {_show(length)}.")
+        angle = table.get("angle", "deg")
+        if angle not in ANGLE_FACTORS:
+            raise self.fail("units.angle", f"must be one of {', '.join(ANGLE_FACTORS)}, "
+                                           f"got {_show(angle)}.")
+        self.length, self.length_unit = LENGTH_FACTORS[length], length
+        self.angle, self.angle_unit = ANGLE_FACTORS[angle], angle
+
+    def sweep(self, table: Any) -> tuple[Sweep, float]:
+        self.keys(table, "sweep", SWEEP_KEYS)
+        full = 2.0 * math.pi / self.angle
+        start = self.number(table.get("start", 0.0), "sweep.start", self.angle_unit)
+        stop = self.number(table.get("stop", start + full), "sweep.stop", self.angle_unit)
+        step = self.number(table.get("step", math.pi / 180.0 / self.angle), "sweep.step",
+                           self.angle_unit, positive=True)
+        if stop < start:
+            raise self.fail("sweep.stop", f"must not be below sweep.start ({_fmt(start)}), "
+                                          f"got {_fmt(stop)}.")
+        dead = self.number(table.get("dead_centre", 2.0 * math.pi / 180.0 / self.angle),
+                           "sweep.dead_centre", self.angle_unit, non_negative=True)
+        return Sweep(start * self.angle, stop * self.angle, step * self.angle), dead * self.angle
+
+    def named_points(self, table: Any, key: str) -> dict[str, Vec]:
+        if not isinstance(table, dict):
+            raise self.fail(key, f"must be a table of name = [ξ, η], got {_show(table)}.")
+        return {name: self.pair(value, f"{key}.{name}") for name, value in table.items()}
+
+    def crank(self, table: Any) -> Crank:
+        self.keys(table, "crank", CRANK_KEYS)
+        link = self.integer(table.get("link", CRANK), "crank.link")
+        if link != CRANK:
+            raise self.fail("crank.link", f"must be 2 (link 1 is the frame, 2 the crank), "
+                                          f"got {link}.")
+        length = self.length_of(self.required(table, "length", "crank"), "crank.length",
+                                positive=True)
+        pivot = self.point_on(FRAME, table.get("pivot", [0.0, 0.0]), "crank.pivot")
+        rpm = self.number(self.required(table, "speed_rpm", "crank"), "crank.speed_rpm", "rpm",
+                          positive=True)
+        direction = table.get("direction", "ccw")
+        if direction not in ("ccw", "cw"):
+            raise self.fail("crank.direction", f"must be \"ccw\" (counter-clockwise) or \"cw\", "
+                                               f"got {_show(direction)}.")
+        points = {"tip": (length, 0.0)}
+        points.update(self.named_points(table.get("points", {}), "crank.points"))
+        self.points[CRANK] = points
+        speed = rpm_to_rad_per_s(rpm) * (1.0 if direction == "ccw" else -1.0)
+        joint = Revolute((FRAME, CRANK), (pivot, (0.0, 0.0)), **self.revolute_friction(
+            table, "crank"))
+        return Crank(pivot, length, speed, joint)
+
+    def link_tables(self, table: dict[str, Any]) -> dict[int, dict[str, Any]]:
+        out: dict[int, dict[str, Any]] = {}
+        for key, sub in table.items():
+            path = f"links.{key}"
+            if not key.isdigit() or int(key) < 2:
+                raise self.fail(path, "must name a moving link by its number (2, 3, ...); "
+                                      "frame points go in [frame.points].")
+            number = int(key)
+            self.keys(sub, path, LINK_KEYS)
+            self.points.setdefault(number, {}).update(
+                self.named_points(sub.get("points", {}), f"{path}.points"))
+            extra: dict[str, Any] = {}
+            if "mass" in sub:
+                extra["mass"] = self.number(sub["mass"], f"{path}.mass", "kg", non_negative=True)
+            if "centre" in sub:
+                extra["centre"] = self.pair(sub["centre"], f"{path}.centre")
+            if "inertia" in sub and "radius_of_gyration" in sub:
+                raise self.fail(f"{path}.inertia", "and `radius_of_gyration` are two ways to say "
+                                                   "the same thing: give one of them.")
+            if "inertia" in sub:
+                extra["inertia"] = self.number(sub["inertia"], f"{path}.inertia", "kg·m²",
+                                               non_negative=True)
+            if "radius_of_gyration" in sub:
+                radius = self.length_of(sub["radius_of_gyration"], f"{path}.radius_of_gyration",
+                                        non_negative=True)
+                if "mass" not in sub:
+                    raise self.fail(f"{path}.radius_of_gyration", "needs `mass` of the same link.")
+                extra["inertia"] = extra["mass"] * radius ** 2
+            out[number] = extra
+        return out
+
+    # -- points and joints -------------------------------------------------------------
+    def point_on(self, link: int, value: Any, key: str) -> Vec:
+        if isinstance(value, str):
+            names = self.points.get(link, {})
+            if value not in names:
+                where = {FRAME: "[frame.points]", CRANK: "[crank.points] (or \"tip\")"}.get(
+                    link, f"[links.{link}.points]")
+                hint = _suggest(value, set(names)) if names else ""
+                raise self.fail(key, f"names point \"{value}\", which link {link} does not have;"
+                                     f" define it in {where} or give [ξ, η].{hint}")
+            return names[value]
+        return self.pair(value, key)
+
+    def attached(self, table: dict[str, Any], key: str, allowed: set[str]) -> tuple[int, Vec]:
+        self.keys(table, key, allowed)
+        link = self.integer(self.required(table, "link", key), f"{key}.link")
+        if link not in self.placed:
+            raise self.fail(f"{key}.link", f"is link {link}, which is not placed yet: a dyad may "
+                                           f"only attach to the frame (1), the crank (2) or "
+                                           f"links of earlier dyads "
+                                           f"({', '.join(map(str, self.placed))}).")
+        return link, self.point_on(link, table.get("point", [0.0, 0.0]), f"{key}.point")
+
+    def revolute_friction(self, table: dict[str, Any], key: str) -> dict[str, Any]:
+        out: dict[str, Any] = {"friction": self.number(table.get("friction", self.default_mu),
+                                                       f"{key}.friction", "-", non_negative=True)}
+        if "pin_radius" in table:
+            out["pin_radius"] = self.length_of(table["pin_radius"], f"{key}.pin_radius",
+                                               positive=True)
+        return out
+
+    def prismatic_friction(self, table: dict[str, Any], key: str) -> dict[str, Any]:
+        out: dict[str, Any] = {"friction": self.number(table.get("friction", self.default_mu),
+                                                       f"{key}.friction", "-", non_negative=True)}
+        for name, field in (("slider_length", "slider_length"), ("slider_height", "slider_height")):
+            if name in table:
+                out[field] = self.length_of(table[name], f"{key}.{name}", positive=True)
+        return out
+
+    def revolute(self, table: Any, key: str, new: int) -> tuple[int, Revolute]:
+        link, point = self.attached(table, key, REVOLUTE_KEYS)
+        return link, Revolute((link, new), (point, (0.0, 0.0)), **self.revolute_friction(table, key))
+
+    def outer_prismatic(self, table: Any, key: str, new: int) -> tuple[int, Prismatic]:
+        link, point = self.attached(table, key, PRISMATIC_KEYS)
+        theta = self.angle_of(table.get("angle", 0.0), f"{key}.angle")
+        offset = self.length_of(table.get("offset", 0.0), f"{key}.offset")
+        guide = self.guide(table, key, (link, new), link)
+        extra = self.prismatic_friction(table, key)
+        if guide == link:
+            return link, make_prismatic(link, point, theta, offset, new, (0.0, 0.0), theta, extra)
+        return link, make_prismatic(new, (0.0, 0.0), 0.0, offset, link, point, -theta, extra)
+
+    def guide(self, table: dict[str, Any], key: str, pair: tuple[int, int], default: int) -> int:
+        guide = self.integer(table.get("guide", default), f"{key}.guide")
+        if guide not in pair:
+            raise self.fail(f"{key}.guide", f"must be one of the joint's links {pair[0]} or "
+                                            f"{pair[1]} (the link carrying the guide), got {guide}.")
+        return guide
+
+    def dyad(self, table: Any, number: int) -> Dyad:
+        key = f"dyad.{number - 1}"
+        if not isinstance(table, dict):
+            raise self.fail(key, f"must be a table, got {_show(table)}.")
+        kind = self.kind(self.required(table, "kind", key), f"{key}.kind")
+        extra_keys = {1: {"lengths"}, 2: {"length"}, 3: set(), 4: set(), 5: set()}[kind]
+        self.keys(table, key, DYAD_KEYS_COMMON | extra_keys)
+        links = self.required(table, "links", key)
+        if (not isinstance(links, list) or len(links) != 2
+                or any(isinstance(v, bool) or not isinstance(v, int) for v in links)):
+            raise self.fail(f"{key}.links", f"must be two link numbers [i, j], got {_show(links)}.")
+        i, j = links
+        for link in (i, j):
+            if link in self.placed:
+                raise self.fail(f"{key}.links", f"uses link {link} again; every dyad places two "
+                                                f"new links (placed: "
+                                                f"{', '.join(map(str, self.placed))}).")
+        if i == j or i < 3 or j < 3:
+            raise self.fail(f"{key}.links", f"must be two different new link numbers above 2, "
+                                            f"got {_show(links)}.")
+        has_variant = kind in (1, 2, 3)
+        if has_variant:
+            variant = self.integer(table.get("variant", 1), f"{key}.variant")
+            if variant not in (1, -1):
+                raise self.fail(f"{key}.variant", f"must be +1 or -1 (assembly variant), "
+                                                  f"got {variant}.")
+        else:
+            if "variant" in table:
+                raise self.fail(f"{key}.variant", f"is not used by kind {kind} "
+                                                  f"({KIND_NAMES[kind]}): it has one closure only.")
+            variant = 0
+        pattern = KIND_NAMES[kind]
+        for letter, joint_kind in zip("ABC", pattern):
+            if letter == "B":
+                continue
+            if letter not in table:
+                raise self.fail(f"{key}.{letter}", "is missing: say which placed link and point "
+                                                   f"joint {letter} attaches to.")
+        g = h = 0
+        if pattern[0] == "R":
+            g, joint_a = self.revolute(table["A"], f"{key}.A", i)
+        else:
+            g, joint_a = self.outer_prismatic(table["A"], f"{key}.A", i)
+        if pattern[2] == "R":
+            h, joint_c = self.revolute(table["C"], f"{key}.C", j)
+        else:
+            h, joint_c = self.outer_prismatic(table["C"], f"{key}.C", j)
+        b_table = table.get("B", {})
+        joint_b = self.middle(kind, b_table, f"{key}.B", i, j, table, key)
+        self.placed.extend((i, j))
+        return Dyad(number, kind, (i, j), (g, h), (joint_a, joint_b, joint_c), variant)
+
+    def kind(self, value: Any, key: str) -> int:
+        if isinstance(value, str) and value.upper() in KIND_BY_NAME:
+            return KIND_BY_NAME[value.upper()]
+        if isinstance(value, int) and not isinstance(value, bool) and value in KIND_NAMES:
+            return value
+        raise self.fail(key, f"must be 1-5 or one of RRR, RRP, RPR, PRP, PPR, got {_show(value)}.")
+
+    def middle(self, kind: int, table: Any, key: str, i: int, j: int,
+               dyad_table: dict[str, Any], dyad_key: str) -> Joint:
+        if kind in (1, 2, 4):
+            self.keys(table, key, MIDDLE_R_KEYS)
+            friction = self.revolute_friction(table, key)
+            if kind == 1:
+                lengths = self.required(dyad_table, "lengths", dyad_key)
+                if not isinstance(lengths, list) or len(lengths) != 2:
+                    raise self.fail(f"{dyad_key}.lengths", f"must be [|AB|, |CB|] "
+                                                           f"[{self.length_unit}], "
+                                                           f"got {_show(lengths)}.")
+                l_i = self.length_of(lengths[0], f"{dyad_key}.lengths.1", positive=True)
+                l_j = self.length_of(lengths[1], f"{dyad_key}.lengths.2", positive=True)
+                return Revolute((i, j), ((l_i, 0.0), (l_j, 0.0)), **friction)
+            if kind == 2:
+                l_i = self.length_of(self.required(dyad_table, "length", dyad_key),
+                                     f"{dyad_key}.length", positive=True)
+                return Revolute((i, j), ((l_i, 0.0), (0.0, 0.0)), **friction)
+            return Revolute((i, j), ((0.0, 0.0), (0.0, 0.0)), **friction)
+        self.keys(table, key, MIDDLE_P_KEYS if kind == 5 else MIDDLE_P_KEYS - {"angle", "point"})
+        offset = self.length_of(table.get("offset", 0.0), f"{key}.offset")
+        extra = self.prismatic_friction(table, key)
+        if kind == 3:
+            guide = self.guide(table, key, (i, j), j)
+            slider = i if guide == j else j
+            return make_prismatic(guide, (0.0, 0.0), 0.0, offset, slider, (0.0, 0.0), 0.0, extra)
+        theta = self.angle_of(table.get("angle", 90.0 * math.pi / 180.0 / self.angle), f"{key}.angle")
+        point = self.point_on(i, table.get("point", [0.0, 0.0]), f"{key}.point")
+        if abs(math.sin(theta)) < 1e-9:
+            raise self.fail(f"{key}.angle", "makes guide B parallel to guide A: a PPR dyad is "
+                                            "then blocked in every position. Use an angle that "
+                                            "is not 0° or 180°.")
+        guide = self.guide(table, key, (i, j), i)
+        if guide == i:
+            return make_prismatic(i, point, theta, offset, j, (0.0, 0.0), theta, extra)
+        return make_prismatic(j, (0.0, 0.0), 0.0, offset, i, point, -theta, extra)
+
+    # -- loads (used by the force analysis) -----------------------------------------
+    def gravity(self, value: Any) -> Vec:
+        if value is None or value is False:
+            return (0.0, 0.0)
+        if value is True:
+            return (0.0, -STANDARD_GRAVITY)
+        self.keys(value, "gravity", GRAVITY_KEYS)
+        return (self.number(value.get("x", 0.0), "gravity.x", "m/s²"),
+                self.number(value.get("y", 0.0), "gravity.y", "m/s²"))
+
+    def link_ref(self, value: Any, key: str, links: dict[int, Link]) -> int:
+        link = self.integer(value, key)
+        if link not in links:
+            raise self.fail(key, f"is link {link}, which the mechanism does not have "
+                                 f"(links: {', '.join(map(str, links))}).")
+        return link
+
+    def load(self, table: Any, key: str, links: dict[int, Link]) -> Load:
+        self.keys(table, key, {"link", "point", "force", "moment", "table", "frame"})
+        link = self.link_ref(self.required(table, "link", key), f"{key}.link", links)
+        point = self.point_on(link, table.get("point", [0.0, 0.0]), f"{key}.point")
+        frame = table.get("frame", "world")
+        if frame not in ("world", "link"):
+            raise self.fail(f"{key}.frame", f"must be \"world\" (x, y) or \"link\" (ξ, η), "
+                                            f"got {_show(frame)}.")
+        if "table" in table:
+            if "force" in table or "moment" in table:
+                raise self.fail(f"{key}.table", "replaces `force` and `moment`: give either "
+                                                "a table or constant values.")
+            rows = table["table"]
+            if not isinstance(rows, list) or len(rows) < 2:
+                raise self.fail(f"{key}.table", "must list at least two rows "
+                                                f"[angle, Fx, Fy, M], got {_show(rows)}.")
+            parsed = []
+            for r, row in enumerate(rows, 1):
+                if (not isinstance(row, list) or len(row) != 4
+                        or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in row)):
+                    raise self.fail(f"{key}.table.{r}", f"must be [angle [{self.angle_unit}], "
+                                                        f"Fx [N], Fy [N], M [N·m]], got {_show(row)}.")
+                parsed.append([float(v) for v in row])
+            arr = np.array(parsed)
+            angles = arr[:, 0] * self.angle
+            if np.any(np.diff(angles) <= 0) or angles[-1] - angles[0] >= 2 * math.pi:
+                raise self.fail(f"{key}.table", "angles must rise strictly and span less than "
+                                                "one revolution (the table repeats every 360°).")
+            return Load(link, point, angles, arr[:, 1], arr[:, 2], arr[:, 3], frame == "link")
+        force = table.get("force", [0.0, 0.0])
+        if (not isinstance(force, list) or len(force) != 2
+                or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in force)):
+            raise self.fail(f"{key}.force", f"must be [Fx, Fy] [N], got {_show(force)}.")
+        moment = self.number(table.get("moment", 0.0), f"{key}.moment", "N·m")
+        return Load(link, point, None, np.array([float(force[0])]), np.array([float(force[1])]),
+                    np.array([moment]), frame == "link")
+
+    def spring(self, table: Any, key: str, links: dict[int, Link]) -> Spring:
+        self.keys(table, key, {"name", "from", "to", "stiffness", "free_length"})
+        ends = []
+        for end in ("from", "to"):
+            sub = self.required(table, end, key)
+            self.keys(sub, f"{key}.{end}", {"link", "point"})
+            link = self.link_ref(self.required(sub, "link", f"{key}.{end}"),
+                                 f"{key}.{end}.link", links)
+            ends.append((link, self.point_on(link, sub.get("point", [0.0, 0.0]),
+                                             f"{key}.{end}.point")))
+        stiffness = self.number(self.required(table, "stiffness", key), f"{key}.stiffness",
+                                "N/m", non_negative=True)
+        free = self.length_of(self.required(table, "free_length", key), f"{key}.free_length",
+                              non_negative=True)
+        name = table.get("name", key.replace(".", ""))
+        return Spring((ends[0][0], ends[1][0]), (ends[0][1], ends[1][1]), stiffness, free, str(name))
+
+    # -- whole-mechanism checks ------------------------------------------------------
+    def check_names(self, links: dict[int, Link]) -> None:
+        seen: dict[str, int] = {}
+        for link in links.values():
+            if link.number == FRAME:
+                continue
+            for name in link.points:
+                if name == "tip" and link.number == CRANK:
+                    continue
+                if name in seen:
+                    raise self.fail(f"links.{link.number}.points.{name}",
+                                    f"repeats the point name \"{name}\" of link {seen[name]}; "
+                                    f"point names must be unique (they name CSV columns).")
+                seen[name] = link.number
+
+    def check_joints(self, crank: Crank, dyads: tuple[Dyad, ...]) -> None:
+        seen: dict[tuple[int, int], str] = {(FRAME, CRANK): "the crank"}
+        for dyad in dyads:
+            for letter, joint in zip("ABC", dyad.joints):
+                name = joint.name
+                if name in seen:
+                    raise self.fail(f"dyad.{dyad.number - 1}.{letter}",
+                                    f"joins links {name[0]} and {name[1]}, which {seen[name]} "
+                                    f"already joins; two joints between the same links are "
+                                    f"not a dyad chain.")
+                seen[name] = f"joint {letter} of dyad {dyad.number}"
+
+
+def make_prismatic(carrier: int, point: Vec, theta: float, offset: float, slider: int,
+                   slider_point: Vec, relative_angle: float, extra: dict[str, Any]) -> Prismatic:
+    """A prismatic joint whose guide passes ``point`` of the carrier in direction
+    ``theta``, shifted so that the slider point lies ``offset`` to its left."""
+    shifted = (point[0] - offset * math.sin(theta), point[1] + offset * math.cos(theta))
+    return Prismatic(carrier, slider, shifted, theta, slider_point, relative_angle, **extra)
+
+
+def _list(value: Any, key: str, reader: Reader) -> list[Any]:
+    if not isinstance(value, list):
+        raise reader.fail(key, f"must be an array of tables [[{key}]], got {_show(value)}.")
+    return value
+
+
+def _show(value: Any) -> str:
+    if isinstance(value, str):
+        return f"\"{value}\""
+    if isinstance(value, dict):
+        return "a table"
+    return repr(value)
+
+
+def _fmt(value: float) -> str:
+    return f"{value:g}"
+
