@@ -30,15 +30,18 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     c0 = float(n_local @ np.subtract(joint_b.guide_point, p_c) - n_local @ slider_arm)
     d = o_s - o_c
     rho = np.hypot(d[:, 0], d[:, 1])
+    size = max(float(np.nanmax(rho, initial=0.0)), abs(c0))  # [m] the dyad's scale
     with np.errstate(divide="ignore", invalid="ignore"):  # pivots on top of each other
         ratio = c0 / rho
-    closes = np.abs(ratio) <= 1.0 + 1e-12
+    # lever arm: distance along the guide between the two pivots; 0 at the singular
+    # position where the slider point passes the guide link's pivot foot point
+    arm = np.sqrt(np.maximum(rho ** 2 - c0 ** 2, 0.0))
+    closes = (np.abs(ratio) <= 1.0 + 1e-12) & (arm > 1e-9 * size)
     tilt = np.arcsin(np.clip(np.where(closes, ratio, np.nan), -1.0, 1.0))
     beta0 = dyads.polar_angle(d)
     psi = beta0 - tilt if dyad.variant > 0 else beta0 - np.pi + tilt
     phi_c = psi - theta
     dyads.place(motion, c, phi_c, o_c, p_c)
     dyads.place(motion, s, phi_c + kappa, o_s, p_s)
-    normal = np.stack((-np.sin(psi), np.cos(psi)), axis=-1)
-    return dyads.Closure(closes, dyads.angle_between(normal, d))
-
+    # μ: angle between the guide normal and the pivot line, cos μ = c0/ρ, sin μ = arm/ρ
+    return dyads.Closure(closes, np.arctan2(arm, c0))

@@ -1,0 +1,23 @@
+"""Shared fixtures; a deterministic hypothesis profile under CI=true."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, settings
+
+settings.register_profile("ci", derandomize=True, max_examples=60, deadline=None,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("dev", max_examples=60, deadline=None,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile("ci" if os.environ.get("CI") == "true" else "dev")
+
+MECHANISMS = Path(__file__).resolve().parent.parent / "mechanisms"
+SHIPPED = sorted(MECHANISMS.glob("*.toml"))
+
+
+@pytest.fixture
+def mechanisms_dir() -> Path:
+    return MECHANISMS

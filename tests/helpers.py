@@ -1,0 +1,32 @@
+"""Helpers for tests: build mechanisms from dicts, run the engine at given angles."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from dyade import kinematics
+from dyade.model import Mechanism
+from dyade.toml_input import Reader
+
+
+def mechanism_from(data: dict[str, Any]) -> Mechanism:
+    return Reader("test.toml").mechanism(data)
+
+
+def kinematics_at(mechanism: Mechanism, angles) -> kinematics.Kinematics:
+    return kinematics.sweep(mechanism, np.asarray(angles, dtype=np.float64))
+
+
+def read_csv(text: str) -> dict[str, np.ndarray]:
+    lines = text.strip().splitlines()
+    names = lines[0].split(",")
+    rows = [[float(v) if v else np.nan for v in line.split(",")] for line in lines[1:]]
+    table = np.array(rows)
+    return {name: table[:, k] for k, name in enumerate(names)}
+
+
+def shipped(name: str) -> Path:
+    return Path(__file__).resolve().parent.parent / "mechanisms" / name
