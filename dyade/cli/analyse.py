@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import sys
 from pathlib import Path
 
 import click
@@ -89,7 +90,7 @@ def analyse(mechanism_file: Path, fmt: str, output: Path | None, start: float | 
             with _atomic(output) as handle:
                 csv_rows.write(cols, handle)
         else:
-            csv_rows.write(cols, click.get_text_stream("stdout"))
+            csv_rows.write(cols, sys.stdout)
     else:
         from dyade.report import tables
 
