@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from dyade import kinematics
+from dyade import kinematics, kinetostatics
 from dyade.errors import AssemblyError
 from dyade.model import FloatArray, Mechanism
 
@@ -29,7 +29,8 @@ class Plan:
         """One line per simulated effect, for ``describe``."""
         out = ["kinematics: positions, velocities, accelerations of every link, joint and point"]
         if self.kinetostatics:
-            out.append("kinetostatics: joint forces, driving torque, shaking force (d'Alembert)")
+            out.append("kinetostatics: joint forces, driving torque, shaking force (d'Alembert, "
+                       "backward dyad by dyad)")
         return out
 
     def skipped(self) -> list[str]:
@@ -52,6 +53,8 @@ class Result:
     mechanism: Mechanism
     plan: Plan
     kinematics: kinematics.Kinematics
+    forces: kinetostatics.Forces | None
+    """joint forces and drive torque; None when the plan has no kinetostatics"""
     rows: FloatArray
     """(n,) bool: positions that are reported (all, or with --allow-partial the closing ones)"""
     notes: list[str] = field(default_factory=list)
@@ -90,7 +93,16 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
     notes: list[str] = []
     rows = _check_assembly(mechanism, kin, allow_partial, notes)
     _dead_centres(mechanism, kin, rows, notes)
-    return Result(mechanism, the_plan, kin, rows, notes)
+    forces = None
+    if the_plan.kinetostatics:
+        forces = kinetostatics.solve(mechanism, kin)
+        invalid = rows & ~forces.valid
+        if invalid.any():
+            notes.append(f"forces are not given at crank angles "
+                         f"{format_ranges(kin.crank_angle, invalid)}: a dyad is at or near a "
+                         f"dead centre or blocked position, where the rigid model is invalid "
+                         f"(forces_valid = 0, force fields empty).")
+    return Result(mechanism, the_plan, kin, forces, rows, notes)
 
 
 def _check_assembly(mechanism: Mechanism, kin: kinematics.Kinematics, allow_partial: bool,

@@ -94,7 +94,12 @@ class Reader:
         for name in table:
             if name not in allowed:
                 where = f"{key}.{name}" if key else name
-                raise InputError(f"{self.label}: unknown key `{where}`.{_suggest(name, allowed)}")
+                if key and name in TOP_KEYS:
+                    hint = (f" `{name}` is a top-level key: move it above the first [table] "
+                            f"header (in TOML, keys after a [header] belong to that table).")
+                else:
+                    hint = _suggest(name, allowed)
+                raise InputError(f"{self.label}: unknown key `{where}`.{hint}")
         return table
 
     def required(self, table: dict[str, Any], key: str, path: str) -> Any:

@@ -149,3 +149,10 @@ def test_describe_lists_the_dyads_and_effects(mechanisms_dir):
     assert "(1,6) prismatic" in text
     assert "F = 3·(16−1) − 2·22 = 1" in text
     assert "kinematics" in text
+
+
+def test_top_level_key_after_a_table_gets_a_hint(tmp_path):
+    result = run(tmp_path, FOURBAR + "gravity = true\n")
+    text = " ".join(result.output.split())
+    assert result.exit_code == 2
+    assert "unknown key `dyad.1.gravity`" in text and "is a top-level key" in text

@@ -94,14 +94,15 @@ def analyse(mechanism_file: Path, fmt: str, output: Path | None, start: float | 
     else:
         from dyade.report import tables
 
-        table = tables.sweep_summary(result, cols)
+        parts = [tables.sweep_summary(result, cols), tables.force_summary(result, cols)]
+        parts = [part for part in parts if part is not None]
         if output:
             from rich.console import Console
 
             with _atomic(output) as handle:
-                Console(file=handle, width=120).print(table)
+                Console(file=handle, width=120).print(*parts)
         else:
-            _console().print(table)
+            _console().print(*parts)
     err = _console(stderr=True)
     for note in result.notes:
         err.print(f"warning: {note}")

@@ -17,7 +17,8 @@ Columns = dict[str, FloatArray]
 
 UNITS = {"angle_deg": "°", "phi": "°", "omega": "rad/s", "alpha": "rad/s²", "x": "m", "y": "m",
          "vx": "m/s", "vy": "m/s", "ax": "m/s²", "ay": "m/s²", "s": "m", "v": "m/s",
-         "a": "m/s²", "mu": "°"}
+         "a": "m/s²", "mu": "°", "Fx": "N", "Fy": "N", "F": "N", "FN": "N", "M": "N·m",
+         "P": "W", "forces": "1/0"}
 
 
 def _tag(name: tuple[int, int]) -> str:
@@ -55,9 +56,35 @@ def kinematic_columns(result: Result) -> Columns:
     return {key: value[rows] for key, value in out.items()}
 
 
+def force_columns(result: Result) -> Columns:
+    """Joint forces, drive torque and power, shaking force; empty where invalid."""
+    forces, mech = result.forces, result.mechanism
+    if forces is None:
+        return {}
+    out: Columns = {}
+    for joint in mech.joints:
+        tag = _tag(joint.name)
+        if isinstance(joint, Revolute):
+            f = forces.revolute[joint.name]
+            out[f"Fx_{tag}"], out[f"Fy_{tag}"] = f[:, 0], f[:, 1]
+            out[f"F_{tag}"] = np.hypot(f[:, 0], f[:, 1])
+        else:
+            out[f"FN_{tag}"] = forces.normal[joint.name]
+            out[f"M_{tag}"] = forces.moment[joint.name]
+    out["M_drive"] = forces.drive_torque
+    out["P_drive"] = forces.drive_torque * mech.crank.speed
+    out["Fx_shake"], out["Fy_shake"], out["M_shake"] = (forces.shaking[:, 0],
+                                                        forces.shaking[:, 1],
+                                                        forces.shaking[:, 2])
+    invalid = ~forces.valid
+    out = {key: np.where(invalid, np.nan, value) for key, value in out.items()}
+    out["forces_valid"] = forces.valid.astype(np.float64)
+    return {key: value[result.rows] for key, value in out.items()}
+
+
 def columns(result: Result) -> Columns:
     """All columns of a result, in contract order."""
-    return kinematic_columns(result)
+    return kinematic_columns(result) | force_columns(result)
 
 
 def unit_of(column: str) -> str:

@@ -29,8 +29,8 @@ def sweep_summary(result: Result, cols: Columns) -> Table:
             continue
         masked = np.where(finite, values, np.nan)
         lo, hi = int(np.nanargmin(masked)), int(np.nanargmax(masked))
-        table.add_row(name, unit_of(name), f"{values[lo]:.6g}", f"{angle[lo]:.1f}",
-                      f"{values[hi]:.6g}", f"{angle[hi]:.1f}")
+        table.add_row(name, unit_of(name), f"{values[lo] + 0.0:.6g}", f"{angle[lo]:.1f}",
+                      f"{values[hi] + 0.0:.6g}", f"{angle[hi]:.1f}")
     return table
 
 
@@ -87,3 +87,44 @@ def describe(mechanism: Mechanism, the_plan: Plan) -> Tree:
 def _points(node: Tree, mechanism: Mechanism, link: int) -> None:
     for name, (xi, eta) in mechanism.links[link].points.items():
         node.add(f"link {link} point {name} = ({xi * 1e3:g}, {eta * 1e3:g}) mm (ξ, η)")
+
+
+def cycle_mean(angle: np.ndarray, values: np.ndarray) -> float:
+    """Mean over the crank angle (trapezoid rule), finite values only."""
+    keep = np.isfinite(values)
+    a, v = angle[keep], values[keep]
+    if a.size < 2:
+        return float(v.mean()) if v.size else float("nan")
+    return float(np.sum((v[1:] + v[:-1]) * np.diff(a)) / (2.0 * (a[-1] - a[0])))
+
+
+def force_summary(result: Result, cols: Columns) -> Table | None:
+    """Per joint: the largest force and where; the drive: max/min/RMS torque, mean power."""
+    if result.forces is None:
+        return None
+    angle = cols["angle_deg"]
+    table = Table(title="Joint forces and drive (rigid, frictionless)", title_justify="left")
+    table.add_column("quantity")
+    table.add_column("unit")
+    table.add_column("largest |value|", justify="right")
+    table.add_column("at φ21 [°]", justify="right")
+    for joint in result.mechanism.joints:
+        a, b = joint.name
+        names = ([f"F_{a}_{b}"] if isinstance(joint, Revolute) else [f"FN_{a}_{b}", f"M_{a}_{b}"])
+        for name in names:
+            values = np.abs(cols[name])
+            if not np.isfinite(values).any():
+                table.add_row(name, unit_of(name), "—", "")
+                continue
+            k = int(np.nanargmax(values))
+            table.add_row(name, unit_of(name), f"{cols[name][k] + 0.0:.6g}", f"{angle[k]:.1f}")
+    torque = cols["M_drive"]
+    finite = np.isfinite(torque)
+    if finite.any():
+        lo, hi = int(np.nanargmin(torque)), int(np.nanargmax(torque))
+        table.add_row("M_drive max", "N·m", f"{torque[hi]:.6g}", f"{angle[hi]:.1f}")
+        table.add_row("M_drive min", "N·m", f"{torque[lo]:.6g}", f"{angle[lo]:.1f}")
+        rms = np.sqrt(cycle_mean(angle, torque ** 2))
+        table.add_row("M_drive RMS", "N·m", f"{rms:.6g}", "")
+        table.add_row("P_drive mean", "W", f"{cycle_mean(angle, cols['P_drive']):.6g}", "")
+    return table
