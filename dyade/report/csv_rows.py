@@ -1,4 +1,4 @@
-"""Columns -> CSV text: header line, one row per crank position, full precision."""
+"""Columns -> CSV text: header line, one row per crank position, 15 significant digits."""
 
 from __future__ import annotations
 
@@ -10,13 +10,18 @@ from dyade.report.columns import Columns
 
 
 def write(cols: Columns, out: TextIO) -> None:
-    """Write the columns as CSV; NaN (invalid positions) becomes an empty field."""
+    """Write the columns as CSV; NaN (no value at that position) becomes an empty field."""
     names = list(cols)
     out.write(",".join(names) + "\n")
     if not names:
         return
     table = np.column_stack([np.asarray(cols[name], dtype=np.float64) for name in names])
-    text = np.char.mod("%.15g", table)
-    text[np.isnan(table)] = ""
-    out.write("\n".join(",".join(row) for row in text.tolist()))
+    table = table + 0.0  # no "-0" in the output
+    row_format = ",".join(["%.15g"] * len(names))
+    lines = [row_format % row for row in map(tuple, table.tolist())]
+    text = "\n".join(lines)
+    if np.isnan(table).any():
+        # fields are separated by commas, so "nan" only ever stands for a whole field
+        text = text.replace("nan", "")
+    out.write(text)
     out.write("\n")
