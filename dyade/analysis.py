@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from dyade import kinematics, kinetostatics
+from dyade import friction, kinematics, kinetostatics, self_locking
 from dyade.errors import AssemblyError
 from dyade.model import FloatArray, Mechanism
 
@@ -24,6 +24,10 @@ class Plan:
     kinematics: bool = True
     kinetostatics: bool = False
     """masses, loads or springs present"""
+    friction: tuple[tuple[int, int], ...] = ()
+    """joints with μ > 0 (friction iteration runs only with kinetostatics)"""
+    self_locking: tuple[tuple[int, int], ...] = ()
+    """sliders with μ > 0"""
 
     def effects(self) -> list[str]:
         """One line per simulated effect, for ``describe``."""
@@ -31,6 +35,12 @@ class Plan:
         if self.kinetostatics:
             out.append("kinetostatics: joint forces, driving torque, shaking force (d'Alembert, "
                        "backward dyad by dyad)")
+        if self.friction:
+            out.append("Coulomb friction (iterated per dyad) in joints "
+                       + ", ".join(f"({a},{b})" for a, b in self.friction))
+        if self.self_locking:
+            out.append("self-locking test for sliders "
+                       + ", ".join(f"({a},{b})" for a, b in self.self_locking))
         return out
 
     def skipped(self) -> list[str]:
@@ -38,12 +48,19 @@ class Plan:
         out = []
         if not self.kinetostatics:
             out.append("kinetostatics: no masses, loads or springs in the file")
+        if not self.friction:
+            out.append("friction: no joint has a friction coefficient μ > 0")
+        if not self.self_locking:
+            out.append("self-locking: no slider (prismatic joint) with friction")
         return out
 
 
 def plan(mechanism: Mechanism) -> Plan:
     """Decide the stages from the data (SPEC §1: only what the scene calls for)."""
-    return Plan(kinematics=True, kinetostatics=mechanism.has_dynamics)
+    dynamics = mechanism.has_dynamics
+    rubbing = tuple(j.name for j in mechanism.joints if j.friction > 0.0) if dynamics else ()
+    locking = tuple(j.name for j in self_locking.sliders(mechanism)) if dynamics else ()
+    return Plan(kinematics=True, kinetostatics=dynamics, friction=rubbing, self_locking=locking)
 
 
 @dataclass(slots=True)
@@ -59,6 +76,10 @@ class Result:
     """(n,) bool: positions that are reported (all, or with --allow-partial the closing ones)"""
     notes: list[str] = field(default_factory=list)
     """warnings for stderr: dead centres, partial sweeps, skipped stages"""
+    friction: friction.FrictionResult | None = None
+    """friction loads and iteration record; None without friction"""
+    locking: dict | None = None
+    """slider -> self_locking.Locking; None without sliders with friction"""
 
     @property
     def crank_angle(self) -> FloatArray:
@@ -93,16 +114,27 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
     notes: list[str] = []
     rows = _check_assembly(mechanism, kin, allow_partial, notes)
     _dead_centres(mechanism, kin, rows, notes)
-    forces = None
-    if the_plan.kinetostatics:
+    forces = rubbing = locking = None
+    if the_plan.friction:
+        rubbing = friction.iterate(mechanism, kin)
+        forces = rubbing.forces
+        _friction_notes(mechanism, kin, rubbing, rows, notes)
+        if the_plan.self_locking:
+            locking = self_locking.test(mechanism, kin.motion, rubbing, forces.valid)
+            for name, lock in locking.items():
+                if (lock.locks & rows).any():
+                    notes.append(f"slider ({name[0]},{name[1]}) locks (self-locking) at crank "
+                                 f"angles {format_ranges(kin.crank_angle, lock.locks & rows)}.")
+    elif the_plan.kinetostatics:
         forces = kinetostatics.solve(mechanism, kin)
+    if forces is not None:
         invalid = rows & ~forces.valid
         if invalid.any():
             notes.append(f"forces are not given at crank angles "
                          f"{format_ranges(kin.crank_angle, invalid)}: a dyad is at or near a "
                          f"dead centre or blocked position, where the rigid model is invalid "
                          f"(forces_valid = 0, force fields empty).")
-    return Result(mechanism, the_plan, kin, forces, rows, notes)
+    return Result(mechanism, the_plan, kin, forces, rows, notes, rubbing, locking)
 
 
 def _check_assembly(mechanism: Mechanism, kin: kinematics.Kinematics, allow_partial: bool,
@@ -141,3 +173,21 @@ def _dead_centres(mechanism: Mechanism, kin: kinematics.Kinematics, rows: FloatA
             notes.append(f"{dyad.label} is within {np.rad2deg(mechanism.dead_centre_angle):g}° of "
                          f"a {word} (transmission angle near 0° or 180°) at crank angles "
                          f"{format_ranges(kin.crank_angle, near)}.")
+
+
+def _friction_notes(mechanism: Mechanism, kin: kinematics.Kinematics,
+                    rubbing: friction.FrictionResult, rows: FloatArray, notes: list[str]) -> None:
+    failed = rows & kin.valid & ~rubbing.converged
+    if failed.any():
+        notes.append(f"the friction iteration did not converge to {mechanism.friction_tol:g} in "
+                     f"{mechanism.friction_max_iter} steps at {int(failed.sum())} positions: crank "
+                     f"angles {format_ranges(kin.crank_angle, failed)} (worst relative change "
+                     f"{np.max(rubbing.residual[failed]):.3g}).")
+    for name, mask in rubbing.at_rest.items():
+        if (mask & rows).any():
+            notes.append(f"joint ({name[0]},{name[1]}) is at rest relative to its partner at crank "
+                         f"angles {format_ranges(kin.crank_angle, mask & rows)}: the friction "
+                         f"direction is undefined there and no friction is applied.")
+    for name in rubbing.never_moves:
+        notes.append(f"joint ({name[0]},{name[1]}) never moves relative to its partner over the "
+                     f"sweep: it has no friction loss.")

@@ -20,9 +20,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.joints import Motion, cross, perp
+from dyade.joints import Motion, cross, rotate
 from dyade.kinematics import Kinematics, assemble, batched_solve
-from dyade.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Prismatic, Revolute
+from dyade.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
 
 
 @dataclass(slots=True)
@@ -64,8 +64,6 @@ def applied_loads(mechanism: Mechanism, kin: Kinematics) -> FloatArray:
         fx, fy, moment = load_values(load, kin.crank_angle)
         force = np.stack((fx, fy), axis=-1)
         if load.local:
-            from dyade.joints import rotate
-
             force = rotate(motion.angle[:, load.link], force)
         add_force(q, motion, load.link, load.point, force)
         q[:, load.link, 2] += moment
@@ -123,8 +121,17 @@ def reactions(mechanism: Mechanism, kin: Kinematics, q: FloatArray) -> Forces:
     multipliers: dict[tuple[int, int], FloatArray] = {}
     frame_load = np.zeros((n, 3))
     for dyad in reversed(mechanism.dyads):
-        lam = _group(dyad.joints, dyad.links, motion, q, usable, multipliers, frame_load)
+        _group(dyad.joints, dyad.links, motion, q, usable, multipliers, frame_load)
     drive = _crank(mechanism, motion, q, usable, multipliers, frame_load)
+    return assemble_forces(mechanism, kin, multipliers, drive, frame_load)
+
+
+def assemble_forces(mechanism: Mechanism, kin: Kinematics, multipliers: dict,
+                    drive: FloatArray, frame_load: FloatArray) -> Forces:
+    """Physical joint forces (sign rule of SPEC §1) from the multipliers; the shaking
+    load gets the frame-anchored springs and the drive's reaction."""
+    motion = kin.motion
+    frame_load = frame_load.copy()
     for spring in mechanism.springs:
         for link, local, force in spring_forces(spring, motion):
             if link == FRAME:
@@ -142,7 +149,7 @@ def reactions(mechanism: Mechanism, kin: Kinematics, q: FloatArray) -> Forces:
             normal[joint.name] = sign * lam[:, 1]
             moment[joint.name] = sign * lam[:, 0]
     band = np.sin(mechanism.dead_centre_angle)
-    valid = usable & np.all(np.abs(np.sin(kin.transmission)) > band, axis=1)
+    valid = kin.valid & np.all(np.abs(np.sin(kin.transmission)) > band, axis=1)
     return Forces(multipliers, revolute, normal, moment, drive, frame_load, valid)
 
 
@@ -187,8 +194,3 @@ def _crank(mechanism: Mechanism, motion: Motion, q: FloatArray, usable: FloatArr
     _pass_on(parts[0].blocks, (CRANK,), lam[:, :2], motion, q, frame_load)
     return -lam[:, 2]
 
-
-def prismatic_force_at_slider(joint: Prismatic, forces: Forces, motion: Motion) -> FloatArray:
-    """World force (n, 2) of a prismatic joint on its higher-numbered link."""
-    n_vec = perp(motion.direction(joint.carrier, joint.guide_angle))
-    return forces.normal[joint.name][:, None] * n_vec

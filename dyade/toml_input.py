@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from dyade.errors import InputError
+from dyade.errors import InputError  # noqa: F401  (re-exported for callers)
 from dyade.model import (CRANK, FRAME, KIND_NAMES, Crank, Dyad, Joint, Link, Load, Mechanism,
                          Prismatic, Revolute, Spring, Sweep, Vec)
 from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS, rpm_to_rad_per_s
@@ -31,8 +31,9 @@ CRANK_KEYS = {"link", "pivot", "length", "speed_rpm", "direction", "points", "pi
               "friction"}
 LINK_KEYS = {"points", "mass", "centre", "inertia", "radius_of_gyration"}
 REVOLUTE_KEYS = {"link", "point", "pin_radius", "friction"}
-PRISMATIC_KEYS = {"link", "point", "angle", "offset", "guide", "slider_length",
+PRISMATIC_KEYS = {"link", "point", "angle", "offset", "guide", "slider_point", "slider_length",
                   "slider_height", "friction"}
+FRICTION_KEYS = {"coefficient", "tol", "max_iter", "pin_radius", "slider_length", "slider_height"}
 MIDDLE_R_KEYS = {"pin_radius", "friction"}
 MIDDLE_P_KEYS = {"guide", "offset", "angle", "point", "slider_length", "slider_height",
                  "friction"}
@@ -148,7 +149,10 @@ class Reader:
             raise self.fail("name", f"must be a string, got {_show(name)}.")
         sweep, dead_centre = self.sweep(data.get("sweep", {}))
         friction = data.get("friction", {})
-        self.keys(friction, "friction", {"coefficient", "tol", "max_iter"})
+        self.keys(friction, "friction", FRICTION_KEYS)
+        self.friction_defaults = {
+            name: self.length_of(friction[name], f"friction.{name}", positive=True)
+            for name in ("pin_radius", "slider_length", "slider_height") if name in friction}
         self.default_mu = self.number(friction.get("coefficient", 0.0), "friction.coefficient",
                                       "-", non_negative=True)
         friction_tol = self.number(friction.get("tol", 1e-9), "friction.tol", "-", positive=True)
@@ -298,19 +302,30 @@ class Reader:
         return link, self.point_on(link, table.get("point", [0.0, 0.0]), f"{key}.point")
 
     def revolute_friction(self, table: dict[str, Any], key: str) -> dict[str, Any]:
-        out: dict[str, Any] = {"friction": self.number(table.get("friction", self.default_mu),
-                                                       f"{key}.friction", "-", non_negative=True)}
-        if "pin_radius" in table:
-            out["pin_radius"] = self.length_of(table["pin_radius"], f"{key}.pin_radius",
-                                               positive=True)
-        return out
+        return self.friction_data(table, key, ("pin_radius",))
 
     def prismatic_friction(self, table: dict[str, Any], key: str) -> dict[str, Any]:
-        out: dict[str, Any] = {"friction": self.number(table.get("friction", self.default_mu),
-                                                       f"{key}.friction", "-", non_negative=True)}
-        for name, field in (("slider_length", "slider_length"), ("slider_height", "slider_height")):
+        return self.friction_data(table, key, ("slider_length", "slider_height"))
+
+    def friction_data(self, table: dict[str, Any], key: str, needs: tuple[str, ...]
+                      ) -> dict[str, Any]:
+        """μ of a joint (or the file default) and the sizes friction needs: r_z for a
+        revolute joint, slider length L and height H for a prismatic one."""
+        mu = self.number(table.get("friction", self.default_mu), f"{key}.friction", "-",
+                         non_negative=True)
+        out: dict[str, Any] = {"friction": mu}
+        for name in needs:
             if name in table:
-                out[field] = self.length_of(table[name], f"{key}.{name}", positive=True)
+                out[name] = self.length_of(table[name], f"{key}.{name}", positive=True)
+            elif name in self.friction_defaults:
+                out[name] = self.friction_defaults[name]
+            elif mu > 0.0:
+                what = {"pin_radius": "the pin radius r_z", "slider_length": "the slider length L",
+                        "slider_height": "the slider height H"}[name]
+                raise self.fail(f"{key}.{name}", f"is missing: the joint has friction "
+                                                 f"(μ = {mu:g}) and needs {what} "
+                                                 f"[{self.length_unit}] (or give a default in "
+                                                 f"[friction] {name}).")
         return out
 
     def revolute(self, table: Any, key: str, new: int) -> tuple[int, Revolute]:
@@ -324,7 +339,11 @@ class Reader:
         guide = self.guide(table, key, (link, new), link)
         extra = self.prismatic_friction(table, key)
         if guide == link:
-            return link, make_prismatic(link, point, theta, offset, new, (0.0, 0.0), theta, extra)
+            centre = self.pair(table.get("slider_point", [0.0, 0.0]), f"{key}.slider_point")
+            return link, make_prismatic(link, point, theta, offset, new, centre, theta, extra)
+        if "slider_point" in table:
+            raise self.fail(f"{key}.slider_point", "applies when the dyad's link is the slider; "
+                                                   "with the guide on it, `point` is the slider point.")
         return link, make_prismatic(new, (0.0, 0.0), 0.0, offset, link, point, -theta, extra)
 
     def guide(self, table: dict[str, Any], key: str, pair: tuple[int, int], default: int) -> int:

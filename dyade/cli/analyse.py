@@ -68,19 +68,42 @@ def describe(mechanism_file: Path) -> None:
 @click.option("--allow-partial", is_flag=True,
               help="Analyse only the crank angles where every dyad closes; the others are "
                    "left out of the output (and named on stderr) instead of failing.")
+@click.option("--friction-tol", type=click.FloatRange(min=0.0, min_open=True),
+              help="Stop the friction iteration at a position when the relative change of "
+                   "its joint forces is below this [-]  [default: file's [friction] tol, 1e-9].")
+@click.option("--friction-max-iter", type=click.IntRange(min=1),
+              help="Most friction iterations per dyad and position  [default: file's "
+                   "[friction] max_iter, 50]; positions not converged are named on stderr.")
+@click.option("--fail-on-lock", is_flag=True,
+              help="Exit with status 1 when a slider self-locks (otherwise a locking slider is "
+                   "a finding: reported, exit status 0).")
 def analyse(mechanism_file: Path, fmt: str, output: Path | None, start: float | None,
-            stop: float | None, step: float | None, allow_partial: bool) -> None:
+            stop: float | None, step: float | None, allow_partial: bool,
+            friction_tol: float | None, friction_max_iter: int | None,
+            fail_on_lock: bool) -> None:
     """Sweep the crank of MECHANISM_FILE: positions, velocities and accelerations of every
     link, joint and named point.
 
-    Units: SI (m, m/s, m/s², rad/s, rad/s²) except angles in degrees. Exit status 1 when
-    a dyad cannot close over part of the sweep (the message names the dyad and the
-    crank-angle ranges), 2 for a bad file or option.
+    With masses, loads or springs in the file: joint forces, driving torque and shaking
+    force; with friction coefficients: Coulomb friction and the self-locking test of
+    every slider with friction.
+
+    Units: SI (m, m/s, m/s², rad/s, rad/s², N, N·m, W) except angles in degrees. Exit
+    status 1 when a dyad cannot close over part of the sweep (the message names the dyad
+    and the crank-angle ranges) or, with --fail-on-lock, when a slider locks; 2 for a bad
+    file or option.
     """
+    from dataclasses import replace
+
     from dyade import analysis
+    from dyade.errors import DyadeError
     from dyade.report import columns
 
     mechanism = _read(mechanism_file, start, stop, step)
+    if friction_tol is not None:
+        mechanism = replace(mechanism, friction_tol=friction_tol)
+    if friction_max_iter is not None:
+        mechanism = replace(mechanism, friction_max_iter=friction_max_iter)
     result = analysis.run(mechanism, analysis.plan(mechanism), allow_partial=allow_partial)
     cols = columns.columns(result)
     if fmt == "csv":
@@ -106,6 +129,8 @@ def analyse(mechanism_file: Path, fmt: str, output: Path | None, start: float | 
     err = _console(stderr=True)
     for note in result.notes:
         err.print(f"warning: {note}")
+    if fail_on_lock and any(lock.locks[result.rows].any() for lock in (result.locking or {}).values()):
+        raise DyadeError("a slider self-locks (see the warning above); --fail-on-lock was given.")
 
 
 class _atomic:

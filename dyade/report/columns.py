@@ -18,7 +18,7 @@ Columns = dict[str, FloatArray]
 UNITS = {"angle_deg": "°", "phi": "°", "omega": "rad/s", "alpha": "rad/s²", "x": "m", "y": "m",
          "vx": "m/s", "vy": "m/s", "ax": "m/s²", "ay": "m/s²", "s": "m", "v": "m/s",
          "a": "m/s²", "mu": "°", "Fx": "N", "Fy": "N", "F": "N", "FN": "N", "M": "N·m",
-         "P": "W", "forces": "1/0"}
+         "P": "W", "forces": "1/0", "MR": "N·m", "FR": "N", "lock": "N", "friction": "-"}
 
 
 def _tag(name: tuple[int, int]) -> str:
@@ -76,8 +76,19 @@ def force_columns(result: Result) -> Columns:
     out["Fx_shake"], out["Fy_shake"], out["M_shake"] = (forces.shaking[:, 0],
                                                         forces.shaking[:, 1],
                                                         forces.shaking[:, 2])
+    rubbing = result.friction
+    if rubbing is not None:
+        for name, value in rubbing.moments.items():
+            out[f"MR_{_tag(name)}"] = value
+        for name, value in rubbing.friction_forces.items():
+            out[f"FR_{_tag(name)}"] = value
+        out["P_friction"] = rubbing.power
+    for name, lock in (result.locking or {}).items():
+        out[f"lock_margin_{_tag(name)}"] = lock.margin
     invalid = ~forces.valid
     out = {key: np.where(invalid, np.nan, value) for key, value in out.items()}
+    if rubbing is not None:
+        out["friction_iterations"] = rubbing.iterations
     out["forces_valid"] = forces.valid.astype(np.float64)
     return {key: value[result.rows] for key, value in out.items()}
 

@@ -103,7 +103,9 @@ def force_summary(result: Result, cols: Columns) -> Table | None:
     if result.forces is None:
         return None
     angle = cols["angle_deg"]
-    table = Table(title="Joint forces and drive (rigid, frictionless)", title_justify="left")
+    rubbing = result.friction
+    kind = "with Coulomb friction" if rubbing is not None else "frictionless"
+    table = Table(title=f"Joint forces and drive (rigid, {kind})", title_justify="left")
     table.add_column("quantity")
     table.add_column("unit")
     table.add_column("largest |value|", justify="right")
@@ -127,4 +129,20 @@ def force_summary(result: Result, cols: Columns) -> Table | None:
         rms = np.sqrt(cycle_mean(angle, torque ** 2))
         table.add_row("M_drive RMS", "N·m", f"{rms:.6g}", "")
         table.add_row("P_drive mean", "W", f"{cycle_mean(angle, cols['P_drive']):.6g}", "")
+    if rubbing is not None:
+        table.add_row("P_friction mean", "W", f"{cycle_mean(angle, cols['P_friction']):.6g}", "")
+        its = cols["friction_iterations"]
+        rows = result.rows & result.forces.valid
+        worst = float(np.max(rubbing.residual[rows], initial=0.0))
+        table.add_row("friction iterations", "-", f"{its.min():.0f}–{its.max():.0f}", "")
+        table.add_row("worst final residual", "-", f"{worst:.2g}", "")
+    for name, lock in (result.locking or {}).items():
+        a, b = name
+        margin = cols[f"lock_margin_{a}_{b}"]
+        if np.isfinite(margin).any():
+            k = int(np.nanargmin(margin))
+            locks = lock.locks[result.rows]
+            verdict = f"locks over {int(locks.sum())} positions" if locks.any() else "no lock"
+            table.add_row(f"lock_margin_{a}_{b} min ({verdict})", "N", f"{margin[k]:.6g}",
+                          f"{angle[k]:.1f}")
     return table
