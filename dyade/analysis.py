@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from dyade import friction, kinematics, kinetostatics, self_locking
+from dyade import clearance, friction, kinematics, kinetostatics, self_locking
 from dyade.errors import AssemblyError
 from dyade.model import FloatArray, Mechanism
 
@@ -28,6 +28,8 @@ class Plan:
     """joints with μ > 0 (friction iteration runs only with kinetostatics)"""
     self_locking: tuple[tuple[int, int], ...] = ()
     """sliders with μ > 0"""
+    clearance: tuple[tuple[int, int], ...] = ()
+    """revolute joints with clearance data in the file (peak-force check, SPEC §2)"""
 
     def effects(self) -> list[str]:
         """One line per simulated effect, for ``describe``."""
@@ -41,6 +43,9 @@ class Plan:
         if self.self_locking:
             out.append("self-locking test for sliders "
                        + ", ".join(f"({a},{b})" for a, b in self.self_locking))
+        if self.clearance:
+            out.append("clearance peak check (Dresig–Thümmel) in joints "
+                       + ", ".join(f"({a},{b})" for a, b in self.clearance))
         return out
 
     def skipped(self) -> list[str]:
@@ -52,6 +57,9 @@ class Plan:
             out.append("friction: no joint has a friction coefficient μ > 0")
         if not self.self_locking:
             out.append("self-locking: no slider (prismatic joint) with friction")
+        if not self.clearance:
+            out.append("clearance peaks: no joint has clearance data "
+                       "(or run `dyade clearance FILE --stiffness … --clearance …`)")
         return out
 
 
@@ -60,7 +68,10 @@ def plan(mechanism: Mechanism) -> Plan:
     dynamics = mechanism.has_dynamics
     rubbing = tuple(j.name for j in mechanism.joints if j.friction > 0.0) if dynamics else ()
     locking = tuple(j.name for j in self_locking.sliders(mechanism)) if dynamics else ()
-    return Plan(kinematics=True, kinetostatics=dynamics, friction=rubbing, self_locking=locking)
+    gaps = tuple(j.name for j in mechanism.joints
+                 if getattr(j, "clearance", None) is not None) if dynamics else ()
+    return Plan(kinematics=True, kinetostatics=dynamics, friction=rubbing, self_locking=locking,
+                clearance=gaps)
 
 
 @dataclass(slots=True)
@@ -80,6 +91,8 @@ class Result:
     """friction loads and iteration record; None without friction"""
     locking: dict | None = None
     """slider -> self_locking.Locking; None without sliders with friction"""
+    clearance: list | None = None
+    """clearance.JointCheck per joint with clearance data; None without such data"""
 
     @property
     def crank_angle(self) -> FloatArray:
@@ -134,7 +147,14 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
                          f"{format_ranges(kin.crank_angle, invalid)}: a dyad is at or near a "
                          f"dead centre or blocked position, where the rigid model is invalid "
                          f"(forces_valid = 0, force fields empty).")
-    return Result(mechanism, the_plan, kin, forces, rows, notes, rubbing, locking)
+    result = Result(mechanism, the_plan, kin, forces, rows, notes, rubbing, locking)
+    if the_plan.clearance:
+        result.clearance = clearance.check_mechanism(mechanism, result, the_plan.clearance)
+        for check in result.clearance:
+            if not check.applies:
+                notes.append(f"clearance check of joint ({check.joint[0]},{check.joint[1]}) "
+                             f"does not apply: {check.reason}.")
+    return result
 
 
 def _check_assembly(mechanism: Mechanism, kin: kinematics.Kinematics, allow_partial: bool,

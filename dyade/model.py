@@ -42,6 +42,18 @@ def joint_name(a: int, b: int) -> tuple[int, int]:
 
 
 @dataclass(frozen=True, slots=True)
+class ClearanceData:
+    """Data of SPEC §2 for a revolute joint with clearance."""
+
+    clearance: float
+    """radial play 2s [m]"""
+    stiffness: float
+    """contact stiffness c [N/m]"""
+    mass: float | None = None
+    """reduced mass m [kg]; None: estimate from the two links' masses"""
+
+
+@dataclass(frozen=True, slots=True)
 class Revolute:
     """A revolute joint (Drehgelenk): point ``points[0]`` of ``links[0]`` coincides with
     point ``points[1]`` of ``links[1]`` (link-fixed coordinates ξ, η [m])."""
@@ -52,6 +64,8 @@ class Revolute:
     """Pin radius r_z [m] for Coulomb friction (None: not given)."""
     friction: float = 0.0
     """Coulomb friction coefficient μ [-]."""
+    clearance: ClearanceData | None = None
+    """Clearance data for the peak-force check (None: no check unless asked)."""
 
     @property
     def name(self) -> tuple[int, int]:

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from dyade.errors import InputError  # noqa: F401  (re-exported for callers)
-from dyade.model import (CRANK, FRAME, KIND_NAMES, Crank, Dyad, Joint, Link, Load, Mechanism,
+from dyade.model import (CRANK, FRAME, KIND_NAMES, ClearanceData, Crank, Dyad, Joint, Link, Load, Mechanism,
                          Prismatic, Revolute, Spring, Sweep, Vec)
 from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS, rpm_to_rad_per_s
 
@@ -28,13 +28,13 @@ UNIT_KEYS = {"length", "angle"}
 SWEEP_KEYS = {"start", "stop", "step", "dead_centre"}
 FRAME_KEYS = {"points"}
 CRANK_KEYS = {"link", "pivot", "length", "speed_rpm", "direction", "points", "pin_radius",
-              "friction"}
+              "friction", "clearance"}
 LINK_KEYS = {"points", "mass", "centre", "inertia", "radius_of_gyration"}
-REVOLUTE_KEYS = {"link", "point", "pin_radius", "friction"}
+REVOLUTE_KEYS = {"link", "point", "pin_radius", "friction", "clearance"}
 PRISMATIC_KEYS = {"link", "point", "angle", "offset", "guide", "slider_point", "slider_length",
                   "slider_height", "friction"}
 FRICTION_KEYS = {"coefficient", "tol", "max_iter", "pin_radius", "slider_length", "slider_height"}
-MIDDLE_R_KEYS = {"pin_radius", "friction"}
+MIDDLE_R_KEYS = {"pin_radius", "friction", "clearance"}
 MIDDLE_P_KEYS = {"guide", "offset", "angle", "point", "slider_length", "slider_height",
                  "friction"}
 DYAD_KEYS_COMMON = {"kind", "links", "A", "B", "C", "variant", "name"}
@@ -302,7 +302,17 @@ class Reader:
         return link, self.point_on(link, table.get("point", [0.0, 0.0]), f"{key}.point")
 
     def revolute_friction(self, table: dict[str, Any], key: str) -> dict[str, Any]:
-        return self.friction_data(table, key, ("pin_radius",))
+        out = self.friction_data(table, key, ("pin_radius",))
+        if "clearance" in table:
+            sub = self.keys(table["clearance"], f"{key}.clearance", {"gap", "stiffness", "mass"})
+            path = f"{key}.clearance"
+            gap = self.length_of(self.required(sub, "gap", path), f"{path}.gap", positive=True)
+            stiffness = self.number(self.required(sub, "stiffness", path), f"{path}.stiffness",
+                                    "N/m", positive=True)
+            mass = (self.number(sub["mass"], f"{path}.mass", "kg", positive=True)
+                    if "mass" in sub else None)
+            out["clearance"] = ClearanceData(gap, stiffness, mass)
+        return out
 
     def prismatic_friction(self, table: dict[str, Any], key: str) -> dict[str, Any]:
         return self.friction_data(table, key, ("slider_length", "slider_height"))

@@ -117,7 +117,8 @@ def analyse(mechanism_file: Path, fmt: str, output: Path | None, start: float | 
     else:
         from dyade.report import tables
 
-        parts = [tables.sweep_summary(result, cols), tables.force_summary(result, cols)]
+        parts = [tables.sweep_summary(result, cols), tables.force_summary(result, cols),
+                 tables.clearance_summary(result)]
         parts = [part for part in parts if part is not None]
         if output:
             from rich.console import Console

@@ -146,3 +146,25 @@ def force_summary(result: Result, cols: Columns) -> Table | None:
             table.add_row(f"lock_margin_{a}_{b} min ({verdict})", "N", f"{margin[k]:.6g}",
                           f"{angle[k]:.1f}")
     return table
+
+
+def clearance_summary(result: Result) -> Table | None:
+    """One row per reversal of each checked joint: angle, τ, peak, amplification."""
+    if not result.clearance:
+        return None
+    table = Table(title="Clearance peaks (Dresig–Thümmel, SPEC §2)", title_justify="left")
+    for head in ("joint", "impacts/rev", "φ21 [°]", "τ", "F12max [N]", "rigid [N]", "×"):
+        table.add_column(head, justify="right")
+    for check in result.clearance:
+        a, b = check.joint
+        if not check.applies:
+            table.add_row(f"({a},{b})", "—", "model does not apply", "", "", "", "")
+            continue
+        if not check.reversals:
+            table.add_row(f"({a},{b})", "0", "no reversal", "", "", "", "")
+        for rev in check.reversals:
+            table.add_row(f"({a},{b})", str(len(check.reversals)),
+                          f"{np.rad2deg(rev.crank_angle):.1f}", f"{rev.peak.tau:.4g}",
+                          f"{rev.peak.force:.5g}", f"{rev.rigid_force:.5g}",
+                          f"{rev.amplification:.3g}")
+    return table
