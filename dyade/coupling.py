@@ -1,0 +1,169 @@
+"""Torsional resonance of a stiff coupling (Strümpfel; SPEC §3), as complex phasors.
+
+Model: the exciting moment M_E = M̂_E·sin Ωt acts at the primary node ψ (massless),
+which drives the coupling inertia J_K through c1t ∥ b1; the secondary side is held
+still through c2t ∥ b2:
+
+    M_E = c1t·(ψ − φ) + b1·(ψ' − φ'),    J_K·φ'' + b2·φ' + c2t·φ = M_E,
+    M_Q = c2t·φ + b2·φ',                 φ_r = φ − ψ (the paper's relative angle).
+
+With M_E = Im(M̂_E·e^{iΩt}) every response is Im(X·M̂_E·e^{iΩt}) with the phasors
+
+    Φ = 1/(c2t − J_K·Ω² + i·b2·Ω),   Φ_r = −1/(c1t + i·b1·Ω),
+    Ψ = Φ − Φ_r,                      Q = (c2t + i·b2·Ω)·Φ,
+
+so the amplitudes are |X|·M̂_E and the phase (lead over M_E) is arg X in (−180°, 180°],
+the true quadrant that the paper's arctan forms (10) lose. The transfer functions are
+normalised as in the paper: V_φ = |Φ|·(c1t + c2t), V_ψ = |Ψ|·c1t,
+V_q = |Q|·(c1t + c2t)/c2t, V_r = |Φ_r|·c1t; they equal eqs. (4), (7), (8), (9).
+The phasor form also keeps full accuracy near a lightly damped resonance, where the
+paper's Z = sqrt(W² − 2κN + κ²(1 + R²)) cancels.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from dyade.errors import InputError
+from dyade.model import FloatArray
+
+UNBOUNDED_RTOL = 1e-14  # [-] |denominator| below this share of its terms: exactly singular
+
+
+@dataclass(frozen=True, slots=True)
+class Coupling:
+    """The model data (SI)."""
+
+    inertia: float
+    """J_K [kg·m²]"""
+    c1: float
+    """primary-side torsional stiffness c1t [N·m/rad]"""
+    c2: float
+    """secondary-side torsional stiffness c2t [N·m/rad]"""
+    b1: float
+    """primary-side damping b1 [N·m·s/rad]"""
+    b2: float
+    """secondary-side damping b2 [N·m·s/rad]"""
+
+    def __post_init__(self) -> None:
+        for name, value, flag in (("inertia", self.inertia, "--J"), ("c1", self.c1, "--c1"),
+                                  ("c2", self.c2, "--c2"), ("b1", self.b1, "--b1"),
+                                  ("b2", self.b2, "--b2")):
+            if not np.isfinite(value) or value < 0.0:
+                raise InputError(f"{flag} must be a non-negative number, got {value:g}.")
+        if self.inertia <= 0.0:
+            raise InputError(f"--J must be positive [kg·m²], got {self.inertia:g}.")
+        if self.c1 + self.c2 <= 0.0:
+            raise InputError("--c1 and --c2 are both zero: the coupling has no stiffness, so no "
+                             "natural frequency ω_t and no tuning ratio η. Give c1 + c2 > 0.")
+        if self.c1 == 0.0 and self.b1 == 0.0:
+            raise InputError("--c1 and --b1 are both zero: nothing carries the exciting moment "
+                             "to the coupling (the primary node would run away).")
+
+    @property
+    def natural_frequency(self) -> float:
+        """ω_t = sqrt((c1t + c2t)/J_K) [rad/s]"""
+        return float(np.sqrt((self.c1 + self.c2) / self.inertia))
+
+    @property
+    def damping_ratio(self) -> float:
+        """D = (b1 + b2)/(2·J_K·ω_t) [-] (SPEC §3; the OCR's square root is a slip)"""
+        return (self.b1 + self.b2) / (2.0 * self.inertia * self.natural_frequency)
+
+    @property
+    def kappa(self) -> float:
+        """κ = c1t/(c1t + c2t) [-]"""
+        return self.c1 / (self.c1 + self.c2)
+
+    def resonance(self) -> float | None:
+        """η0 of eq. (5) (the peak of V_φ); None when V_φ has no peak (η0² ≤ 0)."""
+        share2 = self.b2 / (self.b1 + self.b2) if self.b1 + self.b2 > 0 else 0.0
+        square = 1.0 - self.kappa - 2.0 * self.damping_ratio ** 2 * share2 ** 2
+        return float(np.sqrt(square)) if square > 0.0 else None
+
+
+@dataclass(slots=True)
+class Response:
+    """Transfer functions and phases over the tuning ratio."""
+
+    eta: FloatArray
+    phasors: dict[str, np.ndarray]
+    """'phi', 'psi', 'q', 'r' -> complex phasor per unit M̂_E (rad/(N·m) or -)"""
+    transfer: dict[str, FloatArray]
+    """'V_phi', 'V_psi', 'V_q', 'V_r' -> normalised amplitude; inf where unbounded,
+    NaN where undefined (its normalising stiffness is zero)"""
+    phase: dict[str, FloatArray]
+    """'alpha', 'beta', 'gamma', 'delta' -> lead over M_E [rad] in (−π, π]; NaN where
+    the response is zero or unbounded (phase undefined)"""
+    unbounded: FloatArray
+    """(n,) bool: undamped resonance, amplitudes of φ, ψ, M_Q infinite"""
+
+
+def response(coupling: Coupling, eta: FloatArray) -> Response:
+    """Phasor solution at the tuning ratios ``eta`` (vectorised)."""
+    eta = np.asarray(eta, dtype=np.float64)
+    if np.any(eta < 0.0) or not np.all(np.isfinite(eta)):
+        raise InputError("tuning ratios η must be finite and not negative.")
+    j, c1, c2, b1, b2 = coupling.inertia, coupling.c1, coupling.c2, coupling.b1, coupling.b2
+    omega = eta * coupling.natural_frequency
+    den_phi = (c2 - j * omega ** 2) + 1j * b2 * omega
+    scale = np.maximum(c2 + j * omega ** 2 + b2 * omega, np.finfo(float).tiny)
+    unbounded = np.abs(den_phi) <= UNBOUNDED_RTOL * scale
+    den_r = c1 + 1j * b1 * omega
+    r_zero = np.abs(den_r) == 0.0  # c1 = 0, b1 > 0 at Ω = 0: relative angle unbounded
+    with np.errstate(divide="ignore", invalid="ignore"):  # unbounded rows are masked below
+        phi = np.where(unbounded, np.nan, 1.0 / np.where(unbounded, 1.0, den_phi))
+        rel = np.where(r_zero, np.nan, -1.0 / np.where(r_zero, 1.0, den_r))
+    psi = phi - rel
+    # ψ̂ = 0 at an undamped anti-resonance: a round-off remainder is zero (phase undefined)
+    psi = np.where(np.abs(psi) <= 1e-13 * (np.abs(phi) + np.abs(rel)), 0.0, psi)
+    q = (c2 + 1j * b2 * omega) * phi
+    phasors = {"phi": phi, "psi": psi, "q": q, "r": rel}
+    inf = np.inf
+    transfer = {
+        "V_phi": np.where(unbounded, inf, np.abs(phi) * (c1 + c2)),
+        "V_psi": (np.where(unbounded | r_zero, inf, np.abs(psi) * c1) if c1 > 0
+                  else np.full(eta.shape, np.nan)),
+        "V_q": (np.where(unbounded, inf, np.abs(q) * (c1 + c2) / c2) if c2 > 0
+                else np.full(eta.shape, np.nan)),
+        "V_r": (np.where(r_zero, inf, np.abs(rel) * c1) if c1 > 0
+                else np.full(eta.shape, np.nan)),
+    }
+    phase = {name: _phase(phasors[key])
+             for name, key in (("alpha", "phi"), ("beta", "psi"), ("gamma", "q"), ("delta", "r"))}
+    return Response(eta, phasors, transfer, phase, unbounded)
+
+
+def _phase(x: np.ndarray) -> FloatArray:
+    """arg x in (−π, π]; NaN where x is zero or undefined."""
+    angle = np.angle(x)
+    angle = np.where(angle <= -np.pi, np.pi, angle)
+    return np.where((np.abs(x) == 0.0) | ~np.isfinite(x), np.nan, angle)
+
+
+def amplitudes(coupling: Coupling, resp: Response, moment: float) -> dict[str, FloatArray]:
+    """Physical amplitudes for M̂_E = ``moment`` [N·m]: φ̂, ψ̂, φ̂_r [rad], M̂_Q [N·m]."""
+    if not np.isfinite(moment) or moment <= 0.0:
+        raise InputError(f"--moment must be a positive amplitude [N·m], got {moment:g}.")
+    out = {}
+    for name, key in (("phi_hat", "phi"), ("psi_hat", "psi"), ("MQ_hat", "q"), ("phir_hat", "r")):
+        value = np.abs(resp.phasors[key]) * moment
+        unbounded = resp.unbounded if key != "r" else np.zeros_like(resp.unbounded)
+        out[name] = np.where(unbounded | np.isnan(value), np.inf, value)
+    return out
+
+
+def paper_transfer(coupling: Coupling, eta: FloatArray) -> dict[str, FloatArray]:
+    """The paper's closed forms (4), (7), (8), (9) — for cross-checks (needs b1 + b2 > 0,
+    c1 > 0, c2 > 0)."""
+    c1, c2, b1, b2 = coupling.c1, coupling.c2, coupling.b1, coupling.b2
+    d, kappa = coupling.damping_ratio, coupling.kappa
+    r = b1 / (b1 + b2) * (c1 + c2) / c1 * 2 * d * eta
+    m = b2 / (b1 + b2) * (c1 + c2) / c2 * 2 * d * eta
+    n = 1 - eta ** 2 + 2 * d * eta * r
+    w = np.sqrt((1 - eta ** 2) ** 2 + (2 * d * eta) ** 2)
+    z = np.sqrt(w ** 2 - 2 * kappa * n + kappa ** 2 * (1 + r ** 2))
+    return {"V_phi": 1 / z, "V_psi": w / (z * np.sqrt(1 + r ** 2)),
+            "V_q": np.sqrt(1 + m ** 2) / z, "V_r": 1 / np.sqrt(1 + r ** 2)}
