@@ -10,6 +10,7 @@ import click
 
 from dyade.cli import main
 from dyade.cli.analyse import MECHANISM_FILE, _atomic, _console
+from dyade.cli.options import value_range
 
 STANDALONE_COLUMNS = ["mass", "stiffness", "clearance", "slope", "t1", "v1", "tau", "f_tau",
                       "F_max"]
@@ -27,20 +28,6 @@ def _joint(text: str) -> tuple[int, int]:
         raise click.BadParameter(f"must be two link numbers like 5,6, got {text!r}.",
                                  param_hint="--joint") from None
     return (a, b) if a < b else (b, a)
-
-
-def _range(text: str) -> list[float]:
-    import numpy as np
-
-    try:
-        start, stop, step = (float(part) for part in text.split(":"))
-    except ValueError:
-        raise click.BadParameter(f"must be START:STOP:STEP in rpm, got {text!r}.",
-                                 param_hint="--speed-range") from None
-    if step <= 0 or stop < start or start <= 0:
-        raise click.BadParameter(f"needs 0 < START <= STOP and STEP > 0, got {text!r}.",
-                                 param_hint="--speed-range")
-    return list(start + step * np.arange(int(np.floor((stop - start) / step + 1e-9)) + 1))
 
 
 def _write_csv(rows: list[dict], names: list[str], output: Path | None) -> None:
@@ -128,7 +115,7 @@ def clearance(mechanism_file: Path | None, joints: tuple[str, ...], masses: tupl
         raise InputError(f"--mass must be a positive number, got {masses[1]:g}.")
     mass = engine.reduced_mass(*masses) if len(masses) == 2 else (masses[0] if masses else None)
     engine.MAX_WANDER = float(__import__("math").radians(max_wander))
-    speeds = _range(speed_range) if speed_range else None
+    speeds = value_range(speed_range, "--speed-range", " in rpm", positive_start=True) if speed_range else None
     if mechanism_file is None:
         _standalone(mass, stiffness, gap, slope, speed_rpm, speeds, simulate, sim_steps, fmt,
                     output)

@@ -11,29 +11,12 @@ import click
 from dyade.cli import main
 from dyade.cli.analyse import _atomic, _console
 from dyade.cli.clearance import _write_csv
+from dyade.cli.options import value_range
 
 COLUMNS = ["eta", "V_phi", "V_psi", "V_q", "V_r", "alpha_deg", "beta_deg", "gamma_deg",
            "delta_deg"]
 MOMENT_COLUMNS = ["phi_hat", "psi_hat", "MQ_hat", "phir_hat"]
 FILE_KEYS = {"name", "J", "c1", "c2", "b1", "b2", "moment", "eta_range", "speed_rpm", "order"}
-
-
-def _eta_range(text: str) -> list[float]:
-    import numpy as np
-
-    try:
-        start, stop, step = (float(part) for part in text.split(":"))
-    except ValueError:
-        raise click.BadParameter(f"must be START:STOP:STEP, got {text!r}.",
-                                 param_hint="--eta-range") from None
-    if not (start >= 0 and stop >= start and step > 0):
-        raise click.BadParameter(f"needs 0 <= START <= STOP and STEP > 0, got {text!r}.",
-                                 param_hint="--eta-range")
-    count = int(np.floor((stop - start) / step + 1e-9)) + 1
-    if count > 10_000_000:
-        raise click.BadParameter(f"asks for {count} values; at most 10 000 000.",
-                                 param_hint="--eta-range")
-    return (start + step * np.arange(count)).tolist()
 
 
 def _read_file(path: Path) -> dict[str, Any]:
@@ -117,7 +100,7 @@ def coupling(coupling_file: Path | None, inertia, c1, c2, b1, b2, eta_range, mom
         raise click.UsageError(f"missing {', '.join(missing)} (or give them in a coupling file).")
     model = engine.Coupling(float(data["J"]), float(data["c1"]), float(data["c2"]),
                             float(data.get("b1", 0.0)), float(data.get("b2", 0.0)))
-    eta = np.array(_eta_range(data.get("eta_range", "0:3:0.01")))
+    eta = np.array(value_range(data.get("eta_range", "0:3:0.01"), "--eta-range", ""))
     resp = engine.response(model, eta)
     cols: dict[str, Any] = {"eta": eta}
     cols.update(resp.transfer)
