@@ -187,7 +187,7 @@ def _dead_centres(mechanism: Mechanism, kin: kinematics.Kinematics, rows: FloatA
                   notes: list[str]) -> None:
     band = np.sin(mechanism.dead_centre_angle)
     for col, dyad in enumerate(mechanism.dyads):
-        near = rows & (np.abs(np.sin(kin.transmission[:, col])) <= band)
+        near = rows & (kin.conditioning[:, col] <= band)
         if near.any():
             word = "blocked position" if dyad.kind in (4, 5) else "dead centre"
             notes.append(f"{dyad.label} is within {np.rad2deg(mechanism.dead_centre_angle):g}° of "

@@ -31,6 +31,8 @@ class Kinematics:
     """(n, dyads) transmission angle μ of each dyad [rad], NaN where it does not close"""
     singular: FloatArray
     """(n, dyads) bool: the dyad is exactly at a dead centre / blocked (velocities NaN)"""
+    conditioning: FloatArray
+    """(n, dyads) distance from singularity in [0, 1] (0: dead centre / blocked)"""
 
     @property
     def valid(self) -> FloatArray:
@@ -95,20 +97,22 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinema
     closes = np.ones((n, count), dtype=bool)
     transmission = np.full((n, count), np.nan)
     singular = np.zeros((n, count), dtype=bool)
+    conditioning = np.full((n, count), np.nan)
     upstream_ok = np.ones(n, dtype=bool)
     for col, dyad in enumerate(mechanism.dyads):
         closure = dyad_kinds.DYAD_KINDS[dyad.kind].close(dyad, motion)
         ok = closure.closes & upstream_ok
         closes[:, col] = closure.closes
         transmission[:, col] = np.where(ok, closure.transmission, np.nan)
-        singular[:, col] = ok & (np.abs(np.sin(closure.transmission)) < dyad_kinds.SINGULAR_SIN)
+        conditioning[:, col] = np.where(ok, closure.conditioning, np.nan)
+        singular[:, col] = ok & (closure.conditioning < dyad_kinds.SINGULAR_SIN)
         usable = ok & ~singular[:, col]
         _derivatives(dyad.joints, dyad.links, motion, usable)
         for link in dyad.links:
             motion.origin[~ok, link] = np.nan
             motion.angle[~ok, link] = np.nan
         upstream_ok = usable
-    return Kinematics(crank_angle, motion, closes, transmission, singular)
+    return Kinematics(crank_angle, motion, closes, transmission, singular, conditioning)
 
 
 def _derivatives(joints: tuple[Joint, ...], own: tuple[int, ...], motion: Motion,

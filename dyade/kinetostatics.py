@@ -149,7 +149,7 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, multipliers: dict,
             normal[joint.name] = sign * lam[:, 1]
             moment[joint.name] = sign * lam[:, 0]
     band = np.sin(mechanism.dead_centre_angle)
-    valid = kin.valid & np.all(np.abs(np.sin(kin.transmission)) > band, axis=1)
+    valid = kin.valid & np.all(kin.conditioning > band, axis=1)
     return Forces(multipliers, revolute, normal, moment, drive, frame_load, valid)
 
 

@@ -45,6 +45,11 @@ STANDARD_GRAVITY = 9.80665  # [m/s²]
 def read_mechanism(path: Path | str, overrides: dict[str, Any] | None = None) -> Mechanism:
     """Read and validate a mechanism file; ``overrides`` replace keys (dotted paths)."""
     path = Path(path)
+    return build(load_data(path, overrides), path)
+
+
+def load_data(path: Path, overrides: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The file's TOML data with ``overrides`` (dotted key -> value) applied."""
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as err:
@@ -54,19 +59,55 @@ def read_mechanism(path: Path | str, overrides: dict[str, Any] | None = None) ->
     except tomllib.TOMLDecodeError as err:
         raise InputError(f"{path}: not valid TOML: {err}.") from None
     for key, value in (overrides or {}).items():
-        _set_dotted(data, key, value)
-    return Reader(path.name, path).mechanism(data)
+        _set_dotted(data, key, value, path.name)
+    return data
 
 
-def _set_dotted(data: dict[str, Any], dotted: str, value: Any) -> None:
+def build(data: dict[str, Any], path: Path | None) -> Mechanism:
+    """Validate TOML data and build the mechanism (errors name ``path``)."""
+    return Reader(path.name if path else "mechanism", path).mechanism(data)
+
+
+def parse_assignment(text: str) -> tuple[str, Any]:
+    """``KEY=VALUE`` of ``--set``: VALUE is read as a TOML value (number, string, array,
+    inline table, true/false); anything that is not TOML is taken as a string."""
+    if "=" not in text:
+        raise InputError(f"--set {text}: expected KEY=VALUE with a dotted key as in the file, "
+                         f"e.g. --set crank.speed_rpm=600.")
+    key, raw = (part.strip() for part in text.split("=", 1))
+    if not key or any(not part for part in key.split(".")):
+        raise InputError(f"--set {text}: the key `{key}` is not a dotted key path.")
+    try:
+        value = tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = raw
+    return key, value
+
+
+def _set_dotted(data: dict[str, Any], dotted: str, value: Any, label: str = "") -> None:
     parts = dotted.split(".")
     target: Any = data
-    for part in parts[:-1]:
+    for depth, part in enumerate(parts[:-1]):
+        where = ".".join(parts[:depth + 1])
         if isinstance(target, list):
+            if not part.isdigit() or not 1 <= int(part) <= len(target):
+                raise InputError(f"{label}: --set {dotted}: `{where}` needs an index 1…"
+                                 f"{len(target)} (the file has {len(target)}).")
             target = target[int(part) - 1]
-        else:
+        elif isinstance(target, dict):
             target = target.setdefault(part, {})
-    target[parts[-1]] = value
+        else:
+            raise InputError(f"{label}: --set {dotted}: `{'.'.join(parts[:depth])}` is a value, "
+                             f"not a table.")
+    if isinstance(target, list):
+        last = parts[-1]
+        if not last.isdigit() or not 1 <= int(last) <= len(target):
+            raise InputError(f"{label}: --set {dotted}: index {last} is outside 1…{len(target)}.")
+        target[int(last) - 1] = value
+    elif isinstance(target, dict):
+        target[parts[-1]] = value
+    else:
+        raise InputError(f"{label}: --set {dotted}: `{'.'.join(parts[:-1])}` is a value, not a table.")
 
 
 def _suggest(key: str, allowed: set[str]) -> str:

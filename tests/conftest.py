@@ -12,7 +12,10 @@ settings.register_profile("ci", derandomize=True, max_examples=60, deadline=None
                           suppress_health_check=[HealthCheck.too_slow])
 settings.register_profile("dev", max_examples=60, deadline=None,
                           suppress_health_check=[HealthCheck.too_slow])
-settings.load_profile("ci" if os.environ.get("CI") == "true" else "dev")
+settings.register_profile("thorough", max_examples=600, deadline=None,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile(os.environ.get("DYADE_HYPOTHESIS")
+                      or ("ci" if os.environ.get("CI") == "true" else "dev"))
 
 MECHANISMS = Path(__file__).resolve().parent.parent / "mechanisms"
 SHIPPED = sorted(MECHANISMS.glob("*.toml"))

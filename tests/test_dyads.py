@@ -17,7 +17,7 @@ WELL_CONDITIONED = np.sin(np.deg2rad(10.0))  # FD checks away from dead centres
 
 def _good_positions(mechanism):
     kin = kinematics_at(mechanism, ANGLES)
-    good = kin.valid & (np.abs(np.sin(kin.transmission[:, 0])) > WELL_CONDITIONED)
+    good = kin.valid & (kin.conditioning[:, 0] > WELL_CONDITIONED)
     assume(good.sum() >= 2)
     return ANGLES[good], kin
 

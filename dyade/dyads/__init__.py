@@ -40,6 +40,13 @@ class Closure:
     """(n,) bool: the dyad can be assembled (and is not blocked)"""
     transmission: FloatArray
     """(n,) transmission angle μ in [0, π] [rad]; NaN where it does not close"""
+    conditioning: FloatArray | None = None
+    """(n,) in [0, 1]: how far from singular the closure Jacobian is (0: dead centre or
+    blocked); |sin μ| unless the kind says otherwise (RPR: also the lever arm)"""
+
+    def __post_init__(self) -> None:
+        if self.conditioning is None:
+            self.conditioning = np.abs(np.sin(self.transmission))
 
 
 def angle_between(u: FloatArray, v: FloatArray) -> FloatArray:
@@ -97,7 +104,7 @@ def solve_lines(n1: FloatArray, c1: FloatArray, n2: FloatArray, c2: FloatArray
     det = cross(n1, n2)
     sin = det / np.sqrt(dot(n1, n1) * dot(n2, n2))
     blocked = np.abs(sin) < SINGULAR_SIN
-    with np.errstate(divide="ignore", invalid="ignore"):  # blocked rows become NaN below
+    with np.errstate(all="ignore"):  # blocked (near-parallel) rows overflow; NaN below
         x = (c1 * n2[:, 1] - c2 * n1[:, 1]) / det
         y = (n1[:, 0] * c2 - n2[:, 0] * c1) / det
     point = np.stack((x, y), axis=-1)

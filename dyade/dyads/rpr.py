@@ -43,5 +43,8 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     phi_c = psi - theta
     dyads.place(motion, c, phi_c, o_c, p_c)
     dyads.place(motion, s, phi_c + kappa, o_s, p_s)
-    # μ: angle between the guide normal and the pivot line, cos μ = c0/ρ, sin μ = arm/ρ
-    return dyads.Closure(closes, np.arctan2(arm, c0))
+    # μ: angle between the guide normal and the pivot line, cos μ = c0/ρ, sin μ = arm/ρ.
+    # The closure Jacobian scales with the lever arm itself: with zero offset μ stays 90°
+    # while the arm (= ρ) goes to 0 as the slider point passes the guide link's pivot, so
+    # the conditioning is the arm relative to the dyad's size.
+    return dyads.Closure(closes, np.arctan2(arm, c0), arm / size)

@@ -1,0 +1,144 @@
+"""Output discipline shared by the commands.
+
+Results go to stdout or ``-o``; diagnostics to stderr. Piped output, and any output under
+``NO_COLOR``, is plain: no colour and no box-drawing characters. Files are written to a
+temporary file beside the target and renamed on success, so an interrupted or failed
+run never leaves a half-written result.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import sys
+from pathlib import Path
+from typing import Any, Iterable, TextIO
+
+
+def plain(stream: TextIO | None = None) -> bool:
+    """True when output must carry no colour and no box characters."""
+    stream = stream or sys.stdout
+    return "NO_COLOR" in os.environ or not stream.isatty()
+
+
+def console(stderr: bool = False, file: TextIO | None = None, width: int | None = None):
+    from rich.console import Console
+
+    stream = file or (sys.stderr if stderr else sys.stdout)
+    is_plain = plain(stream)
+    return Console(file=stream, highlight=False, no_color=is_plain,
+                   color_system=None if is_plain else "auto", width=width,
+                   emoji=False, soft_wrap=False)
+
+
+class atomic:
+    """Write to a temporary file beside ``path``, rename on success, remove on failure."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = Path(path)
+        self.tmp = self.path.with_name(f".{self.path.name}.part")
+
+    def __enter__(self) -> TextIO:
+        self.handle = open(self.tmp, "w", encoding="utf-8", newline="")
+        return self.handle
+
+    def __exit__(self, exc_type, exc, tb) -> None:
+        self.handle.close()
+        if exc_type is None:
+            os.replace(self.tmp, self.path)
+        else:
+            self.tmp.unlink(missing_ok=True)
+
+
+def _plain_renderable(part: Any) -> Any:
+    """Tables without box characters, trees as indented text."""
+    from rich.table import Table
+    from rich.text import Text
+    from rich.tree import Tree
+
+    if isinstance(part, Table):
+        part.box = None
+        part.show_edge = False
+        part.pad_edge = False
+        return part
+    if isinstance(part, Tree):
+        lines: list[str] = []
+
+        def walk(node: Tree, depth: int) -> None:
+            label = node.label if isinstance(node.label, str) else str(node.label)
+            lines.append("  " * depth + Text.from_markup(label).plain)
+            for child in node.children:
+                walk(child, depth + 1)
+
+        walk(part, 0)
+        return "\n".join(lines)
+    return part
+
+
+def show(parts: Iterable[Any], output: Path | None = None, width: int | None = None) -> None:
+    """Print rich renderables to stdout or (atomically) to a file."""
+    parts = [p for p in parts if p is not None]
+    if output:
+        with atomic(output) as handle:
+            con = console(file=handle, width=width or 160)
+            con.print(*[_plain_renderable(p) for p in parts])
+        return
+    con = console(width=width)
+    if plain():
+        parts = [_plain_renderable(p) for p in parts]
+    con.print(*parts)
+
+
+def cell(value: Any) -> str:
+    """One CSV field: 15 significant digits, empty for NaN/inf (no value), 1/0 for flags."""
+    if isinstance(value, bool):
+        return "1" if value else "0"
+    if value is None:
+        return ""
+    if isinstance(value, float):
+        return f"{value + 0.0:.15g}" if math.isfinite(value) else ""
+    return str(value)
+
+
+def write_rows(rows: list[dict], names: list[str], output: Path | None) -> None:
+    """CSV from dict rows, stable column order ``names``."""
+    def emit(handle: TextIO) -> None:
+        handle.write(",".join(names) + "\n")
+        for row in rows:
+            handle.write(",".join(cell(row.get(name)) for name in names) + "\n")
+
+    if output:
+        with atomic(output) as handle:
+            emit(handle)
+    else:
+        emit(sys.stdout)
+
+
+def jsonable(value: Any) -> Any:
+    """numpy and floats to JSON values; NaN and inf become null."""
+    import numpy as np
+
+    if isinstance(value, dict):
+        return {str(k): jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [jsonable(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return [jsonable(v) for v in value.tolist()]
+    if isinstance(value, (np.floating, float)):
+        value = float(value)
+        return value + 0.0 if math.isfinite(value) else None
+    if isinstance(value, (np.integer,)):
+        return int(value)
+    if isinstance(value, np.bool_):
+        return bool(value)
+    return value
+
+
+def write_json(obj: dict, output: Path | None) -> None:
+    text = json.dumps(jsonable(obj), ensure_ascii=False, indent=1)
+    if output:
+        with atomic(output) as handle:
+            handle.write(text + "\n")
+    else:
+        sys.stdout.write(text + "\n")
