@@ -1,70 +1,103 @@
-"""``dyade analyse`` and ``dyade describe``."""
+"""``dyade analyse``, ``dyade describe`` and ``dyade init``."""
 
 from __future__ import annotations
 
 import math
 import sys
+from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import Any
 
 import click
 
 from dyade.cli import main
+from dyade.cli.output import atomic, console, show, write_json
 
 MECHANISM_FILE = click.Path(exists=True, dir_okay=False, path_type=Path)
+SUFFIX = {"csv": ".csv", "json": ".json", "table": ".txt"}
+
+set_option = click.option(
+    "--set", "assignments", multiple=True, metavar="KEY=VALUE",
+    help="Override a key of the file without editing it, with its dotted path as in the file "
+         "(repeatable): --set crank.speed_rpm=600 --set dyad.1.lengths=[200,150]. Validated "
+         "like the file.")
 
 
 def _console(stderr: bool = False):
-    from rich.console import Console
-
-    return Console(stderr=stderr, highlight=False)
+    return console(stderr=stderr)
 
 
-def _read(mechanism_file: Path, start: float | None, stop: float | None, step: float | None):
+_atomic = atomic
+
+
+@dataclass(frozen=True)
+class SweepOptions:
+    start: float | None = None
+    stop: float | None = None
+    step: float | None = None
+
+
+def load(path: Path, assignments: tuple[str, ...] = (), sweep: SweepOptions = SweepOptions()):
+    """Read a mechanism with --set overrides and --start/--stop/--step [°]; returns the
+    mechanism and the effective TOML data (for --save-as)."""
     from dyade import toml_input
 
-    overrides = {}
-    for key, value in (("start", start), ("stop", stop), ("step", step)):
-        if value is not None:
-            overrides[f"sweep.{key}"] = value
-    mechanism = toml_input.read_mechanism(mechanism_file)
-    if overrides:  # the sweep options are in degrees whatever the file's angle unit
-        from dataclasses import replace
+    overrides = dict(toml_input.parse_assignment(a) for a in assignments)
+    data = toml_input.load_data(path, overrides)
+    mechanism = toml_input.build(data, path)
+    if sweep.start is None and sweep.stop is None and sweep.step is None:
+        return mechanism, data
+    current = mechanism.sweep  # the sweep options are in degrees whatever the file's unit
+    start = math.radians(sweep.start) if sweep.start is not None else current.start
+    stop = (math.radians(sweep.stop) if sweep.stop is not None
+            else (start + 2 * math.pi if sweep.start is not None else current.stop))
+    step = math.radians(sweep.step) if sweep.step is not None else current.step
+    if step <= 0:
+        raise click.BadParameter(f"must be positive, got {sweep.step:g}.", param_hint="--step")
+    if stop < start:
+        raise click.BadParameter(f"must not be below the start angle, got {sweep.stop:g}.",
+                                 param_hint="--stop")
+    return replace(mechanism, sweep=type(current)(start, stop, step)), data
 
-        sweep = mechanism.sweep
-        start_rad = math.radians(start) if start is not None else sweep.start
-        stop_rad = (math.radians(stop) if stop is not None
-                    else (start_rad + 2 * math.pi if start is not None else sweep.stop))
-        step_rad = math.radians(step) if step is not None else sweep.step
-        if step_rad <= 0:
-            raise click.BadParameter(f"must be positive, got {step:g}.", param_hint="--step")
-        if stop_rad < start_rad:
-            raise click.BadParameter(f"must not be below the start angle, got {stop:g}.",
-                                     param_hint="--stop")
-        mechanism = replace(mechanism, sweep=type(sweep)(start_rad, stop_rad, step_rad))
-    return mechanism
+
+def save_as(data: dict[str, Any], path: Path) -> None:
+    """Write the effective mechanism (after --set) as TOML, atomically."""
+    import tomli_w
+
+    with atomic(path) as handle:
+        handle.write("# written by dyade --save-as: the effective mechanism after --set\n")
+        handle.write(tomli_w.dumps(data))
 
 
 @main.command()
 @click.argument("mechanism_file", type=MECHANISM_FILE)
-def describe(mechanism_file: Path) -> None:
+@set_option
+def describe(mechanism_file: Path, assignments: tuple[str, ...]) -> None:
     """Show MECHANISM_FILE in assembly order: crank, dyads, joints, link points, mobility,
     and which effects an analysis will simulate."""
     from dyade import analysis
     from dyade.report import tables
 
-    mechanism = _read(mechanism_file, None, None, None)
-    _console().print(tables.describe(mechanism, analysis.plan(mechanism)))
+    mechanism, _ = load(mechanism_file, assignments)
+    show([tables.describe(mechanism, analysis.plan(mechanism))])
 
 
 @main.command()
-@click.argument("mechanism_file", type=MECHANISM_FILE)
-@click.option("--format", "fmt", type=click.Choice(["table", "csv"]), default="table",
-              show_default=True, help="table: a summary (min/max and where); csv: the whole sweep.")
-@click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True, path_type=Path),
-              help="Write the result to this file instead of standard output.")
+@click.argument("mechanism_files", type=MECHANISM_FILE, nargs=-1, required=True)
+@click.option("--format", "fmt", type=click.Choice(["table", "csv", "json"]), default=None,
+              help="table: a summary (min/max and where); csv: the whole sweep, one row per crank "
+                   "position; json: the CSV columns as arrays plus the summary and warnings. "
+                   "[default: table on stdout; with -o: from its suffix (.json, .txt), else csv]")
+@click.option("-o", "--output", type=click.Path(writable=True, path_type=Path),
+              help="Write to this file instead of standard output; with several input files a "
+                   "directory, which gets one result per input (NAME.csv, NAME.json, NAME.txt).")
 @click.option("--start", type=float, help="First crank angle [°] (overrides [sweep] start).")
 @click.option("--stop", type=float, help="Last crank angle [°] (default: start + 360).")
 @click.option("--step", type=float, help="Crank angle step [°] (overrides [sweep] step).")
+@set_option
+@click.option("--save-as", type=click.Path(dir_okay=False, writable=True, path_type=Path),
+              help="Write the effective mechanism (after --set) to this TOML file, to keep a "
+                   "variant; one input file only.")
 @click.option("--allow-partial", is_flag=True,
               help="Analyse only the crank angles where every dyad closes; the others are "
                    "left out of the output (and named on stderr) instead of failing.")
@@ -77,77 +110,174 @@ def describe(mechanism_file: Path) -> None:
 @click.option("--fail-on-lock", is_flag=True,
               help="Exit with status 1 when a slider self-locks (otherwise a locking slider is "
                    "a finding: reported, exit status 0).")
-def analyse(mechanism_file: Path, fmt: str, output: Path | None, start: float | None,
-            stop: float | None, step: float | None, allow_partial: bool,
+def analyse(mechanism_files: tuple[Path, ...], fmt: str, output: Path | None,
+            start: float | None, stop: float | None, step: float | None,
+            assignments: tuple[str, ...], save_as: Path | None, allow_partial: bool,
             friction_tol: float | None, friction_max_iter: int | None,
             fail_on_lock: bool) -> None:
-    """Sweep the crank of MECHANISM_FILE: positions, velocities and accelerations of every
+    """Sweep the crank of MECHANISM_FILES: positions, velocities and accelerations of every
     link, joint and named point.
 
     With masses, loads or springs in the file: joint forces, driving torque and shaking
     force; with friction coefficients: Coulomb friction and the self-locking test of
-    every slider with friction.
+    every slider with friction; with clearance data: the clearance peak check.
+
+    Several files in one call (a batch) need -o DIR; a file that fails does not stop the
+    others, and the failures are listed at the end (exit status 1).
 
     Units: SI (m, m/s, m/s², rad/s, rad/s², N, N·m, W) except angles in degrees. Exit
     status 1 when a dyad cannot close over part of the sweep (the message names the dyad
     and the crank-angle ranges) or, with --fail-on-lock, when a slider locks; 2 for a bad
     file or option.
     """
-    from dataclasses import replace
-
-    from dyade import analysis
     from dyade.errors import DyadeError
-    from dyade.report import columns
 
-    mechanism = _read(mechanism_file, start, stop, step)
-    if friction_tol is not None:
-        mechanism = replace(mechanism, friction_tol=friction_tol)
-    if friction_max_iter is not None:
-        mechanism = replace(mechanism, friction_max_iter=friction_max_iter)
-    result = analysis.run(mechanism, analysis.plan(mechanism), allow_partial=allow_partial)
-    cols = columns.columns(result)
-    if fmt == "csv":
-        from dyade.report import csv_rows
+    fmt = fmt or infer_format(output)
+    job = Job(fmt, SweepOptions(start, stop, step), assignments, allow_partial, friction_tol,
+              friction_max_iter, fail_on_lock)
+    if len(mechanism_files) == 1 and not (output and output.is_dir()):
+        job.run(mechanism_files[0], output, save_as)
+        return
+    if save_as:
+        raise click.UsageError("--save-as takes one input file.")
+    if output is None:
+        raise click.UsageError(f"{len(mechanism_files)} input files need -o DIR: one result file "
+                               f"per input is written there.")
+    if output.exists() and not output.is_dir():
+        raise click.UsageError(f"-o {output}: not a directory (several input files write one "
+                               f"result each into a directory).")
+    output.mkdir(parents=True, exist_ok=True)
+    failures = batch(mechanism_files, output, job.run, SUFFIX[fmt])
+    if failures:
+        lines = "\n".join(f"  {path}: {reason}" for path, reason in failures)
+        raise DyadeError(f"{len(failures)} of {len(mechanism_files)} files failed:\n{lines}")
 
-        if output:
-            with _atomic(output) as handle:
-                csv_rows.write(cols, handle)
+
+def infer_format(output: Path | None) -> str:
+    """table on stdout; with -o, from the suffix (.json, .txt), else csv."""
+    if output is None:
+        return "table"
+    return {".json": "json", ".txt": "table"}.get(output.suffix.lower(), "csv")
+
+
+def batch(paths, directory: Path, run_one, suffix: str) -> list[tuple[Path, str]]:
+    """Run ``run_one(path, target)`` for every path; a progress bar on stderr when it is
+    a terminal; returns the failures (path, reason) instead of stopping."""
+    from dyade.errors import DyadeError
+
+    targets = _targets(paths, directory, suffix)
+    failures = []
+    progress = None
+    if sys.stderr.isatty():
+        from rich.progress import Progress
+
+        progress = Progress(console=console(stderr=True), transient=True)
+        task = progress.add_task("analysing", total=len(paths))
+        progress.start()
+    try:
+        for path, target in zip(paths, targets):
+            try:
+                run_one(path, target, None)
+            except (DyadeError, click.ClickException) as err:
+                message = err.format_message() if isinstance(err, click.ClickException) else str(err)
+                failures.append((path, message))
+            if progress is not None:
+                progress.advance(task)
+    finally:
+        if progress is not None:
+            progress.stop()
+    return failures
+
+
+def _targets(paths, directory: Path, suffix: str) -> list[Path]:
+    """One output name per input: the stem, made unique when two inputs share it."""
+    seen: dict[str, int] = {}
+    out = []
+    for path in paths:
+        stem = path.stem
+        seen[stem] = seen.get(stem, 0) + 1
+        name = stem if seen[stem] == 1 else f"{stem}-{seen[stem]}"
+        out.append(directory / f"{name}{suffix}")
+    return out
+
+
+@dataclass(frozen=True)
+class Job:
+    """One analysis as the options describe it, applied to a file."""
+
+    fmt: str
+    sweep: SweepOptions
+    assignments: tuple[str, ...]
+    allow_partial: bool
+    friction_tol: float | None
+    friction_max_iter: int | None
+    fail_on_lock: bool
+
+    def run(self, path: Path, output: Path | None, save_as_path: Path | None) -> None:
+        from dyade import analysis
+        from dyade.errors import DyadeError
+        from dyade.report import columns
+
+        mechanism, data = load(path, self.assignments, self.sweep)
+        if self.friction_tol is not None:
+            mechanism = replace(mechanism, friction_tol=self.friction_tol)
+        if self.friction_max_iter is not None:
+            mechanism = replace(mechanism, friction_max_iter=self.friction_max_iter)
+        if save_as_path:
+            save_as(data, save_as_path)
+        result = analysis.run(mechanism, analysis.plan(mechanism),
+                              allow_partial=self.allow_partial)
+        cols = columns.columns(result)
+        if self.fmt == "csv":
+            from dyade.report import csv_rows
+
+            if output:
+                with atomic(output) as handle:
+                    csv_rows.write(cols, handle)
+            else:
+                csv_rows.write(cols, sys.stdout)
+        elif self.fmt == "json":
+            from dyade.report import summary
+
+            write_json(cols | {"summary": summary.summary(result, cols),
+                               "warnings": result.notes}, output)
         else:
-            csv_rows.write(cols, sys.stdout)
-    else:
-        from dyade.report import tables
+            from dyade.report import tables
 
-        parts = [tables.sweep_summary(result, cols), tables.force_summary(result, cols),
-                 tables.clearance_summary(result)]
-        parts = [part for part in parts if part is not None]
-        if output:
-            from rich.console import Console
-
-            with _atomic(output) as handle:
-                Console(file=handle, width=120).print(*parts)
-        else:
-            _console().print(*parts)
-    err = _console(stderr=True)
-    for note in result.notes:
-        err.print(f"warning: {note}")
-    if fail_on_lock and any(lock.locks[result.rows].any() for lock in (result.locking or {}).values()):
-        raise DyadeError("a slider self-locks (see the warning above); --fail-on-lock was given.")
+            show([tables.sweep_summary(result, cols), tables.force_summary(result, cols),
+                  tables.clearance_summary(result)], output)
+        err = console(stderr=True)
+        prefix = f"{path.name}: " if output else ""
+        for note in result.notes:
+            err.print(f"warning: {prefix}{note}")
+        locks = any(lock.locks[result.rows].any() for lock in (result.locking or {}).values())
+        if self.fail_on_lock and locks:
+            raise DyadeError("a slider self-locks (see the warning above); --fail-on-lock was "
+                             "given.")
 
 
-class _atomic:
-    """Write to a temporary file beside ``path``, rename on success, remove on failure."""
+TEMPLATES = {"fourbar": "RRR", "slider-crank": "RRP", "slotted-lever": "RPR",
+             "tangent-drive": "PRP", "scotch-yoke": "PPR"}
+KIND_ALIASES = {"rrr": "fourbar", "four-bar": "fourbar", "rrp": "slider-crank",
+                "rpr": "slotted-lever", "prp": "tangent-drive", "ppr": "scotch-yoke"}
 
-    def __init__(self, path: Path) -> None:
-        self.path = path
-        self.tmp = path.with_name(f".{path.name}.part")
 
-    def __enter__(self):
-        self.handle = open(self.tmp, "w", encoding="utf-8", newline="")
-        return self.handle
+@main.command()
+@click.argument("kind", type=click.Choice(sorted(TEMPLATES) + sorted(KIND_ALIASES),
+                                          case_sensitive=False))
+@click.argument("file", type=click.Path(dir_okay=False, writable=True, path_type=Path))
+@click.option("--force", is_flag=True, help="Overwrite FILE if it exists.")
+def init(kind: str, file: Path, force: bool) -> None:
+    """Write a commented starting mechanism FILE for KIND: fourbar (RRR), slider-crank
+    (RRP), slotted-lever (RPR), tangent-drive (PRP) or scotch-yoke (PPR). The file is
+    valid and analysable as written: edit the numbers, then `dyade analyse FILE`."""
+    from importlib.resources import files
 
-    def __exit__(self, exc_type, exc, tb) -> None:
-        self.handle.close()
-        if exc_type is None:
-            self.tmp.replace(self.path)
-        else:
-            self.tmp.unlink(missing_ok=True)
+    name = KIND_ALIASES.get(kind.lower(), kind.lower())
+    if file.exists() and not force:
+        raise click.UsageError(f"{file} exists; give --force to overwrite it.")
+    text = files("dyade").joinpath("templates", f"{name}.toml").read_text(encoding="utf-8")
+    with atomic(file) as handle:
+        handle.write(text)
+    console(stderr=True).print(f"wrote {file} ({name}, dyad kind {TEMPLATES[name]}); next: "
+                               f"dyade describe {file}")

@@ -9,8 +9,9 @@ from pathlib import Path
 import click
 
 from dyade.cli import main
-from dyade.cli.analyse import MECHANISM_FILE, _atomic, _console
+from dyade.cli.analyse import MECHANISM_FILE, SUFFIX, batch
 from dyade.cli.options import value_range
+from dyade.cli.output import console, show, write_json, write_rows
 
 STANDALONE_COLUMNS = ["mass", "stiffness", "clearance", "slope", "t1", "v1", "tau", "f_tau",
                       "F_max"]
@@ -30,29 +31,23 @@ def _joint(text: str) -> tuple[int, int]:
     return (a, b) if a < b else (b, a)
 
 
-def _write_csv(rows: list[dict], names: list[str], output: Path | None) -> None:
-    def emit(handle) -> None:
-        handle.write(",".join(names) + "\n")
-        for row in rows:
-            handle.write(",".join(_cell(row.get(name, "")) for name in names) + "\n")
-
-    if output:
-        with _atomic(output) as handle:
-            emit(handle)
+def _emit(rows: list[dict], names: list[str], fmt: str, output: Path | None,
+          summary: dict, warnings: list[str], parts) -> None:
+    """CSV rows, JSON (columns as arrays + summary + warnings) or rich tables."""
+    if fmt == "csv":
+        write_rows(rows, names, output)
+    elif fmt == "json":
+        obj = {name: [row.get(name) for row in rows] for name in names}
+        write_json(obj | {"summary": summary, "warnings": warnings}, output)
     else:
-        emit(sys.stdout)
-
-
-def _cell(value) -> str:
-    if isinstance(value, bool):
-        return "1" if value else "0"
-    if isinstance(value, float):
-        return "" if value != value else f"{value:.15g}"
-    return str(value)
+        show(parts(), output)
+    err = console(stderr=True)
+    for line in warnings:
+        err.print(line)
 
 
 @main.command()
-@click.argument("mechanism_file", type=MECHANISM_FILE, required=False)
+@click.argument("mechanism_files", type=MECHANISM_FILE, nargs=-1)
 @click.option("--joint", "joints", multiple=True, metavar="I,J",
               help="Revolute joint to check, e.g. --joint 5,6 (repeatable); default: every "
                    "revolute joint (with a file).")
@@ -77,11 +72,12 @@ def _cell(value) -> str:
               show_default=True,
               help="Largest angle [°] the force may leave its line of action (forces ≥ 25 % of "
                    "the peak) for the model to apply.")
-@click.option("--format", "fmt", type=click.Choice(["table", "csv"]), default="table",
-              show_default=True)
-@click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True, path_type=Path),
-              help="Write the result to this file instead of standard output.")
-def clearance(mechanism_file: Path | None, joints: tuple[str, ...], masses: tuple[float, ...],
+@click.option("--format", "fmt", type=click.Choice(["table", "csv", "json"]), default="table",
+              show_default=True, help="csv/json: one row (record) per reversal.")
+@click.option("-o", "--output", type=click.Path(writable=True, path_type=Path),
+              help="Write the result to this file instead of standard output; with several "
+                   "mechanism files a directory with one result per file.")
+def clearance(mechanism_files: tuple[Path, ...], joints: tuple[str, ...], masses: tuple[float, ...],
               stiffness: float | None, gap: float | None, slope: float | None,
               speed_rpm: float | None, speed_range: str | None, simulate: bool,
               sim_steps: int, max_wander: float, fmt: str, output: Path | None) -> None:
@@ -116,7 +112,7 @@ def clearance(mechanism_file: Path | None, joints: tuple[str, ...], masses: tupl
     mass = engine.reduced_mass(*masses) if len(masses) == 2 else (masses[0] if masses else None)
     engine.MAX_WANDER = float(__import__("math").radians(max_wander))
     speeds = value_range(speed_range, "--speed-range", " in rpm", positive_start=True) if speed_range else None
-    if mechanism_file is None:
+    if not mechanism_files:
         _standalone(mass, stiffness, gap, slope, speed_rpm, speeds, simulate, sim_steps, fmt,
                     output)
     else:
@@ -126,8 +122,24 @@ def clearance(mechanism_file: Path | None, joints: tuple[str, ...], masses: tupl
         if (stiffness is None) != (gap is None):
             raise click.UsageError("give --stiffness and --clearance together (or neither, to use "
                                    "the clearance data of the mechanism file).")
-        _over_mechanism(mechanism_file, [_joint(j) for j in joints], mass, stiffness, gap, speeds,
-                        simulate, sim_steps, fmt, output)
+        chosen = [_joint(j) for j in joints]
+
+        def run_one(path: Path, target: Path | None, _: object = None) -> None:
+            _over_mechanism(path, chosen, mass, stiffness, gap, speeds, simulate, sim_steps, fmt,
+                            target)
+
+        if len(mechanism_files) == 1 and not (output and output.is_dir()):
+            run_one(mechanism_files[0], output)
+            return
+        from dyade.errors import DyadeError
+
+        if output is None:
+            raise click.UsageError(f"{len(mechanism_files)} mechanism files need -o DIR.")
+        output.mkdir(parents=True, exist_ok=True)
+        failures = batch(mechanism_files, output, run_one, SUFFIX[fmt])
+        if failures:
+            lines = "\n".join(f"  {path}: {reason}" for path, reason in failures)
+            raise DyadeError(f"{len(failures)} of {len(mechanism_files)} files failed:\n{lines}")
 
 
 def _standalone(mass, stiffness, gap, slope, speed_rpm, speeds, simulate, sim_steps, fmt, output):
@@ -155,42 +167,42 @@ def _standalone(mass, stiffness, gap, slope, speed_rpm, speeds, simulate, sim_st
             row.update(_simulated(engine, mass, stiffness, gap, k, sim_steps, peak.force))
         rows.append(row)
     names = (["speed_rpm"] if speeds else []) + STANDALONE_COLUMNS + (SIMULATION_COLUMNS if simulate else [])
-    if fmt == "csv":
-        _write_csv(rows, names, output)
-        return
-    from rich.table import Table
+    warnings = [line for row in rows for line in _notes(row)]
 
-    table = Table(title="Clearance peak force (Dresig & Thümmel, SPEC §2)", title_justify="left")
-    if not speeds:
-        row = rows[0]
-        for head in ("quantity", "value", "unit"):
-            table.add_column(head, justify="right" if head == "value" else "left")
-        lines = [("reduced mass m", "mass", "kg"), ("contact stiffness c", "stiffness", "N/m"),
-                 ("clearance 2s", "clearance", "m"), ("force slope F0/t0", "slope", "N/s"),
-                 ("free flight t1, eq. (15)", "t1", "s"), ("impact speed v1, eq. (16)", "v1", "m/s"),
-                 ("τ = ω·t1, eq. (23)", "tau", "-"), ("f(τ), eq. (36)", "f_tau", "-"),
-                 ("peak force F12max = c·s·f(τ)", "F_max", "N"),
-                 ("  clearance share 6·c·s/τ", "F_clearance", "N"),
-                 ("  rigid force reached by then", "F_rigid_share", "N")]
-        if simulate:
-            lines += [("simulated peak (RK4)", "F_sim", "N"), ("  relative difference", "sim_rel_diff", "-"),
-                      ("  RK4 steps", "sim_steps", ""), ("time: closed form", "closed_time_s", "s"),
-                      ("time: simulation", "sim_time_s", "s")]
-        for label, key, unit in lines:
-            table.add_row(label, _cell_pretty(row[key]), unit)
-    else:
-        show = [("speed_rpm", "speed [rpm]"), ("slope", "F0/t0 [N/s]"), ("tau", "τ"),
-                ("F_max", "F12max [N]"), ("F_clearance", "6cs/τ [N]")]
-        if simulate:
-            show += [("F_sim", "simulated [N]")]
-        for _, head in show:
-            table.add_column(head, justify="right")
-        for row in rows:
-            table.add_row(*[_cell_pretty(row[key]) for key, _ in show])
-    _print([table], output)
-    err = _console(stderr=True)
-    for row in rows:
-        _notes(err, row)
+    def parts():
+        from rich.table import Table
+
+        table = Table(title="Clearance peak force (Dresig & Thümmel, SPEC §2)", title_justify="left")
+        if not speeds:
+            row = rows[0]
+            for head in ("quantity", "value", "unit"):
+                table.add_column(head, justify="right" if head == "value" else "left")
+            lines = [("reduced mass m", "mass", "kg"), ("contact stiffness c", "stiffness", "N/m"),
+                     ("clearance 2s", "clearance", "m"), ("force slope F0/t0", "slope", "N/s"),
+                     ("free flight t1, eq. (15)", "t1", "s"), ("impact speed v1, eq. (16)", "v1", "m/s"),
+                     ("τ = ω·t1, eq. (23)", "tau", "-"), ("f(τ), eq. (36)", "f_tau", "-"),
+                     ("peak force F12max = c·s·f(τ)", "F_max", "N"),
+                     ("  clearance share 6·c·s/τ", "F_clearance", "N"),
+                     ("  rigid force reached by then", "F_rigid_share", "N")]
+            if simulate:
+                lines += [("simulated peak (RK4)", "F_sim", "N"),
+                          ("  relative difference", "sim_rel_diff", "-"),
+                          ("  RK4 steps", "sim_steps", ""), ("time: closed form", "closed_time_s", "s"),
+                          ("time: simulation", "sim_time_s", "s")]
+            for label, key, unit in lines:
+                table.add_row(label, _cell_pretty(row[key]), unit)
+        else:
+            show_cols = [("speed_rpm", "speed [rpm]"), ("slope", "F0/t0 [N/s]"), ("tau", "τ"),
+                         ("F_max", "F12max [N]"), ("F_clearance", "6cs/τ [N]")]
+            if simulate:
+                show_cols += [("F_sim", "simulated [N]")]
+            for _, head in show_cols:
+                table.add_column(head, justify="right")
+            for row in rows:
+                table.add_row(*[_cell_pretty(row[key]) for key, _ in show_cols])
+        return [table]
+
+    _emit(rows, names, fmt, output, {"cases": len(rows)}, warnings, parts)
 
 
 def _simulated(engine, mass, stiffness, gap, slope, steps, closed) -> dict:
@@ -203,19 +215,21 @@ def _simulated(engine, mass, stiffness, gap, slope, steps, closed) -> dict:
             "contact_to_peak": sim.contact_to_peak}
 
 
-def _notes(err, row: dict, where: str = "") -> None:
+def _notes(row: dict, where: str = "") -> list[str]:
+    out = []
     if row.get("soft"):
-        err.print(f"note: {where}τ = {row['tau']:.3g} < 2: a soft impact. The first maximum of "
-                  f"eq. (26) comes after the first contact half-wave, where the paper's eq. (36) "
-                  f"(principal arccos) does not apply; dyade gives that true first maximum. For "
-                  f"τ ≪ 2 it is only a small ripple on the rising rigid force: there is no knock.")
+        out.append(f"note: {where}τ = {row['tau']:.3g} < 2: a soft impact. The first maximum of "
+                   f"eq. (26) comes after the first contact half-wave, where the paper's eq. (36) "
+                   f"(principal arccos) does not apply; dyade gives that true first maximum. For "
+                   f"τ ≪ 2 it is only a small ripple on the rising rigid force: there is no knock.")
     if row.get("separates"):
-        err.print(f"note: {where}after the peak the masses separate at t = "
-                  f"{row['separation_time']:.4g} s (rebound at {row['rebound_speed']:.3g} m/s): "
-                  f"a second impact follows.")
+        out.append(f"note: {where}after the peak the masses separate at t = "
+                   f"{row['separation_time']:.4g} s (rebound at {row['rebound_speed']:.3g} m/s): "
+                   f"a second impact follows.")
     elif "separates" in row:
-        err.print(f"note: {where}the masses stay in contact through the first contact period "
-                  f"(the closed form's assumption holds).")
+        out.append(f"note: {where}the masses stay in contact through the first contact period "
+                   f"(the closed form's assumption holds).")
+    return out
 
 
 def _cell_pretty(value) -> str:
@@ -224,16 +238,6 @@ def _cell_pretty(value) -> str:
     if isinstance(value, float):
         return f"{value:.5g}" if abs(value) < 1e5 else f"{value:.4g}"
     return str(value)
-
-
-def _print(parts, output: Path | None) -> None:
-    if output:
-        from rich.console import Console
-
-        with _atomic(output) as handle:
-            Console(file=handle, width=160).print(*parts)
-    else:
-        _console().print(*parts)
 
 
 def _over_mechanism(path, joints, mass, stiffness, gap, speeds, simulate, sim_steps, fmt, output):
@@ -282,21 +286,22 @@ def _over_mechanism(path, joints, mass, stiffness, gap, speeds, simulate, sim_st
                 skipped.append(check)
     names = (["speed_rpm"] if speeds else []) + MECHANISM_COLUMNS + (
         ["F_sim", "sim_rel_diff", "separates"] if simulate else [])
-    err = _console(stderr=True)
-    if fmt == "csv":
-        _write_csv(rows, names, output)
-    else:
-        _print([_mechanism_table(mechanism.name, rows, speeds, simulate)], output)
+    warnings = []
     for check in skipped:
         a, b = check.joint
         if check.applies:
-            err.print(f"joint ({a},{b}): the force keeps one sense over the cycle (line of action "
-                      f"{np.rad2deg(check.line_angle):.0f}°): no reversal, no clearance impact.")
+            warnings.append(f"joint ({a},{b}): the force keeps one sense over the cycle (line of "
+                            f"action {np.rad2deg(check.line_angle):.0f}°): no reversal, no "
+                            f"clearance impact.")
         else:
-            err.print(f"joint ({a},{b}): not checked — {check.reason}.")
+            warnings.append(f"joint ({a},{b}): not checked — {check.reason}.")
     if any(row.get("soft") for row in rows):
-        err.print("note: reversals with τ < 2 are soft impacts: their peak comes after the first "
-                  "contact half-wave (see `dyade clearance --help`).")
+        warnings.append("note: reversals with τ < 2 are soft impacts: their peak comes after the "
+                        "first contact half-wave (see `dyade clearance --help`).")
+    summary = {"mechanism": mechanism.name, "reversals": len(rows),
+               "joints_checked": [f"{a}-{b}" for a, b in joints]}
+    _emit(rows, names, fmt, output, summary, warnings,
+          lambda: [_mechanism_table(mechanism.name, rows, speeds, simulate)])
 
 
 def _mechanism_table(name, rows, speeds, simulate):

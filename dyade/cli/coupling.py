@@ -9,9 +9,8 @@ from typing import Any
 import click
 
 from dyade.cli import main
-from dyade.cli.analyse import _atomic, _console
-from dyade.cli.clearance import _write_csv
 from dyade.cli.options import value_range
+from dyade.cli.output import console, show, write_json, write_rows
 
 COLUMNS = ["eta", "V_phi", "V_psi", "V_q", "V_r", "alpha_deg", "beta_deg", "gamma_deg",
            "delta_deg"]
@@ -65,8 +64,8 @@ def _read_file(path: Path) -> dict[str, Any]:
               help="Operating speed [rpm] to place on the η axis (repeatable), with --order.")
 @click.option("--order", type=float, default=None,
               help="Excitation order: Ω = order · 2π·speed/60  [default: 1].")
-@click.option("--format", "fmt", type=click.Choice(["table", "csv"]), default="table",
-              show_default=True)
+@click.option("--format", "fmt", type=click.Choice(["table", "csv", "json"]), default="table",
+              show_default=True, help="csv/json: every η value.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True, path_type=Path),
               help="Write the result to this file instead of standard output.")
 def coupling(coupling_file: Path | None, inertia, c1, c2, b1, b2, eta_range, moment, speeds,
@@ -111,21 +110,24 @@ def coupling(coupling_file: Path | None, inertia, c1, c2, b1, b2, eta_range, mom
         cols.update(engine.amplitudes(model, resp, float(data["moment"])))
         names += MOMENT_COLUMNS
     operating = _operating_points(model, data, engine)
-    if fmt == "csv":
+    warnings = _notes(model, resp, eta)
+    if fmt in ("csv", "json"):
         table = np.column_stack([np.asarray(cols[name], dtype=float) for name in names]) + 0.0
-        table[~np.isfinite(table)] = np.nan  # unbounded or undefined: an empty field
-        rows = [dict(zip(names, row)) for row in table.tolist()]
-        _write_csv(rows, names, output)
-    else:
-        parts = _tables(model, resp, cols, names, operating)
-        if output:
-            from rich.console import Console
-
-            with _atomic(output) as handle:
-                Console(file=handle, width=140).print(*parts)
+        table[~np.isfinite(table)] = np.nan  # unbounded or undefined: an empty field / null
+        if fmt == "csv":
+            write_rows([dict(zip(names, row)) for row in table.tolist()], names, output)
         else:
-            _console().print(*parts)
-    _notes(model, resp, eta)
+            eta0 = model.resonance()
+            summary = {"omega_t": model.natural_frequency, "D": model.damping_ratio,
+                       "kappa": model.kappa, "eta0": eta0}
+            write_json({name: table[:, k] for k, name in enumerate(names)}
+                       | {"summary": summary, "warnings": warnings}, output)
+    else:
+        show(_tables(model, resp, cols, names, operating), output, width=140 if output else None)
+    err = console(stderr=True)
+    for line in warnings:
+        err.print(line)
+
 
 
 def _operating_points(model, data, engine):
@@ -210,24 +212,25 @@ def _tables(model, resp, cols, names, operating):
     return parts
 
 
-def _notes(model, resp, eta) -> None:
+def _notes(model, resp, eta) -> list[str]:
     import numpy as np
 
-    err = _console(stderr=True)
+    out = []
     if resp.unbounded.any():
         where = ", ".join(f"{e:.6g}" for e in eta[resp.unbounded][:5])
-        err.print(f"note: no damping on the secondary side acts at η = {where}: that is the "
+        out.append(f"note: no damping on the secondary side acts at η = {where}: that is the "
                   f"undamped resonance, where φ̂, ψ̂ and M̂_Q are unbounded (∞ in the table, "
                   f"empty in CSV) and their phases undefined.")
     if model.b1 + model.b2 == 0.0:
-        err.print("note: b1 + b2 = 0: an undamped coupling (D = 0).")
+        out.append("note: b1 + b2 = 0: an undamped coupling (D = 0).")
     if model.c2 == 0.0:
-        err.print("note: c2 = 0: V_q is normalised by c2t and is not defined (empty); with "
+        out.append("note: c2 = 0: V_q is normalised by c2t and is not defined (empty); with "
                   "--moment, M̂_Q is given.")
     if model.c1 == 0.0:
-        err.print("note: c1 = 0: V_ψ and V_r are normalised by c1t and are not defined (empty); "
+        out.append("note: c1 = 0: V_ψ and V_r are normalised by c1t and are not defined (empty); "
                   "with --moment, ψ̂ and φ̂_r are given.")
     zero_psi = np.isfinite(resp.transfer["V_psi"]) & (resp.transfer["V_psi"] == 0.0)
     if zero_psi.any():
-        err.print(f"note: ψ̂ = 0 at η = {eta[zero_psi][0]:.6g} (undamped anti-resonance): its "
+        out.append(f"note: ψ̂ = 0 at η = {eta[zero_psi][0]:.6g} (undamped anti-resonance): its "
                   f"phase β is undefined there (empty).")
+    return out

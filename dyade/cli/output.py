@@ -27,9 +27,11 @@ def console(stderr: bool = False, file: TextIO | None = None, width: int | None 
 
     stream = file or (sys.stderr if stderr else sys.stdout)
     is_plain = plain(stream)
+    if is_plain and width is None and "COLUMNS" not in os.environ:
+        width = 160  # piped: wide enough for the tables; messages are not wrapped at all
     return Console(file=stream, highlight=False, no_color=is_plain,
                    color_system=None if is_plain else "auto", width=width,
-                   emoji=False, soft_wrap=False)
+                   emoji=False, soft_wrap=is_plain and stderr)
 
 
 class atomic:

@@ -1,0 +1,166 @@
+"""Batch runs and scripting through the CLI: many files, --set, --save-as, init,
+formats, plain piped output, atomic writes."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from dyade.cli import main
+from dyade.report import csv_rows
+from tests.conftest import SHIPPED
+from tests.helpers import read_csv, shipped
+
+BOX = set("─│┌┐└┘├┤┬┴┼━┃┏┓┗┛┣┫┳┻╋╇┡┩╭╮╰╯═║")
+
+
+def run(*args, **kwargs):
+    return CliRunner(**kwargs).invoke(main, [str(a) for a in args], catch_exceptions=False)
+
+
+def test_batch_writes_one_csv_per_file_and_reports_the_broken_one(tmp_path):
+    broken = tmp_path / "broken.toml"
+    broken.write_text('name = "broken"\n[crank]\nlength = 1\n')
+    out_dir = tmp_path / "out"
+    result = run("analyse", *SHIPPED, broken, "-o", out_dir)
+    assert result.exit_code == 1
+    assert f"1 of {len(SHIPPED) + 1} files failed" in result.output
+    assert "broken.toml: `crank.speed_rpm` is missing." in result.output
+    written = sorted(p.name for p in out_dir.iterdir())
+    assert written == sorted(f"{p.stem}.csv" for p in SHIPPED)
+    for path in SHIPPED:  # each equals the single-file run
+        single = run("analyse", path, "--format", "csv").stdout
+        assert (out_dir / f"{path.stem}.csv").read_text() == single
+
+
+def test_batch_needs_a_directory(tmp_path):
+    result = run("analyse", shipped("fourbar.toml"), shipped("slider-crank.toml"))
+    assert result.exit_code == 2 and "need -o DIR" in result.output
+
+
+def test_set_overrides_nested_keys_like_the_file():
+    base = read_csv(run("analyse", shipped("fourbar.toml"), "--format", "csv").stdout)
+    faster = read_csv(run("analyse", shipped("fourbar.toml"), "--format", "csv",
+                          "--set", "crank.speed_rpm=600").stdout)
+    assert np.allclose(faster["omega_3"], 2 * base["omega_3"])
+    assert np.allclose(faster["alpha_3"], 4 * base["alpha_3"])
+    longer = read_csv(run("analyse", shipped("fourbar.toml"), "--format", "csv",
+                          "--set", "dyad.1.lengths=[210, 150]").stdout)
+    assert not np.allclose(longer["x_3_4"], base["x_3_4"])
+
+
+@pytest.mark.parametrize("assignment, message", [
+    ("crank.speed_rpm=fast", "`crank.speed_rpm` must be a number [rpm], got \"fast\""),
+    ("dyad.1.lengths=[200, -1]", "`dyad.1.lengths.2` must be positive [mm], got -1"),
+    ("dyad.3.variant=1", "--set dyad.3.variant: `dyad.3` needs an index 1…1"),
+    ("dyad.1.varient=1", "unknown key `dyad.1.varient`. Did you mean `variant`?"),
+    ("speed", "expected KEY=VALUE"),
+])
+def test_set_with_a_bad_value_is_a_clear_error(assignment, message):
+    result = CliRunner().invoke(main, ["analyse", str(shipped("fourbar.toml")), "--set", assignment])
+    assert result.exit_code == 2
+    assert message in result.output
+
+
+def test_save_as_round_trip(tmp_path):
+    saved = tmp_path / "variant.toml"
+    first = run("analyse", shipped("dyade-16.toml"), "--format", "csv", "--set",
+                "crank.speed_rpm=450", "--set", "links.3.mass=1.5", "--save-as", saved)
+    assert first.exit_code == 0 and saved.exists()
+    again = run("analyse", saved, "--format", "csv")
+    assert again.stdout == first.stdout  # identical results, digit for digit
+
+
+def test_init_files_analyse_as_written(tmp_path):
+    for kind in ("fourbar", "slider-crank", "slotted-lever", "tangent-drive", "scotch-yoke", "PPR"):
+        path = tmp_path / f"{kind}.toml"
+        assert run("init", kind, path).exit_code == 0
+        result = run("analyse", path, "--format", "csv")
+        assert result.exit_code == 0, (kind, result.output)
+        assert "M_drive" in result.stdout.splitlines()[0]
+    again = CliRunner().invoke(main, ["init", "fourbar", str(tmp_path / "fourbar.toml")])
+    assert again.exit_code == 2 and "--force" in again.output
+
+
+def test_json_has_the_csv_names_summary_and_warnings():
+    text = run("analyse", shipped("self-locking.toml"), "--format", "json").stdout
+    obj = json.loads(text)
+    names = run("analyse", shipped("self-locking.toml"), "--format", "csv").stdout.splitlines()[0]
+    for name in names.split(","):
+        assert name in obj and len(obj[name]) == 361
+    assert obj["summary"]["self_locking"]["1_4"]["locks"] is True
+    assert any("locks" in w for w in obj["warnings"])
+    clearance = json.loads(run("clearance", "--mass", 3.6, "--stiffness", 1e7, "--clearance",
+                               1e-4, "--slope", 360000, "--format", "json").stdout)
+    assert clearance["F_max"][0] == pytest.approx(2181.89, abs=0.01)
+    coupling = json.loads(run("coupling", "--J", 1, "--c1", 1, "--c2", 1, "--eta-range",
+                              "0:2:0.70710678118654752", "--format", "json").stdout)
+    assert coupling["V_phi"][1] is None and coupling["summary"]["eta0"] == pytest.approx(2 ** -0.5)
+
+
+@pytest.mark.parametrize("args", [
+    ["analyse", shipped("dyade-16.toml")],
+    ["describe", shipped("dyade-16.toml")],
+    ["clearance", shipped("dyade-16.toml")],
+    ["coupling", "--J", "1", "--c1", "1", "--c2", "1", "--b1", "0.1"],
+    ["clearance", "--mass", "3.6", "--stiffness", "1e7", "--clearance", "1e-4", "--slope", "3.6e5"],
+])
+def test_piped_output_is_plain(args):
+    result = run(*args)
+    assert result.exit_code == 0, result.output
+    text = result.stdout
+    assert "\x1b[" not in text
+    assert not (set(text) & BOX), sorted(set(text) & BOX)
+
+
+def test_no_color_is_plain_on_a_terminal(monkeypatch):
+    from dyade.cli import output
+
+    monkeypatch.setenv("NO_COLOR", "1")
+    assert output.plain()
+
+
+def test_interrupted_write_leaves_no_partial_file(tmp_path, monkeypatch):
+    target = tmp_path / "result.csv"
+
+    def explode(cols, handle):
+        handle.write("angle_deg,half a line")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(csv_rows, "write", explode)
+    result = CliRunner().invoke(main, ["analyse", str(shipped("fourbar.toml")), "-o", str(target)])
+    assert result.exit_code == 1 and "Aborted" in result.output  # Ctrl-C, as click reports it
+    assert list(tmp_path.iterdir()) == []  # neither the result nor its temporary file
+
+
+def test_failed_analysis_leaves_the_old_result_untouched(tmp_path):
+    target = tmp_path / "result.csv"
+    target.write_text("previous result\n")
+    bad = tmp_path / "bad.toml"
+    bad.write_text(shipped("fourbar.toml").read_text().replace("lengths = [200, 150]",
+                                                                "lengths = [200, 60]"))
+    result = CliRunner().invoke(main, ["analyse", str(bad), "-o", str(target)])
+    assert result.exit_code == 1
+    assert target.read_text() == "previous result\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.toml", "result.csv"]
+
+
+def test_clearance_over_files(tmp_path):
+    out_dir = tmp_path / "peaks"
+    result = run("clearance", shipped("dyade-16.toml"), shipped("slider-crank.toml"),
+                 "--stiffness", "1e8", "--clearance", "1e-4", "--format", "csv", "-o", out_dir)
+    assert result.exit_code == 0
+    rows = list(csv.DictReader(io.StringIO((out_dir / "dyade-16.csv").read_text())))
+    assert rows and all(float(r["F_max"]) > 0 for r in rows)
+    assert (out_dir / "slider-crank.csv").exists()
+
+
+def test_stable_column_order():
+    first = run("analyse", shipped("watt-sixbar.toml"), "--format", "csv").stdout.splitlines()[0]
+    second = run("analyse", shipped("watt-sixbar.toml"), "--format", "csv").stdout.splitlines()[0]
+    assert first == second and first.startswith("angle_deg,phi_2_deg,omega_2,alpha_2,phi_3_deg")
