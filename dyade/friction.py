@@ -24,7 +24,7 @@ import numpy as np
 
 from dyade import kinetostatics
 from dyade.joints import Motion, cross, perp, travel
-from dyade.kinematics import Kinematics, assemble, batched_solve
+from dyade.kinematics import Kinematics, apply
 from dyade.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Prismatic, Revolute
 
 AT_REST_RTOL = 1e-9  # [-] relative velocity below this share of the typical one counts as zero
@@ -132,11 +132,14 @@ def iterate(mechanism: Mechanism, kin: Kinematics, tol: float | None = None,
     iterations = np.zeros(n)
     residual = np.zeros(n)
     converged = np.ones(n, dtype=bool)
-    groups = [(dyad.joints, dyad.links) for dyad in reversed(mechanism.dyads)]
-    groups.append(((mechanism.crank.joint,), (CRANK,)))
+    groups = [(d.joints, d.links, kin.inverses[col])
+              for col, d in reversed(list(enumerate(mechanism.dyads)))]
+    crank_inverse, _ = kinetostatics.crank_inverse(mechanism.crank.joint, motion, usable)
+    groups.append(((mechanism.crank.joint,), (CRANK,), crank_inverse))
     drive = np.zeros(n)
-    for joints, own in groups:
-        lam, its, change, done = _group(joints, own, motion, q, usable, frictions, tol, max_iter)
+    for joints, own, inverse in groups:
+        lam, its, change, done = _group(joints, own, inverse, q, usable, frictions, tol,
+                                        max_iter)
         iterations = np.maximum(iterations, its)
         residual = np.maximum(residual, np.where(usable, change, 0.0))
         converged &= done | ~usable
@@ -170,19 +173,12 @@ def iterate(mechanism: Mechanism, kin: Kinematics, tol: float | None = None,
                           converged, at_rest, never)
 
 
-def _group(joints: tuple[Joint, ...], own: tuple[int, ...], motion: Motion, q: FloatArray,
+def _group(joints: tuple[Joint, ...], own: tuple[int, ...], inverse: FloatArray, q: FloatArray,
            usable: FloatArray, frictions: dict, tol: float, max_iter: int):
-    """Fixed-point iteration of one group's Jᵀλ = Q + friction(λ), per position."""
-    matrix, _ = assemble(joints, own, motion, with_gamma=False)
-    is_crank = own == (CRANK,)
-    if is_crank:  # add the drive constraint row
-        full = np.zeros((matrix.shape[0], 3, 3))
-        full[:, :2] = matrix
-        full[:, 2, 2] = 1.0
-        matrix = full
-    transposed = np.swapaxes(matrix, 1, 2)
+    """Fixed-point iteration of one group's Jᵀλ = Q + friction(λ), per position; the
+    Jacobian does not change while iterating, so its inverse serves every step."""
     base = np.concatenate([q[:, link] for link in own], axis=1)
-    lam = batched_solve(transposed, base, usable)
+    lam = apply(inverse, base, transpose=True)
     n = lam.shape[0]
     its = np.zeros(n)
     change = np.zeros(n)
@@ -199,7 +195,7 @@ def _group(joints: tuple[Joint, ...], own: tuple[int, ...], motion: Motion, q: F
                 if link in own:
                     col = own.index(link)
                     rhs[:, 3 * col:3 * col + 3] += load
-        new = batched_solve(transposed, rhs, active)
+        new = apply(inverse, rhs, transpose=True)
         scale = np.max(np.abs(new), axis=1)
         floor = FORCE_FLOOR * max(float(np.nanmax(scale, initial=0.0)), 1e-300)
         step = np.max(np.abs(new - lam), axis=1) / np.maximum(scale, floor)

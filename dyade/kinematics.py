@@ -33,6 +33,9 @@ class Kinematics:
     """(n, dyads) bool: the dyad is exactly at a dead centre / blocked (velocities NaN)"""
     conditioning: FloatArray
     """(n, dyads) distance from singularity in [0, 1] (0: dead centre / blocked)"""
+    inverses: list[FloatArray]
+    """per dyad (n, 6, 6): inverse of its constraint Jacobian J (NaN where not usable);
+    the force stage reuses it, since Jᵀ·λ = Q gives λ = (J⁻¹)ᵀ·Q"""
 
     @property
     def valid(self) -> FloatArray:
@@ -74,16 +77,20 @@ def assemble(joints: tuple[Joint, ...] | list[Joint], own: tuple[int, ...], moti
     return matrix, parts
 
 
-def batched_solve(matrix: FloatArray, rhs: FloatArray, usable: FloatArray) -> FloatArray:
-    """Solve matrix·x = rhs at the ``usable`` positions; NaN elsewhere.
+def batched_inverse(matrix: FloatArray, usable: FloatArray) -> FloatArray:
+    """Inverse of every usable matrix of the stack; NaN elsewhere."""
+    if usable.all():
+        return np.linalg.inv(matrix)
+    safe = matrix.copy()
+    safe[~usable] = np.eye(matrix.shape[1])
+    inverse = np.linalg.inv(safe)
+    inverse[~usable] = np.nan
+    return inverse
 
-    ``rhs`` has shape (n, m) or (n, m, k)."""
-    vector = rhs.ndim == 2
-    b = rhs[..., None] if vector else rhs
-    out = np.full(b.shape, np.nan)
-    if usable.any():
-        out[usable] = np.linalg.solve(matrix[usable], b[usable])
-    return out[..., 0] if vector else out
+
+def apply(inverse: FloatArray, rhs: FloatArray, transpose: bool = False) -> FloatArray:
+    """inverse·rhs (or inverseᵀ·rhs) for a stack, shapes (n, m, m) and (n, m)."""
+    return np.einsum("nji,nj->ni" if transpose else "nij,nj->ni", inverse, rhs)
 
 
 def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinematics:
@@ -98,6 +105,7 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinema
     transmission = np.full((n, count), np.nan)
     singular = np.zeros((n, count), dtype=bool)
     conditioning = np.full((n, count), np.nan)
+    inverses = []
     upstream_ok = np.ones(n, dtype=bool)
     for col, dyad in enumerate(mechanism.dyads):
         closure = dyad_kinds.DYAD_KINDS[dyad.kind].close(dyad, motion)
@@ -107,25 +115,28 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinema
         conditioning[:, col] = np.where(ok, closure.conditioning, np.nan)
         singular[:, col] = ok & (closure.conditioning < dyad_kinds.SINGULAR_SIN)
         usable = ok & ~singular[:, col]
-        _derivatives(dyad.joints, dyad.links, motion, usable)
+        inverses.append(_derivatives(dyad.joints, dyad.links, motion, usable))
         for link in dyad.links:
             motion.origin[~ok, link] = np.nan
             motion.angle[~ok, link] = np.nan
         upstream_ok = usable
-    return Kinematics(crank_angle, motion, closes, transmission, singular, conditioning)
+    return Kinematics(crank_angle, motion, closes, transmission, singular, conditioning,
+                      inverses)
 
 
 def _derivatives(joints: tuple[Joint, ...], own: tuple[int, ...], motion: Motion,
-                 usable: FloatArray) -> None:
-    """Velocities, then accelerations, of the ``own`` links of one group."""
+                 usable: FloatArray) -> FloatArray:
+    """Velocities, then accelerations, of the ``own`` links of one group; returns the
+    inverse of its Jacobian."""
     matrix, parts = assemble(joints, own, motion, with_gamma=False)
+    inverse = batched_inverse(matrix, usable)
     rhs = np.zeros(matrix.shape[:2])
     for row, part in enumerate(parts):
         for link, block in part.blocks.items():
             if link not in own:
                 qdot = generalized(motion.velocity[:, link], motion.omega[:, link])
                 rhs[:, 2 * row:2 * row + 2] -= np.einsum("nij,nj->ni", block, qdot)
-    qdot = batched_solve(matrix, rhs, usable)
+    qdot = apply(inverse, rhs)
     for col, link in enumerate(own):
         motion.velocity[:, link] = qdot[:, 3 * col:3 * col + 2]
         motion.omega[:, link] = qdot[:, 3 * col + 2]
@@ -137,10 +148,11 @@ def _derivatives(joints: tuple[Joint, ...], own: tuple[int, ...], motion: Motion
             if link not in own:
                 qddot = generalized(motion.acceleration[:, link], motion.alpha[:, link])
                 rhs[:, 2 * row:2 * row + 2] -= np.einsum("nij,nj->ni", block, qddot)
-    qddot = batched_solve(matrix, rhs, usable)
+    qddot = apply(inverse, rhs)
     for col, link in enumerate(own):
         motion.acceleration[:, link] = qddot[:, 3 * col:3 * col + 2]
         motion.alpha[:, link] = qddot[:, 3 * col + 2]
+    return inverse
 
 
 # -- derived quantities the reports use --------------------------------------------

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade.joints import Motion, cross, rotate
-from dyade.kinematics import Kinematics, assemble, batched_solve
+from dyade.kinematics import Kinematics, apply, assemble, batched_inverse
 from dyade.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
 
 
@@ -120,8 +120,9 @@ def reactions(mechanism: Mechanism, kin: Kinematics, q: FloatArray) -> Forces:
     q = q.copy()
     multipliers: dict[tuple[int, int], FloatArray] = {}
     frame_load = np.zeros((n, 3))
-    for dyad in reversed(mechanism.dyads):
-        _group(dyad.joints, dyad.links, motion, q, usable, multipliers, frame_load)
+    for col in reversed(range(len(mechanism.dyads))):
+        dyad = mechanism.dyads[col]
+        _group(dyad.joints, dyad.links, kin.inverses[col], motion, q, multipliers, frame_load)
     drive = _crank(mechanism, motion, q, usable, multipliers, frame_load)
     return assemble_forces(mechanism, kin, multipliers, drive, frame_load)
 
@@ -153,12 +154,13 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, multipliers: dict,
     return Forces(multipliers, revolute, normal, moment, drive, frame_load, valid)
 
 
-def _group(joints: tuple[Joint, ...], own: tuple[int, ...], motion: Motion, q: FloatArray,
-           usable: FloatArray, multipliers: dict, frame_load: FloatArray) -> FloatArray:
-    """Solve one dyad's Jᵀλ = Q and pass its reactions on to the links it hangs on."""
-    matrix, parts = assemble(joints, own, motion, with_gamma=False)
+def _group(joints: tuple[Joint, ...], own: tuple[int, ...], inverse: FloatArray, motion: Motion,
+           q: FloatArray, multipliers: dict, frame_load: FloatArray) -> FloatArray:
+    """Solve one dyad's Jᵀλ = Q (λ = J⁻ᵀQ with the kinematics' inverse) and pass its
+    reactions on to the links it hangs on."""
+    _, parts = assemble(joints, own, motion, with_gamma=False)
     rhs = np.concatenate([q[:, link] for link in own], axis=1)
-    lam = batched_solve(np.swapaxes(matrix, 1, 2), rhs, usable)
+    lam = apply(inverse, rhs, transpose=True)
     for row, (joint, part) in enumerate(zip(joints, parts)):
         lam_j = lam[:, 2 * row:2 * row + 2]
         multipliers[joint.name] = lam_j
@@ -180,16 +182,22 @@ def _pass_on(blocks: dict[int, FloatArray], own: tuple[int, ...], lam: FloatArra
             q[:, link] += generalized
 
 
+def crank_inverse(joint: Joint, motion: Motion, usable: FloatArray):
+    """Inverse of the crank's 3×3 Jacobian: joint (1,2) and the drive constraint
+    φ2 − Ω·t = 0 (whose multiplier is minus the drive torque)."""
+    matrix, parts = assemble((joint,), (CRANK,), motion, with_gamma=False)
+    full = np.zeros((matrix.shape[0], 3, 3))
+    full[:, :2] = matrix
+    full[:, 2, 2] = 1.0
+    return batched_inverse(full, usable), parts
+
+
 def _crank(mechanism: Mechanism, motion: Motion, q: FloatArray, usable: FloatArray,
            multipliers: dict, frame_load: FloatArray) -> FloatArray:
     """Joint (1,2) and the drive torque from the crank's three equations."""
     joint = mechanism.crank.joint
-    matrix, parts = assemble((joint,), (CRANK,), motion, with_gamma=False)
-    n = matrix.shape[0]
-    full = np.zeros((n, 3, 3))
-    full[:, :2] = matrix
-    full[:, 2, 2] = 1.0  # drive constraint φ2 − Ω·t = 0
-    lam = batched_solve(np.swapaxes(full, 1, 2), q[:, CRANK], usable)
+    inverse, parts = crank_inverse(joint, motion, usable)
+    lam = apply(inverse, q[:, CRANK], transpose=True)
     multipliers[joint.name] = lam[:, :2]
     _pass_on(parts[0].blocks, (CRANK,), lam[:, :2], motion, q, frame_load)
     return -lam[:, 2]
