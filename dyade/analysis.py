@@ -12,8 +12,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from dyade import clearance, friction, kinematics, kinetostatics, self_locking
+from typing import TYPE_CHECKING
+
+from dyade import kinematics, kinetostatics
 from dyade.errors import AssemblyError
+
+if TYPE_CHECKING:  # imported where used: a kinematics-only run never loads them
+    from dyade import friction
 from dyade.model import FloatArray, Mechanism
 
 
@@ -67,7 +72,7 @@ def plan(mechanism: Mechanism) -> Plan:
     """Decide the stages from the data (SPEC §1: only what the scene calls for)."""
     dynamics = mechanism.has_dynamics
     rubbing = tuple(j.name for j in mechanism.joints if j.friction > 0.0) if dynamics else ()
-    locking = tuple(j.name for j in self_locking.sliders(mechanism)) if dynamics else ()
+    locking = tuple(j.name for j in mechanism.friction_sliders) if dynamics else ()
     gaps = tuple(j.name for j in mechanism.joints
                  if getattr(j, "clearance", None) is not None) if dynamics else ()
     return Plan(kinematics=True, kinetostatics=dynamics, friction=rubbing, self_locking=locking,
@@ -129,6 +134,8 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
     _dead_centres(mechanism, kin, rows, notes)
     forces = rubbing = locking = None
     if the_plan.friction:
+        from dyade import friction, self_locking
+
         rubbing = friction.iterate(mechanism, kin)
         forces = rubbing.forces
         _friction_notes(mechanism, kin, rubbing, rows, notes)
@@ -149,6 +156,8 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
                          f"(forces_valid = 0, force fields empty).")
     result = Result(mechanism, the_plan, kin, forces, rows, notes, rubbing, locking)
     if the_plan.clearance:
+        from dyade import clearance
+
         result.clearance = clearance.check_mechanism(mechanism, result, the_plan.clearance)
         for check in result.clearance:
             if not check.applies:
@@ -196,7 +205,7 @@ def _dead_centres(mechanism: Mechanism, kin: kinematics.Kinematics, rows: FloatA
 
 
 def _friction_notes(mechanism: Mechanism, kin: kinematics.Kinematics,
-                    rubbing: friction.FrictionResult, rows: FloatArray, notes: list[str]) -> None:
+                    rubbing: "friction.FrictionResult", rows: FloatArray, notes: list[str]) -> None:
     failed = rows & kin.valid & ~rubbing.converged
     if failed.any():
         notes.append(f"the friction iteration did not converge to {mechanism.friction_tol:g} in "

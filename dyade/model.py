@@ -269,6 +269,11 @@ class Mechanism:
                 if not (link.number == CRANK and name == "tip")]
 
     @property
+    def friction_sliders(self) -> list[Prismatic]:
+        """Prismatic joints with μ > 0: the sliders the self-locking test applies to."""
+        return [j for j in self.joints if isinstance(j, Prismatic) and j.friction > 0.0]
+
+    @property
     def has_dynamics(self) -> bool:
         """True when something loads the mechanism: masses, loads or springs."""
         return (any(link.has_mass for link in self.links.values())

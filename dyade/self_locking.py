@@ -26,7 +26,7 @@ import numpy as np
 
 from dyade.friction import FrictionResult, joint_forces_on
 from dyade.joints import Motion, travel
-from dyade.model import FloatArray, Mechanism, Prismatic
+from dyade.model import FloatArray, Mechanism
 
 
 @dataclass(slots=True)
@@ -41,17 +41,12 @@ class Locking:
     """(n,) bool: margin < 0 where the test applies"""
 
 
-def sliders(mechanism: Mechanism) -> list[Prismatic]:
-    """Prismatic joints the test applies to: those with μ > 0."""
-    return [j for j in mechanism.joints if isinstance(j, Prismatic) and j.friction > 0.0]
-
-
 def test(mechanism: Mechanism, motion: Motion, result: FrictionResult,
          valid: FloatArray) -> dict[tuple[int, int], Locking]:
     """Self-locking margin of every slider with friction at every crank position."""
     out = {}
     typical = abs(mechanism.crank.speed) * mechanism.crank.length
-    for joint in sliders(mechanism):
+    for joint in mechanism.friction_sliders:
         s = joint.slider
         d = motion.direction(joint.carrier, joint.guide_angle)
         others = joint_forces_on(s, mechanism, result, motion)

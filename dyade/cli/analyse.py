@@ -246,10 +246,11 @@ class Job:
 
             show([tables.sweep_summary(result, cols), tables.force_summary(result, cols),
                   tables.clearance_summary(result)], output)
-        err = console(stderr=True)
-        prefix = f"{path.name}: " if output else ""
-        for note in result.notes:
-            err.print(f"warning: {prefix}{note}")
+        if result.notes:  # rich is only loaded when there is something to say
+            err = console(stderr=True)
+            prefix = f"{path.name}: " if output else ""
+            for note in result.notes:
+                err.print(f"warning: {prefix}{note}")
         locks = any(lock.locks[result.rows].any() for lock in (result.locking or {}).values())
         if self.fail_on_lock and locks:
             raise DyadeError("a slider self-locks (see the warning above); --fail-on-lock was "
