@@ -1,0 +1,87 @@
+"""Benchmarks (issue 7). Disabled in the normal test run (each body runs once as a smoke
+test); measure with
+
+    pytest tests/benchmarks --benchmark-enable --benchmark-columns=min,median,rounds
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from dyade import analysis, clearance, coupling, friction, kinematics, kinetostatics, toml_input
+from dyade.model import Prismatic
+from tests.benchmarks.yardstick import fourbar
+from tests.helpers import shipped
+
+
+def _angles(count: int) -> np.ndarray:
+    return np.linspace(0.0, 2 * np.pi, count, endpoint=False)
+
+
+def _with_friction(mechanism, mu=0.1):
+    def rub(joint):
+        if isinstance(joint, Prismatic):
+            return replace(joint, friction=mu, slider_length=0.04, slider_height=0.02)
+        return replace(joint, friction=mu, pin_radius=0.005)
+
+    crank = replace(mechanism.crank, joint=rub(mechanism.crank.joint))
+    dyads = tuple(replace(d, joints=tuple(rub(j) for j in d.joints)) for d in mechanism.dyads)
+    return replace(mechanism, crank=crank, dyads=dyads, friction_tol=1e-9)
+
+
+@pytest.mark.parametrize("count", [360, 3600])
+@pytest.mark.parametrize("name", ["fourbar.toml", "slider-crank.toml"])
+def test_full_analysis(benchmark, name, count):
+    mechanism = toml_input.read_mechanism(shipped(name))
+    angles = _angles(count)
+    result = benchmark(analysis.run, mechanism, None, False, angles)
+    assert result.forces is not None
+
+
+@pytest.mark.parametrize("count", [360, 3600])
+def test_fourbar_engine_kinematics_and_forces(benchmark, count):
+    """The general engine, kinematics + forces only: compare with the yardstick."""
+    mechanism = toml_input.read_mechanism(shipped("fourbar.toml"))
+    angles = _angles(count)
+
+    def engine():
+        kin = kinematics.sweep(mechanism, angles)
+        return kinetostatics.solve(mechanism, kin)
+
+    benchmark(engine)
+
+
+@pytest.mark.parametrize("count", [360, 3600])
+def test_fourbar_yardstick(benchmark, count):
+    angles = _angles(count)
+    benchmark(fourbar, angles, 300 * 2 * np.pi / 60)
+
+
+def test_dyade16_with_friction_3600(benchmark):
+    mechanism = _with_friction(toml_input.read_mechanism(shipped("dyade-16.toml")))
+    angles = _angles(3600)
+
+    def engine():
+        kin = kinematics.sweep(mechanism, angles)
+        return friction.iterate(mechanism, kin)
+
+    result = benchmark(engine)
+    assert result.converged.all()
+
+
+def test_clearance_closed_form(benchmark):
+    benchmark(clearance.peak_force, 3.6, 1e7, 1e-4, 3.6e5)
+
+
+@pytest.mark.parametrize("steps", [50, 400])
+def test_clearance_simulation(benchmark, steps):
+    benchmark(clearance.simulate, 3.6, 1e7, 1e-4, 3.6e5, steps)
+
+
+def test_coupling_100000_eta(benchmark):
+    model = coupling.Coupling(1, 1, 1, 0.05, 0.05)
+    eta = np.linspace(0.0, 3.0, 100_000)
+    benchmark(coupling.response, model, eta)

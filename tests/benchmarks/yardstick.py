@@ -1,0 +1,56 @@
+"""A hand-written, single-purpose vectorised numpy four-bar: kinematics and forces.
+
+The yardstick for dyade's general engine (issue 7): the same four-bar as
+mechanisms/fourbar.toml (crank 50, coupler 200, rocker 150 mm, B0 = (250, 0) mm,
+coupler 1.2 kg / J 0.004, rocker 0.9 kg / J 0.0017, centres at the middles, crank
+massless), closed-form loop equations, Newton–Euler per link solved by hand.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+R2, R3, R4, B0 = 0.05, 0.2, 0.15, 0.25  # [m]
+M3, J3, M4, J4 = 1.2, 0.004, 0.9, 0.0017  # [kg], [kg m²]
+
+
+def fourbar(phi: np.ndarray, omega: float) -> dict[str, np.ndarray]:
+    """Angles, rates and joint forces of the four-bar at crank angles ``phi``."""
+    c2, s2 = np.cos(phi), np.sin(phi)
+    ax, ay = R2 * c2, R2 * s2
+    dx, dy = B0 - ax, -ay
+    dist2 = dx * dx + dy * dy
+    dist = np.sqrt(dist2)
+    gamma = np.arccos((R3 * R3 + dist2 - R4 * R4) / (2 * R3 * dist))
+    phi3 = np.arctan2(dy, dx) + gamma
+    c3, s3 = np.cos(phi3), np.sin(phi3)
+    bx, by = ax + R3 * c3, ay + R3 * s3
+    phi4 = np.arctan2(by, bx - B0)
+    c4, s4 = np.cos(phi4), np.sin(phi4)
+    sin34 = np.sin(phi3 - phi4)
+    w3 = omega * R2 * np.sin(phi4 - phi) / (R3 * sin34)
+    w4 = omega * R2 * np.sin(phi3 - phi) / (R4 * sin34)
+    rx = R2 * omega ** 2 * c2 + R3 * w3 ** 2 * c3 - R4 * w4 ** 2 * c4
+    ry = R2 * omega ** 2 * s2 + R3 * w3 ** 2 * s3 - R4 * w4 ** 2 * s4
+    det = R3 * R4 * (s3 * c4 - s4 * c3)
+    a3 = (-R4 * c4 * rx - R4 * s4 * ry) / det
+    a4 = (-R3 * c3 * rx - R3 * s3 * ry) / det
+    # centre accelerations (middles of the links)
+    a_ax, a_ay = -R2 * omega ** 2 * c2, -R2 * omega ** 2 * s2
+    g3x = a_ax + 0.5 * R3 * (-a3 * s3 - w3 ** 2 * c3)
+    g3y = a_ay + 0.5 * R3 * (a3 * c3 - w3 ** 2 * s3)
+    g4x = 0.5 * R4 * (-a4 * s4 - w4 ** 2 * c4)
+    g4y = 0.5 * R4 * (a4 * c4 - w4 ** 2 * s4)
+    # rocker moments about B0 and coupler moments about A give F34 (force on 4 at B)
+    # rocker: M_B0(F34) + M_B0(−m4 g4) − J4 a4 = 0 ; coupler: M_A(−F34) + M_A(−m3 g3) − J3 a3 = 0
+    k4 = J4 * a4 + 0.5 * R4 * (c4 * M4 * g4y - s4 * M4 * g4x)
+    k3 = J3 * a3 + 0.5 * R3 * (c3 * M3 * g3y - s3 * M3 * g3x)
+    # R4(c4 Fy − s4 Fx) = k4 ;  −R3(c3 Fy − s3 Fx) = k3
+    den = R4 * R3 * (s3 * c4 - c3 * s4)
+    fx = (k4 * R3 * c3 + k3 * R4 * c4) / den
+    fy = (k4 * R3 * s3 + k3 * R4 * s4) / den
+    # coupler: F23 (on 3 at A) = m3 g3 + F34 ; crank torque from F23 at A
+    f23x, f23y = M3 * g3x + fx, M3 * g3y + fy
+    torque = ax * f23y - ay * f23x
+    return {"phi3": phi3, "phi4": phi4, "omega3": w3, "omega4": w4, "alpha3": a3,
+            "alpha4": a4, "F34x": fx, "F34y": fy, "F23x": f23x, "F23y": f23y, "M_drive": torque}

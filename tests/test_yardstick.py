@@ -1,0 +1,20 @@
+"""The benchmark yardstick must compute the same four-bar as dyade (else the ratio is
+meaningless)."""
+
+import numpy as np
+
+from dyade import analysis, toml_input
+from tests.benchmarks.yardstick import fourbar
+from tests.helpers import shipped
+
+
+def test_yardstick_agrees_with_dyade():
+    mechanism = toml_input.read_mechanism(shipped("fourbar.toml"))
+    result = analysis.run(mechanism)
+    ref = fourbar(result.crank_angle, mechanism.crank.speed)
+    motion = result.kinematics.motion
+    assert np.allclose(motion.omega[:, 3], ref["omega3"], rtol=1e-9)
+    assert np.allclose(motion.alpha[:, 4], ref["alpha4"], rtol=1e-9)
+    assert np.allclose(result.forces.revolute[(3, 4)], np.stack((ref["F34x"], ref["F34y"]), -1),
+                       rtol=1e-8, atol=1e-8)
+    assert np.allclose(result.forces.drive_torque, ref["M_drive"], rtol=1e-8, atol=1e-9)
