@@ -43,3 +43,4 @@ def main() -> None:
 from dyade.cli import analyse as _analyse  # noqa: E402,F401  (registers the commands)
 from dyade.cli import clearance as _clearance  # noqa: E402,F401
 from dyade.cli import coupling as _coupling  # noqa: E402,F401
+from dyade.cli import accuracy as _accuracy  # noqa: E402,F401

@@ -1,0 +1,150 @@
+"""What accuracy costs: crank step, friction tolerance and clearance simulation studies.
+
+Each study reruns the user's mechanism with one knob changed, times the engine (best of
+a few runs) and compares the quantities a designer sizes parts by (peak drive torque,
+peak joint forces, clearance peaks) with the finest setting.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from dyade import analysis
+from dyade.model import Mechanism, Revolute
+
+STEPS_DEG = (5.0, 2.0, 1.0, 0.5, 0.1, 0.05)  # [°] crank steps, the last one is the reference
+FRICTION_TOLS = (1e-3, 1e-6, 1e-9, 1e-12)  # [-], the last one is the reference
+SIM_STEPS = (25, 100, 400, 1600)  # RK4 steps per contact period
+
+
+@dataclass(frozen=True, slots=True)
+class Row:
+    study: str
+    """'crank step', 'friction tol' or 'clearance'"""
+    setting: str
+    time: float
+    """engine time [s] (best of the repeats)"""
+    quantity: str
+    value: float
+    error: float
+    """relative difference from the reference setting (NaN for the reference itself)"""
+    extra: str = ""
+
+
+def _timed(run, repeats: int):
+    best, result = np.inf, None
+    for _ in range(repeats):
+        started = time.perf_counter()
+        result = run()
+        best = min(best, time.perf_counter() - started)
+    return best, result
+
+
+def _peaks(result: analysis.Result) -> dict[str, float]:
+    """Peak |M_drive|, peak joint forces and clearance peaks of one run."""
+    out: dict[str, float] = {}
+    forces = result.forces
+    if forces is None:
+        return out
+    valid = forces.valid & result.rows
+    out["|M_drive| max"] = float(np.max(np.abs(forces.drive_torque[valid]), initial=0.0))
+    for joint in result.mechanism.joints:
+        a, b = joint.name
+        if isinstance(joint, Revolute):
+            size = np.hypot(*forces.revolute[joint.name][valid].T)
+            out[f"F_{a}_{b} max"] = float(np.max(size, initial=0.0))
+        else:
+            out[f"FN_{a}_{b} max"] = float(np.max(np.abs(forces.normal[joint.name][valid]),
+                                                  initial=0.0))
+    for check in result.clearance or []:
+        if check.reversals:
+            a, b = check.joint
+            out[f"clearance F12max {a}_{b}"] = max(r.peak.force for r in check.reversals)
+    return out
+
+
+def _compare(study: str, runs: list[tuple[str, float, dict[str, float], str]]) -> list[Row]:
+    reference = runs[-1][2]
+    rows = []
+    for setting, seconds, peaks, extra in runs:
+        for quantity, value in peaks.items():
+            ref = reference.get(quantity, np.nan)
+            error = np.nan if setting == runs[-1][0] else abs(value - ref) / abs(ref) if ref else np.nan
+            rows.append(Row(study, setting, seconds, quantity, value, error, extra))
+    return rows
+
+
+def crank_step(mechanism: Mechanism, steps=STEPS_DEG, repeats: int = 3) -> list[Row]:
+    """Peaks against the crank step, over one revolution from the file's start angle."""
+    runs = []
+    for step in steps:
+        angles = mechanism.sweep.start + np.deg2rad(step) * np.arange(int(round(360 / step)) + 1)
+        seconds, result = _timed(lambda: analysis.run(mechanism, None, True, angles), repeats)
+        runs.append((f"{step:g}°", seconds, _peaks(result) or _kinematic_peaks(result),
+                     f"{angles.size} positions"))
+    return _compare("crank step", runs)
+
+
+def _kinematic_peaks(result: analysis.Result) -> dict[str, float]:
+    """Without forces: the largest angular acceleration of each link."""
+    motion = result.kinematics.motion
+    return {f"|alpha_{k}| max": float(np.nanmax(np.abs(motion.alpha[result.rows, k])))
+            for k in result.mechanism.moving_links[1:]}
+
+
+def friction_tol(mechanism: Mechanism, tols=FRICTION_TOLS, repeats: int = 3) -> list[Row]:
+    """Iterations, time and peaks against the friction tolerance."""
+    from dyade import friction, kinematics
+
+    kin = kinematics.sweep(mechanism)
+    runs = []
+    for tol in tols:
+        seconds, rubbing = _timed(lambda: friction.iterate(mechanism, kin, tol=tol), repeats)
+        result = analysis.Result(mechanism, analysis.plan(mechanism), kin, rubbing.forces,
+                                 kin.valid.copy())
+        its = rubbing.iterations[kin.valid]
+        runs.append((f"{tol:g}", seconds, _peaks(result),
+                     f"iterations {its.min():.0f}–{its.max():.0f} (mean {its.mean():.2f})"))
+    return _compare("friction tol", runs)
+
+
+def clearance_simulation(result: analysis.Result, steps=SIM_STEPS, repeats: int = 3) -> list[Row]:
+    """Closed form against the direct simulation for the first reversal of each joint."""
+    from dyade import clearance
+
+    rows = []
+    for check in result.clearance or []:
+        if not check.reversals:
+            continue
+        peak = check.reversals[0].peak
+        a, b = check.joint
+        args = (peak.mass, peak.stiffness, peak.clearance, peak.slope)
+        seconds, closed = _timed(lambda: clearance.peak_force(*args), repeats)
+        rows.append(Row("clearance", "closed form", seconds, f"F12max {a}_{b}", closed.force,
+                        np.nan, f"tau {closed.tau:.4g}"))
+        for n in steps:
+            seconds, sim = _timed(lambda: clearance.simulate(*args, n), repeats)
+            rows.append(Row("clearance", f"RK4 {n}/period", seconds, f"F12max {a}_{b}",
+                            sim.force, abs(sim.force - closed.force) / closed.force,
+                            f"{sim.steps} steps"))
+    return rows
+
+
+def studies(mechanism: Mechanism, repeats: int = 3) -> list[Row]:
+    """Every study the mechanism calls for."""
+    rows = crank_step(mechanism, repeats=repeats)
+    the_plan = analysis.plan(mechanism)
+    if the_plan.friction:
+        rows += friction_tol(mechanism, repeats=repeats)
+    if the_plan.clearance:
+        rows += clearance_simulation(analysis.run(mechanism), repeats=repeats)
+    return rows
+
+
+def with_sweep_of_one_revolution(mechanism: Mechanism) -> Mechanism:
+    """The studies always cover one full revolution from the file's start angle."""
+    sweep = mechanism.sweep
+    return replace(mechanism, sweep=type(sweep)(sweep.start, sweep.start + 2 * np.pi, sweep.step))
