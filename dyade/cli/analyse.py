@@ -23,13 +23,6 @@ set_option = click.option(
          "like the file.")
 
 
-def _console(stderr: bool = False):
-    return console(stderr=stderr)
-
-
-_atomic = atomic
-
-
 @dataclass(frozen=True)
 class SweepOptions:
     start: float | None = None
