@@ -275,7 +275,7 @@ def line_of_action(force: FloatArray) -> tuple[float, float]:
 
 def check_joint(name: tuple[int, int], crank_angle: FloatArray, force: FloatArray,
                 speed: float, data, mass: float, mass_source: str,
-                full_cycle: bool) -> JointCheck:
+                full_cycle: bool, max_wander: float = MAX_WANDER) -> JointCheck:
     """Find the reversals of one joint's force and their peak forces (SPEC §2)."""
     keep = np.all(np.isfinite(force), axis=1)
     phi, force = crank_angle[keep], force[keep]
@@ -283,11 +283,11 @@ def check_joint(name: tuple[int, int], crank_angle: FloatArray, force: FloatArra
         return JointCheck(name, np.nan, np.nan, False, "the joint carries no force", (),
                           mass_source)
     angle, wander = line_of_action(force)
-    if wander > MAX_WANDER:
+    if wander > max_wander:
         return JointCheck(name, angle, wander, False,
                           f"the force direction wanders up to {np.rad2deg(wander):.0f}° off its "
                           f"dominant line of action (the model needs one line, within "
-                          f"{np.rad2deg(MAX_WANDER):.0f}°): the pin travels around the bearing "
+                          f"{np.rad2deg(max_wander):.0f}°): the pin travels around the bearing "
                           f"instead of crossing it", (), mass_source)
     u = np.array([np.cos(angle), np.sin(angle)])
     magnitude = np.hypot(force[:, 0], force[:, 1])
@@ -330,10 +330,12 @@ def joint_mass(mechanism, joint) -> tuple[float | None, str]:
     return reduced_mass(*masses), f"reduced mass of links {a} and {b} (eq. 17)"
 
 
-def check_mechanism(mechanism, result, joints, override=None, mass_override=None) -> list:
+def check_mechanism(mechanism, result, joints, override=None, mass_override=None,
+                    max_wander: float = MAX_WANDER) -> list:
     """Clearance check of the given revolute joints from an analysis result.
 
-    ``override``: ClearanceData applied to every joint (CLI), ``mass_override`` [kg]."""
+    ``override``: ClearanceData applied to every joint (CLI), ``mass_override`` [kg],
+    ``max_wander`` [rad]: how far the force may leave its line of action."""
     from dyade.model import Revolute
 
     forces = result.forces
@@ -365,5 +367,5 @@ def check_mechanism(mechanism, result, joints, override=None, mass_override=None
         force = forces.revolute[name][result.rows]
         force = np.where(forces.valid[result.rows][:, None], force, np.nan)
         checks.append(check_joint(name, phi, force, mechanism.crank.speed, data, mass, source,
-                                  bool(full)))
+                                  bool(full), max_wander))
     return checks

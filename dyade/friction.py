@@ -132,12 +132,12 @@ def iterate(mechanism: Mechanism, kin: Kinematics, tol: float | None = None,
     iterations = np.zeros(n)
     residual = np.zeros(n)
     converged = np.ones(n, dtype=bool)
-    groups = [(d.joints, d.links, kin.inverses[col])
+    groups = [(d.joints, d.links, kin.inverses[col], kin.blocks[col])
               for col, d in reversed(list(enumerate(mechanism.dyads)))]
-    crank_inverse, _ = kinetostatics.crank_inverse(mechanism.crank.joint, motion, usable)
-    groups.append(((mechanism.crank.joint,), (CRANK,), crank_inverse))
+    crank_inverse, crank_blocks = kinetostatics.crank_inverse(mechanism.crank.joint, motion, usable)
+    groups.append(((mechanism.crank.joint,), (CRANK,), crank_inverse, [crank_blocks]))
     drive = np.zeros(n)
-    for joints, own, inverse in groups:
+    for joints, own, inverse, parts in groups:
         lam, its, change, done = _group(joints, own, inverse, q, usable, frictions, tol,
                                         max_iter)
         iterations = np.maximum(iterations, its)
@@ -146,7 +146,7 @@ def iterate(mechanism: Mechanism, kin: Kinematics, tol: float | None = None,
         for row, joint in enumerate(joints):
             lam_j = lam[:, 2 * row:2 * row + 2]
             multipliers[joint.name] = lam_j
-            _pass_reaction(joint, own, lam_j, motion, q, frame_load)
+            kinetostatics.pass_on(parts[row], own, lam_j, q, frame_load)
             if joint.name in frictions:
                 for link, load in frictions[joint.name].loads(lam_j).items():
                     if link not in own:
@@ -204,14 +204,6 @@ def _group(joints: tuple[Joint, ...], own: tuple[int, ...], inverse: FloatArray,
         its = its + active
         active = active & (step > tol)
     return lam, its, change, ~active
-
-
-def _pass_reaction(joint: Joint, own: tuple[int, ...], lam: FloatArray, motion: Motion,
-                   q: FloatArray, frame_load: FloatArray) -> None:
-    from dyade.joints import constraint
-
-    blocks = constraint(joint, motion, with_gamma=False).blocks
-    kinetostatics._pass_on(blocks, own, lam, motion, q, frame_load)
 
 
 def _add_load(link: int, load: FloatArray, motion: Motion, q: FloatArray,

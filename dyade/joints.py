@@ -103,48 +103,25 @@ def dot(a: FloatArray, b: FloatArray) -> FloatArray:
     return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
 
 
-@dataclass(slots=True)
-class Constraint:
-    """Jacobian blocks and acceleration term of one joint over the sweep."""
-
-    blocks: dict[int, FloatArray]
-    """link -> (n, 2, 3) derivative of the joint's two equations by (x, y, φ) of that link"""
-    gamma: FloatArray
-    """(n, 2) right-hand side γ = −J̇·q̇ of the acceleration equations"""
+Blocks = dict[int, FloatArray]
+"""link -> (n, 2, 3) derivative of a joint's two equations by (x, y, φ) of that link"""
 
 
-def constraint(joint: Joint, motion: Motion, with_gamma: bool = True) -> Constraint:
-    """Jacobian blocks (and γ if the velocities are known) of ``joint``."""
+def blocks(joint: Joint, motion: Motion) -> Blocks:
+    """Jacobian blocks of ``joint``; they depend on the positions only."""
+    n = motion.angle.shape[0]
     if isinstance(joint, Revolute):
-        return _revolute(joint, motion, with_gamma)
-    return _prismatic(joint, motion, with_gamma)
-
-
-def _revolute(joint: Revolute, motion: Motion, with_gamma: bool) -> Constraint:
-    (p, q), (u_p, u_q) = joint.links, joint.points
-    n = motion.angle.shape[0]
-    blocks = {}
-    gamma = np.zeros((n, 2))
-    for link, local, sign in ((p, u_p, 1.0), (q, u_q, -1.0)):
-        rel = motion.rotated(link, local)
-        block = np.zeros((n, 2, 3))
-        block[:, 0, 0] = sign
-        block[:, 1, 1] = sign
-        block[:, :, 2] = sign * perp(rel)
-        blocks[link] = block
-        if with_gamma:
-            gamma += sign * (motion.omega[:, link] ** 2)[:, None] * rel
-    return Constraint(blocks, gamma)
-
-
-def _prismatic(joint: Prismatic, motion: Motion, with_gamma: bool) -> Constraint:
+        out = {}
+        for link, local, sign in zip(joint.links, joint.points, (1.0, -1.0)):
+            block = np.zeros((n, 2, 3))
+            block[:, 0, 0] = sign
+            block[:, 1, 1] = sign
+            block[:, :, 2] = sign * perp(motion.rotated(link, local))
+            out[link] = block
+        return out
     c, s = joint.carrier, joint.slider
-    n = motion.angle.shape[0]
-    d = motion.direction(c, joint.guide_angle)
+    d, rel_g, rel_s, w = _guide_geometry(joint, motion)
     normal = perp(d)
-    rel_g = motion.rotated(c, joint.guide_point)
-    rel_s = motion.rotated(s, joint.slider_point)
-    w = motion.origin[:, s] + rel_s - motion.origin[:, c] - rel_g
     block_c = np.zeros((n, 2, 3))
     block_s = np.zeros((n, 2, 3))
     block_c[:, 0, 2] = -1.0
@@ -153,14 +130,35 @@ def _prismatic(joint: Prismatic, motion: Motion, with_gamma: bool) -> Constraint
     block_s[:, 1, 2] = dot(normal, perp(rel_s))
     block_c[:, 1, :2] = -normal
     block_c[:, 1, 2] = -dot(d, w) - dot(normal, perp(rel_g))
-    gamma = np.zeros((n, 2))
-    if with_gamma:
-        om_c, om_s = motion.omega[:, c], motion.omega[:, s]
-        w_dot = (motion.velocity[:, s] + om_s[:, None] * perp(rel_s)
-                 - motion.velocity[:, c] - om_c[:, None] * perp(rel_g))
-        gamma[:, 1] = (dot(normal, om_s[:, None] ** 2 * rel_s - om_c[:, None] ** 2 * rel_g)
-                       + 2.0 * om_c * dot(d, w_dot) + om_c ** 2 * dot(normal, w))
-    return Constraint({c: block_c, s: block_s}, gamma)
+    return {c: block_c, s: block_s}
+
+
+def gamma(joint: Joint, motion: Motion) -> FloatArray:
+    """Right-hand side γ = −J̇·q̇ of the acceleration equations, shape (n, 2); needs
+    the velocities."""
+    if isinstance(joint, Revolute):
+        (p, q), (u_p, u_q) = joint.links, joint.points
+        return ((motion.omega[:, p] ** 2)[:, None] * motion.rotated(p, u_p)
+                - (motion.omega[:, q] ** 2)[:, None] * motion.rotated(q, u_q))
+    c, s = joint.carrier, joint.slider
+    d, rel_g, rel_s, w = _guide_geometry(joint, motion)
+    normal = perp(d)
+    om_c, om_s = motion.omega[:, c], motion.omega[:, s]
+    w_dot = (motion.velocity[:, s] + om_s[:, None] * perp(rel_s)
+             - motion.velocity[:, c] - om_c[:, None] * perp(rel_g))
+    out = np.zeros((motion.angle.shape[0], 2))
+    out[:, 1] = (dot(normal, om_s[:, None] ** 2 * rel_s - om_c[:, None] ** 2 * rel_g)
+                 + 2.0 * om_c * dot(d, w_dot) + om_c ** 2 * dot(normal, w))
+    return out
+
+
+def _guide_geometry(joint: Prismatic, motion: Motion):
+    """Guide direction d, the rotated guide and slider points, and w = S − G."""
+    c, s = joint.carrier, joint.slider
+    d = motion.direction(c, joint.guide_angle)
+    rel_g = motion.rotated(c, joint.guide_point)
+    rel_s = motion.rotated(s, joint.slider_point)
+    return d, rel_g, rel_s, motion.origin[:, s] + rel_s - motion.origin[:, c] - rel_g
 
 
 def residual(joint: Joint, motion: Motion) -> FloatArray:

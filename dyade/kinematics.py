@@ -13,8 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade import dyads as dyad_kinds
-from dyade.joints import Constraint, Motion, constraint, travel
-from dyade.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Prismatic, Revolute
+from dyade.joints import Blocks, Motion, blocks, gamma
+from dyade.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
 
 
 @dataclass(slots=True)
@@ -36,6 +36,8 @@ class Kinematics:
     inverses: list[FloatArray]
     """per dyad (n, 6, 6): inverse of its constraint Jacobian J (NaN where not usable);
     the force stage reuses it, since Jᵀ·λ = Q gives λ = (J⁻¹)ᵀ·Q"""
+    blocks: list[list[Blocks]]
+    """per dyad, per joint A, B, C: its Jacobian blocks (the force stage reuses them)"""
 
     @property
     def valid(self) -> FloatArray:
@@ -61,20 +63,16 @@ def generalized(vector: FloatArray, scalar: FloatArray) -> FloatArray:
     return np.concatenate((vector, scalar[:, None]), axis=1)
 
 
-def assemble(joints: tuple[Joint, ...] | list[Joint], own: tuple[int, ...], motion: Motion,
-             with_gamma: bool) -> tuple[FloatArray, list[Constraint]]:
-    """Jacobian of ``joints`` by the coordinates of the ``own`` links, shape
-    (n, 2·joints, 3·links), and each joint's constraint."""
-    n = motion.angle.shape[0]
-    matrix = np.zeros((n, 2 * len(joints), 3 * len(own)))
-    parts = []
-    for row, joint in enumerate(joints):
-        part = constraint(joint, motion, with_gamma)
-        parts.append(part)
+def assemble(parts: list[Blocks], own: tuple[int, ...]) -> FloatArray:
+    """Jacobian of a group's joints (their ``parts``) by the coordinates of the ``own``
+    links, shape (n, 2·joints, 3·links)."""
+    n = next(iter(parts[0].values())).shape[0]
+    matrix = np.zeros((n, 2 * len(parts), 3 * len(own)))
+    for row, part in enumerate(parts):
         for col, link in enumerate(own):
-            if link in part.blocks:
-                matrix[:, 2 * row:2 * row + 2, 3 * col:3 * col + 3] = part.blocks[link]
-    return matrix, parts
+            if link in part:
+                matrix[:, 2 * row:2 * row + 2, 3 * col:3 * col + 3] = part[link]
+    return matrix
 
 
 def batched_inverse(matrix: FloatArray, usable: FloatArray) -> FloatArray:
@@ -105,7 +103,7 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinema
     transmission = np.full((n, count), np.nan)
     singular = np.zeros((n, count), dtype=bool)
     conditioning = np.full((n, count), np.nan)
-    inverses = []
+    inverses, all_blocks = [], []
     upstream_ok = np.ones(n, dtype=bool)
     for col, dyad in enumerate(mechanism.dyads):
         closure = dyad_kinds.DYAD_KINDS[dyad.kind].close(dyad, motion)
@@ -115,43 +113,36 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinema
         conditioning[:, col] = np.where(ok, closure.conditioning, np.nan)
         singular[:, col] = ok & (closure.conditioning < dyad_kinds.SINGULAR_SIN)
         usable = ok & ~singular[:, col]
-        inverses.append(_derivatives(dyad.joints, dyad.links, motion, usable))
+        parts = [blocks(joint, motion) for joint in dyad.joints]
+        inverses.append(_derivatives(dyad.joints, dyad.links, parts, motion, usable))
+        all_blocks.append(parts)
         for link in dyad.links:
             motion.origin[~ok, link] = np.nan
             motion.angle[~ok, link] = np.nan
         upstream_ok = usable
     return Kinematics(crank_angle, motion, closes, transmission, singular, conditioning,
-                      inverses)
+                      inverses, all_blocks)
 
 
-def _derivatives(joints: tuple[Joint, ...], own: tuple[int, ...], motion: Motion,
-                 usable: FloatArray) -> FloatArray:
+def _derivatives(joints: tuple[Joint, ...], own: tuple[int, ...], parts: list[Blocks],
+                 motion: Motion, usable: FloatArray) -> FloatArray:
     """Velocities, then accelerations, of the ``own`` links of one group; returns the
     inverse of its Jacobian."""
-    matrix, parts = assemble(joints, own, motion, with_gamma=False)
-    inverse = batched_inverse(matrix, usable)
-    rhs = np.zeros(matrix.shape[:2])
-    for row, part in enumerate(parts):
-        for link, block in part.blocks.items():
-            if link not in own:
-                qdot = generalized(motion.velocity[:, link], motion.omega[:, link])
-                rhs[:, 2 * row:2 * row + 2] -= np.einsum("nij,nj->ni", block, qdot)
-    qdot = apply(inverse, rhs)
-    for col, link in enumerate(own):
-        motion.velocity[:, link] = qdot[:, 3 * col:3 * col + 2]
-        motion.omega[:, link] = qdot[:, 3 * col + 2]
-    rhs = np.zeros(matrix.shape[:2])
-    for row, joint in enumerate(joints):
-        part = constraint(joint, motion, with_gamma=True)
-        rhs[:, 2 * row:2 * row + 2] = part.gamma
-        for link, block in part.blocks.items():
-            if link not in own:
-                qddot = generalized(motion.acceleration[:, link], motion.alpha[:, link])
-                rhs[:, 2 * row:2 * row + 2] -= np.einsum("nij,nj->ni", block, qddot)
-    qddot = apply(inverse, rhs)
-    for col, link in enumerate(own):
-        motion.acceleration[:, link] = qddot[:, 3 * col:3 * col + 2]
-        motion.alpha[:, link] = qddot[:, 3 * col + 2]
+    inverse = batched_inverse(assemble(parts, own), usable)
+    for rates, derivative in (("velocity", "omega"), ("acceleration", "alpha")):
+        rhs = np.zeros(inverse.shape[:2])
+        for row, (joint, part) in enumerate(zip(joints, parts)):
+            if rates == "acceleration":
+                rhs[:, 2 * row:2 * row + 2] = gamma(joint, motion)
+            for link, block in part.items():
+                if link not in own:
+                    known = generalized(getattr(motion, rates)[:, link],
+                                        getattr(motion, derivative)[:, link])
+                    rhs[:, 2 * row:2 * row + 2] -= np.einsum("nij,nj->ni", block, known)
+        solved = apply(inverse, rhs)
+        for col, link in enumerate(own):
+            getattr(motion, rates)[:, link] = solved[:, 3 * col:3 * col + 2]
+            getattr(motion, derivative)[:, link] = solved[:, 3 * col + 2]
     return inverse
 
 

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.joints import Motion, cross, rotate
+from dyade.joints import Blocks, Motion, blocks, cross, rotate
 from dyade.kinematics import Kinematics, apply, assemble, batched_inverse
 from dyade.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
 
@@ -122,7 +122,8 @@ def reactions(mechanism: Mechanism, kin: Kinematics, q: FloatArray) -> Forces:
     frame_load = np.zeros((n, 3))
     for col in reversed(range(len(mechanism.dyads))):
         dyad = mechanism.dyads[col]
-        _group(dyad.joints, dyad.links, kin.inverses[col], motion, q, multipliers, frame_load)
+        _group(dyad.joints, dyad.links, kin.blocks[col], kin.inverses[col], q, multipliers,
+               frame_load)
     drive = _crank(mechanism, motion, q, usable, multipliers, frame_load)
     return assemble_forces(mechanism, kin, multipliers, drive, frame_load)
 
@@ -154,22 +155,20 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, multipliers: dict,
     return Forces(multipliers, revolute, normal, moment, drive, frame_load, valid)
 
 
-def _group(joints: tuple[Joint, ...], own: tuple[int, ...], inverse: FloatArray, motion: Motion,
-           q: FloatArray, multipliers: dict, frame_load: FloatArray) -> FloatArray:
-    """Solve one dyad's Jᵀλ = Q (λ = J⁻ᵀQ with the kinematics' inverse) and pass its
-    reactions on to the links it hangs on."""
-    _, parts = assemble(joints, own, motion, with_gamma=False)
+def _group(joints: tuple[Joint, ...], own: tuple[int, ...], parts: list[Blocks],
+           inverse: FloatArray, q: FloatArray, multipliers: dict, frame_load: FloatArray) -> None:
+    """Solve one dyad's Jᵀλ = Q (λ = J⁻ᵀQ with the kinematics' inverse and blocks) and
+    pass its reactions on to the links it hangs on."""
     rhs = np.concatenate([q[:, link] for link in own], axis=1)
     lam = apply(inverse, rhs, transpose=True)
     for row, (joint, part) in enumerate(zip(joints, parts)):
         lam_j = lam[:, 2 * row:2 * row + 2]
         multipliers[joint.name] = lam_j
-        _pass_on(part.blocks, own, lam_j, motion, q, frame_load)
-    return lam
+        pass_on(part, own, lam_j, q, frame_load)
 
 
-def _pass_on(blocks: dict[int, FloatArray], own: tuple[int, ...], lam: FloatArray,
-             motion: Motion, q: FloatArray, frame_load: FloatArray) -> None:
+def pass_on(blocks: Blocks, own: tuple[int, ...], lam: FloatArray, q: FloatArray,
+            frame_load: FloatArray) -> None:
     """Reaction −J_kᵀλ of a joint on the placed links it touches."""
     for link, block in blocks.items():
         if link in own:
@@ -185,20 +184,21 @@ def _pass_on(blocks: dict[int, FloatArray], own: tuple[int, ...], lam: FloatArra
 def crank_inverse(joint: Joint, motion: Motion, usable: FloatArray):
     """Inverse of the crank's 3×3 Jacobian: joint (1,2) and the drive constraint
     φ2 − Ω·t = 0 (whose multiplier is minus the drive torque)."""
-    matrix, parts = assemble((joint,), (CRANK,), motion, with_gamma=False)
+    part = blocks(joint, motion)
+    matrix = assemble([part], (CRANK,))
     full = np.zeros((matrix.shape[0], 3, 3))
     full[:, :2] = matrix
     full[:, 2, 2] = 1.0
-    return batched_inverse(full, usable), parts
+    return batched_inverse(full, usable), part
 
 
 def _crank(mechanism: Mechanism, motion: Motion, q: FloatArray, usable: FloatArray,
            multipliers: dict, frame_load: FloatArray) -> FloatArray:
     """Joint (1,2) and the drive torque from the crank's three equations."""
     joint = mechanism.crank.joint
-    inverse, parts = crank_inverse(joint, motion, usable)
+    inverse, part = crank_inverse(joint, motion, usable)
     lam = apply(inverse, q[:, CRANK], transpose=True)
     multipliers[joint.name] = lam[:, :2]
-    _pass_on(parts[0].blocks, (CRANK,), lam[:, :2], motion, q, frame_load)
+    pass_on(part, (CRANK,), lam[:, :2], q, frame_load)
     return -lam[:, 2]
 

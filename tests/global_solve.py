@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.model import CRANK, FRAME, Mechanism, Prismatic, Revolute
+from dyade.model import CRANK, FRAME, Mechanism, Revolute
 
 
 def _rot(phi, u):

@@ -224,3 +224,12 @@ def test_analyse_runs_the_check_only_with_clearance_data(monkeypatch):
 
     monkeypatch.setattr(clearance, "check_mechanism", must_not_run)
     assert analysis.run(toml_input.read_mechanism(shipped("fourbar.toml"))).clearance is None
+
+
+def test_max_wander_reaches_the_check():
+    args = ["clearance", str(shipped("dyade-16.toml")), "--joint", "13,14", "--stiffness", "1e8",
+            "--clearance", "1e-4", "--format", "csv"]
+    strict = CliRunner().invoke(main, args, catch_exceptions=False)
+    assert "joint (13,14): not checked" in strict.stderr and "wanders up to 33°" in strict.stderr
+    relaxed = CliRunner().invoke(main, args + ["--max-wander", "40"], catch_exceptions=False)
+    assert "\n13-14," in relaxed.stdout

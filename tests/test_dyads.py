@@ -5,10 +5,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from hypothesis import assume, given
+from hypothesis import strategies as st
 
 from dyade import joints
 from tests.helpers import kinematics_at, mechanism_from
-from tests.strategies import dyad_files
+from tests.strategies import KINDS, dyad_files
 
 ANGLES = np.deg2rad(np.arange(0.0, 360.0, 7.5))
 H = 1e-5  # [rad]
@@ -50,29 +51,10 @@ def _check_closure_and_derivatives(data):
                            atol=1e-4 * max(np.max(np.abs(a)), scale * omega ** 2))
 
 
-@given(data=dyad_files(kind="RRR"))
-def test_rrr_closes_and_differentiates(data):
-    _check_closure_and_derivatives(data)
-
-
-@given(data=dyad_files(kind="RRP"))
-def test_rrp_closes_and_differentiates(data):
-    _check_closure_and_derivatives(data)
-
-
-@given(data=dyad_files(kind="RPR"))
-def test_rpr_closes_and_differentiates(data):
-    _check_closure_and_derivatives(data)
-
-
-@given(data=dyad_files(kind="PRP"))
-def test_prp_closes_and_differentiates(data):
-    _check_closure_and_derivatives(data)
-
-
-@given(data=dyad_files(kind="PPR"))
-def test_ppr_closes_and_differentiates(data):
-    _check_closure_and_derivatives(data)
+@pytest.mark.parametrize("kind", KINDS)
+@given(draw=st.data())
+def test_closes_and_differentiates(kind, draw):
+    _check_closure_and_derivatives(draw.draw(dyad_files(kind=kind), label="mechanism"))
 
 
 @given(data=dyad_files(kind="RRR"))

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-import sys
+import math
 import time
 from pathlib import Path
 
@@ -110,7 +110,7 @@ def clearance(mechanism_files: tuple[Path, ...], joints: tuple[str, ...], masses
     if len(masses) == 2 and not masses[1] > 0:
         raise InputError(f"--mass must be a positive number, got {masses[1]:g}.")
     mass = engine.reduced_mass(*masses) if len(masses) == 2 else (masses[0] if masses else None)
-    engine.MAX_WANDER = float(__import__("math").radians(max_wander))
+    wander = math.radians(max_wander)
     speeds = value_range(speed_range, "--speed-range", " in rpm", positive_start=True) if speed_range else None
     if not mechanism_files:
         _standalone(mass, stiffness, gap, slope, speed_rpm, speeds, simulate, sim_steps, fmt,
@@ -126,7 +126,7 @@ def clearance(mechanism_files: tuple[Path, ...], joints: tuple[str, ...], masses
 
         def run_one(path: Path, target: Path | None, _: object = None) -> None:
             _over_mechanism(path, chosen, mass, stiffness, gap, speeds, simulate, sim_steps, fmt,
-                            target)
+                            target, wander)
 
         if len(mechanism_files) == 1 and not (output and output.is_dir()):
             run_one(mechanism_files[0], output)
@@ -240,7 +240,8 @@ def _cell_pretty(value) -> str:
     return str(value)
 
 
-def _over_mechanism(path, joints, mass, stiffness, gap, speeds, simulate, sim_steps, fmt, output):
+def _over_mechanism(path, joints, mass, stiffness, gap, speeds, simulate, sim_steps, fmt, output,
+                    max_wander):
     from dataclasses import replace
 
     import numpy as np
@@ -261,7 +262,7 @@ def _over_mechanism(path, joints, mass, stiffness, gap, speeds, simulate, sim_st
             sign = 1.0 if mechanism.crank.speed > 0 else -1.0
             mech = replace(mechanism, crank=replace(mechanism.crank, speed=sign * rpm * RPM))
         result = analysis.run(mech)
-        for check in engine.check_mechanism(mech, result, joints, override, mass):
+        for check in engine.check_mechanism(mech, result, joints, override, mass, max_wander):
             if not check.applies:
                 if rpm is None or rpm == speeds[0]:
                     skipped.append(check)
