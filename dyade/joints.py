@@ -1,20 +1,20 @@
-"""Joint constraints in link coordinates q = (x, y, φ) of each link's frame origin.
+"""Motion of the links, the joints' screws, and the constraint residuals.
 
-One formulation serves the whole engine: velocities solve J·q̇ = −J_known·q̇_known,
-accelerations J·q̈ = γ − J_known·q̈_known, and joint reactions the transposed system
-Jᵀ·λ = Q (d'Alembert, Lagrange multipliers). A revolute joint gives two rows, a
-prismatic joint two (relative angle, then normal distance to the guide line).
-
-Derivation (SPEC §1, "velocities and accelerations follow from differentiating these
+Velocities, accelerations and forces are written with planar screws about the world
+origin O (SPEC §1: "velocities and accelerations follow from differentiating these
 closures once and twice in time"):
 
-* revolute, point u_p of p on point u_q of q:
-  Φ = r_p + R_p·u_p − r_q − R_q·u_q,  J_p = [I, E·R_p·u_p],  J_q = −[I, E·R_q·u_q],
-  γ = ω_p²·R_p·u_p − ω_q²·R_q·u_q   (E: rotation by +90°).
-* prismatic, carrier c with guide (g, direction d, normal n), slider s with point σ:
-  Φ1 = φ_s − φ_c − κ;  Φ2 = n·w with w = S − G = r_s + R_s·σ − r_c − R_c·g,
-  ∂Φ2/∂r_s = n, ∂Φ2/∂φ_s = n·E·R_s·σ, ∂Φ2/∂r_c = −n, ∂Φ2/∂φ_c = −d·w − n·E·R_c·g,
-  γ2 = n·(ω_s²·R_s·σ − ω_c²·R_c·g) + 2·ω_c·d·ẇ + ω_c²·n·w.
+* a twist V = (v_x, v_y, ω): ω and the velocity v_O of the link point passing O;
+  a point P of the link moves with v_P = v_O + ω·E·P (E: turn by +90°);
+* a wrench W = (f_x, f_y, m): the force and its moment about O;
+* a wrench does the power W·V = f·v_O + m·ω on a twist.
+
+A joint's unit twist S is the relative motion it allows: a revolute joint at P gives
+S = (P_y, −P_x, 1), a prismatic joint with guide direction d gives S = (d_x, d_y, 0).
+So S·W is the moment of W about the pin or the force of W along the guide: the part a
+frictionless joint cannot carry (SPEC §1's "the reaction has no component along the
+joint's freedom"). Arrays of screws have the shape (3, n); links are stored link-major
+so that every component over the sweep is contiguous.
 """
 
 from __future__ import annotations
@@ -31,7 +31,8 @@ class Motion:
     """Pose and its time derivatives of every link frame over the sweep.
 
     Arrays are indexed ``[position, link]``; link 1 (the frame) stays at rest. Entries
-    of links not yet solved, or positions that do not close, are NaN.
+    of links not yet solved, or positions that do not close, are NaN. (They are views
+    of link-major arrays: ``origin[:, k, 0]`` is contiguous.)
     """
 
     origin: FloatArray
@@ -46,21 +47,66 @@ class Motion:
     """(n, links, 2) origin accelerations [m/s²]"""
     alpha: FloatArray
     """(n, links) angular accelerations [rad/s²]"""
+    cos: FloatArray
+    """(n, links) cos φ, kept with the angle (see ``set_angle``)"""
+    sin: FloatArray
+    """(n, links) sin φ"""
 
     @classmethod
     def at_rest(cls, positions: int, links: int) -> Motion:
-        nan2 = np.full((positions, links, 2), np.nan)
-        nan1 = np.full((positions, links), np.nan)
-        motion = cls(nan2, nan1, nan2.copy(), nan1.copy(), nan2.copy(), nan1.copy())
+        def vectors():
+            return np.full((links, 2, positions), np.nan).transpose(2, 0, 1)
+
+        def scalars():
+            return np.full((links, positions), np.nan).T
+
+        motion = cls(vectors(), scalars(), vectors(), scalars(), vectors(), scalars(),
+                     scalars(), scalars())
         for array in (motion.origin, motion.angle, motion.velocity, motion.omega,
-                      motion.acceleration, motion.alpha):
+                      motion.acceleration, motion.alpha, motion.sin):
             array[:, 1] = 0.0
+        motion.cos[:, 1] = 1.0
         return motion
 
+    def set_angle(self, link: int, angle: FloatArray, cos: FloatArray | None = None,
+                  sin: FloatArray | None = None) -> None:
+        """Set a link's angle with its cosine and sine (computed unless given)."""
+        self.angle[:, link] = angle
+        self.cos[:, link] = np.cos(angle) if cos is None else cos
+        self.sin[:, link] = np.sin(angle) if sin is None else sin
+
+    def turn_with(self, link: int, known: int, offset: float) -> None:
+        """φ_link = φ_known + offset (links joined by a prismatic joint)."""
+        c, s = np.cos(offset), np.sin(offset)
+        ck, sk = self.cos[:, known], self.sin[:, known]
+        self.set_angle(link, self.angle[:, known] + offset, ck * c - sk * s, sk * c + ck * s)
+
+    def invalidate(self, link: int, bad: FloatArray) -> None:
+        """Mark a link's pose NaN at the positions ``bad``."""
+        for array in (self.origin, self.angle, self.cos, self.sin):
+            array[bad, link] = np.nan
+
     # -- points of links ------------------------------------------------------------
+    def rotated_xy(self, link: int, local: Vec) -> tuple[FloatArray, FloatArray]:
+        """Components of R(φ_link)·u over the sweep."""
+        c, s = self.cos[:, link], self.sin[:, link]
+        u, v = local
+        if v == 0.0:
+            return c * u, s * u
+        return c * u - s * v, s * u + c * v
+
+    def point_xy(self, link: int, local: Vec) -> tuple[FloatArray, FloatArray]:
+        """Components of a link point's world position [m]."""
+        x, y = self.rotated_xy(link, local)
+        return self.origin[:, link, 0] + x, self.origin[:, link, 1] + y
+
     def rotated(self, link: int, local: Vec | FloatArray) -> FloatArray:
         """R(φ_link)·u over the sweep, shape (n, 2)."""
-        return rotate(self.angle[:, link], local)
+        if np.ndim(local) == 1:
+            return np.stack(self.rotated_xy(link, tuple(local)), axis=-1)
+        c, s = self.cos[:, link], self.sin[:, link]
+        u = np.asarray(local, dtype=np.float64)
+        return np.stack((c * u[..., 0] - s * u[..., 1], s * u[..., 0] + c * u[..., 1]), axis=-1)
 
     def point(self, link: int, local: Vec | FloatArray) -> FloatArray:
         """World position of a link-fixed point [m], shape (n, 2)."""
@@ -78,8 +124,7 @@ class Motion:
 
     def direction(self, link: int, angle: float) -> FloatArray:
         """World unit vector of a link-fixed direction, shape (n, 2)."""
-        phi = self.angle[:, link] + angle
-        return np.stack((np.cos(phi), np.sin(phi)), axis=-1)
+        return self.rotated(link, (np.cos(angle), np.sin(angle)))
 
 
 def rotate(angle: FloatArray, local: Vec | FloatArray) -> FloatArray:
@@ -103,62 +148,22 @@ def dot(a: FloatArray, b: FloatArray) -> FloatArray:
     return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
 
 
-Blocks = dict[int, FloatArray]
-"""link -> (n, 2, 3) derivative of a joint's two equations by (x, y, φ) of that link"""
-
-
-def blocks(joint: Joint, motion: Motion) -> Blocks:
-    """Jacobian blocks of ``joint``; they depend on the positions only."""
+def screw(joint: Joint, motion: Motion, on: int) -> FloatArray:
+    """Unit twist (3, n) of the motion ``joint`` allows link ``on`` relative to the
+    other link (see the module docstring): a revolute joint's ω part is +1, a prismatic
+    joint's translation is along +d, the carrier's guide direction, for the slider and
+    along −d for the carrier."""
     n = motion.angle.shape[0]
+    out = np.empty((3, n))
     if isinstance(joint, Revolute):
-        out = {}
-        for link, local, sign in zip(joint.links, joint.points, (1.0, -1.0)):
-            block = np.zeros((n, 2, 3))
-            block[:, 0, 0] = sign
-            block[:, 1, 1] = sign
-            block[:, :, 2] = sign * perp(motion.rotated(link, local))
-            out[link] = block
+        x, y = motion.point_xy(joint.links[0], joint.points[0])
+        out[0], out[1], out[2] = y, -x, 1.0
         return out
-    c, s = joint.carrier, joint.slider
-    d, rel_g, rel_s, w = _guide_geometry(joint, motion)
-    normal = perp(d)
-    block_c = np.zeros((n, 2, 3))
-    block_s = np.zeros((n, 2, 3))
-    block_c[:, 0, 2] = -1.0
-    block_s[:, 0, 2] = 1.0
-    block_s[:, 1, :2] = normal
-    block_s[:, 1, 2] = dot(normal, perp(rel_s))
-    block_c[:, 1, :2] = -normal
-    block_c[:, 1, 2] = -dot(d, w) - dot(normal, perp(rel_g))
-    return {c: block_c, s: block_s}
-
-
-def gamma(joint: Joint, motion: Motion) -> FloatArray:
-    """Right-hand side γ = −J̇·q̇ of the acceleration equations, shape (n, 2); needs
-    the velocities."""
-    if isinstance(joint, Revolute):
-        (p, q), (u_p, u_q) = joint.links, joint.points
-        return ((motion.omega[:, p] ** 2)[:, None] * motion.rotated(p, u_p)
-                - (motion.omega[:, q] ** 2)[:, None] * motion.rotated(q, u_q))
-    c, s = joint.carrier, joint.slider
-    d, rel_g, rel_s, w = _guide_geometry(joint, motion)
-    normal = perp(d)
-    om_c, om_s = motion.omega[:, c], motion.omega[:, s]
-    w_dot = (motion.velocity[:, s] + om_s[:, None] * perp(rel_s)
-             - motion.velocity[:, c] - om_c[:, None] * perp(rel_g))
-    out = np.zeros((motion.angle.shape[0], 2))
-    out[:, 1] = (dot(normal, om_s[:, None] ** 2 * rel_s - om_c[:, None] ** 2 * rel_g)
-                 + 2.0 * om_c * dot(d, w_dot) + om_c ** 2 * dot(normal, w))
+    sign = 1.0 if on == joint.slider else -1.0
+    dx, dy = motion.rotated_xy(joint.carrier, (np.cos(joint.guide_angle),
+                                               np.sin(joint.guide_angle)))
+    out[0], out[1], out[2] = sign * dx, sign * dy, 0.0
     return out
-
-
-def _guide_geometry(joint: Prismatic, motion: Motion):
-    """Guide direction d, the rotated guide and slider points, and w = S − G."""
-    c, s = joint.carrier, joint.slider
-    d = motion.direction(c, joint.guide_angle)
-    rel_g = motion.rotated(c, joint.guide_point)
-    rel_s = motion.rotated(s, joint.slider_point)
-    return d, rel_g, rel_s, motion.origin[:, s] + rel_s - motion.origin[:, c] - rel_g
 
 
 def residual(joint: Joint, motion: Motion) -> FloatArray:

@@ -1,9 +1,22 @@
 """Kinematics over the whole crank sweep at once (SPEC §1).
 
 The crank first, then the dyads in assembly order: each dyad's closure in closed form
-(``dyade.dyads``), then its velocities and accelerations from one batched linear
-solve of the joint constraints (``dyade.joints``), J·q̇ = −J_known·q̇_known and
-J·q̈ = γ − J_known·q̈_known. Loops run over dyads, never over crank angles.
+(``dyade.dyads``), then its velocities and accelerations by twists (``dyade.joints``).
+A dyad is a loop g –A– i –B– j –C– h between two known links g and h; with the unit
+twists S_A (i relative to g), S_B (j relative to i) and S_C (j relative to h) and the
+joint rates r = (a, b, c),
+
+    V_i = V_g + a·S_A,   V_j = V_i + b·S_B = V_h + c·S_C,
+
+so M·r = V_h − V_g with the 3×3 loop matrix M = [S_A, S_B, −S_C]. Differentiating once
+more, with the twist cross product V×W (``spatial_cross``) for the moving joint axes,
+
+    M·ṙ = A_h − A_g − V_g×V_i − V_i×V_j + V_h×V_j,
+    A_i = A_g + ȧ·S_A + V_g×V_i,   A_j = A_i + ḃ·S_B + V_i×V_j,
+
+A being the time derivative of the twist (its ω part is α). det M = 0 exactly where the
+dyad is at a dead centre or blocked. M's inverse is kept: the force stage solves the
+transposed system with it. Loops run over dyads, never over crank angles.
 """
 
 from __future__ import annotations
@@ -13,8 +26,28 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade import dyads as dyad_kinds
-from dyade.joints import Blocks, Motion, blocks, gamma
+from dyade.joints import Motion, screw
 from dyade.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
+
+
+@dataclass(slots=True)
+class Group:
+    """One dyad's loop, as the force stage needs it."""
+
+    links: tuple[int, int]
+    """(i, j)"""
+    known: tuple[int, int]
+    """(g, h)"""
+    joints: tuple[Joint, Joint, Joint]
+    """A, B, C"""
+    on: tuple[int, int, int]
+    """the link each joint's twist and wrench refer to: (i, j, j)"""
+    screws: FloatArray
+    """(3, 3, n): unit twists S_A (i rel. g), S_B (j rel. i), S_C (j rel. h)"""
+    inverse: FloatArray
+    """(3, 3, n): rows of M⁻¹, M = [S_A, S_B, −S_C]; NaN where the dyad is not usable"""
+    rates: FloatArray
+    """(3, n): joint rates a, b, c along S_A, S_B, S_C [rad/s or m/s]"""
 
 
 @dataclass(slots=True)
@@ -33,11 +66,10 @@ class Kinematics:
     """(n, dyads) bool: the dyad is exactly at a dead centre / blocked (velocities NaN)"""
     conditioning: FloatArray
     """(n, dyads) distance from singularity in [0, 1] (0: dead centre / blocked)"""
-    inverses: list[FloatArray]
-    """per dyad (n, 6, 6): inverse of its constraint Jacobian J (NaN where not usable);
-    the force stage reuses it, since Jᵀ·λ = Q gives λ = (J⁻¹)ᵀ·Q"""
-    blocks: list[list[Blocks]]
-    """per dyad, per joint A, B, C: its Jacobian blocks (the force stage reuses them)"""
+    groups: list[Group]
+    """per dyad, in assembly order: its loop (the force stage reuses it)"""
+    twists: FloatArray
+    """(links, 3, n) twist of every link about the world origin"""
 
     @property
     def valid(self) -> FloatArray:
@@ -50,7 +82,7 @@ def crank_motion(mechanism: Mechanism, crank_angle: FloatArray) -> Motion:
     n = crank_angle.shape[0]
     motion = Motion.at_rest(n, mechanism.max_link + 1)
     motion.origin[:, CRANK] = mechanism.crank.pivot
-    motion.angle[:, CRANK] = crank_angle
+    motion.set_angle(CRANK, crank_angle)
     motion.velocity[:, CRANK] = 0.0
     motion.omega[:, CRANK] = mechanism.crank.speed
     motion.acceleration[:, CRANK] = 0.0
@@ -58,37 +90,40 @@ def crank_motion(mechanism: Mechanism, crank_angle: FloatArray) -> Motion:
     return motion
 
 
-def generalized(vector: FloatArray, scalar: FloatArray) -> FloatArray:
-    """Stack (x, y) and φ parts of a link's coordinates, shape (n, 3)."""
-    return np.concatenate((vector, scalar[:, None]), axis=1)
+def crank_screw(mechanism: Mechanism, n: int) -> FloatArray:
+    """Unit twist (3, n) of joint (1,2): the crank turning about its pivot."""
+    x, y = mechanism.crank.pivot
+    return np.repeat(np.array([[y], [-x], [1.0]]), n, axis=1)
 
 
-def assemble(parts: list[Blocks], own: tuple[int, ...]) -> FloatArray:
-    """Jacobian of a group's joints (their ``parts``) by the coordinates of the ``own``
-    links, shape (n, 2·joints, 3·links)."""
-    n = next(iter(parts[0].values())).shape[0]
-    matrix = np.zeros((n, 2 * len(parts), 3 * len(own)))
-    for row, part in enumerate(parts):
-        for col, link in enumerate(own):
-            if link in part:
-                matrix[:, 2 * row:2 * row + 2, 3 * col:3 * col + 3] = part[link]
-    return matrix
+def spatial_cross(v: FloatArray, w: FloatArray) -> FloatArray:
+    """V×W of two twists (3, n): (ω_V·E·w − ω_W·E·v, 0), the rate of change of a twist W
+    fixed in a body that moves with V."""
+    out = np.empty_like(v)
+    out[0] = w[2] * v[1] - v[2] * w[1]
+    out[1] = v[2] * w[0] - w[2] * v[0]
+    out[2] = 0.0
+    return out
 
 
-def batched_inverse(matrix: FloatArray, usable: FloatArray) -> FloatArray:
-    """Inverse of every usable matrix of the stack; NaN elsewhere."""
-    if usable.all():
-        return np.linalg.inv(matrix)
-    safe = matrix.copy()
-    safe[~usable] = np.eye(matrix.shape[1])
-    inverse = np.linalg.inv(safe)
-    inverse[~usable] = np.nan
-    return inverse
+def inverse3(c0: FloatArray, c1: FloatArray, c2: FloatArray, usable: FloatArray) -> FloatArray:
+    """Rows (3, 3, n) of the inverse of the stack of matrices with columns c0, c1, c2
+    (each (3, n)); NaN where not ``usable``."""
+    rows = np.empty((3,) + c0.shape)
+    for row, (a, b) in enumerate(((c1, c2), (c2, c0), (c0, c1))):
+        rows[row, 0] = a[1] * b[2] - a[2] * b[1]
+        rows[row, 1] = a[2] * b[0] - a[0] * b[2]
+        rows[row, 2] = a[0] * b[1] - a[1] * b[0]
+    det = c0[0] * rows[0, 0] + c0[1] * rows[0, 1] + c0[2] * rows[0, 2]
+    with np.errstate(divide="ignore", invalid="ignore"):  # singular rows become NaN
+        scale = np.where(usable, 1.0 / det, np.nan)
+    rows *= scale
+    return rows
 
 
-def apply(inverse: FloatArray, rhs: FloatArray, transpose: bool = False) -> FloatArray:
-    """inverse·rhs (or inverseᵀ·rhs) for a stack, shapes (n, m, m) and (n, m)."""
-    return np.einsum("nji,nj->ni" if transpose else "nij,nj->ni", inverse, rhs)
+def solve3(inverse: FloatArray, rhs: FloatArray) -> FloatArray:
+    """M⁻¹·rhs for the stacks (3, 3, n) and (3, n)."""
+    return (inverse[:, 0] * rhs[0] + inverse[:, 1] * rhs[1]) + inverse[:, 2] * rhs[2]
 
 
 def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinematics:
@@ -103,7 +138,11 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinema
     transmission = np.full((n, count), np.nan)
     singular = np.zeros((n, count), dtype=bool)
     conditioning = np.full((n, count), np.nan)
-    inverses, all_blocks = [], []
+    links = mechanism.max_link + 1
+    twists = np.zeros((links, 3, n))
+    twists[CRANK] = mechanism.crank.speed * crank_screw(mechanism, n)
+    changes = np.zeros((links, 3, n))  # time derivatives of the twists
+    groups = []
     upstream_ok = np.ones(n, dtype=bool)
     for col, dyad in enumerate(mechanism.dyads):
         closure = dyad_kinds.DYAD_KINDS[dyad.kind].close(dyad, motion)
@@ -113,37 +152,56 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinema
         conditioning[:, col] = np.where(ok, closure.conditioning, np.nan)
         singular[:, col] = ok & (closure.conditioning < dyad_kinds.SINGULAR_SIN)
         usable = ok & ~singular[:, col]
-        parts = [blocks(joint, motion) for joint in dyad.joints]
-        inverses.append(_derivatives(dyad.joints, dyad.links, parts, motion, usable))
-        all_blocks.append(parts)
-        for link in dyad.links:
-            motion.origin[~ok, link] = np.nan
-            motion.angle[~ok, link] = np.nan
+        if not ok.all():
+            for link in dyad.links:
+                motion.invalidate(link, ~ok)
+        groups.append(_derivatives(dyad, motion, twists, changes, usable))
         upstream_ok = usable
     return Kinematics(crank_angle, motion, closes, transmission, singular, conditioning,
-                      inverses, all_blocks)
+                      groups, twists)
 
 
-def _derivatives(joints: tuple[Joint, ...], own: tuple[int, ...], parts: list[Blocks],
-                 motion: Motion, usable: FloatArray) -> FloatArray:
-    """Velocities, then accelerations, of the ``own`` links of one group; returns the
-    inverse of its Jacobian."""
-    inverse = batched_inverse(assemble(parts, own), usable)
-    for rates, derivative in (("velocity", "omega"), ("acceleration", "alpha")):
-        rhs = np.zeros(inverse.shape[:2])
-        for row, (joint, part) in enumerate(zip(joints, parts)):
-            if rates == "acceleration":
-                rhs[:, 2 * row:2 * row + 2] = gamma(joint, motion)
-            for link, block in part.items():
-                if link not in own:
-                    known = generalized(getattr(motion, rates)[:, link],
-                                        getattr(motion, derivative)[:, link])
-                    rhs[:, 2 * row:2 * row + 2] -= np.einsum("nij,nj->ni", block, known)
-        solved = apply(inverse, rhs)
-        for col, link in enumerate(own):
-            getattr(motion, rates)[:, link] = solved[:, 3 * col:3 * col + 2]
-            getattr(motion, derivative)[:, link] = solved[:, 3 * col + 2]
-    return inverse
+def _derivatives(dyad, motion: Motion, twists: FloatArray, changes: FloatArray,
+                 usable: FloatArray) -> Group:
+    """Twists and their rates of links i and j (module docstring); writes the link
+    frames' velocities and accelerations into ``motion``."""
+    (i, j), (g, h) = dyad.links, dyad.known
+    joint_a, joint_b, joint_c = dyad.joints
+    screws = np.stack((screw(joint_a, motion, i), screw(joint_b, motion, j),
+                       screw(joint_c, motion, j)))
+    inverse = inverse3(screws[0], screws[1], -screws[2], usable)
+    joint_rates = solve3(inverse, twists[h] - twists[g])
+    twists[i] = twists[g] + joint_rates[0] * screws[0]
+    twists[j] = twists[i] + joint_rates[1] * screws[1]
+    turn_gi = _cross_known(twists, g, i)
+    turn_ij = spatial_cross(twists[i], twists[j])
+    bias = changes[h] - changes[g] - turn_gi - turn_ij + _cross_known(twists, h, j)
+    accelerations = solve3(inverse, bias)
+    changes[i] = changes[g] + accelerations[0] * screws[0] + turn_gi
+    changes[j] = changes[i] + accelerations[1] * screws[1] + turn_ij
+    for link in (i, j):
+        _frame_motion(motion, link, twists[link], changes[link])
+    return Group((i, j), (g, h), dyad.joints, (i, j, j), screws, inverse, joint_rates)
+
+
+def _cross_known(twists: FloatArray, known: int, link: int) -> FloatArray | float:
+    """V_known × V_link; 0 for the frame."""
+    return 0.0 if known == FRAME else spatial_cross(twists[known], twists[link])
+
+
+def _frame_motion(motion: Motion, link: int, twist: FloatArray, change: FloatArray) -> None:
+    """Velocity and acceleration of a link frame's origin r from the link's twist:
+    v = v_O + ω·E·r,  a = A_O + α·E·r + ω·E·v."""
+    x, y = motion.origin[:, link, 0], motion.origin[:, link, 1]
+    omega, alpha = twist[2], change[2]
+    vx = twist[0] - omega * y
+    vy = twist[1] + omega * x
+    motion.velocity[:, link, 0] = vx
+    motion.velocity[:, link, 1] = vy
+    motion.omega[:, link] = omega
+    motion.acceleration[:, link, 0] = change[0] - alpha * y - omega * vy
+    motion.acceleration[:, link, 1] = change[1] + alpha * x + omega * vx
+    motion.alpha[:, link] = alpha
 
 
 # -- derived quantities the reports use --------------------------------------------

@@ -1,13 +1,21 @@
 """Backward kinetostatics (d'Alembert), dyad by dyad (SPEC §1).
 
-Dyads are solved in reverse assembly order, k = last … 2, then the crank. For each dyad
-the six equilibrium equations of its links i and j read Jᵀ·λ = Q: J is the dyad's
-constraint Jacobian (``dyade.joints``, the same matrix as in the velocity analysis), λ
-the multipliers of its joints A, B, C, and Q the known loads on i and j reduced to each
-link's frame origin (SFX, SFY, SM of the paper): inertia −m·a_S and −J_S·α, gravity,
-applied loads, springs, and the reactions of the later dyads at the follow-up points.
-The crank's three equations give joint (1,2) and the driving torque (multiplier of the
-drive constraint φ2 − Ω·t = 0).
+Dyads are solved in reverse assembly order, k = last … 2, then the crank. Loads are
+wrenches about the world origin (``dyade.joints``): on every link the known loads Q
+(inertia −m·a_S and −J_S·α, gravity, applied loads, springs; the SFX, SFY, SM of the
+paper) plus the reactions of the later dyads. For a dyad g –A– i –B– j –C– h let W_A
+act on i (from g), W_B on j (from i) and W_C on j (from h). Equilibrium of i and j,
+
+    W_A = W_B − Q_i,   W_C = −Q_j − W_B,
+
+and a frictionless joint carries nothing along its freedom, S·W = 0 (a friction law
+sets S·W = τ instead, ``dyade.friction``), give three equations for W_B:
+
+    S_A·W_B = S_A·Q_i + τ_A,   S_B·W_B = τ_B,   −S_C·W_B = S_C·Q_j + τ_C,
+
+i.e. Mᵀ·W_B = rhs with the transposed loop matrix of the velocity analysis: the
+kinematics' inverse serves again. −W_A and −W_C pass on to g and h. The crank: with
+S₁₂ its unit twist, the drive torque is M_drive = −S₁₂·Q₂ − τ₁₂ and W₁₂ = −Q₂ − M_drive·e_z.
 
 Sign rule (SPEC §1): a joint's force is the one acting on the element of the
 higher-numbered link; a prismatic joint carries a normal force FN along the guide's
@@ -20,17 +28,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.joints import Blocks, Motion, blocks, cross, rotate
-from dyade.kinematics import Kinematics, apply, assemble, batched_inverse
-from dyade.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
+from dyade.joints import Motion
+from dyade.kinematics import Kinematics, crank_screw
+from dyade.model import CRANK, FRAME, FloatArray, Mechanism, Revolute
 
 
 @dataclass(slots=True)
 class Forces:
     """Joint reactions and drive torque over the sweep (SI)."""
 
-    multipliers: dict[tuple[int, int], FloatArray]
-    """joint name -> (n, 2) Lagrange multipliers λ of its two constraint rows"""
+    wrenches: dict[tuple[int, int], tuple[int, FloatArray]]
+    """joint name -> (link, (3, n) wrench about the world origin the joint exerts on
+    that link: the whole transmitted load, friction included)"""
     revolute: dict[tuple[int, int], FloatArray]
     """revolute joint -> (n, 2) force (Fx, Fy) on the higher-numbered link's element [N]"""
     normal: dict[tuple[int, int], FloatArray]
@@ -45,31 +54,43 @@ class Forces:
     valid: FloatArray
     """(n,) bool: no dyad within the dead-centre band (forces meaningful)"""
 
+    def on(self, name: tuple[int, int], link: int) -> FloatArray:
+        """(3, n) wrench about the world origin that joint ``name`` exerts on ``link``."""
+        target, wrench = self.wrenches[name]
+        return wrench if target == link else -wrench
+
 
 def applied_loads(mechanism: Mechanism, kin: Kinematics) -> FloatArray:
-    """Generalized loads on every link frame origin, shape (n, links, 3):
+    """Known loads on every link as wrenches about the world origin, shape (links, 3, n):
     d'Alembert inertia, gravity, applied forces and moments, springs."""
     motion = kin.motion
     n = kin.crank_angle.shape[0]
-    q = np.zeros((n, mechanism.max_link + 1, 3))
-    gravity = np.asarray(mechanism.gravity)
+    q = np.zeros((mechanism.max_link + 1, 3, n))
+    gx, gy = mechanism.gravity
     for number, link in mechanism.links.items():
         if number == FRAME or not link.has_mass:
             continue
-        force = (-link.mass * motion.point_acceleration(number, link.centre)
-                 + link.mass * gravity)
-        add_force(q, motion, number, link.centre, force)
-        q[:, number, 2] -= link.inertia * motion.alpha[:, number]
+        rx, ry = motion.rotated_xy(number, link.centre)
+        omega, alpha = motion.omega[:, number], motion.alpha[:, number]
+        squared = omega * omega
+        ax = motion.acceleration[:, number, 0] - alpha * ry - squared * rx
+        ay = motion.acceleration[:, number, 1] + alpha * rx - squared * ry
+        fx, fy = link.mass * (gx - ax), link.mass * (gy - ay)
+        x, y = motion.origin[:, number, 0] + rx, motion.origin[:, number, 1] + ry
+        q[number, 0] += fx
+        q[number, 1] += fy
+        q[number, 2] += x * fy - y * fx - link.inertia * alpha
     for load in mechanism.loads:
         fx, fy, moment = load_values(load, kin.crank_angle)
-        force = np.stack((fx, fy), axis=-1)
         if load.local:
-            force = rotate(motion.angle[:, load.link], force)
-        add_force(q, motion, load.link, load.point, force)
-        q[:, load.link, 2] += moment
+            c, s = motion.cos[:, load.link], motion.sin[:, load.link]
+            fx, fy = c * fx - s * fy, s * fx + c * fy
+        add_force(q[load.link], motion.point(load.link, load.point), np.stack((fx, fy), -1))
+        q[load.link, 2] += moment
     for spring in mechanism.springs:
-        for link, local, force in spring_forces(spring, motion):
-            add_force(q, motion, link, local, force)
+        for link, point, force in spring_forces(spring, motion):
+            if link != FRAME:
+                add_force(q[link], point, force)
     return q
 
 
@@ -84,121 +105,108 @@ def load_values(load, crank_angle: FloatArray) -> tuple[FloatArray, FloatArray, 
 
 
 def spring_forces(spring, motion: Motion):
-    """(link, local point, force on that link) for both ends of a linear spring."""
+    """(link, world point, force on that link) for both ends of a linear spring."""
     (a, b), (u_a, u_b) = spring.links, spring.points
-    d = motion.point(b, u_b) - motion.point(a, u_a)
-    length = np.hypot(d[:, 0], d[:, 1])
+    p_a, p_b = motion.point(a, u_a), motion.point(b, u_b)
+    d = p_b - p_a
+    length = np.sqrt(d[:, 0] ** 2 + d[:, 1] ** 2)
     with np.errstate(invalid="ignore", divide="ignore"):  # coincident ends: no direction
         unit = d / length[:, None]
     tension = spring.stiffness * (length - spring.free_length)
     pull = np.nan_to_num(tension[:, None] * unit)
-    return ((a, u_a, pull), (b, u_b, -pull))
+    return ((a, p_a, pull), (b, p_b, -pull))
 
 
-def add_force(q: FloatArray, motion: Motion, link: int, local, force: FloatArray) -> None:
-    """Add a force at a link-fixed point to the link's generalized load (about its origin)."""
-    q[:, link, :2] += force
-    q[:, link, 2] += cross(motion.rotated(link, local), force)
+def add_force(wrench: FloatArray, point: FloatArray, force: FloatArray) -> None:
+    """Add a force (n, 2) acting at world points (n, 2) to a wrench (3, n)."""
+    wrench[0] += force[:, 0]
+    wrench[1] += force[:, 1]
+    wrench[2] += point[:, 0] * force[:, 1] - point[:, 1] * force[:, 0]
 
 
-def solve(mechanism: Mechanism, kin: Kinematics, extra: FloatArray | None = None) -> Forces:
-    """Joint reactions and drive torque at every crank position.
+def dot3(a: FloatArray, b: FloatArray) -> FloatArray:
+    """Power pairing of a twist and a wrench, both (3, n)."""
+    return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]
 
-    ``extra`` (n, links, 3) adds generalized loads, e.g. friction from an iteration.
+
+def solve_transposed(inverse: FloatArray, rhs0, rhs1, rhs2) -> FloatArray:
+    """M⁻ᵀ·(rhs0, rhs1, rhs2) with the rows (3, 3, n) of M⁻¹; zero parts may be 0.0."""
+    out = inverse[0] * rhs0
+    for row, value in ((1, rhs1), (2, rhs2)):
+        if not (np.isscalar(value) and value == 0.0):
+            out += inverse[row] * value
+    return out
+
+
+def solve(mechanism: Mechanism, kin: Kinematics) -> Forces:
+    """Joint reactions and drive torque at every crank position."""
+    return backward(mechanism, kin, applied_loads(mechanism, kin))
+
+
+def backward(mechanism: Mechanism, kin: Kinematics, q: FloatArray, rub=None) -> Forces:
+    """Backward pass (module docstring): dyads in reverse assembly order, then the crank.
+
+    ``rub`` (``dyade.friction``) turns the frictionless joint condition S·W = 0 into its
+    friction law; it is called per group with the frictionless solution.
     """
-    q = applied_loads(mechanism, kin)
-    if extra is not None:
-        q = q + extra
-    return reactions(mechanism, kin, q)
-
-
-def reactions(mechanism: Mechanism, kin: Kinematics, q: FloatArray) -> Forces:
-    """Backward pass: dyads in reverse assembly order, then the crank."""
-    motion = kin.motion
-    n = kin.crank_angle.shape[0]
-    usable = kin.valid
     q = q.copy()
-    multipliers: dict[tuple[int, int], FloatArray] = {}
-    frame_load = np.zeros((n, 3))
-    for col in reversed(range(len(mechanism.dyads))):
-        dyad = mechanism.dyads[col]
-        _group(dyad.joints, dyad.links, kin.blocks[col], kin.inverses[col], q, multipliers,
-               frame_load)
-    drive = _crank(mechanism, motion, q, usable, multipliers, frame_load)
-    return assemble_forces(mechanism, kin, multipliers, drive, frame_load)
+    frame = np.zeros(q.shape[1:])
+    wrenches: dict[tuple[int, int], tuple[int, FloatArray]] = {}
+    for group in reversed(kin.groups):
+        (i, j), (g, h) = group.links, group.known
+        q_i, q_j = q[i], q[j]
+        s_a, _, s_c = group.screws
+        w_b = solve_transposed(group.inverse, dot3(s_a, q_i), 0.0, dot3(s_c, q_j))
+        if rub is not None:
+            w_b = rub.group(group, w_b, q_i, q_j)
+        w_a = w_b - q_i
+        w_c = -q_j - w_b
+        for joint, on, wrench in zip(group.joints, group.on, (w_a, w_b, w_c)):
+            wrenches[joint.name] = (on, wrench)
+        (frame if g == FRAME else q[g])[...] -= w_a
+        (frame if h == FRAME else q[h])[...] -= w_c
+    joint = mechanism.crank.joint
+    s_12 = crank_screw(mechanism, q.shape[2])
+    drive = -dot3(s_12, q[CRANK])
+    if rub is not None:
+        drive = drive - rub.crank(q[CRANK])
+    w_12 = -q[CRANK]
+    w_12[2] -= drive
+    wrenches[joint.name] = (CRANK, w_12)
+    frame -= w_12
+    return assemble_forces(mechanism, kin, wrenches, drive, frame)
 
 
-def assemble_forces(mechanism: Mechanism, kin: Kinematics, multipliers: dict,
-                    drive: FloatArray, frame_load: FloatArray) -> Forces:
-    """Physical joint forces (sign rule of SPEC §1) from the multipliers; the shaking
+def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
+                    drive: FloatArray, frame: FloatArray) -> Forces:
+    """Physical joint forces (sign rule of SPEC §1) from the joint wrenches; the shaking
     load gets the frame-anchored springs and the drive's reaction."""
     motion = kin.motion
-    frame_load = frame_load.copy()
+    frame = frame.copy()
     for spring in mechanism.springs:
-        for link, local, force in spring_forces(spring, motion):
+        for link, point, force in spring_forces(spring, motion):
             if link == FRAME:
-                frame_load[:, :2] += force
-                frame_load[:, 2] += cross(motion.point(FRAME, local), force)
-    frame_load[:, 2] -= drive  # the stator takes the reaction of the drive torque
-    revolute, normal, moment = {}, {}, {}
+                add_force(frame, point, force)
+    frame[2] -= drive  # the stator takes the reaction of the drive torque
+    forces = Forces(wrenches, {}, {}, {}, drive, frame.T, kin.valid)
     for joint in mechanism.joints:
-        lam = multipliers[joint.name]
+        higher = max(joint.links)
+        wrench = forces.on(joint.name, higher)
         if isinstance(joint, Revolute):
-            sign = 1.0 if joint.links[1] > joint.links[0] else -1.0
-            revolute[joint.name] = sign * lam
-        else:
-            sign = -1.0 if joint.slider > joint.carrier else 1.0
-            normal[joint.name] = sign * lam[:, 1]
-            moment[joint.name] = sign * lam[:, 0]
-    band = np.sin(mechanism.dead_centre_angle)
-    valid = kin.valid & np.all(kin.conditioning > band, axis=1)
-    return Forces(multipliers, revolute, normal, moment, drive, frame_load, valid)
-
-
-def _group(joints: tuple[Joint, ...], own: tuple[int, ...], parts: list[Blocks],
-           inverse: FloatArray, q: FloatArray, multipliers: dict, frame_load: FloatArray) -> None:
-    """Solve one dyad's Jᵀλ = Q (λ = J⁻ᵀQ with the kinematics' inverse and blocks) and
-    pass its reactions on to the links it hangs on."""
-    rhs = np.concatenate([q[:, link] for link in own], axis=1)
-    lam = apply(inverse, rhs, transpose=True)
-    for row, (joint, part) in enumerate(zip(joints, parts)):
-        lam_j = lam[:, 2 * row:2 * row + 2]
-        multipliers[joint.name] = lam_j
-        pass_on(part, own, lam_j, q, frame_load)
-
-
-def pass_on(blocks: Blocks, own: tuple[int, ...], lam: FloatArray, q: FloatArray,
-            frame_load: FloatArray) -> None:
-    """Reaction −J_kᵀλ of a joint on the placed links it touches."""
-    for link, block in blocks.items():
-        if link in own:
+            forces.revolute[joint.name] = wrench[:2].T
             continue
-        generalized = -np.einsum("nij,ni->nj", block, lam)
-        if link == FRAME:
-            # frame coordinates are world coordinates: the moment is about the origin
-            frame_load += generalized
-        else:
-            q[:, link] += generalized
-
-
-def crank_inverse(joint: Joint, motion: Motion, usable: FloatArray):
-    """Inverse of the crank's 3×3 Jacobian: joint (1,2) and the drive constraint
-    φ2 − Ω·t = 0 (whose multiplier is minus the drive torque)."""
-    part = blocks(joint, motion)
-    matrix = assemble([part], (CRANK,))
-    full = np.zeros((matrix.shape[0], 3, 3))
-    full[:, :2] = matrix
-    full[:, 2, 2] = 1.0
-    return batched_inverse(full, usable), part
-
-
-def _crank(mechanism: Mechanism, motion: Motion, q: FloatArray, usable: FloatArray,
-           multipliers: dict, frame_load: FloatArray) -> FloatArray:
-    """Joint (1,2) and the drive torque from the crank's three equations."""
-    joint = mechanism.crank.joint
-    inverse, part = crank_inverse(joint, motion, usable)
-    lam = apply(inverse, q[:, CRANK], transpose=True)
-    multipliers[joint.name] = lam[:, :2]
-    pass_on(part, (CRANK,), lam[:, :2], q, frame_load)
-    return -lam[:, 2]
-
+        slider = forces.on(joint.name, joint.slider)
+        dx, dy = motion.rotated_xy(joint.carrier, (np.cos(joint.guide_angle),
+                                                   np.sin(joint.guide_angle)))
+        sx, sy = motion.point_xy(joint.slider, joint.slider_point)
+        normal = dx * slider[1] - dy * slider[0]
+        moment = slider[2] - (sx * slider[1] - sy * slider[0])
+        if joint.friction > 0.0:  # the friction force acts H/2 off, at the guide surface
+            along = dx * slider[0] + dy * slider[1]
+            moment = moment - np.sign(normal) * 0.5 * joint.slider_height * along
+        sign = 1.0 if higher == joint.slider else -1.0
+        forces.normal[joint.name] = sign * normal
+        forces.moment[joint.name] = sign * moment
+    band = np.sin(mechanism.dead_centre_angle)
+    forces.valid = kin.valid & np.all(kin.conditioning > band, axis=1)
+    return forces

@@ -53,8 +53,9 @@ def test(mechanism: Mechanism, motion: Motion, result: FrictionResult,
         others.pop(joint.name)
         pushing = sum(others.values()) if others else np.zeros_like(d)
         f_eta = np.sum(pushing * d, axis=1)
-        lam = result.forces.multipliers[joint.name]
-        normal, moment = -lam[:, 1], -lam[:, 0]  # on the slider (SPEC §1 formula)
+        towards = 1.0 if joint.slider > joint.carrier else -1.0  # on the slider (SPEC §1)
+        normal = towards * result.forces.normal[joint.name]
+        moment = towards * result.forces.moment[joint.name]
         velocity = travel(joint, motion)[1]
         sign = np.where(np.abs(velocity) <= 1e-9 * typical, 0.0, np.sign(velocity))
         mu, height, length = joint.friction, joint.slider_height, joint.slider_length

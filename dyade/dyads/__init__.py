@@ -59,6 +59,15 @@ def polar_angle(v: FloatArray | Vec) -> FloatArray:
     return np.arctan2(v[..., 1], v[..., 0])
 
 
+def aligned(world: FloatArray, length: float, local: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """cos φ and sin φ of the link angle φ that turns the local vector ``local`` (of
+    length ``length`` > 0) onto the world vector ``world`` of the same length: no
+    trigonometric function needed."""
+    ex, ey = world[:, 0] / length, world[:, 1] / length
+    c, s = local[0] / length, local[1] / length
+    return ex * c + ey * s, ey * c - ex * s
+
+
 def pin(joint: Revolute, unknown: int, motion: Motion) -> tuple[FloatArray, Vec]:
     """World position of a revolute joint, from its known side, and its local point on
     the ``unknown`` link."""
@@ -68,11 +77,10 @@ def pin(joint: Revolute, unknown: int, motion: Motion) -> tuple[FloatArray, Vec]
     return motion.point(p, u_p), u_q
 
 
-def carry_angle(joint: Prismatic, known: int, motion: Motion) -> FloatArray:
-    """Angle of the link across a prismatic joint from ``known`` (φ_s − φ_c = κ)."""
-    if joint.carrier == known:
-        return motion.angle[:, known] + joint.relative_angle
-    return motion.angle[:, known] - joint.relative_angle
+def carry_angle(joint: Prismatic, known: int, unknown: int, motion: Motion) -> None:
+    """Set the angle of the link across a prismatic joint from ``known`` (φ_s − φ_c = κ)."""
+    offset = joint.relative_angle if joint.carrier == known else -joint.relative_angle
+    motion.turn_with(unknown, known, offset)
 
 
 def guide_line(joint: Prismatic, unknown: int, motion: Motion) -> tuple[FloatArray, FloatArray]:
@@ -91,9 +99,11 @@ def guide_line(joint: Prismatic, unknown: int, motion: Motion) -> tuple[FloatArr
     return normal, dot(normal, other - own)
 
 
-def place(motion: Motion, link: int, angle: FloatArray, world: FloatArray, local: Vec) -> None:
-    """Set a link's angle and put its origin so that ``local`` lands on ``world``."""
-    motion.angle[:, link] = angle
+def place(motion: Motion, link: int, angle: FloatArray, world: FloatArray, local: Vec,
+          cos: FloatArray | None = None, sin: FloatArray | None = None) -> None:
+    """Set a link's angle (and its cosine and sine, computed unless given) and put its
+    origin so that ``local`` lands on ``world``."""
+    motion.set_angle(link, angle, cos, sin)
     motion.origin[:, link] = world - motion.rotated(link, local)
 
 

@@ -16,9 +16,10 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     i, j = dyad.links
     g, _ = dyad.known
     joint_a, joint_b, joint_c = dyad.joints
-    motion.angle[:, i] = dyads.carry_angle(joint_a, g, motion)
+    dyads.carry_angle(joint_a, g, i, motion)
     c, c_j = dyads.pin(joint_c, j, motion)
-    dyads.place(motion, j, dyads.carry_angle(joint_b, i, motion), c, c_j)
+    dyads.carry_angle(joint_b, i, j, motion)
+    motion.origin[:, j] = c - motion.rotated(j, c_j)
     n_a, c_a = dyads.guide_line(joint_a, i, motion)
     n_b, c_b = dyads.guide_line(joint_b, i, motion)
     origin, sin = dyads.solve_lines(n_a, c_a, n_b, c_b)

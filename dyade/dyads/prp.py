@@ -17,8 +17,8 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     g, h = dyad.known
     joint_a, joint_b, joint_c = dyad.joints
     b_i, b_j = (joint_b.points if joint_b.links[0] == i else joint_b.points[::-1])
-    motion.angle[:, i] = dyads.carry_angle(joint_a, g, motion)
-    motion.angle[:, j] = dyads.carry_angle(joint_c, h, motion)
+    dyads.carry_angle(joint_a, g, i, motion)
+    dyads.carry_angle(joint_c, h, j, motion)
     n_a, c_a = dyads.guide_line(joint_a, i, motion)
     n_c, c_c = dyads.guide_line(joint_c, j, motion)
     c_a = c_a + dot(n_a, motion.rotated(i, b_i))

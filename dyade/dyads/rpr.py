@@ -42,7 +42,8 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     psi = beta0 - tilt if dyad.variant > 0 else beta0 - np.pi + tilt
     phi_c = psi - theta
     dyads.place(motion, c, phi_c, o_c, p_c)
-    dyads.place(motion, s, phi_c + kappa, o_s, p_s)
+    motion.turn_with(s, c, kappa)
+    motion.origin[:, s] = o_s - motion.rotated(s, p_s)
     # μ: angle between the guide normal and the pivot line, cos μ = c0/ρ, sin μ = arm/ρ.
     # The closure Jacobian scales with the lever arm itself: with zero offset μ stays 90°
     # while the arm (= ρ) goes to 0 as the slider point passes the guide link's pivot, so

@@ -18,11 +18,11 @@ HAS_VARIANT = True
 
 def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     i, j = dyad.links
-    g, h = dyad.known
+    _, h = dyad.known
     joint_a, joint_b, joint_c = dyad.joints
     a, a_i = dyads.pin(joint_a, i, motion)
     b_i, b_j = (joint_b.points if joint_b.links[0] == i else joint_b.points[::-1])
-    motion.angle[:, j] = dyads.carry_angle(joint_c, h, motion)
+    dyads.carry_angle(joint_c, h, j, motion)
     normal, offset = dyads.guide_line(joint_c, j, motion)
     offset = offset + dot(normal, motion.rotated(j, b_j))  # now normal·B = offset
     direction = -perp(normal)
@@ -33,6 +33,7 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     closes = along_sq >= -1e-12 * length ** 2
     along = np.sqrt(np.where(closes, np.maximum(along_sq, 0.0), np.nan))
     b = a + height[:, None] * normal + dyad.variant * along[:, None] * direction
-    dyads.place(motion, i, dyads.polar_angle(b - a) - dyads.polar_angle(arm_i), a, a_i)
+    dyads.place(motion, i, dyads.polar_angle(b - a) - dyads.polar_angle(arm_i), a, a_i,
+                *dyads.aligned(b - a, length, arm_i))
     motion.origin[:, j] = b - motion.rotated(j, b_j)
     return dyads.Closure(closes, dyads.angle_between(b - a, normal))

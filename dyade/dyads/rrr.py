@@ -32,6 +32,8 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     closes = np.isfinite(height_sq) & (height_sq >= -1e-12 * l_i ** 2)
     height = np.sqrt(np.where(closes, np.maximum(height_sq, 0.0), np.nan))
     b = a + along[:, None] * unit + dyad.variant * height[:, None] * perp(unit)
-    dyads.place(motion, i, dyads.polar_angle(b - a) - dyads.polar_angle(arm_i), a, a_i)
-    dyads.place(motion, j, dyads.polar_angle(b - c) - dyads.polar_angle(arm_j), c, c_j)
+    dyads.place(motion, i, dyads.polar_angle(b - a) - dyads.polar_angle(arm_i), a, a_i,
+                *dyads.aligned(b - a, l_i, arm_i))
+    dyads.place(motion, j, dyads.polar_angle(b - c) - dyads.polar_angle(arm_j), c, c_j,
+                *dyads.aligned(b - c, l_j, arm_j))
     return dyads.Closure(closes, dyads.angle_between(b - a, b - c))
