@@ -53,20 +53,17 @@ class Motion:
     """(n, links) sin φ"""
 
     @classmethod
-    def at_rest(cls, positions: int, links: int) -> Motion:
-        def vectors():
-            return np.full((links, 2, positions), np.nan).transpose(2, 0, 1)
-
-        def scalars():
-            return np.full((links, positions), np.nan).T
-
-        motion = cls(vectors(), scalars(), vectors(), scalars(), vectors(), scalars(),
-                     scalars(), scalars())
-        for array in (motion.origin, motion.angle, motion.velocity, motion.omega,
-                      motion.acceleration, motion.alpha, motion.sin):
-            array[:, 1] = 0.0
-        motion.cos[:, 1] = 1.0
-        return motion
+    def at_rest(cls, positions: int, links: int, placed: tuple[int, ...] = ()) -> Motion:
+        """The frame at rest, every other link NaN; the links in ``placed`` are left
+        uninitialised for a caller that fills all their entries."""
+        rows = [np.empty((links, 2, positions)) if vector else np.empty((links, positions))
+                for vector in (True, False, True, False, True, False, False, False)]
+        unplaced = [link for link in range(links) if link != 1 and link not in placed]
+        for row in rows:
+            row[1] = 0.0
+            row[unplaced] = np.nan
+        rows[6][1] = 1.0  # cos 0
+        return cls(*(row.transpose(2, 0, 1) if row.ndim == 3 else row.T for row in rows))
 
     def set_angle(self, link: int, angle: FloatArray, cos: FloatArray | None = None,
                   sin: FloatArray | None = None) -> None:
@@ -148,22 +145,29 @@ def dot(a: FloatArray, b: FloatArray) -> FloatArray:
     return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
 
 
-def screw(joint: Joint, motion: Motion, on: int) -> FloatArray:
-    """Unit twist (3, n) of the motion ``joint`` allows link ``on`` relative to the
-    other link (see the module docstring): a revolute joint's ω part is +1, a prismatic
-    joint's translation is along +d, the carrier's guide direction, for the slider and
-    along −d for the carrier."""
-    n = motion.angle.shape[0]
-    out = np.empty((3, n))
+Screw = tuple[FloatArray, FloatArray, float]
+"""A unit twist as (v_x (n,), v_y (n,), ω): ω is a constant, 1 or 0, and the
+arithmetic uses that (``dyade.kinematics``)."""
+
+
+def screw(joint: Joint, motion: Motion, on: int) -> Screw:
+    """Unit twist of the motion ``joint`` allows link ``on`` relative to the other link
+    (see the module docstring): a revolute joint's ω part is +1, a prismatic joint's
+    translation is along +d, the carrier's guide direction, for the slider and along −d
+    for the carrier."""
     if isinstance(joint, Revolute):
         x, y = motion.point_xy(joint.links[0], joint.points[0])
-        out[0], out[1], out[2] = y, -x, 1.0
-        return out
-    sign = 1.0 if on == joint.slider else -1.0
-    dx, dy = motion.rotated_xy(joint.carrier, (np.cos(joint.guide_angle),
-                                               np.sin(joint.guide_angle)))
-    out[0], out[1], out[2] = sign * dx, sign * dy, 0.0
-    return out
+        return y, -x, 1.0
+    dx, dy = guide_direction(joint, motion)
+    if on == joint.slider:
+        return dx, dy, 0.0
+    return -dx, -dy, 0.0
+
+
+def guide_direction(joint: Prismatic, motion: Motion) -> tuple[FloatArray, FloatArray]:
+    """Components of a prismatic joint's guide direction d over the sweep."""
+    return motion.rotated_xy(joint.carrier, (np.cos(joint.guide_angle),
+                                             np.sin(joint.guide_angle)))
 
 
 def residual(joint: Joint, motion: Motion) -> FloatArray:

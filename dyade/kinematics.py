@@ -26,7 +26,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade import dyads as dyad_kinds
-from dyade.joints import Motion, screw
+from dyade.memory import keep_freed_memory
+from dyade.joints import Motion, Screw, screw
 from dyade.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
 
 
@@ -42,8 +43,8 @@ class Group:
     """A, B, C"""
     on: tuple[int, int, int]
     """the link each joint's twist and wrench refer to: (i, j, j)"""
-    screws: FloatArray
-    """(3, 3, n): unit twists S_A (i rel. g), S_B (j rel. i), S_C (j rel. h)"""
+    screws: tuple[Screw, Screw, Screw]
+    """unit twists S_A (i rel. g), S_B (j rel. i), S_C (j rel. h)"""
     inverse: FloatArray
     """(3, 3, n): rows of M⁻¹, M = [S_A, S_B, −S_C]; NaN where the dyad is not usable"""
     rates: FloatArray
@@ -77,10 +78,12 @@ class Kinematics:
         return self.closes.all(axis=1) & ~self.singular.any(axis=1)
 
 
-def crank_motion(mechanism: Mechanism, crank_angle: FloatArray) -> Motion:
-    """Motion with the frame at rest and the crank turning at constant speed."""
+def crank_motion(mechanism: Mechanism, crank_angle: FloatArray,
+                 placed: tuple[int, ...] = ()) -> Motion:
+    """Motion with the frame at rest and the crank turning at constant speed; the
+    ``placed`` links are left for the caller to fill (``Motion.at_rest``)."""
     n = crank_angle.shape[0]
-    motion = Motion.at_rest(n, mechanism.max_link + 1)
+    motion = Motion.at_rest(n, mechanism.max_link + 1, placed)
     motion.origin[:, CRANK] = mechanism.crank.pivot
     motion.set_angle(CRANK, crank_angle)
     motion.velocity[:, CRANK] = 0.0
@@ -90,10 +93,10 @@ def crank_motion(mechanism: Mechanism, crank_angle: FloatArray) -> Motion:
     return motion
 
 
-def crank_screw(mechanism: Mechanism, n: int) -> FloatArray:
-    """Unit twist (3, n) of joint (1,2): the crank turning about its pivot."""
+def crank_screw(mechanism: Mechanism) -> Screw:
+    """Unit twist of joint (1,2): the crank turning about its fixed pivot."""
     x, y = mechanism.crank.pivot
-    return np.repeat(np.array([[y], [-x], [1.0]]), n, axis=1)
+    return y, -x, 1.0
 
 
 def spatial_cross(v: FloatArray, w: FloatArray) -> FloatArray:
@@ -106,18 +109,38 @@ def spatial_cross(v: FloatArray, w: FloatArray) -> FloatArray:
     return out
 
 
-def inverse3(c0: FloatArray, c1: FloatArray, c2: FloatArray, usable: FloatArray) -> FloatArray:
-    """Rows (3, 3, n) of the inverse of the stack of matrices with columns c0, c1, c2
-    (each (3, n)); NaN where not ``usable``."""
-    rows = np.empty((3,) + c0.shape)
-    for row, (a, b) in enumerate(((c1, c2), (c2, c0), (c0, c1))):
-        rows[row, 0] = a[1] * b[2] - a[2] * b[1]
-        rows[row, 1] = a[2] * b[0] - a[0] * b[2]
-        rows[row, 2] = a[0] * b[1] - a[1] * b[0]
-    det = c0[0] * rows[0, 0] + c0[1] * rows[0, 1] + c0[2] * rows[0, 2]
+def _comb(p: float, a: FloatArray, q: float, b: FloatArray):
+    """p·a − q·b for constants p, q (the ω parts of screws, mostly 0 or ±1)."""
+    if q == 0.0:
+        return 0.0 if p == 0.0 else (a if p == 1.0 else p * a)
+    if p == 0.0:
+        return -b if q == 1.0 else -q * b
+    if p == 1.0 and q == 1.0:
+        return a - b
+    return p * a - q * b
+
+
+def inverse3(c0: Screw, c1: Screw, c2: Screw, usable: FloatArray) -> FloatArray:
+    """Rows (3, 3, n) of the inverse of the loop matrix [c0, c1, −c2] of three screws;
+    NaN where not ``usable``. The rows of [c0, c1, c2]⁻¹ are c1×c2, c2×c0, c0×c1 over
+    the determinant; the sign of c2 flips the last row."""
+    (x0, y0, w0), (x1, y1, w1), (x2, y2, w2) = c0, c1, c2
+    rows = np.empty((3, 3, x0.shape[0]))
+    rows[0, 0], rows[0, 1] = _comb(w2, y1, w1, y2), _comb(w1, x2, w2, x1)
+    rows[1, 0], rows[1, 1] = _comb(w0, y2, w2, y0), _comb(w2, x0, w0, x2)
+    rows[2, 0], rows[2, 1] = _comb(w1, y0, w0, y1), _comb(w0, x1, w1, x0)
+    rows[0, 2] = x1 * y2 - y1 * x2
+    rows[1, 2] = x2 * y0 - y2 * x0
+    rows[2, 2] = x0 * y1 - y0 * x1
+    det = x0 * rows[0, 0] + y0 * rows[0, 1]
+    if w0 != 0.0:
+        det += w0 * rows[0, 2]
     with np.errstate(divide="ignore", invalid="ignore"):  # singular rows become NaN
-        scale = np.where(usable, 1.0 / det, np.nan)
-    rows *= scale
+        scale = 1.0 / det
+    if not usable.all():
+        scale[~usable] = np.nan
+    rows[:2] *= scale
+    rows[2] *= -scale
     return rows
 
 
@@ -128,11 +151,12 @@ def solve3(inverse: FloatArray, rhs: FloatArray) -> FloatArray:
 
 def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinematics:
     """Positions, velocities and accelerations of every link over the crank sweep."""
+    keep_freed_memory()
     if crank_angle is None:
         crank_angle = mechanism.sweep.angles()
     crank_angle = np.asarray(crank_angle, dtype=np.float64)
     n = crank_angle.shape[0]
-    motion = crank_motion(mechanism, crank_angle)
+    motion = crank_motion(mechanism, crank_angle, tuple(mechanism.moving_links))
     count = len(mechanism.dyads)
     closes = np.ones((n, count), dtype=bool)
     transmission = np.full((n, count), np.nan)
@@ -140,7 +164,7 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinema
     conditioning = np.full((n, count), np.nan)
     links = mechanism.max_link + 1
     twists = np.zeros((links, 3, n))
-    twists[CRANK] = mechanism.crank.speed * crank_screw(mechanism, n)
+    twists[CRANK] = np.multiply(mechanism.crank.speed, crank_screw(mechanism))[:, None]
     changes = np.zeros((links, 3, n))  # time derivatives of the twists
     groups = []
     upstream_ok = np.ones(n, dtype=bool)
@@ -167,26 +191,39 @@ def _derivatives(dyad, motion: Motion, twists: FloatArray, changes: FloatArray,
     frames' velocities and accelerations into ``motion``."""
     (i, j), (g, h) = dyad.links, dyad.known
     joint_a, joint_b, joint_c = dyad.joints
-    screws = np.stack((screw(joint_a, motion, i), screw(joint_b, motion, j),
-                       screw(joint_c, motion, j)))
-    inverse = inverse3(screws[0], screws[1], -screws[2], usable)
-    joint_rates = solve3(inverse, twists[h] - twists[g])
-    twists[i] = twists[g] + joint_rates[0] * screws[0]
-    twists[j] = twists[i] + joint_rates[1] * screws[1]
-    turn_gi = _cross_known(twists, g, i)
+    screws = (screw(joint_a, motion, i), screw(joint_b, motion, j), screw(joint_c, motion, j))
+    inverse = inverse3(*screws, usable)
+    loop = twists[h] - twists[g]
+    joint_rates = solve3(inverse, loop)
+    _advance(twists[i], twists[g], joint_rates[0], screws[0], g == FRAME)
+    _advance(twists[j], twists[i], joint_rates[1], screws[1], False)
     turn_ij = spatial_cross(twists[i], twists[j])
-    bias = changes[h] - changes[g] - turn_gi - turn_ij + _cross_known(twists, h, j)
+    bias = -turn_ij
+    if h != FRAME:
+        bias += changes[h] + spatial_cross(twists[h], twists[j])
+    if g != FRAME:
+        turn_gi = spatial_cross(twists[g], twists[i])
+        bias -= changes[g] + turn_gi
     accelerations = solve3(inverse, bias)
-    changes[i] = changes[g] + accelerations[0] * screws[0] + turn_gi
-    changes[j] = changes[i] + accelerations[1] * screws[1] + turn_ij
+    _advance(changes[i], changes[g], accelerations[0], screws[0], g == FRAME)
+    if g != FRAME:
+        changes[i] += turn_gi
+    _advance(changes[j], changes[i], accelerations[1], screws[1], False)
+    changes[j] += turn_ij
     for link in (i, j):
         _frame_motion(motion, link, twists[link], changes[link])
     return Group((i, j), (g, h), dyad.joints, (i, j, j), screws, inverse, joint_rates)
 
 
-def _cross_known(twists: FloatArray, known: int, link: int) -> FloatArray | float:
-    """V_known × V_link; 0 for the frame."""
-    return 0.0 if known == FRAME else spatial_cross(twists[known], twists[link])
+def _advance(out: FloatArray, base: FloatArray, rate: FloatArray, unit: Screw,
+             base_zero: bool) -> None:
+    """out = base + rate·unit for twists (3, n); base is skipped when it is zero."""
+    x, y, w = unit
+    out[0] = rate * x
+    out[1] = rate * y
+    out[2] = rate if w == 1.0 else rate * w
+    if not base_zero:
+        out += base
 
 
 def _frame_motion(motion: Motion, link: int, twist: FloatArray, change: FloatArray) -> None:

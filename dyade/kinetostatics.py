@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.joints import Motion
+from dyade.joints import Motion, Screw, guide_direction
 from dyade.kinematics import Kinematics, crank_screw
 from dyade.model import CRANK, FRAME, FloatArray, Mechanism, Revolute
 
@@ -124,9 +124,13 @@ def add_force(wrench: FloatArray, point: FloatArray, force: FloatArray) -> None:
     wrench[2] += point[:, 0] * force[:, 1] - point[:, 1] * force[:, 0]
 
 
-def dot3(a: FloatArray, b: FloatArray) -> FloatArray:
-    """Power pairing of a twist and a wrench, both (3, n)."""
-    return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]
+def dot3(unit: Screw, wrench: FloatArray) -> FloatArray:
+    """Power pairing of a unit twist and a wrench (3, n)."""
+    x, y, w = unit
+    out = x * wrench[0] + y * wrench[1]
+    if w != 0.0:
+        out += wrench[2] if w == 1.0 else w * wrench[2]
+    return out
 
 
 def solve_transposed(inverse: FloatArray, rhs0, rhs1, rhs2) -> FloatArray:
@@ -166,8 +170,7 @@ def backward(mechanism: Mechanism, kin: Kinematics, q: FloatArray, rub=None) -> 
         (frame if g == FRAME else q[g])[...] -= w_a
         (frame if h == FRAME else q[h])[...] -= w_c
     joint = mechanism.crank.joint
-    s_12 = crank_screw(mechanism, q.shape[2])
-    drive = -dot3(s_12, q[CRANK])
+    drive = -dot3(crank_screw(mechanism), q[CRANK])
     if rub is not None:
         drive = drive - rub.crank(q[CRANK])
     w_12 = -q[CRANK]
@@ -196,8 +199,7 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
             forces.revolute[joint.name] = wrench[:2].T
             continue
         slider = forces.on(joint.name, joint.slider)
-        dx, dy = motion.rotated_xy(joint.carrier, (np.cos(joint.guide_angle),
-                                                   np.sin(joint.guide_angle)))
+        dx, dy = guide_direction(joint, motion)
         sx, sy = motion.point_xy(joint.slider, joint.slider_point)
         normal = dx * slider[1] - dy * slider[0]
         moment = slider[2] - (sx * slider[1] - sy * slider[0])

@@ -27,7 +27,7 @@ from types import ModuleType
 import numpy as np
 
 from dyade.joints import Motion, cross, dot, perp
-from dyade.model import FloatArray, Prismatic, Revolute, Vec
+from dyade.model import FRAME, FloatArray, Prismatic, Revolute, Vec
 
 SINGULAR_SIN = 1e-10  # [-] |sin μ| below this: the closure Jacobian is singular
 
@@ -66,6 +66,39 @@ def aligned(world: FloatArray, length: float, local: FloatArray) -> tuple[FloatA
     ex, ey = world[:, 0] / length, world[:, 1] / length
     c, s = local[0] / length, local[1] / length
     return ex * c + ey * s, ey * c - ex * s
+
+
+def pin_xy(joint: Revolute, unknown: int, motion: Motion) -> tuple[tuple, Vec]:
+    """Components of a revolute joint's world position, from its known side (plain
+    numbers when that is the frame), and its local point on the ``unknown`` link."""
+    (p, q), (u_p, u_q) = joint.links, joint.points
+    known, local, other = (q, u_q, u_p) if p == unknown else (p, u_p, u_q)
+    if known == FRAME:
+        return (float(local[0]), float(local[1])), other
+    return motion.point_xy(known, local), other
+
+
+def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: FloatArray,
+           length: float, px, py, local: Vec) -> None:
+    """Place a link whose local vector ``arm`` (of ``length``) lies along the world
+    vector (wx, wy) of the same length, with its local point ``local`` on (px, py):
+    the cosine and sine of its angle come without trigonometric functions."""
+    beta = float(np.arctan2(arm[1], arm[0]))
+    ex, ey = wx / length, wy / length
+    if beta == 0.0:
+        cos, sin = ex, ey
+    else:
+        cb, sb = np.cos(beta), np.sin(beta)
+        cos, sin = ex * cb + ey * sb, ey * cb - ex * sb
+    angle = np.arctan2(wy, wx)
+    motion.set_angle(link, angle - beta if beta else angle, cos, sin)
+    if local[0] == 0.0 and local[1] == 0.0:
+        motion.origin[:, link, 0] = px
+        motion.origin[:, link, 1] = py
+    else:
+        rx, ry = motion.rotated_xy(link, local)
+        motion.origin[:, link, 0] = px - rx
+        motion.origin[:, link, 1] = py - ry
 
 
 def pin(joint: Revolute, unknown: int, motion: Motion) -> tuple[FloatArray, Vec]:

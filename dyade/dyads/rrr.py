@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from dyade import dyads
-from dyade.joints import Motion, dot, perp
+from dyade.joints import Motion
 from dyade.model import Dyad
 
 NAME = "RRR"
@@ -17,23 +17,29 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     """Place links i and j: B = A + l_i·e(φ_i) = C + l_j·e(φ_j)."""
     i, j = dyad.links
     joint_a, joint_b, joint_c = dyad.joints
-    a, a_i = dyads.pin(joint_a, i, motion)
-    c, c_j = dyads.pin(joint_c, j, motion)
+    (ax, ay), a_i = dyads.pin_xy(joint_a, i, motion)
+    (cx, cy), c_j = dyads.pin_xy(joint_c, j, motion)
     b_i, b_j = (joint_b.points if joint_b.links[0] == i else joint_b.points[::-1])
     arm_i = np.subtract(b_i, a_i)
     arm_j = np.subtract(b_j, c_j)
-    l_i, l_j = np.hypot(*arm_i), np.hypot(*arm_j)
-    ac = c - a
-    dist = np.sqrt(dot(ac, ac))
+    l_i, l_j = float(np.hypot(*arm_i)), float(np.hypot(*arm_j))
+    dx, dy = cx - ax, cy - ay
+    dist_sq = dx * dx + dy * dy
     with np.errstate(divide="ignore", invalid="ignore"):  # A on C: no direction, NaN
-        unit = ac / dist[:, None]
-        along = (dist ** 2 + l_i ** 2 - l_j ** 2) / (2.0 * dist)
-    height_sq = l_i ** 2 - along ** 2
-    closes = np.isfinite(height_sq) & (height_sq >= -1e-12 * l_i ** 2)
-    height = np.sqrt(np.where(closes, np.maximum(height_sq, 0.0), np.nan))
-    b = a + along[:, None] * unit + dyad.variant * height[:, None] * perp(unit)
-    dyads.place(motion, i, dyads.polar_angle(b - a) - dyads.polar_angle(arm_i), a, a_i,
-                *dyads.aligned(b - a, l_i, arm_i))
-    dyads.place(motion, j, dyads.polar_angle(b - c) - dyads.polar_angle(arm_j), c, c_j,
-                *dyads.aligned(b - c, l_j, arm_j))
-    return dyads.Closure(closes, dyads.angle_between(b - a, b - c))
+        inverse = 1.0 / np.sqrt(dist_sq)
+        along = (dist_sq + (l_i * l_i - l_j * l_j)) * (0.5 * inverse)
+        height_sq = l_i * l_i - along * along
+        closes = height_sq >= -1e-12 * l_i * l_i
+    height = np.sqrt(np.maximum(height_sq, 0.0))
+    if not closes.all():
+        height[~closes] = np.nan
+    ux, uy = dx * inverse, dy * inverse
+    side = height if dyad.variant > 0 else -height
+    # B − A = along·u + side·E·u and B − C
+    bax, bay = along * ux - side * uy, along * uy + side * ux
+    bcx, bcy = (ax - cx) + bax, (ay - cy) + bay
+    dyads.orient(motion, i, bax, bay, arm_i, l_i, ax, ay, a_i)
+    dyads.orient(motion, j, bcx, bcy, arm_j, l_j, cx, cy, c_j)
+    sin = bax * bcy - bay * bcx
+    transmission = np.arctan2(np.abs(sin), bax * bcx + bay * bcy)
+    return dyads.Closure(closes, transmission, np.abs(sin) / (l_i * l_j))
