@@ -58,10 +58,11 @@ class Motion:
         uninitialised for a caller that fills all their entries."""
         rows = [np.empty((links, 2, positions)) if vector else np.empty((links, positions))
                 for vector in (True, False, True, False, True, False, False, False)]
-        unplaced = [link for link in range(links) if link != 1 and link not in placed]
+        unplaced = [link for link in range(2, links) if link not in placed]  # 0: no link
         for row in rows:
             row[1] = 0.0
-            row[unplaced] = np.nan
+            for link in unplaced:
+                row[link] = np.nan
         rows[6][1] = 1.0  # cos 0
         return cls(*(row.transpose(2, 0, 1) if row.ndim == 3 else row.T for row in rows))
 

@@ -69,13 +69,8 @@ class Kinematics:
     """(n, dyads) distance from singularity in [0, 1] (0: dead centre / blocked)"""
     groups: list[Group]
     """per dyad, in assembly order: its loop (the force stage reuses it)"""
-    twists: FloatArray
-    """(links, 3, n) twist of every link about the world origin"""
-
-    @property
-    def valid(self) -> FloatArray:
-        """(n,) bool: every dyad closes and none is singular."""
-        return self.closes.all(axis=1) & ~self.singular.any(axis=1)
+    valid: FloatArray
+    """(n,) bool: every dyad closes and none is singular"""
 
 
 def crank_motion(mechanism: Mechanism, crank_angle: FloatArray,
@@ -145,7 +140,7 @@ def inverse3(c0: Screw, c1: Screw, c2: Screw, usable: FloatArray) -> FloatArray:
 
 
 def solve3(inverse: FloatArray, rhs: FloatArray) -> FloatArray:
-    """M⁻¹·rhs for the stacks (3, 3, n) and (3, n)."""
+    """M⁻¹·rhs for the stacks (3, 3, n) and (3, n) (or some rows of M⁻¹ only)."""
     return (inverse[:, 0] * rhs[0] + inverse[:, 1] * rhs[1]) + inverse[:, 2] * rhs[2]
 
 
@@ -162,68 +157,84 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinema
     transmission = np.full((n, count), np.nan)
     singular = np.zeros((n, count), dtype=bool)
     conditioning = np.full((n, count), np.nan)
-    links = mechanism.max_link + 1
-    twists = np.zeros((links, 3, n))
-    twists[CRANK] = np.multiply(mechanism.crank.speed, crank_screw(mechanism))[:, None]
-    changes = np.zeros((links, 3, n))  # time derivatives of the twists
+    # twists of the moving links and their time derivatives; the frame's are zero
+    twists = {CRANK: np.repeat(np.multiply(mechanism.crank.speed,
+                                           crank_screw(mechanism))[:, None], n, axis=1)}
+    changes = {CRANK: np.zeros((3, n))}
     groups = []
     upstream_ok = np.ones(n, dtype=bool)
     for col, dyad in enumerate(mechanism.dyads):
         closure = dyad_kinds.DYAD_KINDS[dyad.kind].close(dyad, motion)
         ok = closure.closes & upstream_ok
         closes[:, col] = closure.closes
-        transmission[:, col] = np.where(ok, closure.transmission, np.nan)
-        conditioning[:, col] = np.where(ok, closure.conditioning, np.nan)
-        singular[:, col] = ok & (closure.conditioning < dyad_kinds.SINGULAR_SIN)
-        usable = ok & ~singular[:, col]
+        transmission[:, col] = closure.transmission
+        conditioning[:, col] = closure.conditioning
         if not ok.all():
+            transmission[~ok, col] = np.nan
+            conditioning[~ok, col] = np.nan
             for link in dyad.links:
                 motion.invalidate(link, ~ok)
-        groups.append(_derivatives(dyad, motion, twists, changes, usable))
+        singular[:, col] = ok & (closure.conditioning < dyad_kinds.SINGULAR_SIN)
+        usable = ok & ~singular[:, col]
+        groups.append(_derivatives(dyad, closure, motion, twists, changes, usable))
         upstream_ok = usable
     return Kinematics(crank_angle, motion, closes, transmission, singular, conditioning,
-                      groups, twists)
+                      groups, upstream_ok)
 
 
-def _derivatives(dyad, motion: Motion, twists: FloatArray, changes: FloatArray,
+def _derivatives(dyad, closure, motion: Motion, twists: dict, changes: dict,
                  usable: FloatArray) -> Group:
     """Twists and their rates of links i and j (module docstring); writes the link
-    frames' velocities and accelerations into ``motion``."""
+    frames' velocities and accelerations into ``motion``. ``twists`` and ``changes``
+    map link -> (3, n); the frame, at rest, is not in them."""
     (i, j), (g, h) = dyad.links, dyad.known
-    joint_a, joint_b, joint_c = dyad.joints
-    screws = (screw(joint_a, motion, i), screw(joint_b, motion, j), screw(joint_c, motion, j))
+    screws = tuple(_screw(joint, on, closure.pins.get(k), motion)
+                   for k, (joint, on) in enumerate(zip(dyad.joints, (i, j, j))))
     inverse = inverse3(*screws, usable)
-    loop = twists[h] - twists[g]
+    v_g, v_h = twists.get(g), twists.get(h)
+    loop = -v_g if v_h is None else (v_h if v_g is None else v_h - v_g)
     joint_rates = solve3(inverse, loop)
-    _advance(twists[i], twists[g], joint_rates[0], screws[0], g == FRAME)
-    _advance(twists[j], twists[i], joint_rates[1], screws[1], False)
-    turn_ij = spatial_cross(twists[i], twists[j])
+    v_i = twists[i] = _advance(v_g, joint_rates[0], screws[0])
+    v_j = twists[j] = _advance(v_i, joint_rates[1], screws[1])
+    turn_ij = spatial_cross(v_i, v_j)
     bias = -turn_ij
-    if h != FRAME:
-        bias += changes[h] + spatial_cross(twists[h], twists[j])
-    if g != FRAME:
-        turn_gi = spatial_cross(twists[g], twists[i])
+    if v_h is not None:
+        bias += changes[h] + spatial_cross(v_h, v_j)
+    if v_g is not None:
+        turn_gi = spatial_cross(v_g, v_i)
         bias -= changes[g] + turn_gi
-    accelerations = solve3(inverse, bias)
-    _advance(changes[i], changes[g], accelerations[0], screws[0], g == FRAME)
-    if g != FRAME:
-        changes[i] += turn_gi
-    _advance(changes[j], changes[i], accelerations[1], screws[1], False)
-    changes[j] += turn_ij
-    for link in (i, j):
-        _frame_motion(motion, link, twists[link], changes[link])
+    accelerations = solve3(inverse[:2], bias)  # ċ is not needed
+    a_i = changes[i] = _advance(changes.get(g), accelerations[0], screws[0])
+    if v_g is not None:
+        a_i += turn_gi
+    a_j = changes[j] = _advance(a_i, accelerations[1], screws[1])
+    a_j += turn_ij
+    _frame_motion(motion, i, v_i, a_i)
+    _frame_motion(motion, j, v_j, a_j)
     return Group((i, j), (g, h), dyad.joints, (i, j, j), screws, inverse, joint_rates)
 
 
-def _advance(out: FloatArray, base: FloatArray, rate: FloatArray, unit: Screw,
-             base_zero: bool) -> None:
-    """out = base + rate·unit for twists (3, n); base is skipped when it is zero."""
+def _screw(joint: Joint, on: int, pin, motion: Motion) -> Screw:
+    """A joint's unit twist; a revolute joint's position may come with the closure."""
+    if pin is None:
+        return screw(joint, motion, on)
+    x, y = pin
+    return y, -x, 1.0
+
+
+def _advance(base: FloatArray | None, rate: FloatArray, unit: Screw) -> FloatArray:
+    """base + rate·unit for twists (3, n); None is a zero base."""
     x, y, w = unit
-    out[0] = rate * x
-    out[1] = rate * y
-    out[2] = rate if w == 1.0 else rate * w
-    if not base_zero:
+    out = np.empty((3, rate.shape[0]))
+    np.multiply(rate, x, out=out[0])
+    np.multiply(rate, y, out=out[1])
+    if w == 1.0:
+        out[2] = rate
+    else:
+        np.multiply(rate, w, out=out[2])
+    if base is not None:
         out += base
+    return out
 
 
 def _frame_motion(motion: Motion, link: int, twist: FloatArray, change: FloatArray) -> None:
@@ -231,13 +242,15 @@ def _frame_motion(motion: Motion, link: int, twist: FloatArray, change: FloatArr
     v = v_O + ω·E·r,  a = A_O + α·E·r + ω·E·v."""
     x, y = motion.origin[:, link, 0], motion.origin[:, link, 1]
     omega, alpha = twist[2], change[2]
-    vx = twist[0] - omega * y
-    vy = twist[1] + omega * x
-    motion.velocity[:, link, 0] = vx
-    motion.velocity[:, link, 1] = vy
+    vx, vy = motion.velocity[:, link, 0], motion.velocity[:, link, 1]
+    np.subtract(twist[0], omega * y, out=vx)
+    np.add(twist[1], omega * x, out=vy)
     motion.omega[:, link] = omega
-    motion.acceleration[:, link, 0] = change[0] - alpha * y - omega * vy
-    motion.acceleration[:, link, 1] = change[1] + alpha * x + omega * vx
+    ax, ay = motion.acceleration[:, link, 0], motion.acceleration[:, link, 1]
+    np.subtract(change[0], alpha * y, out=ax)
+    ax -= omega * vy
+    np.add(change[1], alpha * x, out=ay)
+    ay += omega * vx
     motion.alpha[:, link] = alpha
 
 

@@ -133,12 +133,10 @@ def dot3(unit: Screw, wrench: FloatArray) -> FloatArray:
     return out
 
 
-def solve_transposed(inverse: FloatArray, rhs0, rhs1, rhs2) -> FloatArray:
-    """M⁻ᵀ·(rhs0, rhs1, rhs2) with the rows (3, 3, n) of M⁻¹; zero parts may be 0.0."""
+def solve_transposed(inverse: FloatArray, rhs0: FloatArray, rhs2: FloatArray) -> FloatArray:
+    """M⁻ᵀ·(rhs0, 0, rhs2) with the rows (3, 3, n) of M⁻¹."""
     out = inverse[0] * rhs0
-    for row, value in ((1, rhs1), (2, rhs2)):
-        if not (np.isscalar(value) and value == 0.0):
-            out += inverse[row] * value
+    out += inverse[2] * rhs2
     return out
 
 
@@ -150,17 +148,17 @@ def solve(mechanism: Mechanism, kin: Kinematics) -> Forces:
 def backward(mechanism: Mechanism, kin: Kinematics, q: FloatArray, rub=None) -> Forces:
     """Backward pass (module docstring): dyads in reverse assembly order, then the crank.
 
+    ``q`` (from ``applied_loads``) is used up: the reactions are added to it.
     ``rub`` (``dyade.friction``) turns the frictionless joint condition S·W = 0 into its
     friction law; it is called per group with the frictionless solution.
     """
-    q = q.copy()
     frame = np.zeros(q.shape[1:])
     wrenches: dict[tuple[int, int], tuple[int, FloatArray]] = {}
     for group in reversed(kin.groups):
         (i, j), (g, h) = group.links, group.known
         q_i, q_j = q[i], q[j]
         s_a, _, s_c = group.screws
-        w_b = solve_transposed(group.inverse, dot3(s_a, q_i), 0.0, dot3(s_c, q_j))
+        w_b = solve_transposed(group.inverse, dot3(s_a, q_i), dot3(s_c, q_j))
         if rub is not None:
             w_b = rub.group(group, w_b, q_i, q_j)
         w_a = w_b - q_i

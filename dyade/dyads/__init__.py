@@ -21,7 +21,7 @@ PPR   guide A and guide B                    parallel guides: blocked
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from types import ModuleType
 
 import numpy as np
@@ -43,6 +43,9 @@ class Closure:
     conditioning: FloatArray | None = None
     """(n,) in [0, 1]: how far from singular the closure Jacobian is (0: dead centre or
     blocked); |sin μ| unless the kind says otherwise (RPR: also the lever arm)"""
+    pins: dict = field(default_factory=dict)
+    """joint index (0 A, 1 B, 2 C) -> world position (x, y) of a revolute joint the
+    closure found on the way (saves recomputing it for the joint's twist)"""
 
     def __post_init__(self) -> None:
         if self.conditioning is None:

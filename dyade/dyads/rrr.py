@@ -42,4 +42,5 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     dyads.orient(motion, j, bcx, bcy, arm_j, l_j, cx, cy, c_j)
     sin = bax * bcy - bay * bcx
     transmission = np.arctan2(np.abs(sin), bax * bcx + bay * bcy)
-    return dyads.Closure(closes, transmission, np.abs(sin) / (l_i * l_j))
+    pins = {0: (ax, ay), 1: (ax + bax, ay + bay), 2: (cx, cy)}
+    return dyads.Closure(closes, transmission, np.abs(sin) / (l_i * l_j), pins)
