@@ -56,14 +56,15 @@ class Motion:
     def at_rest(cls, positions: int, links: int, placed: tuple[int, ...] = ()) -> Motion:
         """The frame at rest, every other link NaN; the links in ``placed`` are left
         uninitialised for a caller that fills all their entries."""
-        rows = [np.empty((links, 2, positions)) if vector else np.empty((links, positions))
-                for vector in (True, False, True, False, True, False, False, False)]
+        block = np.empty((11, links, positions))  # one allocation for all of them
         unplaced = [link for link in range(2, links) if link not in placed]  # 0: no link
-        for row in rows:
-            row[1] = 0.0
-            for link in unplaced:
-                row[link] = np.nan
-        rows[6][1] = 1.0  # cos 0
+        block[:, 1] = 0.0
+        for link in unplaced:
+            block[:, link] = np.nan
+        block[9, 1] = 1.0  # cos 0
+        rows = [block[k:k + 2].transpose(1, 0, 2) if vector else block[k]
+                for k, vector in ((0, True), (2, False), (3, True), (5, False), (6, True),
+                                  (8, False), (9, False), (10, False))]
         return cls(*(row.transpose(2, 0, 1) if row.ndim == 3 else row.T for row in rows))
 
     def set_angle(self, link: int, angle: FloatArray, cos: FloatArray | None = None,

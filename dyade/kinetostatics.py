@@ -73,13 +73,20 @@ def applied_loads(mechanism: Mechanism, kin: Kinematics) -> FloatArray:
         rx, ry = motion.rotated_xy(number, link.centre)
         omega, alpha = motion.omega[:, number], motion.alpha[:, number]
         squared = omega * omega
-        ax = motion.acceleration[:, number, 0] - alpha * ry - squared * rx
-        ay = motion.acceleration[:, number, 1] + alpha * rx - squared * ry
-        fx, fy = link.mass * (gx - ax), link.mass * (gy - ay)
-        x, y = motion.origin[:, number, 0] + rx, motion.origin[:, number, 1] + ry
-        q[number, 0] += fx
-        q[number, 1] += fy
-        q[number, 2] += x * fy - y * fx - link.inertia * alpha
+        # the centre's acceleration a_S, then f = m·(g − a_S) and its moment about O
+        fx, fy, moment = q[number]
+        np.subtract(motion.acceleration[:, number, 0], alpha * ry, out=fx)
+        fx -= squared * rx
+        np.add(motion.acceleration[:, number, 1], alpha * rx, out=fy)
+        fy -= squared * ry
+        for part, g in ((fx, gx), (fy, gy)):
+            if g != 0.0:
+                part -= g
+            part *= -link.mass
+        np.multiply(motion.origin[:, number, 0] + rx, fy, out=moment)
+        moment -= (motion.origin[:, number, 1] + ry) * fx
+        if link.inertia:
+            moment -= link.inertia * alpha
     for load in mechanism.loads:
         fx, fy, moment = load_values(load, kin.crank_angle)
         if load.local:
@@ -208,5 +215,8 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
         forces.normal[joint.name] = sign * normal
         forces.moment[joint.name] = sign * moment
     band = np.sin(mechanism.dead_centre_angle)
-    forces.valid = kin.valid & np.all(kin.conditioning > band, axis=1)
+    valid = kin.valid.copy()
+    for column in kin.conditioning.T:  # (an axis-1 reduction is slow on a few columns)
+        valid &= column > band
+    forces.valid = valid
     return forces

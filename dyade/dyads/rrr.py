@@ -30,10 +30,10 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
         along = (dist_sq + (l_i * l_i - l_j * l_j)) * (0.5 * inverse)
         height_sq = l_i * l_i - along * along
         closes = height_sq >= -1e-12 * l_i * l_i
+        ux, uy = dx * inverse, dy * inverse
     height = np.sqrt(np.maximum(height_sq, 0.0))
     if not closes.all():
         height[~closes] = np.nan
-    ux, uy = dx * inverse, dy * inverse
     side = height if dyad.variant > 0 else -height
     # B − A = along·u + side·E·u and B − C
     bax, bay = along * ux - side * uy, along * uy + side * ux
