@@ -95,7 +95,7 @@ class _Rub:
     def group(self, group: Group, w_b: FloatArray, q_i: FloatArray, q_j: FloatArray
               ) -> FloatArray:
         """The group's W_B with friction in its joints (fixed-point iteration)."""
-        laws = [(k, self._law(joint, group.rates[k]), isinstance(joint, Revolute))
+        laws = [(k, self._law(joint, group.rate(k)), isinstance(joint, Revolute))
                 for k, joint in enumerate(group.joints) if has_friction(joint)]
         if not laws:
             return w_b
@@ -134,7 +134,7 @@ class _Rub:
         self.converged &= ~pending
         for (k, _, _), tau in zip(laws, taus):
             w_b = w_b + tau * group.inverse[k]
-            self.taus[group.joints[k].name] = (group.on[k], tau, group.rates[k])
+            self.taus[group.joints[k].name] = (group.on[k], tau, group.rate(k))
         return w_b
 
     def crank(self, q_crank: FloatArray) -> FloatArray | float:

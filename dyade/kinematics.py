@@ -9,7 +9,7 @@ joint rates r = (a, b, c),
     V_i = V_g + a·S_A,   V_j = V_i + b·S_B = V_h + c·S_C,
 
 so M·r = V_h − V_g with the 3×3 loop matrix M = [S_A, S_B, −S_C]. Differentiating once
-more, with the twist cross product V×W (``spatial_cross``) for the moving joint axes,
+more, with the twist cross product V×W (``turn``) for the moving joint axes,
 
     M·ṙ = A_h − A_g − V_g×V_i − V_i×V_j + V_h×V_j,
     A_i = A_g + ȧ·S_A + V_g×V_i,   A_j = A_i + ḃ·S_B + V_i×V_j,
@@ -47,8 +47,16 @@ class Group:
     """unit twists S_A (i rel. g), S_B (j rel. i), S_C (j rel. h)"""
     inverse: FloatArray
     """(3, 3, n): rows of M⁻¹, M = [S_A, S_B, −S_C]; NaN where the dyad is not usable"""
-    rates: FloatArray
-    """(3, n): joint rates a, b, c along S_A, S_B, S_C [rad/s or m/s]"""
+    loop: tuple
+    """V_h − V_g, the right-hand side of the velocity loop (components; 0.0 for zero)"""
+    rates: list
+    """joint rates a, b, c (n,) along S_A, S_B, S_C [rad/s or m/s]; c on demand"""
+
+    def rate(self, k: int) -> FloatArray:
+        """Joint rate k (0 A, 1 B, 2 C) over the sweep."""
+        if self.rates[k] is None:
+            self.rates[k] = solve_rows(self.inverse, self.loop, (k,))[0]
+        return self.rates[k]
 
 
 @dataclass(slots=True)
@@ -94,14 +102,10 @@ def crank_screw(mechanism: Mechanism) -> Screw:
     return y, -x, 1.0
 
 
-def spatial_cross(v: FloatArray, w: FloatArray) -> FloatArray:
-    """V×W of two twists (3, n): (ω_V·E·w − ω_W·E·v, 0), the rate of change of a twist W
-    fixed in a body that moves with V."""
-    out = np.empty_like(v)
-    out[0] = w[2] * v[1] - v[2] * w[1]
-    out[1] = v[2] * w[0] - w[2] * v[0]
-    out[2] = 0.0
-    return out
+def turn(v: FloatArray, w: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """(x, y) of the twist cross product V×W = (ω_V·E·w − ω_W·E·v, 0): the rate of
+    change of a twist W fixed in a body that moves with V."""
+    return w[2] * v[1] - v[2] * w[1], v[2] * w[0] - w[2] * v[0]
 
 
 def _comb(p: float, a: FloatArray, q: float, b: FloatArray):
@@ -139,9 +143,18 @@ def inverse3(c0: Screw, c1: Screw, c2: Screw, usable: FloatArray) -> FloatArray:
     return rows
 
 
-def solve3(inverse: FloatArray, rhs: FloatArray) -> FloatArray:
-    """M⁻¹·rhs for the stacks (3, 3, n) and (3, n) (or some rows of M⁻¹ only)."""
-    return (inverse[:, 0] * rhs[0] + inverse[:, 1] * rhs[1]) + inverse[:, 2] * rhs[2]
+def solve_rows(inverse: FloatArray, rhs, rows=(0, 1, 2)) -> list[FloatArray]:
+    """Rows of M⁻¹·rhs; ``rhs`` has three components, a plain 0.0 for a zero one."""
+    out = []
+    for k in rows:
+        total = None
+        for col in range(3):
+            if isinstance(rhs[col], float) and rhs[col] == 0.0:
+                continue
+            term = inverse[k, col] * rhs[col]
+            total = term if total is None else np.add(total, term, out=total)
+        out.append(np.zeros_like(inverse[k, 0]) if total is None else total)
+    return out
 
 
 def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinematics:
@@ -160,7 +173,7 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinema
     # twists of the moving links and their time derivatives; the frame's are zero
     twists = {CRANK: np.repeat(np.multiply(mechanism.crank.speed,
                                            crank_screw(mechanism))[:, None], n, axis=1)}
-    changes = {CRANK: np.zeros((3, n))}
+    changes = {CRANK: None}  # constant speed about a fixed pivot: zero
     groups = []
     upstream_ok = np.ones(n, dtype=bool)
     for col, dyad in enumerate(mechanism.dyads):
@@ -186,32 +199,45 @@ def _derivatives(dyad, closure, motion: Motion, twists: dict, changes: dict,
                  usable: FloatArray) -> Group:
     """Twists and their rates of links i and j (module docstring); writes the link
     frames' velocities and accelerations into ``motion``. ``twists`` and ``changes``
-    map link -> (3, n); the frame, at rest, is not in them."""
+    map link -> (3, n); the frame (and a zero change, None) is not in them."""
     (i, j), (g, h) = dyad.links, dyad.known
     screws = tuple(_screw(joint, on, closure.pins.get(k), motion)
                    for k, (joint, on) in enumerate(zip(dyad.joints, (i, j, j))))
     inverse = inverse3(*screws, usable)
     v_g, v_h = twists.get(g), twists.get(h)
-    loop = -v_g if v_h is None else (v_h if v_g is None else v_h - v_g)
-    joint_rates = solve3(inverse, loop)
-    v_i = twists[i] = _advance(v_g, joint_rates[0], screws[0])
-    v_j = twists[j] = _advance(v_i, joint_rates[1], screws[1])
-    turn_ij = spatial_cross(v_i, v_j)
-    bias = -turn_ij
+    loop = _difference(v_h, v_g)
+    rate_a, rate_b = solve_rows(inverse, loop, (0, 1))
+    v_i = twists[i] = _advance(v_g, rate_a, screws[0])
+    v_j = twists[j] = _advance(v_i, rate_b, screws[1])
+    # M·ṙ = A_h − A_g − V_g×V_i − V_i×V_j + V_h×V_j (ω part: α_h − α_g)
+    turn_ij = turn(v_i, v_j)
+    bias = list(_difference(changes.get(h), changes.get(g)))
+    bias[0], bias[1] = bias[0] - turn_ij[0], bias[1] - turn_ij[1]
+    turn_gi = None
+    if v_g is not None:
+        turn_gi = turn(v_g, v_i)
+        bias[0], bias[1] = bias[0] - turn_gi[0], bias[1] - turn_gi[1]
     if v_h is not None:
-        bias += changes[h] + spatial_cross(v_h, v_j)
-    if v_g is not None:
-        turn_gi = spatial_cross(v_g, v_i)
-        bias -= changes[g] + turn_gi
-    accelerations = solve3(inverse[:2], bias)  # ċ is not needed
-    a_i = changes[i] = _advance(changes.get(g), accelerations[0], screws[0])
-    if v_g is not None:
-        a_i += turn_gi
-    a_j = changes[j] = _advance(a_i, accelerations[1], screws[1])
-    a_j += turn_ij
+        turn_hj = turn(v_h, v_j)
+        bias[0], bias[1] = bias[0] + turn_hj[0], bias[1] + turn_hj[1]
+    accel_a, accel_b = solve_rows(inverse, bias, (0, 1))  # ċ is not needed
+    a_i = changes[i] = _advance(changes.get(g), accel_a, screws[0], turn_gi)
+    a_j = changes[j] = _advance(a_i, accel_b, screws[1], turn_ij)
     _frame_motion(motion, i, v_i, a_i)
     _frame_motion(motion, j, v_j, a_j)
-    return Group((i, j), (g, h), dyad.joints, (i, j, j), screws, inverse, joint_rates)
+    return Group((i, j), (g, h), dyad.joints, (i, j, j), screws, inverse, loop,
+                 [rate_a, rate_b, None])
+
+
+def _difference(a: FloatArray | None, b: FloatArray | None) -> tuple:
+    """Components of a − b for twists (3, n); None and 0.0 stand for zero."""
+    if a is None and b is None:
+        return 0.0, 0.0, 0.0
+    if b is None:
+        return a[0], a[1], a[2]
+    if a is None:
+        return -b[0], -b[1], -b[2]
+    return a[0] - b[0], a[1] - b[1], a[2] - b[2]
 
 
 def _screw(joint: Joint, on: int, pin, motion: Motion) -> Screw:
@@ -222,8 +248,9 @@ def _screw(joint: Joint, on: int, pin, motion: Motion) -> Screw:
     return y, -x, 1.0
 
 
-def _advance(base: FloatArray | None, rate: FloatArray, unit: Screw) -> FloatArray:
-    """base + rate·unit for twists (3, n); None is a zero base."""
+def _advance(base: FloatArray | None, rate: FloatArray, unit: Screw,
+             extra: tuple | None = None) -> FloatArray:
+    """base + rate·unit (+ extra in x, y) for twists (3, n); None is zero."""
     x, y, w = unit
     out = np.empty((3, rate.shape[0]))
     np.multiply(rate, x, out=out[0])
@@ -234,6 +261,9 @@ def _advance(base: FloatArray | None, rate: FloatArray, unit: Screw) -> FloatArr
         np.multiply(rate, w, out=out[2])
     if base is not None:
         out += base
+    if extra is not None:
+        out[0] += extra[0]
+        out[1] += extra[1]
     return out
 
 
