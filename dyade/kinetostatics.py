@@ -168,12 +168,14 @@ def backward(mechanism: Mechanism, kin: Kinematics, q: FloatArray, rub=None) -> 
         w_b = solve_transposed(group.inverse, dot3(s_a, q_i), dot3(s_c, q_j))
         if rub is not None:
             w_b = rub.group(group, w_b, q_i, q_j)
-        w_a = w_b - q_i
-        w_c = -q_j - w_b
-        for joint, on, wrench in zip(group.joints, group.on, (w_a, w_b, w_c)):
-            wrenches[joint.name] = (on, wrench)
+        w_a = w_b - q_i  # on i from g
+        on_h = q_j + w_b  # −W_C: on h from j
+        joint_a, joint_b, joint_c = group.joints
+        wrenches[joint_a.name] = (i, w_a)
+        wrenches[joint_b.name] = (j, w_b)
+        wrenches[joint_c.name] = (h, on_h)
         (frame if g == FRAME else q[g])[...] -= w_a
-        (frame if h == FRAME else q[h])[...] -= w_c
+        (frame if h == FRAME else q[h])[...] += on_h
     joint = mechanism.crank.joint
     drive = -dot3(crank_screw(mechanism), q[CRANK])
     if rub is not None:
