@@ -79,7 +79,7 @@ def plan(mechanism: Mechanism) -> Plan:
                 clearance=gaps)
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class Result:
     """Everything a sweep computed, in SI units."""
 

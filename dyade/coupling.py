@@ -84,7 +84,7 @@ class Coupling:
         return float(np.sqrt(square)) if square > 0.0 else None
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class Response:
     """Transfer functions and phases over the tuning ratio."""
 

@@ -37,7 +37,7 @@ AT_REST_RTOL = 1e-9  # [-] relative velocity below this share of the typical one
 FORCE_FLOOR = 1e-12  # [-] share of the largest force below which changes are not relative
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class FrictionResult:
     """Reactions with friction, the friction loads and how the iteration went."""
 

@@ -26,7 +26,7 @@ import numpy as np
 from dyade.model import FloatArray, Joint, Prismatic, Revolute, Vec
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class Motion:
     """Pose and its time derivatives of every link frame over the sweep.
 

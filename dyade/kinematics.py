@@ -26,12 +26,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade import dyads as dyad_kinds
-from dyade.memory import keep_freed_memory
 from dyade.joints import Motion, Screw, screw
+from dyade.memory import keep_freed_memory
 from dyade.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class Group:
     """One dyad's loop, as the force stage needs it."""
 
@@ -59,7 +59,7 @@ class Group:
         return self.rates[k]
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class Kinematics:
     """Result of the kinematic sweep."""
 

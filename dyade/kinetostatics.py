@@ -33,7 +33,7 @@ from dyade.kinematics import Kinematics, crank_screw
 from dyade.model import CRANK, FRAME, FloatArray, Mechanism, Revolute
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class Forces:
     """Joint reactions and drive torque over the sweep (SI)."""
 

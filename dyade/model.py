@@ -21,13 +21,16 @@ PPR   origin on guide A, ξ along the guide at A   origin C, ξ along the guide 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import Union
+from typing import TYPE_CHECKING, Union
 
 import numpy as np
-import numpy.typing as npt
 
-FloatArray = npt.NDArray[np.float64]
+if TYPE_CHECKING:  # numpy.typing costs start-up time and is only for the type checker
+    import numpy.typing as npt
+
+    FloatArray = npt.NDArray[np.float64]
+else:
+    FloatArray = np.ndarray
 Vec = tuple[float, float]
 
 FRAME = 1  # link number of the frame
@@ -41,7 +44,7 @@ def joint_name(a: int, b: int) -> tuple[int, int]:
     return (a, b) if a < b else (b, a)
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class ClearanceData:
     """Data of SPEC §2 for a revolute joint with clearance."""
 
@@ -53,7 +56,7 @@ class ClearanceData:
     """reduced mass m [kg]; None: estimate from the two links' masses"""
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Revolute:
     """A revolute joint (Drehgelenk): point ``points[0]`` of ``links[0]`` coincides with
     point ``points[1]`` of ``links[1]`` (link-fixed coordinates ξ, η [m])."""
@@ -76,7 +79,7 @@ class Revolute:
         return "R"
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Prismatic:
     """A prismatic joint (Schubgelenk) between a guide and a slider.
 
@@ -116,7 +119,7 @@ class Prismatic:
 Joint = Union[Revolute, Prismatic]
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Load:
     """An applied force and/or moment on a link, constant or tabulated over the crank
     angle (interpolated periodically)."""
@@ -135,7 +138,7 @@ class Load:
     """True: (fx, fy) are given in the link frame (ξ, η) and turn with it."""
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Spring:
     """A linear spring between a point of one link and a point of another."""
 
@@ -148,7 +151,7 @@ class Spring:
     name: str
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Link:
     """A link: its named points and (optionally) its mass data."""
 
@@ -167,7 +170,7 @@ class Link:
         return self.mass > 0.0 or self.inertia > 0.0
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Dyad:
     """A two-link group: links i, j placed by joints A (i–g), B (i–j), C (j–h)."""
 
@@ -193,7 +196,7 @@ class Dyad:
         return f"dyad {self.number} (kind {self.kind} {self.kind_name}, links {i}-{j})"
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Crank:
     """Link 2, turning about a frame point at constant speed."""
 
@@ -207,7 +210,7 @@ class Crank:
     """Joint (1,2)."""
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Sweep:
     """Crank angles φ21 from ``start`` to ``stop`` (inclusive) in steps of ``step`` [rad]."""
 
@@ -220,12 +223,13 @@ class Sweep:
         return self.start + self.step * np.arange(count, dtype=np.float64)
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Mechanism:
     """A whole linkage in assembly order, SI units."""
 
     name: str
-    source: Path | None
+    source: str | None
+    """the file it was read from"""
     crank: Crank
     dyads: tuple[Dyad, ...]
     links: dict[int, Link]

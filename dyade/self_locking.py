@@ -29,7 +29,7 @@ from dyade.joints import Motion, travel
 from dyade.model import FloatArray, Mechanism
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class Locking:
     """The test for one slider."""
 

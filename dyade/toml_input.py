@@ -7,17 +7,31 @@ key). Link frames of the dyad links follow the table in ``dyade.model``.
 
 from __future__ import annotations
 
-import difflib
 import math
+import os
 import tomllib
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from dyade.errors import InputError  # noqa: F401  (re-exported for callers)
-from dyade.model import (CRANK, FRAME, KIND_NAMES, ClearanceData, Crank, Dyad, Joint, Link, Load, Mechanism,
-                         Prismatic, Revolute, Spring, Sweep, Vec)
+from dyade.model import (
+    CRANK,
+    FRAME,
+    KIND_NAMES,
+    ClearanceData,
+    Crank,
+    Dyad,
+    Joint,
+    Link,
+    Load,
+    Mechanism,
+    Prismatic,
+    Revolute,
+    Spring,
+    Sweep,
+    Vec,
+)
 from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS, rpm_to_rad_per_s
 
 KIND_BY_NAME = {name: number for number, name in KIND_NAMES.items()}
@@ -42,16 +56,19 @@ GRAVITY_KEYS = {"x", "y"}
 STANDARD_GRAVITY = 9.80665  # [m/s²]
 
 
-def read_mechanism(path: Path | str, overrides: dict[str, Any] | None = None) -> Mechanism:
+def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = None
+                   ) -> Mechanism:
     """Read and validate a mechanism file; ``overrides`` replace keys (dotted paths)."""
-    path = Path(path)
     return build(load_data(path, overrides), path)
 
 
-def load_data(path: Path, overrides: dict[str, Any] | None = None) -> dict[str, Any]:
+def load_data(path: str | os.PathLike, overrides: dict[str, Any] | None = None
+              ) -> dict[str, Any]:
     """The file's TOML data with ``overrides`` (dotted key -> value) applied."""
+    path = os.fspath(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        with open(path, encoding="utf-8") as handle:
+            text = handle.read()
     except OSError as err:
         raise InputError(f"{path}: cannot read the file ({err.strerror}).") from None
     try:
@@ -59,13 +76,14 @@ def load_data(path: Path, overrides: dict[str, Any] | None = None) -> dict[str, 
     except tomllib.TOMLDecodeError as err:
         raise InputError(f"{path}: not valid TOML: {err}.") from None
     for key, value in (overrides or {}).items():
-        _set_dotted(data, key, value, path.name)
+        _set_dotted(data, key, value, os.path.basename(path))
     return data
 
 
-def build(data: dict[str, Any], path: Path | None) -> Mechanism:
+def build(data: dict[str, Any], path: str | os.PathLike | None) -> Mechanism:
     """Validate TOML data and build the mechanism (errors name ``path``)."""
-    return Reader(path.name if path else "mechanism", path).mechanism(data)
+    path = os.fspath(path) if path else None
+    return Reader(os.path.basename(path) if path else "mechanism", path).mechanism(data)
 
 
 def parse_assignment(text: str) -> tuple[str, Any]:
@@ -111,6 +129,8 @@ def _set_dotted(data: dict[str, Any], dotted: str, value: Any, label: str = "") 
 
 
 def _suggest(key: str, allowed: set[str]) -> str:
+    import difflib  # only for a misspelt key
+
     close = difflib.get_close_matches(key, sorted(allowed), n=1, cutoff=0.6)
     return f" Did you mean `{close[0]}`?" if close else f" Allowed: {', '.join(sorted(allowed))}."
 
@@ -118,7 +138,7 @@ def _suggest(key: str, allowed: set[str]) -> str:
 class Reader:
     """Walks the parsed TOML with key paths for the error messages."""
 
-    def __init__(self, label: str, source: Path | None = None) -> None:
+    def __init__(self, label: str, source: str | None = None) -> None:
         self.label = label
         self.source = source
         self.length = 1.0
@@ -185,7 +205,8 @@ class Reader:
     def mechanism(self, data: dict[str, Any]) -> Mechanism:
         self.keys(data, "", TOP_KEYS)
         self.units(data.get("units", {}))
-        name = data.get("name", self.source.stem if self.source else "mechanism")
+        name = data.get("name", os.path.splitext(os.path.basename(self.source))[0]
+                        if self.source else "mechanism")
         if not isinstance(name, str):
             raise self.fail("name", f"must be a string, got {_show(name)}.")
         sweep, dead_centre = self.sweep(data.get("sweep", {}))

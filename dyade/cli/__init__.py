@@ -11,9 +11,25 @@ import click
 
 from dyade import __version__
 
+SUBCOMMANDS = {"describe": "analyse", "analyse": "analyse", "init": "analyse",
+               "clearance": "clearance", "coupling": "coupling", "accuracy": "accuracy"}
+"""command -> module of dyade.cli that defines it, imported when the command is used
+(or listed by --help), so that a run pays only for its own command"""
+
 
 class DyadeGroup(click.Group):
-    """Maps dyade's exceptions to click's exit codes, in one place."""
+    """Maps dyade's exceptions to click's exit codes, in one place; loads subcommands
+    lazily."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(SUBCOMMANDS)
+
+    def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
+        if name in SUBCOMMANDS and name not in self.commands:
+            import importlib
+
+            importlib.import_module(f"dyade.cli.{SUBCOMMANDS[name]}")
+        return super().get_command(ctx, name)
 
     def invoke(self, ctx: click.Context) -> object:
         from dyade.errors import DyadeError, InputError
@@ -39,8 +55,3 @@ def main() -> None:
         dyade analyse mechanisms/fourbar.toml --format csv -o fourbar.csv
     """
 
-
-from dyade.cli import analyse as _analyse  # noqa: E402,F401  (registers the commands)
-from dyade.cli import clearance as _clearance  # noqa: E402,F401
-from dyade.cli import coupling as _coupling  # noqa: E402,F401
-from dyade.cli import accuracy as _accuracy  # noqa: E402,F401

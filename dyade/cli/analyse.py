@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import math
+import os
 import sys
 from dataclasses import dataclass, replace
-from pathlib import Path
 from typing import Any
 
 import click
@@ -13,7 +13,8 @@ import click
 from dyade.cli import main
 from dyade.cli.output import atomic, console, show, write_json
 
-MECHANISM_FILE = click.Path(exists=True, dir_okay=False, path_type=Path)
+# paths stay strings on the way of `dyade analyse`: pathlib alone costs 5 ms of start-up
+MECHANISM_FILE = click.Path(exists=True, dir_okay=False)
 SUFFIX = {"csv": ".csv", "json": ".json", "table": ".txt"}
 
 set_option = click.option(
@@ -30,7 +31,7 @@ class SweepOptions:
     step: float | None = None
 
 
-def load(path: Path, assignments: tuple[str, ...] = (), sweep: SweepOptions = SweepOptions()):
+def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = SweepOptions()):
     """Read a mechanism with --set overrides and --start/--stop/--step [°]; returns the
     mechanism and the effective TOML data (for --save-as)."""
     from dyade import toml_input
@@ -53,7 +54,7 @@ def load(path: Path, assignments: tuple[str, ...] = (), sweep: SweepOptions = Sw
     return replace(mechanism, sweep=type(current)(start, stop, step)), data
 
 
-def save_as(data: dict[str, Any], path: Path) -> None:
+def save_as(data: dict[str, Any], path: str) -> None:
     """Write the effective mechanism (after --set) as TOML, atomically."""
     import tomli_w
 
@@ -65,7 +66,7 @@ def save_as(data: dict[str, Any], path: Path) -> None:
 @main.command()
 @click.argument("mechanism_file", type=MECHANISM_FILE)
 @set_option
-def describe(mechanism_file: Path, assignments: tuple[str, ...]) -> None:
+def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
     """Show MECHANISM_FILE in assembly order: crank, dyads, joints, link points, mobility,
     and which effects an analysis will simulate."""
     from dyade import analysis
@@ -81,14 +82,14 @@ def describe(mechanism_file: Path, assignments: tuple[str, ...]) -> None:
               help="table: a summary (min/max and where); csv: the whole sweep, one row per crank "
                    "position; json: the CSV columns as arrays plus the summary and warnings. "
                    "[default: table on stdout; with -o: from its suffix (.json, .txt), else csv]")
-@click.option("-o", "--output", type=click.Path(writable=True, path_type=Path),
+@click.option("-o", "--output", type=click.Path(writable=True),
               help="Write to this file instead of standard output; with several input files a "
                    "directory, which gets one result per input (NAME.csv, NAME.json, NAME.txt).")
 @click.option("--start", type=float, help="First crank angle [°] (overrides [sweep] start).")
 @click.option("--stop", type=float, help="Last crank angle [°] (default: start + 360).")
 @click.option("--step", type=float, help="Crank angle step [°] (overrides [sweep] step).")
 @set_option
-@click.option("--save-as", type=click.Path(dir_okay=False, writable=True, path_type=Path),
+@click.option("--save-as", type=click.Path(dir_okay=False, writable=True),
               help="Write the effective mechanism (after --set) to this TOML file, to keep a "
                    "variant; one input file only.")
 @click.option("--allow-partial", is_flag=True,
@@ -103,9 +104,9 @@ def describe(mechanism_file: Path, assignments: tuple[str, ...]) -> None:
 @click.option("--fail-on-lock", is_flag=True,
               help="Exit with status 1 when a slider self-locks (otherwise a locking slider is "
                    "a finding: reported, exit status 0).")
-def analyse(mechanism_files: tuple[Path, ...], fmt: str, output: Path | None,
+def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
             start: float | None, stop: float | None, step: float | None,
-            assignments: tuple[str, ...], save_as: Path | None, allow_partial: bool,
+            assignments: tuple[str, ...], save_as: str | None, allow_partial: bool,
             friction_tol: float | None, friction_max_iter: int | None,
             fail_on_lock: bool) -> None:
     """Sweep the crank of MECHANISM_FILES: positions, velocities and accelerations of every
@@ -128,7 +129,7 @@ def analyse(mechanism_files: tuple[Path, ...], fmt: str, output: Path | None,
     fmt = fmt or infer_format(output)
     job = Job(fmt, SweepOptions(start, stop, step), assignments, allow_partial, friction_tol,
               friction_max_iter, fail_on_lock)
-    if len(mechanism_files) == 1 and not (output and output.is_dir()):
+    if len(mechanism_files) == 1 and not (output and os.path.isdir(output)):
         job.run(mechanism_files[0], output, save_as)
         return
     if save_as:
@@ -136,24 +137,24 @@ def analyse(mechanism_files: tuple[Path, ...], fmt: str, output: Path | None,
     if output is None:
         raise click.UsageError(f"{len(mechanism_files)} input files need -o DIR: one result file "
                                f"per input is written there.")
-    if output.exists() and not output.is_dir():
+    if os.path.exists(output) and not os.path.isdir(output):
         raise click.UsageError(f"-o {output}: not a directory (several input files write one "
                                f"result each into a directory).")
-    output.mkdir(parents=True, exist_ok=True)
+    os.makedirs(output, exist_ok=True)
     failures = batch(mechanism_files, output, job.run, SUFFIX[fmt])
     if failures:
         lines = "\n".join(f"  {path}: {reason}" for path, reason in failures)
         raise DyadeError(f"{len(failures)} of {len(mechanism_files)} files failed:\n{lines}")
 
 
-def infer_format(output: Path | None) -> str:
+def infer_format(output: str | None) -> str:
     """table on stdout; with -o, from the suffix (.json, .txt), else csv."""
     if output is None:
         return "table"
-    return {".json": "json", ".txt": "table"}.get(output.suffix.lower(), "csv")
+    return {".json": "json", ".txt": "table"}.get(os.path.splitext(output)[1].lower(), "csv")
 
 
-def batch(paths, directory: Path, run_one, suffix: str) -> list[tuple[Path, str]]:
+def batch(paths, directory: str, run_one, suffix: str) -> list[tuple[str, str]]:
     """Run ``run_one(path, target)`` for every path; a progress bar on stderr when it is
     a terminal; returns the failures (path, reason) instead of stopping."""
     from dyade.errors import DyadeError
@@ -182,15 +183,15 @@ def batch(paths, directory: Path, run_one, suffix: str) -> list[tuple[Path, str]
     return failures
 
 
-def _targets(paths, directory: Path, suffix: str) -> list[Path]:
+def _targets(paths, directory: str, suffix: str) -> list[str]:
     """One output name per input: the stem, made unique when two inputs share it."""
     seen: dict[str, int] = {}
     out = []
     for path in paths:
-        stem = path.stem
+        stem = os.path.splitext(os.path.basename(path))[0]
         seen[stem] = seen.get(stem, 0) + 1
         name = stem if seen[stem] == 1 else f"{stem}-{seen[stem]}"
-        out.append(directory / f"{name}{suffix}")
+        out.append(os.path.join(directory, f"{name}{suffix}"))
     return out
 
 
@@ -206,7 +207,7 @@ class Job:
     friction_max_iter: int | None
     fail_on_lock: bool
 
-    def run(self, path: Path, output: Path | None, save_as_path: Path | None) -> None:
+    def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
         from dyade import analysis
         from dyade.errors import DyadeError
         from dyade.report import columns
@@ -241,7 +242,7 @@ class Job:
                   tables.clearance_summary(result)], output)
         if result.notes:  # rich is only loaded when there is something to say
             err = console(stderr=True)
-            prefix = f"{path.name}: " if output else ""
+            prefix = f"{os.path.basename(path)}: " if output else ""
             for note in result.notes:
                 err.print(f"warning: {prefix}{note}")
         locks = any(lock.locks[result.rows].any() for lock in (result.locking or {}).values())
@@ -259,16 +260,16 @@ KIND_ALIASES = {"rrr": "fourbar", "four-bar": "fourbar", "rrp": "slider-crank",
 @main.command()
 @click.argument("kind", type=click.Choice(sorted(TEMPLATES) + sorted(KIND_ALIASES),
                                           case_sensitive=False))
-@click.argument("file", type=click.Path(dir_okay=False, writable=True, path_type=Path))
+@click.argument("file", type=click.Path(dir_okay=False, writable=True))
 @click.option("--force", is_flag=True, help="Overwrite FILE if it exists.")
-def init(kind: str, file: Path, force: bool) -> None:
+def init(kind: str, file: str, force: bool) -> None:
     """Write a commented starting mechanism FILE for KIND: fourbar (RRR), slider-crank
     (RRP), slotted-lever (RPR), tangent-drive (PRP) or scotch-yoke (PPR). The file is
     valid and analysable as written: edit the numbers, then `dyade analyse FILE`."""
     from importlib.resources import files
 
     name = KIND_ALIASES.get(kind.lower(), kind.lower())
-    if file.exists() and not force:
+    if os.path.exists(file) and not force:
         raise click.UsageError(f"{file} exists; give --force to overwrite it.")
     text = files("dyade").joinpath("templates", f"{name}.toml").read_text(encoding="utf-8")
     with atomic(file) as handle:

@@ -8,11 +8,9 @@ run never leaves a half-written result.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 import sys
-from pathlib import Path
 from typing import Any, Iterable, TextIO
 
 
@@ -37,9 +35,10 @@ def console(stderr: bool = False, file: TextIO | None = None, width: int | None 
 class atomic:
     """Write to a temporary file beside ``path``, rename on success, remove on failure."""
 
-    def __init__(self, path: Path) -> None:
-        self.path = Path(path)
-        self.tmp = self.path.with_name(f".{self.path.name}.part")
+    def __init__(self, path: str | os.PathLike) -> None:
+        self.path = os.fspath(path)
+        folder, name = os.path.split(self.path)
+        self.tmp = os.path.join(folder, f".{name}.part")
 
     def __enter__(self) -> TextIO:
         self.handle = open(self.tmp, "w", encoding="utf-8", newline="")
@@ -50,7 +49,10 @@ class atomic:
         if exc_type is None:
             os.replace(self.tmp, self.path)
         else:
-            self.tmp.unlink(missing_ok=True)
+            try:
+                os.remove(self.tmp)
+            except FileNotFoundError:
+                pass
 
 
 def _plain_renderable(part: Any) -> Any:
@@ -78,7 +80,7 @@ def _plain_renderable(part: Any) -> Any:
     return part
 
 
-def show(parts: Iterable[Any], output: Path | None = None, width: int | None = None) -> None:
+def show(parts: Iterable[Any], output: str | os.PathLike | None = None, width: int | None = None) -> None:
     """Print rich renderables to stdout or (atomically) to a file."""
     parts = [p for p in parts if p is not None]
     if output:
@@ -103,7 +105,7 @@ def cell(value: Any) -> str:
     return str(value)
 
 
-def write_rows(rows: list[dict], names: list[str], output: Path | None) -> None:
+def write_rows(rows: list[dict], names: list[str], output: str | os.PathLike | None) -> None:
     """CSV from dict rows, stable column order ``names``."""
     def emit(handle: TextIO) -> None:
         handle.write(",".join(names) + "\n")
@@ -137,7 +139,9 @@ def jsonable(value: Any) -> Any:
     return value
 
 
-def write_json(obj: dict, output: Path | None) -> None:
+def write_json(obj: dict, output: str | os.PathLike | None) -> None:
+    import json  # only here: the import is not free
+
     text = json.dumps(jsonable(obj), ensure_ascii=False, indent=1)
     if output:
         with atomic(output) as handle:

@@ -32,7 +32,7 @@ from dyade.model import FRAME, FloatArray, Prismatic, Revolute, Vec
 SINGULAR_SIN = 1e-10  # [-] |sin μ| below this: the closure Jacobian is singular
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class Closure:
     """Where a dyad closes, and its transmission angle."""
 
