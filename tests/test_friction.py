@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from dyade import analysis, friction, kinematics, kinetostatics, self_locking, toml_input
+from dyade import analysis, friction, joints, kinematics, kinetostatics, self_locking, toml_input
 from dyade.cli import main
 from dyade.model import Prismatic
 from tests.conftest import SHIPPED
@@ -69,6 +69,31 @@ def test_energy_identity_with_friction_everywhere(path):
     assert np.allclose(balance, result.power, rtol=1e-8, atol=1e-8 * scale)
     assert np.all(result.power >= 0.0)
     assert np.mean(result.power) > 0.0
+
+
+@pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.stem)
+def test_coulomb_law_holds_in_every_joint(path):
+    # read back from the reported forces: |MR| = μ·r_z·|F| and |FR| = μ·|FN|, each
+    # against the relative motion of the higher-numbered link
+    mechanism = replace(loaded(path, 0.1), friction_tol=1e-13, friction_max_iter=200)
+    kin = kinematics.sweep(mechanism)
+    result = friction.iterate(mechanism, kin)
+    ok = kin.valid
+    for joint in mechanism.joints:
+        lower, higher = sorted(joint.links)
+        if isinstance(joint, Prismatic):
+            rubbing = result.friction_forces[joint.name][ok]
+            size = 0.1 * np.abs(result.forces.normal[joint.name][ok])
+            sliding = joints.travel(joint, kin.motion)[1][ok]
+            relative = sliding if higher == joint.slider else -sliding
+        else:
+            rubbing = result.moments[joint.name][ok]
+            size = 0.1 * 0.005 * np.hypot(*result.forces.revolute[joint.name][ok].T)
+            relative = (kin.motion.omega[:, higher] - kin.motion.omega[:, lower])[ok]
+        moving = ~result.at_rest[joint.name][ok]
+        scale = max(float(np.max(size)), 1e-300)
+        assert np.allclose(np.abs(rubbing[moving]), size[moving], rtol=1e-9, atol=1e-12 * scale)
+        assert np.all(rubbing[moving] * relative[moving] <= 0.0)
 
 
 def test_scotch_yoke_by_hand():
