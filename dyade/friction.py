@@ -162,17 +162,20 @@ def iterate(mechanism: Mechanism, kin: Kinematics, tol: float | None = None,
     usable = kin.valid
     moments, friction_forces = {}, {}
     power = np.zeros(n)
-    joints = {joint.name: joint for joint in mechanism.joints}
-    for name, (on, tau, rate) in rub.taus.items():
+    for joint in mechanism.joints:  # in the file's joint order: the column order
+        name = joint.name
+        if name not in rub.taus:
+            continue
+        on, tau, rate = rub.taus[name]
         power -= tau * rate
         towards = 1.0 if on == max(name) else -1.0
-        joint = joints[name]
         if isinstance(joint, Revolute):
             moments[name] = towards * tau
         else:
             along = 1.0 if on == joint.slider else -1.0  # the screw is ±d
             friction_forces[name] = towards * along * tau
-    at_rest = {name: usable & (sign == 0.0) for name, sign in rub.signs.items()}
+    at_rest = {joint.name: usable & (rub.signs[joint.name] == 0.0)
+               for joint in mechanism.joints if joint.name in rub.signs}
     never = [name for name, mask in at_rest.items() if mask[usable].all() and usable.any()]
     for name in never:
         at_rest[name] = np.zeros(n, dtype=bool)
