@@ -96,6 +96,17 @@ def test_coulomb_law_holds_in_every_joint(path):
         assert np.all(rubbing[moving] * relative[moving] <= 0.0)
 
 
+def test_friction_columns_follow_the_joint_order():
+    from dyade.report import columns
+
+    mechanism = loaded(shipped("dyade-16.toml"), 0.1)
+    names = list(columns.columns(analysis.run(mechanism)))
+    rubbing = [name for name in names if name.startswith(("MR_", "FR_"))]
+    expected = [("FR_" if isinstance(j, Prismatic) else "MR_") + "_".join(map(str, j.name))
+                for j in mechanism.joints]
+    assert rubbing == expected
+
+
 def test_scotch_yoke_by_hand():
     # yoke (m) slides on a horizontal frame guide with μ; slot and pins frictionless:
     # FN = m·g, slot force N = m·a_x + μ·m·g·sign(v), M_drive = −r·sin φ·N
