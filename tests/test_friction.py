@@ -102,8 +102,10 @@ def test_friction_columns_follow_the_joint_order():
     mechanism = loaded(shipped("dyade-16.toml"), 0.1)
     names = list(columns.columns(analysis.run(mechanism)))
     rubbing = [name for name in names if name.startswith(("MR_", "FR_"))]
-    expected = [("FR_" if isinstance(j, Prismatic) else "MR_") + "_".join(map(str, j.name))
-                for j in mechanism.joints]
+    expected = ([f"MR_{i}_{j}" for i, j in (k.name for k in mechanism.joints
+                                           if not isinstance(k, Prismatic))]
+                + [f"FR_{i}_{j}" for i, j in (k.name for k in mechanism.joints
+                                             if isinstance(k, Prismatic))])
     assert rubbing == expected
 
 
