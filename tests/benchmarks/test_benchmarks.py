@@ -6,7 +6,10 @@ test); measure with
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,6 +18,9 @@ from dyade import analysis, clearance, coupling, friction, kinematics, kinetosta
 from dyade.model import Prismatic
 from tests.benchmarks.yardstick import fourbar
 from tests.helpers import shipped
+
+ROOT = Path(__file__).resolve().parents[2]
+DYADE = str(Path(sys.executable).with_name("dyade"))
 
 
 def _angles(count: int) -> np.ndarray:
@@ -85,3 +91,17 @@ def test_coupling_100000_eta(benchmark):
     model = coupling.Coupling(1, 1, 1, 0.05, 0.05)
     eta = np.linspace(0.0, 3.0, 100_000)
     benchmark(coupling.response, model, eta)
+
+
+@pytest.mark.parametrize("command", [
+    [sys.executable, "-c", "import numpy"],
+    [DYADE, "analyse", "mechanisms/fourbar.toml", "--format", "csv"],
+    [DYADE, "--help"],
+], ids=["python -c import numpy", "dyade analyse fourbar csv", "dyade --help"])
+def test_command(benchmark, command):
+    """Whole commands in fresh processes (a regular install: an editable one adds an
+    import finder); tests/benchmarks/command_time.py prints the ratios."""
+    def run():
+        subprocess.run(command, stdout=subprocess.DEVNULL, check=True, cwd=ROOT)
+
+    benchmark.pedantic(run, rounds=15, iterations=1, warmup_rounds=1)
