@@ -21,6 +21,7 @@ PPR   guide A and guide B                    parallel guides: blocked
 
 from __future__ import annotations
 
+import importlib
 from dataclasses import dataclass, field
 from types import ModuleType
 
@@ -158,7 +159,12 @@ def solve_lines(n1: FloatArray, c1: FloatArray, n2: FloatArray, c2: FloatArray
     return point, sin
 
 
-from dyade.dyads import ppr, prp, rpr, rrp, rrr  # noqa: E402  (registry below needs them)
+KIND_MODULES = {1: "rrr", 2: "rrp", 3: "rpr", 4: "prp", 5: "ppr"}
+"""kind number -> module of dyade.dyads with ``close``; see the table in the module
+docstring."""
 
-DYAD_KINDS: dict[int, ModuleType] = {1: rrr, 2: rrp, 3: rpr, 4: prp, 5: ppr}
-"""kind number -> module with ``close``; see the table in the module docstring."""
+
+def kind_module(kind: int) -> ModuleType:
+    """The module of dyad kind ``kind``, imported when a mechanism first needs it (a
+    four-bar run need not load the four other kinds)."""
+    return importlib.import_module(f"dyade.dyads.{KIND_MODULES[kind]}")
