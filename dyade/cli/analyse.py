@@ -24,8 +24,9 @@ set_option = click.option(
          "like the file.")
 
 
-class SweepOptions(NamedTuple):  # (option bundles are NamedTuples: 0.4 ms less start-up each)
-    """--start/--stop/--step [°], None where not given."""
+class SweepOptions(NamedTuple):
+    """--start/--stop/--step [°], None where not given. (Option bundles are NamedTuples:
+    each is 0.4 ms cheaper to create at start-up than a frozen dataclass.)"""
 
     start: float | None = None
     stop: float | None = None
