@@ -29,7 +29,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade import kinetostatics
-from dyade.joints import Motion
 from dyade.kinematics import Group, Kinematics
 from dyade.model import CRANK, FloatArray, Joint, Mechanism, Revolute
 
@@ -183,8 +182,8 @@ def iterate(mechanism: Mechanism, kin: Kinematics, tol: float | None = None,
                           rub.residual, rub.converged, at_rest, never)
 
 
-def joint_forces_on(link: int, mechanism: Mechanism, result: FrictionResult,
-                    motion: Motion) -> dict[tuple[int, int], FloatArray]:
+def joint_forces_on(link: int, mechanism: Mechanism, result: FrictionResult
+                    ) -> dict[tuple[int, int], FloatArray]:
     """World force (n, 2) of every joint of ``link`` on that link (reactions + friction)."""
     return {joint.name: result.forces.on(joint.name, link)[:2].T.copy()
             for joint in mechanism.joints if link in joint.links}

@@ -62,10 +62,12 @@ class Motion:
         for link in unplaced:
             block[:, link] = np.nan
         block[9, 1] = 1.0  # cos 0
-        rows = [block[k:k + 2].transpose(1, 0, 2) if vector else block[k]
-                for k, vector in ((0, True), (2, False), (3, True), (5, False), (6, True),
-                                  (8, False), (9, False), (10, False))]
-        return cls(*(row.transpose(2, 0, 1) if row.ndim == 3 else row.T for row in rows))
+
+        def vectors(k):  # rows k, k+1: (2, links, n) seen as (n, links, 2)
+            return block[k:k + 2].transpose(2, 1, 0)
+
+        return cls(vectors(0), block[2].T, vectors(3), block[5].T, vectors(6), block[8].T,
+                   block[9].T, block[10].T)
 
     def set_angle(self, link: int, angle: FloatArray, cos: FloatArray | None = None,
                   sin: FloatArray | None = None) -> None:
@@ -99,13 +101,9 @@ class Motion:
         x, y = self.rotated_xy(link, local)
         return self.origin[:, link, 0] + x, self.origin[:, link, 1] + y
 
-    def rotated(self, link: int, local: Vec | FloatArray) -> FloatArray:
+    def rotated(self, link: int, local: Vec) -> FloatArray:
         """R(φ_link)·u over the sweep, shape (n, 2)."""
-        if np.ndim(local) == 1:
-            return np.stack(self.rotated_xy(link, tuple(local)), axis=-1)
-        c, s = self.cos[:, link], self.sin[:, link]
-        u = np.asarray(local, dtype=np.float64)
-        return np.stack((c * u[..., 0] - s * u[..., 1], s * u[..., 0] + c * u[..., 1]), axis=-1)
+        return np.stack(self.rotated_xy(link, local), axis=-1)
 
     def point(self, link: int, local: Vec | FloatArray) -> FloatArray:
         """World position of a link-fixed point [m], shape (n, 2)."""
@@ -152,13 +150,13 @@ Screw = tuple[FloatArray, FloatArray, float]
 arithmetic uses that (``dyade.kinematics``)."""
 
 
-def screw(joint: Joint, motion: Motion, on: int) -> Screw:
+def screw(joint: Joint, motion: Motion, on: int, at=None) -> Screw:
     """Unit twist of the motion ``joint`` allows link ``on`` relative to the other link
     (see the module docstring): a revolute joint's ω part is +1, a prismatic joint's
     translation is along +d, the carrier's guide direction, for the slider and along −d
-    for the carrier."""
+    for the carrier. ``at``: a revolute joint's world position (x, y) when already known."""
     if isinstance(joint, Revolute):
-        x, y = motion.point_xy(joint.links[0], joint.points[0])
+        x, y = motion.point_xy(joint.links[0], joint.points[0]) if at is None else at
         return y, -x, 1.0
     dx, dy = guide_direction(joint, motion)
     if on == joint.slider:

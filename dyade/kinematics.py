@@ -201,7 +201,7 @@ def _derivatives(dyad, closure, motion: Motion, twists: dict, changes: dict,
     frames' velocities and accelerations into ``motion``. ``twists`` and ``changes``
     map link -> (3, n); the frame (and a zero change, None) is not in them."""
     (i, j), (g, h) = dyad.links, dyad.known
-    screws = tuple(_screw(joint, on, closure.pins.get(k), motion)
+    screws = tuple(screw(joint, motion, on, closure.pins.get(k))
                    for k, (joint, on) in enumerate(zip(dyad.joints, (i, j, j))))
     inverse = inverse3(*screws, usable)
     v_g, v_h = twists.get(g), twists.get(h)
@@ -238,14 +238,6 @@ def _difference(a: FloatArray | None, b: FloatArray | None) -> tuple:
     if a is None:
         return -b[0], -b[1], -b[2]
     return a[0] - b[0], a[1] - b[1], a[2] - b[2]
-
-
-def _screw(joint: Joint, on: int, pin, motion: Motion) -> Screw:
-    """A joint's unit twist; a revolute joint's position may come with the closure."""
-    if pin is None:
-        return screw(joint, motion, on)
-    x, y = pin
-    return y, -x, 1.0
 
 
 def _advance(base: FloatArray | None, rate: FloatArray, unit: Screw,

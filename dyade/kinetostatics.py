@@ -192,18 +192,20 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
     """Physical joint forces (sign rule of SPEC §1) from the joint wrenches; the shaking
     load gets the frame-anchored springs and the drive's reaction."""
     motion = kin.motion
-    frame = frame.copy()
     for spring in mechanism.springs:
         for link, point, force in spring_forces(spring, motion):
             if link == FRAME:
                 add_force(frame, point, force)
     frame[2] -= drive  # the stator takes the reaction of the drive torque
-    forces = Forces(wrenches, {}, {}, {}, drive, frame.T, kin.valid)
+    band = np.sin(mechanism.dead_centre_angle)
+    valid = kin.valid.copy()
+    for column in kin.conditioning.T:  # (an axis-1 reduction is slow on a few columns)
+        valid &= column > band
+    forces = Forces(wrenches, {}, {}, {}, drive, frame.T, valid)
     for joint in mechanism.joints:
         higher = max(joint.links)
-        wrench = forces.on(joint.name, higher)
         if isinstance(joint, Revolute):
-            forces.revolute[joint.name] = wrench[:2].T
+            forces.revolute[joint.name] = forces.on(joint.name, higher)[:2].T
             continue
         slider = forces.on(joint.name, joint.slider)
         dx, dy = guide_direction(joint, motion)
@@ -216,9 +218,4 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
         sign = 1.0 if higher == joint.slider else -1.0
         forces.normal[joint.name] = sign * normal
         forces.moment[joint.name] = sign * moment
-    band = np.sin(mechanism.dead_centre_angle)
-    valid = kin.valid.copy()
-    for column in kin.conditioning.T:  # (an axis-1 reduction is slow on a few columns)
-        valid &= column > band
-    forces.valid = valid
     return forces

@@ -49,7 +49,7 @@ def test(mechanism: Mechanism, motion: Motion, result: FrictionResult,
     for joint in mechanism.friction_sliders:
         s = joint.slider
         d = motion.direction(joint.carrier, joint.guide_angle)
-        others = joint_forces_on(s, mechanism, result, motion)
+        others = joint_forces_on(s, mechanism, result)
         others.pop(joint.name)
         pushing = sum(others.values()) if others else np.zeros_like(d)
         f_eta = np.sum(pushing * d, axis=1)

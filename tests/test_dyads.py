@@ -17,16 +17,24 @@ WELL_CONDITIONED = np.sin(np.deg2rad(10.0))  # FD checks away from dead centres
 
 
 def _good_positions(mechanism):
+    """Crank angles away from dead centres, and the kinematics there."""
     kin = kinematics_at(mechanism, ANGLES)
     good = kin.valid & (kin.conditioning[:, 0] > WELL_CONDITIONED)
     assume(good.sum() >= 2)
-    return ANGLES[good], kin
+    return ANGLES[good], kinematics_at(mechanism, ANGLES[good])
+
+
+def _single_dyad(data):
+    """Mechanism, its one dyad, the kinematics at good positions and the crank tip A."""
+    mechanism = mechanism_from(data)
+    _, kin = _good_positions(mechanism)
+    (dyad,) = mechanism.dyads
+    return mechanism, dyad, kin, kin.motion.point(2, (mechanism.crank.length, 0.0))
 
 
 def _check_closure_and_derivatives(data):
     mechanism = mechanism_from(data)
-    angles, _ = _good_positions(mechanism)
-    kin = kinematics_at(mechanism, angles)
+    angles, kin = _good_positions(mechanism)
     scale = mechanism.crank.length
     omega = mechanism.crank.speed
     for joint in mechanism.joints:
@@ -59,11 +67,7 @@ def test_closes_and_differentiates(kind, draw):
 
 @given(data=dyad_files(kind="RRR"))
 def test_rrr_variant_picks_the_side_of_ac(data):
-    mechanism = mechanism_from(data)
-    angles, kin = _good_positions(mechanism)
-    kin = kinematics_at(mechanism, angles)
-    (dyad,) = mechanism.dyads
-    a = kin.motion.point(2, (mechanism.crank.length, 0.0))
+    _, dyad, kin, a = _single_dyad(data)
     c = np.array(dyad.joints[2].points[0])
     b = kin.motion.point(3, dyad.joints[1].points[0])
     side = np.sign((c - a)[:, 0] * (b - a)[:, 1] - (c - a)[:, 1] * (b - a)[:, 0])
@@ -72,26 +76,19 @@ def test_rrr_variant_picks_the_side_of_ac(data):
 
 @given(data=dyad_files(kind="RRP"))
 def test_rrp_variant_puts_b_ahead_or_behind_along_the_guide(data):
-    mechanism = mechanism_from(data)
-    angles, _ = _good_positions(mechanism)
-    kin = kinematics_at(mechanism, angles)
-    (dyad,) = mechanism.dyads
+    _, dyad, kin, a = _single_dyad(data)
     guide = dyad.joints[2]
     d = kin.motion.direction(guide.carrier, guide.guide_angle)
-    a = kin.motion.point(2, (mechanism.crank.length, 0.0))
     b = kin.motion.origin[:, 4]
     assert np.all(np.sign(joints.dot(b - a, d)) == dyad.variant)
 
 
 @given(data=dyad_files(kind="RPR"))
 def test_rpr_variant_orients_the_guide(data):
-    mechanism = mechanism_from(data)
-    angles, _ = _good_positions(mechanism)
-    kin = kinematics_at(mechanism, angles)
-    (dyad,) = mechanism.dyads
+    _, dyad, kin, a = _single_dyad(data)
     guide = dyad.joints[1]
     d = kin.motion.direction(guide.carrier, guide.guide_angle)
-    pivots = {3: kin.motion.point(2, (mechanism.crank.length, 0.0)),
+    pivots = {3: a,
               4: np.broadcast_to(dyad.joints[2].points[0], d.shape)}
     towards = pivots[guide.slider] - pivots[guide.carrier]
     assert np.all(np.sign(joints.dot(towards, d)) == dyad.variant)

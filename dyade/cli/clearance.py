@@ -196,10 +196,7 @@ def _standalone(mass, stiffness, gap, slope, speed_rpm, speeds, simulate, sim_st
                          ("F_max", "F12max [N]"), ("F_clearance", "6cs/τ [N]")]
             if simulate:
                 show_cols += [("F_sim", "simulated [N]")]
-            for _, head in show_cols:
-                table.add_column(head, justify="right")
-            for row in rows:
-                table.add_row(*[_cell_pretty(row[key]) for key, _ in show_cols])
+            _fill(table, show_cols, rows)
         return [table]
 
     _emit(rows, names, fmt, output, {"cases": len(rows)}, warnings, parts)
@@ -230,6 +227,14 @@ def _notes(row: dict, where: str = "") -> list[str]:
         out.append(f"note: {where}the masses stay in contact through the first contact period "
                    f"(the closed form's assumption holds).")
     return out
+
+
+def _fill(table, show: list[tuple[str, str]], rows: list[dict]) -> None:
+    """Right-aligned columns (key, heading) and one table row per result row."""
+    for _, head in show:
+        table.add_column(head, justify="right")
+    for row in rows:
+        table.add_row(*[_cell_pretty(row.get(key)) for key, _ in show])
 
 
 def _cell_pretty(value) -> str:
@@ -323,8 +328,5 @@ def _mechanism_table(name, rows, speeds, simulate):
              ("F_rigid", "rigid [N]"), ("amplification", "×")]
     if simulate:
         show += [("F_sim", "simulated [N]")]
-    for _, head in show:
-        table.add_column(head, justify="right")
-    for row in rows:
-        table.add_row(*[_cell_pretty(row.get(key)) for key, _ in show])
+    _fill(table, show, rows)
     return table

@@ -63,15 +63,6 @@ def polar_angle(v: FloatArray | Vec) -> FloatArray:
     return np.arctan2(v[..., 1], v[..., 0])
 
 
-def aligned(world: FloatArray, length: float, local: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """cos φ and sin φ of the link angle φ that turns the local vector ``local`` (of
-    length ``length`` > 0) onto the world vector ``world`` of the same length: no
-    trigonometric function needed."""
-    ex, ey = world[:, 0] / length, world[:, 1] / length
-    c, s = local[0] / length, local[1] / length
-    return ex * c + ey * s, ey * c - ex * s
-
-
 def pin_xy(joint: Revolute, unknown: int, motion: Motion) -> tuple[tuple, Vec]:
     """Components of a revolute joint's world position, from its known side (plain
     numbers when that is the frame), and its local point on the ``unknown`` link."""
@@ -136,11 +127,9 @@ def guide_line(joint: Prismatic, unknown: int, motion: Motion) -> tuple[FloatArr
     return normal, dot(normal, other - own)
 
 
-def place(motion: Motion, link: int, angle: FloatArray, world: FloatArray, local: Vec,
-          cos: FloatArray | None = None, sin: FloatArray | None = None) -> None:
-    """Set a link's angle (and its cosine and sine, computed unless given) and put its
-    origin so that ``local`` lands on ``world``."""
-    motion.set_angle(link, angle, cos, sin)
+def place(motion: Motion, link: int, angle: FloatArray, world: FloatArray, local: Vec) -> None:
+    """Set a link's angle and put its origin so that ``local`` lands on ``world``."""
+    motion.set_angle(link, angle)
     motion.origin[:, link] = world - motion.rotated(link, local)
 
 

@@ -33,7 +33,7 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     closes = along_sq >= -1e-12 * length ** 2
     along = np.sqrt(np.where(closes, np.maximum(along_sq, 0.0), np.nan))
     b = a + height[:, None] * normal + dyad.variant * along[:, None] * direction
-    dyads.place(motion, i, dyads.polar_angle(b - a) - dyads.polar_angle(arm_i), a, a_i,
-                *dyads.aligned(b - a, length, arm_i))
+    ab = b - a
+    dyads.orient(motion, i, ab[:, 0], ab[:, 1], arm_i, length, a[:, 0], a[:, 1], a_i)
     motion.origin[:, j] = b - motion.rotated(j, b_j)
-    return dyads.Closure(closes, dyads.angle_between(b - a, normal))
+    return dyads.Closure(closes, dyads.angle_between(ab, normal))
