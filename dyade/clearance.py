@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade.errors import InputError
-from dyade.model import FloatArray
+from dyade.linkage.model import FloatArray
 
 
 @dataclass(frozen=True, slots=True)
@@ -336,7 +336,7 @@ def check_mechanism(mechanism, result, joints, override=None, mass_override=None
 
     ``override``: ClearanceData applied to every joint (CLI), ``mass_override`` [kg],
     ``max_wander`` [rad]: how far the force may leave its line of action."""
-    from dyade.model import Revolute
+    from dyade.linkage.model import Revolute
 
     forces = result.forces
     if forces is None:

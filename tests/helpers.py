@@ -7,9 +7,9 @@ from typing import Any
 
 import numpy as np
 
-from dyade import kinematics
-from dyade.model import Mechanism
-from dyade.toml_input import Reader
+from dyade.linkage import kinematics
+from dyade.linkage.model import Mechanism
+from dyade.files.mechanism import Reader
 
 
 def mechanism_from(data: dict[str, Any]) -> Mechanism:

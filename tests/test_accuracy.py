@@ -6,7 +6,8 @@ import math
 
 from click.testing import CliRunner
 
-from dyade import accuracy, toml_input
+from dyade.linkage import accuracy
+from dyade.files import mechanism as toml_input
 from dyade.cli import main
 from tests.helpers import shipped
 

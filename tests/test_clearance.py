@@ -11,9 +11,11 @@ import pytest
 from click.testing import CliRunner
 from scipy.optimize import minimize_scalar
 
-from dyade import analysis, clearance, toml_input
+from dyade.linkage import sweep as analysis
+from dyade import clearance
+from dyade.files import mechanism as toml_input
 from dyade.cli import main
-from dyade.model import ClearanceData
+from dyade.linkage.model import ClearanceData
 from tests.helpers import read_csv, shipped
 
 getcontext().prec = 60

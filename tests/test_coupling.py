@@ -11,7 +11,7 @@ from click.testing import CliRunner
 from scipy.integrate import solve_ivp
 from scipy.optimize import minimize_scalar
 
-from dyade import coupling
+from dyade.vibration import coupling
 from dyade.cli import main
 
 DONE_WHEN = ["coupling", "--J", "1", "--c1", "1", "--c2", "1", "--b1", "0.05", "--b2", "0.05",

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from dyade import joints
+from dyade.linkage import motion as joints
 from tests.helpers import kinematics_at, mechanism_from
 from tests.strategies import KINDS, dyad_files
 

@@ -8,9 +8,10 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from dyade import analysis, friction, joints, kinematics, kinetostatics, self_locking, toml_input
+from dyade.linkage import sweep as analysis, friction, motion as joints, kinematics, kinetostatics, self_locking
+from dyade.files import mechanism as toml_input
 from dyade.cli import main
-from dyade.model import Prismatic
+from dyade.linkage.model import Prismatic
 from tests.conftest import SHIPPED
 from tests.helpers import shipped
 from tests.test_kinetostatics import applied_power, kinetic_energy_rate, with_masses

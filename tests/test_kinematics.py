@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from dyade import joints, kinematics, toml_input
+from dyade.linkage import motion as joints, kinematics
+from dyade.files import mechanism as toml_input
 from dyade.cli import main
 from tests.conftest import SHIPPED
 from tests.helpers import kinematics_at, read_csv, shipped

@@ -9,9 +9,10 @@ import pytest
 from click.testing import CliRunner
 from hypothesis import assume, given
 
-from dyade import analysis, kinematics, kinetostatics, toml_input
+from dyade.linkage import sweep as analysis, kinematics, kinetostatics
+from dyade.files import mechanism as toml_input
 from dyade.cli import main
-from dyade.model import FRAME, Link, Load, Revolute
+from dyade.linkage.model import FRAME, Link, Load, Revolute
 from tests.conftest import SHIPPED
 from tests.global_solve import global_forces
 from tests.helpers import kinematics_at, mechanism_from, read_csv, shipped

@@ -3,7 +3,8 @@ meaningless)."""
 
 import numpy as np
 
-from dyade import analysis, toml_input
+from dyade.linkage import sweep as analysis
+from dyade.files import mechanism as toml_input
 from tests.benchmarks.yardstick import fourbar
 from tests.helpers import shipped
 

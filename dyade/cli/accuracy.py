@@ -31,7 +31,7 @@ def accuracy(mechanism_file: Path, assignments, repeats: int, fmt: str, output) 
     With friction: iterations, time and change of the peaks per friction tolerance.
     With clearance data: the closed form against the direct simulation.
     """
-    from dyade import accuracy as studies
+    from dyade.linkage import accuracy as studies
 
     mechanism, _ = load(mechanism_file, assignments)
     rows = studies.studies(mechanism, repeats=repeats)

@@ -36,7 +36,7 @@ class SweepOptions(NamedTuple):
 def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = SweepOptions()):
     """Read a mechanism with --set overrides and --start/--stop/--step [°]; returns the
     mechanism and the effective TOML data (for --save-as)."""
-    from dyade import toml_input
+    from dyade.files import mechanism as toml_input
 
     overrides = dict(toml_input.parse_assignment(a) for a in assignments)
     data = toml_input.load_data(path, overrides)
@@ -71,7 +71,7 @@ def save_as(data: dict[str, Any], path: str) -> None:
 def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
     """Show MECHANISM_FILE in assembly order: crank, dyads, joints, link points, mobility,
     and which effects an analysis will simulate."""
-    from dyade import analysis
+    from dyade.linkage import sweep as analysis
     from dyade.report import tables
 
     mechanism, _ = load(mechanism_file, assignments)
@@ -209,7 +209,7 @@ class Job(NamedTuple):
     fail_on_lock: bool
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
-        from dyade import analysis
+        from dyade.linkage import sweep as analysis
         from dyade.errors import DyadeError
         from dyade.report import columns
 

@@ -251,9 +251,10 @@ def _over_mechanism(path, joints, mass, stiffness, gap, speeds, simulate, sim_st
 
     import numpy as np
 
-    from dyade import analysis, toml_input
+    from dyade.linkage import sweep as analysis
+    from dyade.files import mechanism as toml_input
     from dyade import clearance as engine
-    from dyade.model import ClearanceData, Revolute
+    from dyade.linkage.model import ClearanceData, Revolute
     from dyade.units import RPM
 
     mechanism = toml_input.read_mechanism(path)

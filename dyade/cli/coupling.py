@@ -85,7 +85,7 @@ def coupling(coupling_file: Path | None, inertia, c1, c2, b1, b2, eta_range, mom
     """
     import numpy as np
 
-    from dyade import coupling as engine
+    from dyade.vibration import coupling as engine
 
     data: dict[str, Any] = _read_file(coupling_file) if coupling_file else {}
     for key, value in (("J", inertia), ("c1", c1), ("c2", c2), ("b1", b1), ("b2", b2),

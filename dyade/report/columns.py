@@ -8,10 +8,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.analysis import Result
-from dyade.joints import travel
-from dyade.kinematics import joint_point
-from dyade.model import FloatArray, Prismatic, Revolute
+from dyade.linkage.sweep import Result
+from dyade.linkage.motion import travel
+from dyade.linkage.kinematics import joint_point
+from dyade.linkage.model import FloatArray, Prismatic, Revolute
 
 Columns = dict[str, FloatArray]
 

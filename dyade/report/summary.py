@@ -6,8 +6,8 @@ from typing import Any
 
 import numpy as np
 
-from dyade.analysis import Result
-from dyade.model import Revolute
+from dyade.linkage.sweep import Result
+from dyade.linkage.model import Revolute
 from dyade.report.columns import Columns
 from dyade.report.tables import cycle_mean
 

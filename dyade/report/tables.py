@@ -6,8 +6,8 @@ import numpy as np
 from rich.table import Table
 from rich.tree import Tree
 
-from dyade.analysis import Plan, Result
-from dyade.model import FRAME, KIND_NAMES, Mechanism, Prismatic, Revolute
+from dyade.linkage.sweep import Plan, Result
+from dyade.linkage.model import FRAME, KIND_NAMES, Mechanism, Prismatic, Revolute
 from dyade.report.columns import Columns, unit_of
 
 

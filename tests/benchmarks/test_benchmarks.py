@@ -14,8 +14,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from dyade import analysis, clearance, coupling, friction, kinematics, kinetostatics, toml_input
-from dyade.model import Prismatic
+from dyade.linkage import sweep as analysis, friction, kinematics, kinetostatics
+from dyade import clearance
+from dyade.vibration import coupling
+from dyade.files import mechanism as toml_input
+from dyade.linkage.model import Prismatic
 from tests.benchmarks.yardstick import fourbar
 from tests.helpers import shipped
 

@@ -12,8 +12,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from dyade import analysis
-from dyade.model import Mechanism, Revolute
+from dyade.linkage import sweep as analysis
+from dyade.linkage.model import Mechanism, Revolute
 
 STEPS_DEG = (5.0, 2.0, 1.0, 0.5, 0.1, 0.05)  # [°] crank steps, the last one is the reference
 FRICTION_TOLS = (1e-3, 1e-6, 1e-9, 1e-12)  # [-], the last one is the reference
@@ -97,7 +97,7 @@ def _kinematic_peaks(result: analysis.Result) -> dict[str, float]:
 
 def friction_tol(mechanism: Mechanism, tols=FRICTION_TOLS, repeats: int = 3) -> list[Row]:
     """Iterations, time and peaks against the friction tolerance."""
-    from dyade import friction, kinematics
+    from dyade.linkage import friction, kinematics
 
     kin = kinematics.sweep(mechanism)
     runs = []

@@ -3,9 +3,9 @@ linear, one closure; blocked when guides A and B are parallel."""
 
 from __future__ import annotations
 
-from dyade import dyads
-from dyade.joints import Motion, perp
-from dyade.model import Dyad
+from dyade.linkage import dyads
+from dyade.linkage.motion import Motion, perp
+from dyade.linkage.model import Dyad
 
 NAME = "PPR"
 JOINTS = "PPR"

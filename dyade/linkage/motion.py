@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.model import FloatArray, Joint, Prismatic, Revolute, Vec
+from dyade.linkage.model import FloatArray, Joint, Prismatic, Revolute, Vec
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade import dyads
-from dyade.joints import Motion
-from dyade.model import Dyad
+from dyade.linkage import dyads
+from dyade.linkage.motion import Motion
+from dyade.linkage.model import Dyad
 
 NAME = "RRR"
 JOINTS = "RRR"

@@ -24,9 +24,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.friction import FrictionResult, joint_forces_on
-from dyade.joints import Motion, travel
-from dyade.model import FloatArray, Mechanism
+from dyade.linkage.friction import FrictionResult, joint_forces_on
+from dyade.linkage.motion import Motion, travel
+from dyade.linkage.model import FloatArray, Mechanism
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==

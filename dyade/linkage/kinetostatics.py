@@ -28,9 +28,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.joints import Motion, Screw, guide_direction
-from dyade.kinematics import Kinematics, crank_screw
-from dyade.model import CRANK, FRAME, FloatArray, Mechanism, Revolute
+from dyade.linkage.motion import Motion, Screw, guide_direction
+from dyade.linkage.kinematics import Kinematics, crank_screw
+from dyade.linkage.model import CRANK, FRAME, FloatArray, Mechanism, Revolute
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==

@@ -7,9 +7,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade import dyads
-from dyade.joints import Motion, dot, perp
-from dyade.model import Dyad
+from dyade.linkage import dyads
+from dyade.linkage.motion import Motion, dot, perp
+from dyade.linkage.model import Dyad
 
 NAME = "RRP"
 JOINTS = "RRP"

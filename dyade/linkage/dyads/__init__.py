@@ -27,8 +27,8 @@ from types import ModuleType
 
 import numpy as np
 
-from dyade.joints import Motion, cross, dot, perp
-from dyade.model import FRAME, FloatArray, Prismatic, Revolute, Vec
+from dyade.linkage.motion import Motion, cross, dot, perp
+from dyade.linkage.model import FRAME, FloatArray, Prismatic, Revolute, Vec
 
 SINGULAR_SIN = 1e-10  # [-] |sin μ| below this: the closure Jacobian is singular
 
@@ -156,4 +156,4 @@ docstring."""
 def kind_module(kind: int) -> ModuleType:
     """The module of dyad kind ``kind``, imported when a mechanism first needs it (a
     four-bar run need not load the four other kinds)."""
-    return importlib.import_module(f"dyade.dyads.{KIND_MODULES[kind]}")
+    return importlib.import_module(f"dyade.linkage.dyads.{KIND_MODULES[kind]}")

@@ -3,9 +3,9 @@ closure; blocked when the guides are parallel."""
 
 from __future__ import annotations
 
-from dyade import dyads
-from dyade.joints import Motion, dot, perp
-from dyade.model import Dyad
+from dyade.linkage import dyads
+from dyade.linkage.motion import Motion, dot, perp
+from dyade.linkage.model import Dyad
 
 NAME = "PRP"
 JOINTS = "PRP"

@@ -25,10 +25,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade import dyads as dyad_kinds
-from dyade.joints import Motion, Screw, screw
-from dyade.memory import keep_freed_memory
-from dyade.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
+from dyade.linkage import dyads as dyad_kinds
+from dyade.linkage.motion import Motion, Screw, screw
+from dyade.linkage.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
@@ -159,7 +158,6 @@ def solve_rows(inverse: FloatArray, rhs, rows=(0, 1, 2)) -> list[FloatArray]:
 
 def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinematics:
     """Positions, velocities and accelerations of every link over the crank sweep."""
-    keep_freed_memory()
     if crank_angle is None:
         crank_angle = mechanism.sweep.angles()
     crank_angle = np.asarray(crank_angle, dtype=np.float64)

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from dyade.errors import InputError  # noqa: F401  (re-exported for callers)
-from dyade.model import (
+from dyade.linkage.model import (
     CRANK,
     FRAME,
     KIND_NAMES,

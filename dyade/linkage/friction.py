@@ -28,9 +28,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade import kinetostatics
-from dyade.kinematics import Group, Kinematics
-from dyade.model import CRANK, FloatArray, Joint, Mechanism, Revolute
+from dyade.linkage import kinetostatics
+from dyade.linkage.kinematics import Group, Kinematics
+from dyade.linkage.model import CRANK, FloatArray, Joint, Mechanism, Revolute
 
 AT_REST_RTOL = 1e-9  # [-] relative velocity below this share of the typical one counts as zero
 FORCE_FLOOR = 1e-12  # [-] share of the largest force below which changes are not relative

@@ -14,12 +14,12 @@ import numpy as np
 
 from typing import TYPE_CHECKING
 
-from dyade import kinematics, kinetostatics
+from dyade.linkage import kinematics, kinetostatics
 from dyade.errors import AssemblyError
 
 if TYPE_CHECKING:  # imported where used: a kinematics-only run never loads them
-    from dyade import friction
-from dyade.model import FloatArray, Mechanism
+    from dyade.linkage import friction
+from dyade.linkage.model import FloatArray, Mechanism
 
 
 @dataclass(frozen=True, slots=True)
@@ -134,7 +134,7 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
     _dead_centres(mechanism, kin, rows, notes)
     forces = rubbing = locking = None
     if the_plan.friction:
-        from dyade import friction, self_locking
+        from dyade.linkage import friction, self_locking
 
         rubbing = friction.iterate(mechanism, kin)
         forces = rubbing.forces

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade import dyads
-from dyade.joints import Motion, rotate
-from dyade.model import Dyad
+from dyade.linkage import dyads
+from dyade.linkage.motion import Motion, rotate
+from dyade.linkage.model import Dyad
 
 NAME = "RPR"
 JOINTS = "RPR"

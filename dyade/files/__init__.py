@@ -1,0 +1,1 @@
+"""Reading input files: a shared schema of typed, unit-checked keys and one reader per file kind."""

@@ -1,0 +1,1 @@
+"""Vibration of drive elements: the stiff coupling (Strümpfel), gear drives next."""
