@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade.errors import InputError
-from dyade.linkage.model import FloatArray
+from dyade.arrays import FloatArray
 
 
 @dataclass(frozen=True, slots=True)

@@ -1,10 +1,24 @@
-"""Exceptions that dyade explains to its users.
+"""Exceptions that dyade explains to its users, with structured fields.
 
-``DyadeError`` is an analysis problem (exit 1), ``InputError`` a bad file or option
-(exit 2). Anything else that escapes is a bug and keeps its traceback.
+``DyadeError`` is an analysis problem (the command line exits 1), ``InputError`` a bad
+file, key or parameter (exits 2), ``AssemblyError`` a dyad that cannot close. Anything
+else that escapes is a bug and keeps its traceback.
+
+The API names what was wrong in its own terms: a file and a key path for file data,
+a parameter name for a function argument. The command line knows where a value came
+from and names the flag instead (``InputError.naming``), so the engine never has to.
+
+>>> err = InputError.parameter("inertia", "must be positive [kg·m²], got -1.", value=-1.0,
+...                            unit="kg·m²")
+>>> str(err)
+'inertia must be positive [kg·m²], got -1.'
+>>> str(err.naming({"inertia": "--J"}))
+'--J must be positive [kg·m²], got -1.'
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 
 class DyadeError(Exception):
@@ -12,8 +26,60 @@ class DyadeError(Exception):
 
 
 class InputError(DyadeError, ValueError):
-    """Bad input: a file, key or option that must be fixed by the user."""
+    """Bad input: a file, key or parameter that the user must fix.
+
+    Attributes
+    ----------
+    source : str or None
+        The file the value came from (its name as the user gave it), if any.
+    key : str or None
+        Dotted key path in that file (``links.4.mass``), or the API parameter name.
+    value : object
+        The offending value, when there is one.
+    unit : str or None
+        The unit the value is expected in.
+    reason : str or None
+        What is wrong, as a sentence that follows the name of the input
+        (``must be positive [kg], got -1.``); None when the message stands alone.
+    """
+
+    def __init__(self, message: str, *, source: str | None = None, key: str | None = None,
+                 value: Any = None, unit: str | None = None, reason: str | None = None) -> None:
+        super().__init__(message)
+        self.source, self.key, self.value, self.unit, self.reason = source, key, value, unit, reason
+
+    @classmethod
+    def in_file(cls, label: str, key: str, reason: str, *, source: str | None = None,
+                value: Any = None, unit: str | None = None) -> InputError:
+        """A key of a file: ``label: `key` reason``."""
+        return cls(f"{label}: `{key}` {reason}", source=source or label, key=key, value=value,
+                   unit=unit, reason=reason)
+
+    @classmethod
+    def parameter(cls, name: str, reason: str, *, value: Any = None,
+                  unit: str | None = None) -> InputError:
+        """An argument of an API function: ``name reason``."""
+        return cls(f"{name} {reason}", key=name, value=value, unit=unit, reason=reason)
+
+    def naming(self, names: dict[str, str]) -> InputError:
+        """The same error with a parameter named as the user gave it: ``names`` maps the
+        parameter to a flag (``--J``) or to a file key (``coupling.toml: `J```). Errors
+        from files, and parameters not in ``names``, are returned unchanged."""
+        if self.source is not None or self.reason is None or self.key not in names:
+            return self
+        return type(self)(f"{names[self.key]} {self.reason}", key=self.key, value=self.value,
+                          unit=self.unit, reason=self.reason)
 
 
 class AssemblyError(DyadeError):
-    """A dyad cannot close (or is blocked) over part of the crank sweep."""
+    """A dyad cannot close (or is blocked) over part of the crank sweep.
+
+    ``problems`` lists one sentence per dyad, naming it and the crank-angle ranges;
+    ``partial`` is True when the mechanism closes at some positions of the sweep (so
+    that analysing only those is possible).
+    """
+
+    def __init__(self, message: str, problems: tuple[str, ...] = (), partial: bool = False
+                 ) -> None:
+        super().__init__(message)
+        self.problems, self.partial = problems, partial

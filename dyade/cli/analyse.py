@@ -37,8 +37,9 @@ def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = Swe
     """Read a mechanism with --set overrides and --start/--stop/--step [°]; returns the
     mechanism and the effective TOML data (for --save-as)."""
     from dyade.files import mechanism as toml_input
+    from dyade.files import schema
 
-    overrides = dict(toml_input.parse_assignment(a) for a in assignments)
+    overrides = dict(schema.parse_assignment(a) for a in assignments)
     data = toml_input.load_data(path, overrides)
     mechanism = toml_input.build(data, path)
     if sweep.start is None and sweep.stop is None and sweep.step is None:

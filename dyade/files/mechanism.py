@@ -2,23 +2,26 @@
 
 Every error names the file, the key path, what was expected (with its unit) and what
 was found; unknown keys get a "Did you mean" (``mechanisms/README.md`` documents every
-key). Link frames of the dyad links follow the table in ``dyade.model``.
+key). Each dyad kind reads its own keys and builds its middle joint
+(``dyade.linkage.dyads``); the primitives are the shared schema (``dyade.files.schema``).
 """
 
 from __future__ import annotations
 
 import math
 import os
-import tomllib
 from typing import Any
 
 import numpy as np
 
-from dyade.errors import InputError  # noqa: F401  (re-exported for callers)
+from dyade.errors import InputError
+from dyade.files.schema import TableReader, read_toml, set_dotted, suggest
+from dyade.files.schema import fmt as _fmt
+from dyade.files.schema import show as _show
+from dyade.linkage import dyads as dyad_kinds
 from dyade.linkage.model import (
     CRANK,
     FRAME,
-    KIND_NAMES,
     ClearanceData,
     Crank,
     Dyad,
@@ -33,8 +36,6 @@ from dyade.linkage.model import (
     Vec,
 )
 from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS, rpm_to_rad_per_s
-
-KIND_BY_NAME = {name: number for number, name in KIND_NAMES.items()}
 
 TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
             "gravity", "load", "spring", "friction"}
@@ -58,7 +59,26 @@ STANDARD_GRAVITY = 9.80665  # [m/s²]
 
 def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = None
                    ) -> Mechanism:
-    """Read and validate a mechanism file; ``overrides`` replace keys (dotted paths)."""
+    """Read and validate a mechanism file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The TOML file (``mechanisms/README.md`` documents every key).
+    overrides : dict, optional
+        Dotted key path -> value, replacing keys of the file as ``--set`` does
+        (``{"crank.speed_rpm": 600}``; array entries by 1-based index).
+
+    Returns
+    -------
+    Mechanism
+        In SI units, validated.
+
+    Raises
+    ------
+    InputError
+        Naming the file and the key path, what was expected and what was found.
+    """
     return build(load_data(path, overrides), path)
 
 
@@ -66,121 +86,37 @@ def load_data(path: str | os.PathLike, overrides: dict[str, Any] | None = None
               ) -> dict[str, Any]:
     """The file's TOML data with ``overrides`` (dotted key -> value) applied."""
     path = os.fspath(path)
-    try:
-        with open(path, encoding="utf-8") as handle:
-            text = handle.read()
-    except OSError as err:
-        raise InputError(f"{path}: cannot read the file ({err.strerror}).") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise InputError(f"{path}: not valid TOML: {err}.") from None
+    data = read_toml(path)
     for key, value in (overrides or {}).items():
-        _set_dotted(data, key, value, os.path.basename(path))
+        set_dotted(data, key, value, os.path.basename(path))
     return data
 
 
-def build(data: dict[str, Any], path: str | os.PathLike | None) -> Mechanism:
-    """Validate TOML data and build the mechanism (errors name ``path``)."""
+def build(data: dict[str, Any], path: str | os.PathLike | None = None) -> Mechanism:
+    """Validate mechanism data (the parsed TOML of a mechanism file, or the same
+    structure written in Python) and build the mechanism; errors name ``path``."""
     path = os.fspath(path) if path else None
     return Reader(os.path.basename(path) if path else "mechanism", path).mechanism(data)
 
 
-def parse_assignment(text: str) -> tuple[str, Any]:
-    """``KEY=VALUE`` of ``--set``: VALUE is read as a TOML value (number, string, array,
-    inline table, true/false); anything that is not TOML is taken as a string."""
-    if "=" not in text:
-        raise InputError(f"--set {text}: expected KEY=VALUE with a dotted key as in the file, "
-                         f"e.g. --set crank.speed_rpm=600.")
-    key, raw = (part.strip() for part in text.split("=", 1))
-    if not key or any(not part for part in key.split(".")):
-        raise InputError(f"--set {text}: the key `{key}` is not a dotted key path.")
-    try:
-        value = tomllib.loads(f"v = {raw}")["v"]
-    except tomllib.TOMLDecodeError:
-        value = raw
-    return key, value
+def dumps(data: dict[str, Any]) -> str:
+    """Mechanism data as TOML text (``--save-as``)."""
+    import tomli_w
+
+    return tomli_w.dumps(data)
 
 
-def _set_dotted(data: dict[str, Any], dotted: str, value: Any, label: str = "") -> None:
-    parts = dotted.split(".")
-    target: Any = data
-    for depth, part in enumerate(parts[:-1]):
-        where = ".".join(parts[:depth + 1])
-        if isinstance(target, list):
-            if not part.isdigit() or not 1 <= int(part) <= len(target):
-                raise InputError(f"{label}: --set {dotted}: `{where}` needs an index 1…"
-                                 f"{len(target)} (the file has {len(target)}).")
-            target = target[int(part) - 1]
-        elif isinstance(target, dict):
-            target = target.setdefault(part, {})
-        else:
-            raise InputError(f"{label}: --set {dotted}: `{'.'.join(parts[:depth])}` is a value, "
-                             f"not a table.")
-    if isinstance(target, list):
-        last = parts[-1]
-        if not last.isdigit() or not 1 <= int(last) <= len(target):
-            raise InputError(f"{label}: --set {dotted}: index {last} is outside 1…{len(target)}.")
-        target[int(last) - 1] = value
-    elif isinstance(target, dict):
-        target[parts[-1]] = value
-    else:
-        raise InputError(f"{label}: --set {dotted}: `{'.'.join(parts[:-1])}` is a value, not a table.")
+class Reader(TableReader):
+    """Walks the parsed TOML of a mechanism file with key paths for the error messages."""
 
-
-def _suggest(key: str, allowed: set[str]) -> str:
-    import difflib  # only for a misspelt key
-
-    close = difflib.get_close_matches(key, sorted(allowed), n=1, cutoff=0.6)
-    return f" Did you mean `{close[0]}`?" if close else f" Allowed: {', '.join(sorted(allowed))}."
-
-
-class Reader:
-    """Walks the parsed TOML with key paths for the error messages."""
+    top_keys = TOP_KEYS
 
     def __init__(self, label: str, source: str | None = None) -> None:
-        self.label = label
-        self.source = source
+        super().__init__(label, source)
         self.length = 1.0
         self.angle = math.pi / 180.0
         self.length_unit = "m"
         self.angle_unit = "deg"
-
-    # -- primitives --------------------------------------------------------------------
-    def fail(self, key: str, message: str) -> InputError:
-        return InputError(f"{self.label}: `{key}` {message}")
-
-    def keys(self, table: Any, key: str, allowed: set[str]) -> dict[str, Any]:
-        if not isinstance(table, dict):
-            raise self.fail(key, f"must be a table, got {_show(table)}.")
-        for name in table:
-            if name not in allowed:
-                where = f"{key}.{name}" if key else name
-                if key and name in TOP_KEYS:
-                    hint = (f" `{name}` is a top-level key: move it above the first [table] "
-                            f"header (in TOML, keys after a [header] belong to that table).")
-                else:
-                    hint = _suggest(name, allowed)
-                raise InputError(f"{self.label}: unknown key `{where}`.{hint}")
-        return table
-
-    def required(self, table: dict[str, Any], key: str, path: str) -> Any:
-        if key not in table:
-            raise self.fail(f"{path}.{key}" if path else key, "is missing.")
-        return table[key]
-
-    def number(self, value: Any, key: str, unit: str, positive: bool = False,
-               non_negative: bool = False) -> float:
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise self.fail(key, f"must be a number [{unit}], got {_show(value)}.")
-        value = float(value)
-        if not math.isfinite(value):
-            raise self.fail(key, f"must be a finite number [{unit}], got {value}.")
-        if positive and value <= 0.0:
-            raise self.fail(key, f"must be positive [{unit}], got {_fmt(value)}.")
-        if non_negative and value < 0.0:
-            raise self.fail(key, f"must not be negative [{unit}], got {_fmt(value)}.")
-        return value
 
     def length_of(self, value: Any, key: str, positive: bool = False,
                   non_negative: bool = False) -> float:
@@ -193,13 +129,8 @@ class Reader:
         if (not isinstance(value, list) or len(value) != 2
                 or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)):
             raise self.fail(key, f"must be a pair of numbers [ξ, η] [{self.length_unit}], "
-                                 f"got {_show(value)}.")
+                                 f"got {_show(value)}.", value, self.length_unit)
         return (float(value[0]) * self.length, float(value[1]) * self.length)
-
-    def integer(self, value: Any, key: str) -> int:
-        if isinstance(value, bool) or not isinstance(value, int):
-            raise self.fail(key, f"must be a whole number, got {_show(value)}.")
-        return value
 
     # -- whole file ----------------------------------------------------------------
     def mechanism(self, data: dict[str, Any]) -> Mechanism:
@@ -347,7 +278,7 @@ class Reader:
             if value not in names:
                 where = {FRAME: "[frame.points]", CRANK: "[crank.points] (or \"tip\")"}.get(
                     link, f"[links.{link}.points]")
-                hint = _suggest(value, set(names)) if names else ""
+                hint = suggest(value, set(names)) if names else ""
                 raise self.fail(key, f"names point \"{value}\", which link {link} does not have;"
                                      f" define it in {where} or give [ξ, η].{hint}")
             return names[value]
@@ -412,11 +343,12 @@ class Reader:
         extra = self.prismatic_friction(table, key)
         if guide == link:
             centre = self.pair(table.get("slider_point", [0.0, 0.0]), f"{key}.slider_point")
-            return link, make_prismatic(link, point, theta, offset, new, centre, theta, extra)
+            return link, Prismatic.through(link, point, theta, offset, new, centre, theta, **extra)
         if "slider_point" in table:
             raise self.fail(f"{key}.slider_point", "applies when the dyad's link is the slider; "
                                                    "with the guide on it, `point` is the slider point.")
-        return link, make_prismatic(new, (0.0, 0.0), 0.0, offset, link, point, -theta, extra)
+        return link, Prismatic.through(new, (0.0, 0.0), 0.0, offset, link, point, -theta,
+                                       **extra)
 
     def guide(self, table: dict[str, Any], key: str, pair: tuple[int, int], default: int) -> int:
         guide = self.integer(table.get("guide", default), f"{key}.guide")
@@ -430,8 +362,7 @@ class Reader:
         if not isinstance(table, dict):
             raise self.fail(key, f"must be a table, got {_show(table)}.")
         kind = self.kind(self.required(table, "kind", key), f"{key}.kind")
-        extra_keys = {1: {"lengths"}, 2: {"length"}, 3: set(), 4: set(), 5: set()}[kind]
-        self.keys(table, key, DYAD_KEYS_COMMON | extra_keys)
+        self.keys(table, key, DYAD_KEYS_COMMON | kind.keys)
         links = self.required(table, "links", key)
         if (not isinstance(links, list) or len(links) != 2
                 or any(isinstance(v, bool) or not isinstance(v, int) for v in links)):
@@ -445,18 +376,17 @@ class Reader:
         if i == j or i < 3 or j < 3:
             raise self.fail(f"{key}.links", f"must be two different new link numbers above 2, "
                                             f"got {_show(links)}.")
-        has_variant = kind in (1, 2, 3)
-        if has_variant:
+        if kind.has_variant:
             variant = self.integer(table.get("variant", 1), f"{key}.variant")
             if variant not in (1, -1):
                 raise self.fail(f"{key}.variant", f"must be +1 or -1 (assembly variant), "
                                                   f"got {variant}.")
         else:
             if "variant" in table:
-                raise self.fail(f"{key}.variant", f"is not used by kind {kind} "
-                                                  f"({KIND_NAMES[kind]}): it has one closure only.")
+                raise self.fail(f"{key}.variant", f"is not used by kind {kind.number} "
+                                                  f"({kind.name}): it has one closure only.")
             variant = 0
-        pattern = KIND_NAMES[kind]
+        pattern = kind.name
         for letter, joint_kind in zip("ABC", pattern):
             if letter == "B":
                 continue
@@ -473,53 +403,29 @@ class Reader:
         else:
             h, joint_c = self.outer_prismatic(table["C"], f"{key}.C", j)
         b_table = table.get("B", {})
-        joint_b = self.middle(kind, b_table, f"{key}.B", i, j, table, key)
+        joint_b = kind.middle(self, b_table, f"{key}.B", i, j, table, key)
         self.placed.extend((i, j))
         return Dyad(number, kind, (i, j), (g, h), (joint_a, joint_b, joint_c), variant)
 
-    def kind(self, value: Any, key: str) -> int:
-        if isinstance(value, str) and value.upper() in KIND_BY_NAME:
-            return KIND_BY_NAME[value.upper()]
-        if isinstance(value, int) and not isinstance(value, bool) and value in KIND_NAMES:
-            return value
-        raise self.fail(key, f"must be 1-5 or one of RRR, RRP, RPR, PRP, PPR, got {_show(value)}.")
+    def kind(self, value: Any, key: str) -> dyad_kinds.DyadKind:
+        kind = dyad_kinds.named(value)
+        if kind is None:
+            names = ", ".join(name.upper() for name in dyad_kinds.REGISTRY)
+            raise self.fail(key, f"must be 1-{len(dyad_kinds.REGISTRY)} or one of {names}, "
+                                 f"got {_show(value)}.", value)
+        return kind
 
-    def middle(self, kind: int, table: Any, key: str, i: int, j: int,
-               dyad_table: dict[str, Any], dyad_key: str) -> Joint:
-        if kind in (1, 2, 4):
-            self.keys(table, key, MIDDLE_R_KEYS)
-            friction = self.revolute_friction(table, key)
-            if kind == 1:
-                lengths = self.required(dyad_table, "lengths", dyad_key)
-                if not isinstance(lengths, list) or len(lengths) != 2:
-                    raise self.fail(f"{dyad_key}.lengths", f"must be [|AB|, |CB|] "
-                                                           f"[{self.length_unit}], "
-                                                           f"got {_show(lengths)}.")
-                l_i = self.length_of(lengths[0], f"{dyad_key}.lengths.1", positive=True)
-                l_j = self.length_of(lengths[1], f"{dyad_key}.lengths.2", positive=True)
-                return Revolute((i, j), ((l_i, 0.0), (l_j, 0.0)), **friction)
-            if kind == 2:
-                l_i = self.length_of(self.required(dyad_table, "length", dyad_key),
-                                     f"{dyad_key}.length", positive=True)
-                return Revolute((i, j), ((l_i, 0.0), (0.0, 0.0)), **friction)
-            return Revolute((i, j), ((0.0, 0.0), (0.0, 0.0)), **friction)
-        self.keys(table, key, MIDDLE_P_KEYS if kind == 5 else MIDDLE_P_KEYS - {"angle", "point"})
-        offset = self.length_of(table.get("offset", 0.0), f"{key}.offset")
-        extra = self.prismatic_friction(table, key)
-        if kind == 3:
-            guide = self.guide(table, key, (i, j), j)
-            slider = i if guide == j else j
-            return make_prismatic(guide, (0.0, 0.0), 0.0, offset, slider, (0.0, 0.0), 0.0, extra)
-        theta = self.angle_of(table.get("angle", 90.0 * math.pi / 180.0 / self.angle), f"{key}.angle")
-        point = self.point_on(i, table.get("point", [0.0, 0.0]), f"{key}.point")
-        if abs(math.sin(theta)) < 1e-9:
-            raise self.fail(f"{key}.angle", "makes guide B parallel to guide A: a PPR dyad is "
-                                            "then blocked in every position. Use an angle that "
-                                            "is not 0° or 180°.")
-        guide = self.guide(table, key, (i, j), i)
-        if guide == i:
-            return make_prismatic(i, point, theta, offset, j, (0.0, 0.0), theta, extra)
-        return make_prismatic(j, (0.0, 0.0), 0.0, offset, i, point, -theta, extra)
+    def middle_revolute(self, table: Any, key: str) -> dict[str, Any]:
+        """The keys of a revolute joint B: its friction and clearance data."""
+        self.keys(table, key, MIDDLE_R_KEYS)
+        return self.revolute_friction(table, key)
+
+    def middle_prismatic(self, table: Any, key: str, point: bool) -> tuple[float, dict[str, Any]]:
+        """The common keys of a prismatic joint B: its offset [m] and friction data;
+        ``point``: the kind also takes the guide's `point` and `angle`."""
+        self.keys(table, key, MIDDLE_P_KEYS if point else MIDDLE_P_KEYS - {"angle", "point"})
+        return self.length_of(table.get("offset", 0.0), f"{key}.offset"), \
+            self.prismatic_friction(table, key)
 
     # -- loads (used by the force analysis) -----------------------------------------
     def gravity(self, value: Any) -> Vec:
@@ -620,28 +526,7 @@ class Reader:
                 seen[name] = f"joint {letter} of dyad {dyad.number}"
 
 
-def make_prismatic(carrier: int, point: Vec, theta: float, offset: float, slider: int,
-                   slider_point: Vec, relative_angle: float, extra: dict[str, Any]) -> Prismatic:
-    """A prismatic joint whose guide passes ``point`` of the carrier in direction
-    ``theta``, shifted so that the slider point lies ``offset`` to its left."""
-    shifted = (point[0] - offset * math.sin(theta), point[1] + offset * math.cos(theta))
-    return Prismatic(carrier, slider, shifted, theta, slider_point, relative_angle, **extra)
-
-
 def _list(value: Any, key: str, reader: Reader) -> list[Any]:
     if not isinstance(value, list):
         raise reader.fail(key, f"must be an array of tables [[{key}]], got {_show(value)}.")
     return value
-
-
-def _show(value: Any) -> str:
-    if isinstance(value, str):
-        return f"\"{value}\""
-    if isinstance(value, dict):
-        return "a table"
-    return repr(value)
-
-
-def _fmt(value: float) -> str:
-    return f"{value:g}"
-

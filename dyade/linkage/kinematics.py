@@ -175,7 +175,7 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinema
     groups = []
     upstream_ok = np.ones(n, dtype=bool)
     for col, dyad in enumerate(mechanism.dyads):
-        closure = dyad_kinds.kind_module(dyad.kind).close(dyad, motion)
+        closure = dyad.kind.close(dyad, motion)
         ok = closure.closes & upstream_ok
         closes[:, col] = closure.closes
         transmission[:, col] = closure.transmission

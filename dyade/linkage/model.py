@@ -20,28 +20,33 @@ PPR   origin on guide A, ξ along the guide at A   origin C, ξ along the guide 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Union
 
 import numpy as np
 
-if TYPE_CHECKING:  # numpy.typing costs start-up time and is only for the type checker
-    import numpy.typing as npt
+from dyade.arrays import FloatArray, Vec
 
-    FloatArray = npt.NDArray[np.float64]
-else:
-    FloatArray = np.ndarray
-Vec = tuple[float, float]
+if TYPE_CHECKING:
+    from dyade.linkage.dyads import DyadKind
 
 FRAME = 1  # link number of the frame
 CRANK = 2  # link number of the crank
 
-KIND_NAMES = {1: "RRR", 2: "RRP", 3: "RPR", 4: "PRP", 5: "PPR"}
 
 
 def joint_name(a: int, b: int) -> tuple[int, int]:
     """A joint's name: the two links it joins, lower number first."""
     return (a, b) if a < b else (b, a)
+
+
+def toward_higher(name: tuple[int, int], link: int) -> float:
+    """The sign rule of the DYADE paper (Thümmel & Bartke 1987, section 2): a joint's
+    force, moment or friction load is reported as it acts on the element of the
+    higher-numbered link. +1 when ``link`` is that link of joint ``name``, −1 when it
+    is the other one: multiply a load on ``link`` by it to report it."""
+    return 1.0 if link == max(name) else -1.0
 
 
 @dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
@@ -102,6 +107,15 @@ class Prismatic:
     """Slider height H [m] for friction (None: not given)."""
     friction: float = 0.0
     """Coulomb friction coefficient μ [-]."""
+
+    @classmethod
+    def through(cls, carrier: int, point: Vec, theta: float, offset: float, slider: int,
+                slider_point: Vec, relative_angle: float, **extra) -> Prismatic:
+        """A prismatic joint whose guide passes ``point`` of the carrier in direction
+        ``theta`` [rad], shifted so that the slider point lies ``offset`` [m] to its left;
+        ``extra``: friction data (``friction``, ``slider_length``, ``slider_height``)."""
+        shifted = (point[0] - offset * math.sin(theta), point[1] + offset * math.cos(theta))
+        return cls(carrier, slider, shifted, theta, slider_point, relative_angle, **extra)
 
     @property
     def links(self) -> tuple[int, int]:
@@ -176,8 +190,8 @@ class Dyad:
 
     number: int
     """k in the paper: the crank is dyad 1, the first file dyad is 2."""
-    kind: int
-    """1 RRR, 2 RRP, 3 RPR, 4 PRP, 5 PPR."""
+    kind: DyadKind
+    """The dyad kind (``dyade.linkage.dyads``): number 1-5, name RRR … PPR, closure."""
     links: tuple[int, int]
     known: tuple[int, int]
     """(g, h): the already-placed links that A and C attach to."""
@@ -187,13 +201,9 @@ class Dyad:
     """Assembly variant ±1 for kinds 1–3, 0 for kinds 4 and 5 (one closure)."""
 
     @property
-    def kind_name(self) -> str:
-        return KIND_NAMES[self.kind]
-
-    @property
     def label(self) -> str:
         i, j = self.links
-        return f"dyad {self.number} (kind {self.kind} {self.kind_name}, links {i}-{j})"
+        return f"dyad {self.number} (kind {self.kind.number} {self.kind.name}, links {i}-{j})"
 
 
 @dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality

@@ -174,7 +174,7 @@ def _check_assembly(mechanism: Mechanism, kin: kinematics.Kinematics, allow_part
     for col, dyad in enumerate(mechanism.dyads):
         fails = upstream & ~kin.closes[:, col]
         if fails.any():
-            what = "is blocked" if dyad.kind in (4, 5) else "cannot close"
+            what = dyad.kind.cannot_close
             problems.append(f"{dyad.label} {what} for crank angles "
                             f"{format_ranges(kin.crank_angle, fails)}")
         upstream = upstream & kin.closes[:, col]
@@ -198,7 +198,7 @@ def _dead_centres(mechanism: Mechanism, kin: kinematics.Kinematics, rows: FloatA
     for col, dyad in enumerate(mechanism.dyads):
         near = rows & (kin.conditioning[:, col] <= band)
         if near.any():
-            word = "blocked position" if dyad.kind in (4, 5) else "dead centre"
+            word = dyad.kind.singular
             notes.append(f"{dyad.label} is within {np.rad2deg(mechanism.dead_centre_angle):g}° of "
                          f"a {word} (transmission angle near 0° or 180°) at crank angles "
                          f"{format_ranges(kin.crank_angle, near)}.")

@@ -7,7 +7,7 @@ from rich.table import Table
 from rich.tree import Tree
 
 from dyade.linkage.sweep import Plan, Result
-from dyade.linkage.model import FRAME, KIND_NAMES, Mechanism, Prismatic, Revolute
+from dyade.linkage.model import FRAME, Mechanism, Prismatic, Revolute
 from dyade.report.columns import Columns, unit_of
 
 
@@ -61,7 +61,7 @@ def describe(mechanism: Mechanism, the_plan: Plan) -> Tree:
         i, j = dyad.links
         g, h = dyad.known
         variant = f", assembly variant {dyad.variant:+d}" if dyad.variant else ""
-        node = tree.add(f"dyad {dyad.number}: kind {dyad.kind} {KIND_NAMES[dyad.kind]}, "
+        node = tree.add(f"dyad {dyad.number}: kind {dyad.kind.number} {dyad.kind.name}, "
                         f"links i={i}, j={j}, attached to links {g} and {h}{variant}")
         for letter, joint in zip("ABC", dyad.joints):
             node.add(f"{letter}: joint {_joint_label(joint)}")

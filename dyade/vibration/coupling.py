@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade.errors import InputError
-from dyade.linkage.model import FloatArray
+from dyade.arrays import FloatArray
 
 UNBOUNDED_RTOL = 1e-14  # [-] |denominator| below this share of its terms: exactly singular
 

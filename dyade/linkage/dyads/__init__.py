@@ -1,9 +1,14 @@
-"""The five dyad kinds (SPEC §1): closed-form position closures.
+"""The dyad kinds: one module each, and the registry that finds them.
 
-Each kind module has ``close(dyad, motion) -> Closure``: it writes the poses of the
-dyad's links i and j into ``motion`` (NaN where the dyad does not close) and returns
-where it closes and its transmission angle. Velocities, accelerations and forces do
-not depend on the kind: they come from the joint constraints (``dyade.joints``).
+Each kind module exports one description, ``KIND`` (a ``DyadKind``): its number and
+name (the joint pattern A-B-C, as in the DYADE paper, Thümmel & Bartke 1987), whether
+it has an assembly variant, its keys in a mechanism file with the construction of its
+middle joint B and of the link frames, and its closed-form position closure
+``close(dyad, motion) -> Closure``, which writes the poses of links i and j into
+``motion`` (NaN where the dyad does not close) and returns where it closes and its
+transmission angle. Velocities, accelerations and forces do not depend on the kind:
+they come from the joints' twists (``dyade.linkage.motion``). No other module tests a
+kind's number: adding a kind touches its module and ``REGISTRY`` only.
 
 The transmission angle μ of a dyad is the angle between the two columns of its
 2×2 closure Jacobian, so sin μ = 0 exactly at a dead centre or blocked position:
@@ -23,7 +28,7 @@ from __future__ import annotations
 
 import importlib
 from dataclasses import dataclass, field
-from types import ModuleType
+from typing import Callable, NamedTuple
 
 import numpy as np
 
@@ -31,6 +36,55 @@ from dyade.linkage.motion import Motion, cross, dot, perp
 from dyade.linkage.model import FRAME, FloatArray, Prismatic, Revolute, Vec
 
 SINGULAR_SIN = 1e-10  # [-] |sin μ| below this: the closure Jacobian is singular
+
+REGISTRY = ("rrr", "rrp", "rpr", "prp", "ppr")
+"""Modules of the dyad kinds; kind number k is entry k (1-based), as in the paper."""
+
+
+class DyadKind(NamedTuple):
+    """What dyade knows of a dyad kind (one per kind module, ``KIND``)."""
+
+    number: int
+    """the paper's kind number ("Art") 1-5"""
+    name: str
+    """the joint pattern A-B-C: RRR, RRP, RPR, PRP, PPR"""
+    has_variant: bool
+    """two closures, chosen by the assembly variant ±1 (else one, variant 0)"""
+    variant_rule: str
+    """what variant +1 means (empty without a variant)"""
+    frames: tuple[str, str]
+    """the link frames of links i and j (origin, ξ axis)"""
+    transmission: str
+    """the two directions whose angle is the transmission angle μ"""
+    singular: str
+    """what μ = 0° or 180° is called: "dead centre" or "blocked position" """
+    keys: frozenset
+    """keys of a [[dyad]] table beyond the common ones"""
+    middle: Callable
+    """middle(reader, table, key, i, j, dyad_table, dyad_key) -> Joint: joint B from the
+    file (``dyade.files.mechanism.Reader``), in the link frames above"""
+    close: Callable
+    """close(dyad, motion) -> Closure"""
+
+    @property
+    def cannot_close(self) -> str:
+        """How a failed closure is said."""
+        return "is blocked" if self.singular == "blocked position" else "cannot close"
+
+
+def kind(number: int) -> DyadKind:
+    """The kind with this number, its module imported when a mechanism first needs it
+    (a four-bar run need not load the four other kinds)."""
+    return importlib.import_module(f"dyade.linkage.dyads.{REGISTRY[number - 1]}").KIND
+
+
+def named(value: object) -> DyadKind | None:
+    """The kind a file names by number (1-5) or joint pattern ("RRP"); None if none."""
+    if isinstance(value, str) and value.lower() in REGISTRY:
+        return kind(REGISTRY.index(value.lower()) + 1)
+    if isinstance(value, int) and not isinstance(value, bool) and 1 <= value <= len(REGISTRY):
+        return kind(value)
+    return None
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==

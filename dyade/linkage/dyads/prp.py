@@ -5,11 +5,8 @@ from __future__ import annotations
 
 from dyade.linkage import dyads
 from dyade.linkage.motion import Motion, dot, perp
-from dyade.linkage.model import Dyad
+from dyade.linkage.model import Dyad, Revolute
 
-NAME = "PRP"
-JOINTS = "PRP"
-HAS_VARIANT = False
 
 
 def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
@@ -28,3 +25,13 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     motion.origin[:, j] = b - motion.rotated(j, b_j)
     closes = abs(sin) >= dyads.SINGULAR_SIN
     return dyads.Closure(closes, dyads.angle_between(-perp(n_a), -perp(n_c)))
+
+
+def middle(reader, table, key: str, i: int, j: int, dyad_table, dyad_key: str) -> Revolute:
+    """Joint B: the pin at the origins of both links."""
+    return Revolute((i, j), ((0.0, 0.0), (0.0, 0.0)), **reader.middle_revolute(table, key))
+
+
+KIND = dyads.DyadKind(
+    4, "PRP", False, "", ("origin B, ξ along the guide at A", "origin B, ξ along the guide at C"),
+    "guide A and guide C", "blocked position", frozenset(), middle, close)

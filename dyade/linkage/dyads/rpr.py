@@ -11,11 +11,8 @@ import numpy as np
 
 from dyade.linkage import dyads
 from dyade.linkage.motion import Motion, rotate
-from dyade.linkage.model import Dyad
+from dyade.linkage.model import Dyad, Prismatic
 
-NAME = "RPR"
-JOINTS = "RPR"
-HAS_VARIANT = True
 
 
 def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
@@ -49,3 +46,20 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     # while the arm (= ρ) goes to 0 as the slider point passes the guide link's pivot, so
     # the conditioning is the arm relative to the dyad's size.
     return dyads.Closure(closes, np.arctan2(arm, c0), arm / size)
+
+
+def middle(reader, table, key: str, i: int, j: int, dyad_table, dyad_key: str) -> Prismatic:
+    """Joint B: the guide along the ξ axis of its carrier (link j unless ``guide`` says
+    otherwise), the slider point at the other link's origin, ``offset`` to its left."""
+    offset, extra = reader.middle_prismatic(table, key, point=False)
+    guide = reader.guide(table, key, (i, j), j)
+    slider = i if guide == j else j
+    return Prismatic.through(guide, (0.0, 0.0), 0.0, offset, slider, (0.0, 0.0), 0.0, **extra)
+
+
+KIND = dyads.DyadKind(
+    3, "RPR", True, "the guide direction points from the guide link's pivot towards the other "
+                    "link's pivot",
+    ("origin A, ξ along the guide at B", "origin C, ξ along the guide at B"),
+    "the normal of guide B and the line between the pivots", "dead centre", frozenset(),
+    middle, close)

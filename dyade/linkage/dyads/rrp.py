@@ -9,11 +9,8 @@ import numpy as np
 
 from dyade.linkage import dyads
 from dyade.linkage.motion import Motion, dot, perp
-from dyade.linkage.model import Dyad
+from dyade.linkage.model import Dyad, Revolute
 
-NAME = "RRP"
-JOINTS = "RRP"
-HAS_VARIANT = True
 
 
 def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
@@ -37,3 +34,17 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     dyads.orient(motion, i, ab[:, 0], ab[:, 1], arm_i, length, a[:, 0], a[:, 1], a_i)
     motion.origin[:, j] = b - motion.rotated(j, b_j)
     return dyads.Closure(closes, dyads.angle_between(ab, normal))
+
+
+def middle(reader, table, key: str, i: int, j: int, dyad_table, dyad_key: str) -> Revolute:
+    """Joint B from ``length = |AB|``: at (|AB|, 0) on link i, the origin of link j."""
+    friction = reader.middle_revolute(table, key)
+    l_i = reader.length_of(reader.required(dyad_table, "length", dyad_key), f"{dyad_key}.length",
+                           positive=True)
+    return Revolute((i, j), ((l_i, 0.0), (0.0, 0.0)), **friction)
+
+
+KIND = dyads.DyadKind(
+    2, "RRP", True, "B ahead of the foot point of A in the guide direction",
+    ("origin A, ξ towards B", "origin B, ξ along the guide at C"),
+    "B−A and the normal of guide C", "dead centre", frozenset({"length"}), middle, close)

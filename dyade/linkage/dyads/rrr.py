@@ -6,11 +6,9 @@ import numpy as np
 
 from dyade.linkage import dyads
 from dyade.linkage.motion import Motion
-from dyade.linkage.model import Dyad
+from dyade.files.schema import show
+from dyade.linkage.model import Dyad, Revolute
 
-NAME = "RRR"
-JOINTS = "RRR"
-HAS_VARIANT = True
 
 
 def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
@@ -44,3 +42,22 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     transmission = np.arctan2(np.abs(sin), bax * bcx + bay * bcy)
     pins = {0: (ax, ay), 1: (ax + bax, ay + bay), 2: (cx, cy)}
     return dyads.Closure(closes, transmission, np.abs(sin) / (l_i * l_j), pins)
+
+
+def middle(reader, table, key: str, i: int, j: int, dyad_table, dyad_key: str) -> Revolute:
+    """Joint B from ``lengths = [|AB|, |CB|]``: at (|AB|, 0) on link i, (|CB|, 0) on j."""
+    friction = reader.middle_revolute(table, key)
+    lengths = reader.required(dyad_table, "lengths", dyad_key)
+    if not isinstance(lengths, list) or len(lengths) != 2:
+        raise reader.fail(f"{dyad_key}.lengths", f"must be [|AB|, |CB|] [{reader.length_unit}], "
+                                                 f"got {show(lengths)}.", lengths)
+    l_i = reader.length_of(lengths[0], f"{dyad_key}.lengths.1", positive=True)
+    l_j = reader.length_of(lengths[1], f"{dyad_key}.lengths.2", positive=True)
+    return Revolute((i, j), ((l_i, 0.0), (l_j, 0.0)), **friction)
+
+
+KIND = dyads.DyadKind(
+    1, "RRR", True, "B left of the directed line A→C",
+    ("origin A, ξ towards B", "origin C, ξ towards B"),
+    "B−A and B−C (link i and link j at B)", "dead centre", frozenset({"lengths"}),
+    middle, close)

@@ -1,0 +1,205 @@
+"""The schema every input file shares: typed keys with units and range checks.
+
+``TableReader`` walks parsed TOML with key paths, so that every error names the file,
+the key, what was expected (with its unit) and what was found; unknown keys get a "Did
+you mean". ``Field`` declares the keys of a flat file (key -> type, unit, default,
+range), read by ``TableReader.fields``. ``read_toml``, ``parse_assignment`` and
+``set_dotted`` are the file access and the ``--set`` overrides of every file kind.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import tomllib
+from typing import Any, NamedTuple
+
+from dyade.errors import InputError
+
+CHECKS = {"": None, "positive": "must be positive", "non_negative": "must not be negative"}
+
+
+class Field(NamedTuple):
+    """One key of a flat file."""
+
+    kind: str
+    """"number", "string" or "numbers" (a number or an array of numbers)"""
+    unit: str = "-"
+    """unit of a number, shown in messages"""
+    check: str = ""
+    """"", "positive" or "non_negative" """
+    default: Any = None
+    """value when the key is absent (None: absent stays absent)"""
+
+
+def read_toml(path: str | os.PathLike) -> dict[str, Any]:
+    """A TOML file as a dict; InputError naming the file when it cannot be read, is not
+    UTF-8 text or is not valid TOML."""
+    path = os.fspath(path)
+    try:
+        with open(path, encoding="utf-8") as handle:
+            text = handle.read()
+    except OSError as err:
+        raise InputError(f"{path}: cannot read the file ({err.strerror}).", source=path) from None
+    except UnicodeDecodeError as err:
+        raise InputError(f"{path}: not a UTF-8 text file (byte {err.start}: "
+                         f"{err.object[err.start:err.start + 1]!r}); save it as UTF-8 TOML.",
+                         source=path) from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise InputError(f"{path}: not valid TOML: {err}.", source=path) from None
+
+
+def parse_assignment(text: str) -> tuple[str, Any]:
+    """``KEY=VALUE`` of ``--set``: VALUE is read as a TOML value (number, string, array,
+    inline table, true/false); anything that is not TOML is taken as a string."""
+    if "=" not in text:
+        raise InputError(f"--set {text}: expected KEY=VALUE with a dotted key as in the file, "
+                         f"e.g. --set crank.speed_rpm=600.")
+    key, raw = (part.strip() for part in text.split("=", 1))
+    if not key or any(not part for part in key.split(".")):
+        raise InputError(f"--set {text}: the key `{key}` is not a dotted key path.")
+    try:
+        value = tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = raw
+    return key, value
+
+
+def set_dotted(data: dict[str, Any], dotted: str, value: Any, label: str = "") -> None:
+    """Replace the key at a dotted path (array entries by 1-based index) in ``data``."""
+    parts = dotted.split(".")
+    target: Any = data
+    for depth, part in enumerate(parts[:-1]):
+        where = ".".join(parts[:depth + 1])
+        if isinstance(target, list):
+            if not part.isdigit() or not 1 <= int(part) <= len(target):
+                raise InputError(f"{label}: --set {dotted}: `{where}` needs an index 1…"
+                                 f"{len(target)} (the file has {len(target)}).")
+            target = target[int(part) - 1]
+        elif isinstance(target, dict):
+            target = target.setdefault(part, {})
+        else:
+            raise InputError(f"{label}: --set {dotted}: `{'.'.join(parts[:depth])}` is a value, "
+                             f"not a table.")
+    if isinstance(target, list):
+        last = parts[-1]
+        if not last.isdigit() or not 1 <= int(last) <= len(target):
+            raise InputError(f"{label}: --set {dotted}: index {last} is outside 1…{len(target)}.")
+        target[int(last) - 1] = value
+    elif isinstance(target, dict):
+        target[parts[-1]] = value
+    else:
+        raise InputError(f"{label}: --set {dotted}: `{'.'.join(parts[:-1])}` is a value, not a table.")
+
+
+def suggest(key: str, allowed: set[str] | dict) -> str:
+    """" Did you mean `x`?" for a misspelt key, else the allowed keys."""
+    import difflib  # only for a misspelt key
+
+    close = difflib.get_close_matches(key, sorted(allowed), n=1, cutoff=0.6)
+    return f" Did you mean `{close[0]}`?" if close else f" Allowed: {', '.join(sorted(allowed))}."
+
+
+def show(value: Any) -> str:
+    """A value as the user wrote it, for messages."""
+    if isinstance(value, str):
+        return f"\"{value}\""
+    if isinstance(value, dict):
+        return "a table"
+    return repr(value)
+
+
+def fmt(value: float) -> str:
+    return f"{value:g}"
+
+
+def is_number(value: Any) -> bool:
+    return not isinstance(value, bool) and isinstance(value, (int, float))
+
+
+class TableReader:
+    """Walks parsed TOML with key paths for the error messages.
+
+    ``label`` names the file in messages (its base name), ``source`` is its path.
+    ``top_keys``: the file's top-level keys, for the hint that a key was written below
+    a [table] header by mistake.
+    """
+
+    top_keys: set[str] = set()
+
+    def __init__(self, label: str, source: str | None = None) -> None:
+        self.label = label
+        self.source = source
+
+    def fail(self, key: str, message: str, value: Any = None, unit: str | None = None
+             ) -> InputError:
+        return InputError.in_file(self.label, key, message, source=self.source, value=value,
+                                  unit=unit)
+
+    def keys(self, table: Any, key: str, allowed: set[str] | dict) -> dict[str, Any]:
+        if not isinstance(table, dict):
+            raise self.fail(key, f"must be a table, got {show(table)}.", table)
+        for name in table:
+            if name not in allowed:
+                where = f"{key}.{name}" if key else name
+                if key and name in self.top_keys:
+                    hint = (f" `{name}` is a top-level key: move it above the first [table] "
+                            f"header (in TOML, keys after a [header] belong to that table).")
+                else:
+                    hint = suggest(name, allowed)
+                raise InputError(f"{self.label}: unknown key `{where}`.{hint}",
+                                 source=self.source, key=where)
+        return table
+
+    def required(self, table: dict[str, Any], key: str, path: str) -> Any:
+        if key not in table:
+            raise self.fail(f"{path}.{key}" if path else key, "is missing.")
+        return table[key]
+
+    def number(self, value: Any, key: str, unit: str, positive: bool = False,
+               non_negative: bool = False) -> float:
+        if not is_number(value):
+            raise self.fail(key, f"must be a number [{unit}], got {show(value)}.", value, unit)
+        value = float(value)
+        if not math.isfinite(value):
+            raise self.fail(key, f"must be a finite number [{unit}], got {value}.", value, unit)
+        if positive and value <= 0.0:
+            raise self.fail(key, f"must be positive [{unit}], got {fmt(value)}.", value, unit)
+        if non_negative and value < 0.0:
+            raise self.fail(key, f"must not be negative [{unit}], got {fmt(value)}.", value, unit)
+        return value
+
+    def integer(self, value: Any, key: str) -> int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise self.fail(key, f"must be a whole number, got {show(value)}.", value)
+        return value
+
+    def fields(self, table: dict[str, Any], spec: dict[str, Field], path: str = ""
+               ) -> dict[str, Any]:
+        """Check a flat table against ``spec``: unknown keys, types, finiteness, ranges;
+        defaults filled in. Numbers come back as floats, arrays of numbers as lists."""
+        self.keys(table, path, spec)
+        out: dict[str, Any] = {}
+        for name, field in spec.items():
+            key = f"{path}.{name}" if path else name
+            if name not in table:
+                if field.default is not None:
+                    out[name] = field.default
+                continue
+            value = table[name]
+            if field.kind == "string":
+                if not isinstance(value, str):
+                    raise self.fail(key, f"must be a string, got {show(value)}.", value)
+                out[name] = value
+                continue
+            many = field.kind == "numbers" and isinstance(value, list)
+            values = value if many else [value]
+            if field.kind == "numbers" and not all(is_number(v) for v in values):
+                raise self.fail(key, f"must be a number or a list of numbers [{field.unit}], "
+                                     f"got {show(value)}.", value, field.unit)
+            checked = [self.number(v, key, field.unit, positive=field.check == "positive",
+                                   non_negative=field.check == "non_negative") for v in values]
+            out[name] = checked if many else checked[0]
+        return out
