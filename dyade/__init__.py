@@ -1,8 +1,79 @@
-"""dyade: kinematics and kinetostatics of planar linkages built from dyads.
+"""dyade: dynamics of planar linkages and machine drives.
 
 A linkage is assembled from two-link groups (dyads) in assembly order and swept over
-the crank angle (Thümmel & Bartke 1987, the DYADE program). This module imports
-nothing heavy, so that ``dyade --help`` stays fast.
+the crank angle, as in DYADE (Thümmel & Kretzschmar, 1987; its dynamics published by
+Thümmel & Bartke, Technische Mechanik 8, 1987). Around it: the peak force in a revolute
+joint with clearance (Dresig & Thümmel) and the torsional resonance of a stiff coupling
+(Strümpfel).
+
+The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``,
+``dyade.vibration``), with the everyday functions re-exported here:
+
+- ``read_mechanism(path, overrides=None)``, ``build_mechanism(data)`` -> ``Mechanism``
+- ``plan(mechanism)`` -> ``Plan``; ``analyse(mechanism, ...)`` -> ``Result`` with
+  ``.columns()``, ``.summary()``, ``.notes``, ``.to_pandas()``
+- ``check_clearance(mechanism, ...)``, ``clearance_speed_study(mechanism, speeds, ...)``,
+  ``peak_force(mass, stiffness, clearance, slope)``, ``simulate_clearance(...)``
+- ``Coupling``, ``read_coupling(path)``, ``coupling_response(coupling, eta)``,
+  ``operating_points(coupling, speeds_rpm, order=1)``
+- ``accuracy_studies(mechanism)``
+- ``DyadeError``, ``InputError``, ``AssemblyError``
+
+Everything is in SI units (m, rad, s, kg, N); mechanism files may use mm and degrees.
+Nothing here prints or exits: problems are exceptions with structured fields.
+
+>>> import dyade
+>>> result = dyade.analyse(dyade.read_mechanism("mechanisms/slider-crank.toml"))
+>>> [note.kind for note in result.notes]
+[]
+
+This module imports nothing heavy (``import dyade`` loads no numpy), so that
+``dyade --help`` stays fast; the functions load their modules on first use.
 """
 
+from __future__ import annotations
+
 __version__ = "0.1.0"
+
+_EXPORTS = {
+    "read_mechanism": "dyade.files.mechanism",
+    "build_mechanism": ("dyade.files.mechanism", "build"),
+    "plan": "dyade.linkage.sweep",
+    "analyse": "dyade.linkage.sweep",
+    "Plan": "dyade.linkage.sweep",
+    "Result": "dyade.linkage.sweep",
+    "Note": "dyade.linkage.sweep",
+    "Mechanism": "dyade.linkage.model",
+    "check_clearance": ("dyade.linkage.joint_clearance", "check"),
+    "clearance_speed_study": ("dyade.linkage.joint_clearance", "speed_study"),
+    "peak_force": "dyade.clearance",
+    "simulate_clearance": ("dyade.clearance", "simulate"),
+    "Coupling": "dyade.vibration.coupling",
+    "read_coupling": "dyade.files.coupling",
+    "coupling_response": ("dyade.vibration.coupling", "response"),
+    "operating_points": "dyade.vibration.coupling",
+    "accuracy_studies": ("dyade.linkage.accuracy", "studies"),
+    "DyadeError": "dyade.errors",
+    "InputError": "dyade.errors",
+    "AssemblyError": "dyade.errors",
+}
+
+__all__ = sorted(_EXPORTS) + ["__version__"]
+
+
+def __getattr__(name: str):
+    """Load an exported name on first use (PEP 562)."""
+    try:
+        where = _EXPORTS[name]
+    except KeyError:
+        raise AttributeError(f"module 'dyade' has no attribute {name!r}") from None
+    import importlib
+
+    module, attribute = where if isinstance(where, tuple) else (where, name)
+    value = getattr(importlib.import_module(module), attribute)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return __all__

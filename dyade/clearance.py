@@ -22,8 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.errors import InputError
 from dyade.arrays import FloatArray
+from dyade.errors import InputError
 
 
 @dataclass(frozen=True, slots=True)
@@ -84,18 +84,46 @@ def reduced_mass(m11: float, m22: float) -> float:
     return m11 * m22 / (m11 + m22)
 
 
+UNITS = {"mass": "kg", "stiffness": "N/m", "clearance": "m", "slope": "N/s"}
+
+
 def check_positive(**values: float) -> None:
-    """Reject zero, negative or non-finite inputs with a message naming each one."""
-    units = {"mass": "kg", "stiffness": "N/m", "clearance": "m", "slope": "N/s"}
+    """Reject zero, negative or non-finite inputs with an error naming each parameter."""
     for name, value in values.items():
         if not np.isfinite(value) or value <= 0.0:
-            raise InputError(f"--{name} must be a positive number [{units.get(name, '')}], "
-                             f"got {value:g}.")
+            raise InputError.parameter(name, f"must be a positive number "
+                                             f"[{UNITS.get(name, '')}], got {value:g}.",
+                                       value=value, unit=UNITS.get(name))
 
 
 def peak_force(mass: float, stiffness: float, clearance: float, slope: float) -> Peak:
-    """Closed-form peak force of SPEC §2 for reduced mass m [kg], contact stiffness c
-    [N/m], clearance 2s [m] and force slope F0/t0 [N/s]."""
+    """Closed-form peak force at a reversal of a joint force (eqs. (15)-(36)).
+
+    Parameters
+    ----------
+    mass : float
+        Reduced mass m [kg], eq. (17) (``reduced_mass`` of the two masses).
+    stiffness : float
+        Contact stiffness c [N/m] (typical 1e7 … 1e9).
+    clearance : float
+        Clearance (radial play) 2s [m] (typical 2e-5 … 2e-4).
+    slope : float
+        Slope F0/t0 of the rigid joint force at the reversal [N/s].
+
+    Returns
+    -------
+    Peak
+        t1, v1, τ, f(τ) and the peak force F12max = c·s·f(τ) [N], with its shares.
+
+    Examples
+    --------
+    The paper's warp-knitting needle drive, joint (5,6) (section 4): 2182 N.
+
+    >>> from dyade.clearance import peak_force
+    >>> peak = peak_force(mass=3.6, stiffness=1e7, clearance=1e-4, slope=3.6e5)
+    >>> round(peak.force), round(peak.tau, 4)
+    (2182, 3.0285)
+    """
     check_positive(mass=mass, stiffness=stiffness, clearance=clearance, slope=slope)
     s = clearance / 2.0
     t1 = np.cbrt(12.0 * mass * s / slope)
@@ -219,153 +247,23 @@ def _hermite_peak(z0: float, v0: float, z1: float, v1: float, a0: float, h: floa
     return float(cubic(best)), float(best * h)
 
 
-# -- over a mechanism ------------------------------------------------------------------
-MAX_WANDER = np.deg2rad(20.0)  # [rad] largest direction change off the line of action
-SMALL_FORCE = 0.25  # [-] forces below this share of the peak do not count for the wander
+def peaks_over_speed(mass: float, stiffness: float, clearance: float, slope: float,
+                     speed_rpm: float, speeds_rpm) -> list[tuple[float, Peak]]:
+    """The peak force against crank speed: the force slope at the reversal grows with
+    Ω³ (eq. (30): F0/t0 = k1·Ω³), from ``slope`` [N/s] at ``speed_rpm`` [rpm].
+
+    Returns (speed [rpm], Peak) for every speed of ``speeds_rpm``.
+
+    >>> [round(p.force) for _, p in peaks_over_speed(3.6, 1e7, 1e-4, 3.6e5, 300, [300, 600])]
+    [2182, 11099]
+    """
+    if not np.isfinite(speed_rpm) or speed_rpm <= 0.0:
+        raise InputError.parameter("speed_rpm", f"must be a positive speed [rpm], got "
+                                                f"{speed_rpm:g}.", value=speed_rpm, unit="rpm")
+    return [(float(rpm), peak_force(mass, stiffness, clearance, scaled_slope(slope, speed_rpm, rpm)))
+            for rpm in speeds_rpm]
 
 
-@dataclass(frozen=True, slots=True)
-class Reversal:
-    """One sense reversal of a joint force, and its clearance peak."""
-
-    crank_angle: float
-    """[rad] where the force along its line of action passes zero"""
-    slope_per_rad: float
-    """|dF/dφ21| at the reversal [N/rad]"""
-    peak: Peak
-    rigid_force: float
-    """|F| of the rigid model when the peak occurs [N]"""
-
-    @property
-    def amplification(self) -> float:
-        return self.peak.force / self.rigid_force if self.rigid_force > 0 else float("nan")
-
-
-@dataclass(frozen=True, slots=True)
-class JointCheck:
-    """The clearance check of one revolute joint over a mechanism's cycle."""
-
-    joint: tuple[int, int]
-    line_angle: float
-    """direction of the dominant line of action [rad], in [0, π)"""
-    wander: float
-    """largest angle between the force and that line [rad] (forces ≥ 25 % of the peak)"""
-    applies: bool
-    reason: str
-    """why the model does not apply ('' when it does)"""
-    reversals: tuple[Reversal, ...]
-    mass_source: str
-
-
-def line_of_action(force: FloatArray) -> tuple[float, float]:
-    """Dominant line of action of force vectors (n, 2): its angle in [0, π) and the
-    largest angle between a (non-small) force and that line [rad]."""
-    second = force.T @ force
-    values, vectors = np.linalg.eigh(second)
-    u = vectors[:, np.argmax(values)]
-    angle = float(np.arctan2(u[1], u[0]) % np.pi)
-    u = np.array([np.cos(angle), np.sin(angle)])
-    size = np.hypot(force[:, 0], force[:, 1])
-    big = size >= SMALL_FORCE * size.max()
-    along = force @ u
-    across = force[:, 0] * u[1] - force[:, 1] * u[0]
-    off = np.arctan2(np.abs(across[big]), np.abs(along[big]))
-    return angle, float(off.max(initial=0.0))
-
-
-def check_joint(name: tuple[int, int], crank_angle: FloatArray, force: FloatArray,
-                speed: float, data, mass: float, mass_source: str,
-                full_cycle: bool, max_wander: float = MAX_WANDER) -> JointCheck:
-    """Find the reversals of one joint's force and their peak forces (SPEC §2)."""
-    keep = np.all(np.isfinite(force), axis=1)
-    phi, force = crank_angle[keep], force[keep]
-    if phi.size < 3 or not np.any(np.hypot(force[:, 0], force[:, 1]) > 0):
-        return JointCheck(name, np.nan, np.nan, False, "the joint carries no force", (),
-                          mass_source)
-    angle, wander = line_of_action(force)
-    if wander > max_wander:
-        return JointCheck(name, angle, wander, False,
-                          f"the force direction wanders up to {np.rad2deg(wander):.0f}° off its "
-                          f"dominant line of action (the model needs one line, within "
-                          f"{np.rad2deg(max_wander):.0f}°): the pin travels around the bearing "
-                          f"instead of crossing it", (), mass_source)
-    u = np.array([np.cos(angle), np.sin(angle)])
-    magnitude = np.hypot(force[:, 0], force[:, 1])
-    if full_cycle and np.isclose(phi[-1] - phi[0], 2 * np.pi):
-        phi, force, magnitude = phi[:-1], force[:-1], magnitude[:-1]  # 360° repeats 0°
-    along = force @ u
-    phi_all, magnitude_all = phi.copy(), magnitude
-    if full_cycle:  # the cycle closes: compare the last position with the first
-        along_next = np.roll(along, -1)
-        phi_next = np.append(phi[1:], phi[0] + 2 * np.pi)
-    else:
-        along, along_next, phi_next, phi = along[:-1], along[1:], phi[1:], phi[:-1]
-    positive = along >= 0.0
-    crossing = np.flatnonzero(positive != (along_next >= 0.0))
-    period = 2 * np.pi if full_cycle else None
-    reversals = []
-    for k in crossing:
-        a, b = along[k], along_next[k]
-        dphi = phi_next[k] - phi[k]
-        at = phi[k] + a / (a - b) * dphi
-        slope = abs(b - a) / dphi
-        peak = peak_force(mass, data.stiffness, data.clearance, slope * abs(speed))
-        later = at + speed * peak.time_to_peak  # crank angle when the peak occurs
-        rigid = float(np.interp(later, phi_all, magnitude_all, period=period))
-        reversals.append(Reversal(float(at % (2 * np.pi)), float(slope), peak, rigid))
-    return JointCheck(name, angle, wander, True, "", tuple(reversals), mass_source)
-
-
-def joint_mass(mechanism, joint) -> tuple[float | None, str]:
-    """Reduced mass for a joint: given, or m_i·m_j/(m_i + m_j) of its two links (the
-    frame counts as infinitely heavy). None if neither is known."""
-    if joint.clearance is not None and joint.clearance.mass is not None:
-        return joint.clearance.mass, "given"
-    masses = [mechanism.links[link].mass for link in joint.links if link != 1]
-    if not masses or any(m <= 0.0 for m in masses):
-        return None, ""
-    if len(masses) == 1:
-        return masses[0], f"mass of link {[l for l in joint.links if l != 1][0]} (frame side rigid)"
-    a, b = joint.links
-    return reduced_mass(*masses), f"reduced mass of links {a} and {b} (eq. 17)"
-
-
-def check_mechanism(mechanism, result, joints, override=None, mass_override=None,
-                    max_wander: float = MAX_WANDER) -> list:
-    """Clearance check of the given revolute joints from an analysis result.
-
-    ``override``: ClearanceData applied to every joint (CLI), ``mass_override`` [kg],
-    ``max_wander`` [rad]: how far the force may leave its line of action."""
-    from dyade.linkage.model import Revolute
-
-    forces = result.forces
-    if forces is None:
-        raise InputError("the clearance check needs joint forces: the file has no masses, "
-                         "loads or springs (add mass data, see mechanisms/README.md).")
-    by_name = {j.name: j for j in mechanism.joints}
-    phi = result.crank_angle[result.rows]
-    full = (phi[-1] - phi[0]) >= 2 * np.pi - 1.5 * mechanism.sweep.step
-    checks = []
-    for name in joints:
-        joint = by_name.get(name)
-        if joint is None or not isinstance(joint, Revolute):
-            kinds = ", ".join(f"({a},{b})" for a, b in by_name if isinstance(by_name[(a, b)], Revolute))
-            raise InputError(f"--joint {name[0]},{name[1]}: the mechanism has no revolute joint "
-                             f"({name[0]},{name[1]}); its revolute joints are {kinds}.")
-        data = override or joint.clearance
-        mass, source = (mass_override, "given") if mass_override else joint_mass(mechanism, joint)
-        missing = None
-        if data is None:
-            missing = ("no clearance data: give --stiffness and --clearance, or "
-                       "`clearance = { gap = …, stiffness = … }` in its joint table")
-        elif mass is None:
-            missing = (f"no reduced mass: give --mass or `clearance.mass` (links {name[0]} and "
-                       f"{name[1]} have no mass to estimate it from)")
-        if missing:
-            checks.append(JointCheck(name, np.nan, np.nan, False, missing, (), ""))
-            continue
-        force = forces.revolute[name][result.rows]
-        force = np.where(forces.valid[result.rows][:, None], force, np.nan)
-        checks.append(check_joint(name, phi, force, mechanism.crank.speed, data, mass, source,
-                                  bool(full), max_wander))
-    return checks
+def scaled_slope(slope: float, speed_rpm: float, rpm: float) -> float:
+    """The force slope [N/s] at ``rpm`` from ``slope`` at ``speed_rpm`` (∝ Ω³, eq. (30))."""
+    return slope * (rpm / speed_rpm) ** 3

@@ -56,19 +56,29 @@ class InputError(DyadeError, ValueError):
                    unit=unit, reason=reason)
 
     @classmethod
-    def parameter(cls, name: str, reason: str, *, value: Any = None,
+    def parameter(cls, name: str | tuple[str, ...], reason: str, *, value: Any = None,
                   unit: str | None = None) -> InputError:
-        """An argument of an API function: ``name reason``."""
-        return cls(f"{name} {reason}", key=name, value=value, unit=unit, reason=reason)
+        """An argument of an API function: ``name reason``; a tuple of names for a
+        problem of several together (``c1 and b1 are both zero …``)."""
+        names = (name,) if isinstance(name, str) else tuple(name)
+        err = cls(f"{' and '.join(names)} {reason}", key=names[0], value=value, unit=unit,
+                  reason=reason)
+        err.parameters = names
+        return err
+
+    parameters: tuple[str, ...] = ()
+    """the API parameters the error is about (empty for file errors)"""
 
     def naming(self, names: dict[str, str]) -> InputError:
-        """The same error with a parameter named as the user gave it: ``names`` maps the
-        parameter to a flag (``--J``) or to a file key (``coupling.toml: `J```). Errors
+        """The same error with its parameters named as the user gave them: ``names`` maps
+        a parameter to a flag (``--J``) or to a file key (``coupling.toml: `J```). Errors
         from files, and parameters not in ``names``, are returned unchanged."""
-        if self.source is not None or self.reason is None or self.key not in names:
+        if not self.parameters or not all(p in names for p in self.parameters):
             return self
-        return type(self)(f"{names[self.key]} {self.reason}", key=self.key, value=self.value,
-                          unit=self.unit, reason=self.reason)
+        err = type(self)(f"{' and '.join(names[p] for p in self.parameters)} {self.reason}",
+                         key=self.key, value=self.value, unit=self.unit, reason=self.reason)
+        err.parameters = self.parameters
+        return err
 
 
 class AssemblyError(DyadeError):

@@ -13,6 +13,7 @@ from scipy.optimize import minimize_scalar
 
 from dyade.linkage import sweep as analysis
 from dyade import clearance
+from dyade.linkage import joint_clearance
 from dyade.files import mechanism as toml_input
 from dyade.cli import main
 from dyade.linkage.model import ClearanceData
@@ -156,7 +157,7 @@ def test_synthetic_reversals_and_slope():
     # F = (A·cos φ, 0): reverses at 90° and 270° with |dF/dφ| = A; F0/t0 = A·Ω
     phi = np.deg2rad(np.arange(0.0, 360.5, 0.5))
     force = np.stack((500.0 * np.cos(phi), np.zeros_like(phi)), axis=-1)
-    check = clearance.check_joint((5, 6), phi, force, 10.0, ClearanceData(1e-4, 1e7), 3.6,
+    check = joint_clearance.check_joint((5, 6), phi, force, 10.0, ClearanceData(1e-4, 1e7), 3.6,
                                   "given", True)
     assert check.applies and len(check.reversals) == 2
     assert [np.rad2deg(r.crank_angle) for r in check.reversals] == pytest.approx([90, 270], abs=1e-9)
@@ -167,7 +168,7 @@ def test_synthetic_reversals_and_slope():
 def test_wandering_force_is_refused_with_the_reason():
     phi = np.deg2rad(np.arange(0.0, 361.0))
     force = 100.0 * np.stack((np.cos(phi), np.sin(phi)), axis=-1)  # turns all around
-    check = clearance.check_joint((2, 3), phi, force, 10.0, ClearanceData(1e-4, 1e7), 1.0,
+    check = joint_clearance.check_joint((2, 3), phi, force, 10.0, ClearanceData(1e-4, 1e7), 1.0,
                                   "given", True)
     assert not check.applies and not check.reversals
     assert "wanders up to 90°" in check.reason
@@ -224,7 +225,7 @@ def test_analyse_runs_the_check_only_with_clearance_data(monkeypatch):
     def must_not_run(*args, **kwargs):
         raise AssertionError("clearance check ran without clearance data")
 
-    monkeypatch.setattr(clearance, "check_mechanism", must_not_run)
+    monkeypatch.setattr(joint_clearance, "check_mechanism", must_not_run)
     assert analysis.run(toml_input.read_mechanism(shipped("fourbar.toml"))).clearance is None
 
 

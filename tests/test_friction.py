@@ -98,7 +98,7 @@ def test_coulomb_law_holds_in_every_joint(path):
 
 
 def test_friction_columns_follow_the_joint_order():
-    from dyade.report import columns
+    from dyade.linkage import columns
 
     mechanism = loaded(shipped("dyade-16.toml"), 0.1)
     names = list(columns.columns(analysis.run(mechanism)))
@@ -150,7 +150,7 @@ def test_not_converged_positions_are_reported():
     mechanism = replace(loaded(shipped("dyade-16.toml"), 0.1), friction_max_iter=2)
     result = analysis.run(mechanism)
     assert not result.friction.converged.all()
-    assert any("did not converge" in note for note in result.notes)
+    assert any("did not converge" in note.text for note in result.notes)
 
 
 def test_self_locking_example_locks_where_its_comment_says():
@@ -159,7 +159,7 @@ def test_self_locking_example_locks_where_its_comment_says():
     angles = np.rad2deg(result.crank_angle[locks])
     assert angles.min() == pytest.approx(271.0) and angles.max() == pytest.approx(319.0)
     assert np.all(np.diff(angles) == 1.0)  # one range
-    assert any("locks (self-locking) at crank angles 271.0°–319.0°" in n for n in result.notes)
+    assert any("locks (self-locking) at crank angles 271.0°–319.0°" in n.text for n in result.notes)
 
 
 def test_low_friction_variant_does_not_lock():

@@ -32,8 +32,10 @@ class DyadeGroup(click.Group):
         return super().get_command(ctx, name)
 
     def invoke(self, ctx: click.Context) -> object:
+        from dyade.cli.memory import keep_freed_memory
         from dyade.errors import DyadeError, InputError
 
+        keep_freed_memory()  # a process-wide setting: the command's to make, not the library's
         try:
             return super().invoke(ctx)
         except InputError as err:

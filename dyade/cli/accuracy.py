@@ -10,8 +10,6 @@ from dyade.cli import main
 from dyade.cli.analyse import MECHANISM_FILE, load, set_option
 from dyade.cli.output import show, write_json, write_rows
 
-COLUMNS = ["study", "setting", "time_ms", "quantity", "value", "rel_error", "note"]
-
 
 @main.command()
 @click.argument("mechanism_file", type=MECHANISM_FILE)
@@ -31,53 +29,15 @@ def accuracy(mechanism_file: Path, assignments, repeats: int, fmt: str, output) 
     With friction: iterations, time and change of the peaks per friction tolerance.
     With clearance data: the closed form against the direct simulation.
     """
-    from dyade.linkage import accuracy as studies
+    import dyade
+    from dyade.report import accuracy as report
 
     mechanism, _ = load(mechanism_file, assignments)
-    rows = studies.studies(mechanism, repeats=repeats)
-    records = [{"study": r.study, "setting": r.setting, "time_ms": r.time * 1e3,
-                "quantity": r.quantity, "value": r.value, "rel_error": r.error, "note": r.extra}
-               for r in rows]
+    records = report.records(dyade.accuracy_studies(mechanism, repeats=repeats))
     if fmt == "csv":
-        write_rows(records, COLUMNS, output)
+        write_rows(records, report.COLUMNS, output)
     elif fmt == "json":
-        write_json({name: [r[name] for r in records] for name in COLUMNS}
+        write_json({name: [r[name] for r in records] for name in report.COLUMNS}
                    | {"summary": {"mechanism": mechanism.name}, "warnings": []}, output)
     else:
-        show(_tables(mechanism.name, records), output)
-
-
-def _tables(name, records):
-    import math
-
-    from rich.table import Table
-
-    parts = []
-    for study in dict.fromkeys(r["study"] for r in records):
-        mine = [r for r in records if r["study"] == study]
-        settings = list(dict.fromkeys(r["setting"] for r in mine))
-        quantities = list(dict.fromkeys(r["quantity"] for r in mine))
-        table = Table(title=f"{name}: {study} (errors relative to {settings[-1] if study != 'clearance' else 'the closed form'})",
-                      title_justify="left")
-        table.add_column("setting")
-        table.add_column("time [ms]", justify="right")
-        table.add_column("note")
-        for quantity in quantities[:8]:
-            table.add_column(quantity, justify="right")
-        for setting in settings:
-            row = [r for r in mine if r["setting"] == setting]
-            cells = {r["quantity"]: r for r in row}
-            values = []
-            for quantity in quantities[:8]:
-                r = cells.get(quantity)
-                if r is None:
-                    values.append("")
-                elif isinstance(r["rel_error"], float) and not math.isnan(r["rel_error"]):
-                    values.append(f"{r['rel_error']:.1e}")
-                else:
-                    values.append(f"{r['value']:.5g}")
-            table.add_row(setting, f"{row[0]['time_ms']:.3g}", row[0]["note"], *values)
-        if len(quantities) > 8:
-            table.caption = f"{len(quantities) - 8} more quantities: --format csv"
-        parts.append(table)
-    return parts
+        show(report.tables(mechanism.name, records), output)

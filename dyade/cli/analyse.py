@@ -5,17 +5,19 @@ from __future__ import annotations
 import math
 import os
 import sys
-from dataclasses import replace
 from typing import Any, NamedTuple
 
 import click
 
 from dyade.cli import main
-from dyade.cli.output import atomic, console, show, write_json
+from dyade.cli.output import atomic, console, flags, show, write_json
 
 # paths stay strings on the way of `dyade analyse`: pathlib alone costs 5 ms of start-up
 MECHANISM_FILE = click.Path(exists=True, dir_okay=False)
 SUFFIX = {"csv": ".csv", "json": ".json", "table": ".txt"}
+FLAGS = {"friction_tol": "--friction-tol", "friction_max_iter": "--friction-max-iter",
+         "start": "--start", "stop": "--stop", "step": "--step"}
+"""API parameter -> the flag it comes from"""
 
 set_option = click.option(
     "--set", "assignments", multiple=True, metavar="KEY=VALUE",
@@ -36,12 +38,13 @@ class SweepOptions(NamedTuple):
 def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = SweepOptions()):
     """Read a mechanism with --set overrides and --start/--stop/--step [°]; returns the
     mechanism and the effective TOML data (for --save-as)."""
-    from dyade.files import mechanism as toml_input
+    from dyade.files import mechanism as reader
     from dyade.files import schema
+    from dyade.linkage.sweep import with_sweep
 
     overrides = dict(schema.parse_assignment(a) for a in assignments)
-    data = toml_input.load_data(path, overrides)
-    mechanism = toml_input.build(data, path)
+    data = reader.load_data(path, overrides)
+    mechanism = reader.build(data, path)
     if sweep.start is None and sweep.stop is None and sweep.step is None:
         return mechanism, data
     current = mechanism.sweep  # the sweep options are in degrees whatever the file's unit
@@ -54,16 +57,16 @@ def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = Swe
     if stop < start:
         raise click.BadParameter(f"must not be below the start angle, got {sweep.stop:g}.",
                                  param_hint="--stop")
-    return replace(mechanism, sweep=type(current)(start, stop, step)), data
+    return with_sweep(mechanism, start, stop, step), data
 
 
 def save_as(data: dict[str, Any], path: str) -> None:
     """Write the effective mechanism (after --set) as TOML, atomically."""
-    import tomli_w
+    from dyade.files.mechanism import dumps
 
     with atomic(path) as handle:
         handle.write("# written by dyade --save-as: the effective mechanism after --set\n")
-        handle.write(tomli_w.dumps(data))
+        handle.write(dumps(data))
 
 
 @main.command()
@@ -72,11 +75,11 @@ def save_as(data: dict[str, Any], path: str) -> None:
 def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
     """Show MECHANISM_FILE in assembly order: crank, dyads, joints, link points, mobility,
     and which effects an analysis will simulate."""
-    from dyade.linkage import sweep as analysis
+    from dyade.linkage.sweep import plan
     from dyade.report import tables
 
     mechanism, _ = load(mechanism_file, assignments)
-    show([tables.describe(mechanism, analysis.plan(mechanism))])
+    show([tables.describe(mechanism, plan(mechanism))])
 
 
 @main.command()
@@ -210,20 +213,24 @@ class Job(NamedTuple):
     fail_on_lock: bool
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
-        from dyade.linkage import sweep as analysis
-        from dyade.errors import DyadeError
-        from dyade.report import columns
+        from dyade.errors import AssemblyError, DyadeError
+        from dyade.linkage.sweep import analyse
 
         mechanism, data = load(path, self.assignments, self.sweep)
-        if self.friction_tol is not None:
-            mechanism = replace(mechanism, friction_tol=self.friction_tol)
-        if self.friction_max_iter is not None:
-            mechanism = replace(mechanism, friction_max_iter=self.friction_max_iter)
         if save_as_path:
             save_as(data, save_as_path)
-        result = analysis.run(mechanism, analysis.plan(mechanism),
-                              allow_partial=self.allow_partial)
-        cols = columns.columns(result)
+        try:
+            with flags(FLAGS):
+                result = analyse(mechanism, allow_partial=self.allow_partial,
+                                 friction_tol=self.friction_tol,
+                                 friction_max_iter=self.friction_max_iter)
+        except AssemblyError as err:
+            if not err.partial:
+                raise
+            raise AssemblyError("; ".join(err.problems) + ". Change the dimensions or the sweep, "
+                                "or use --allow-partial to analyse only where it closes.",
+                                err.problems, err.partial) from None
+        cols = result.columns()
         if self.fmt == "csv":
             from dyade.report import csv_rows
 
@@ -233,10 +240,8 @@ class Job(NamedTuple):
             else:
                 csv_rows.write(cols, sys.stdout)
         elif self.fmt == "json":
-            from dyade.report import summary
-
-            write_json(cols | {"summary": summary.summary(result, cols),
-                               "warnings": result.notes}, output)
+            write_json(cols | {"summary": result.summary(cols),
+                               "warnings": [note.text for note in result.notes]}, output)
         else:
             from dyade.report import tables
 

@@ -11,7 +11,8 @@ from __future__ import annotations
 import math
 import os
 import sys
-from typing import Any, Iterable, TextIO
+from contextlib import contextmanager
+from typing import Any, Iterable, Iterator, TextIO
 
 
 def plain(stream: TextIO | None = None) -> bool:
@@ -148,3 +149,15 @@ def write_json(obj: dict, output: str | os.PathLike | None) -> None:
             handle.write(text + "\n")
     else:
         sys.stdout.write(text + "\n")
+
+
+@contextmanager
+def flags(names: dict[str, str]) -> Iterator[None]:
+    """Name the API's parameters as the user gave them in errors raised inside:
+    ``names`` maps a parameter to its flag (``{"inertia": "--J"}``) or file key."""
+    from dyade.errors import InputError
+
+    try:
+        yield
+    except InputError as err:
+        raise err.naming(names) from None

@@ -30,7 +30,7 @@ import numpy as np
 
 from dyade.linkage import kinetostatics
 from dyade.linkage.kinematics import Group, Kinematics
-from dyade.linkage.model import CRANK, FloatArray, Joint, Mechanism, Revolute
+from dyade.linkage.model import CRANK, FloatArray, Joint, Mechanism, Revolute, toward_higher
 
 AT_REST_RTOL = 1e-9  # [-] relative velocity below this share of the typical one counts as zero
 FORCE_FLOOR = 1e-12  # [-] share of the largest force below which changes are not relative
@@ -167,7 +167,7 @@ def iterate(mechanism: Mechanism, kin: Kinematics, tol: float | None = None,
             continue
         on, tau, rate = rub.taus[name]
         power -= tau * rate
-        towards = 1.0 if on == max(name) else -1.0
+        towards = toward_higher(name, on)
         if isinstance(joint, Revolute):
             moments[name] = towards * tau
         else:

@@ -30,7 +30,7 @@ import numpy as np
 
 from dyade.linkage.motion import Motion, Screw, guide_direction
 from dyade.linkage.kinematics import Kinematics, crank_screw
-from dyade.linkage.model import CRANK, FRAME, FloatArray, Mechanism, Revolute
+from dyade.linkage.model import CRANK, FRAME, FloatArray, Mechanism, Revolute, toward_higher
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
@@ -215,7 +215,7 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
         if joint.friction > 0.0:  # the friction force acts H/2 off, at the guide surface
             along = dx * slider[0] + dy * slider[1]
             moment = moment - np.sign(normal) * 0.5 * joint.slider_height * along
-        sign = 1.0 if higher == joint.slider else -1.0
+        sign = toward_higher(joint.name, joint.slider)
         forces.normal[joint.name] = sign * normal
         forces.moment[joint.name] = sign * moment
     return forces

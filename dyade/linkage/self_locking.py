@@ -26,7 +26,7 @@ import numpy as np
 
 from dyade.linkage.friction import FrictionResult, joint_forces_on
 from dyade.linkage.motion import Motion, travel
-from dyade.linkage.model import FloatArray, Mechanism
+from dyade.linkage.model import FloatArray, Mechanism, toward_higher
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
@@ -53,7 +53,7 @@ def test(mechanism: Mechanism, motion: Motion, result: FrictionResult,
         others.pop(joint.name)
         pushing = sum(others.values()) if others else np.zeros_like(d)
         f_eta = np.sum(pushing * d, axis=1)
-        towards = 1.0 if joint.slider > joint.carrier else -1.0  # on the slider (SPEC §1)
+        towards = toward_higher(joint.name, joint.slider)  # reported -> on the slider
         normal = towards * result.forces.normal[joint.name]
         moment = towards * result.forces.moment[joint.name]
         velocity = travel(joint, motion)[1]

@@ -6,7 +6,7 @@ from typing import TextIO
 
 import numpy as np
 
-from dyade.report.columns import Columns
+from dyade.linkage.columns import Columns
 
 
 def write(cols: Columns, out: TextIO) -> None:

@@ -8,7 +8,8 @@ from rich.tree import Tree
 
 from dyade.linkage.sweep import Plan, Result
 from dyade.linkage.model import FRAME, Mechanism, Prismatic, Revolute
-from dyade.report.columns import Columns, unit_of
+from dyade.linkage.columns import Columns, unit_of
+from dyade.linkage.summary import cycle_mean
 
 
 def sweep_summary(result: Result, cols: Columns) -> Table:
@@ -76,7 +77,7 @@ def describe(mechanism: Mechanism, the_plan: Plan) -> Tree:
     effects = tree.add("effects simulated")
     for line in the_plan.effects():
         effects.add(line)
-    for line in the_plan.skipped():
+    for line in skipped(the_plan):
         effects.add(f"[dim]not simulated — {line}[/dim]")
     sweep = mechanism.sweep
     tree.add(f"sweep: crank angle {np.rad2deg(sweep.start):g}° to {np.rad2deg(sweep.stop):g}° "
@@ -84,18 +85,24 @@ def describe(mechanism: Mechanism, the_plan: Plan) -> Tree:
     return tree
 
 
+def skipped(the_plan: Plan) -> list[str]:
+    """Effects the file does not call for, and what would turn them on."""
+    out = []
+    if not the_plan.kinetostatics:
+        out.append("kinetostatics: no masses, loads or springs in the file")
+    if not the_plan.friction:
+        out.append("friction: no joint has a friction coefficient μ > 0")
+    if not the_plan.self_locking:
+        out.append("self-locking: no slider (prismatic joint) with friction")
+    if not the_plan.clearance:
+        out.append("clearance peaks: no joint has clearance data "
+                   "(or run `dyade clearance FILE --stiffness … --clearance …`)")
+    return out
+
+
 def _points(node: Tree, mechanism: Mechanism, link: int) -> None:
     for name, (xi, eta) in mechanism.links[link].points.items():
         node.add(f"link {link} point {name} = ({xi * 1e3:g}, {eta * 1e3:g}) mm (ξ, η)")
-
-
-def cycle_mean(angle: np.ndarray, values: np.ndarray) -> float:
-    """Mean over the crank angle (trapezoid rule), finite values only."""
-    keep = np.isfinite(values)
-    a, v = angle[keep], values[keep]
-    if a.size < 2:
-        return float(v.mean()) if v.size else float("nan")
-    return float(np.sum((v[1:] + v[:-1]) * np.diff(a)) / (2.0 * (a[-1] - a[0])))
 
 
 def force_summary(result: Result, cols: Columns) -> Table | None:

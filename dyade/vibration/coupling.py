@@ -30,6 +30,8 @@ from dyade.errors import InputError
 from dyade.arrays import FloatArray
 
 UNBOUNDED_RTOL = 1e-14  # [-] |denominator| below this share of its terms: exactly singular
+UNITS = {"inertia": "kg·m²", "c1": "N·m/rad", "c2": "N·m/rad", "b1": "N·m·s/rad",
+         "b2": "N·m·s/rad"}
 
 
 @dataclass(frozen=True, slots=True)
@@ -48,19 +50,23 @@ class Coupling:
     """secondary-side damping b2 [N·m·s/rad]"""
 
     def __post_init__(self) -> None:
-        for name, value, flag in (("inertia", self.inertia, "--J"), ("c1", self.c1, "--c1"),
-                                  ("c2", self.c2, "--c2"), ("b1", self.b1, "--b1"),
-                                  ("b2", self.b2, "--b2")):
+        for name in ("inertia", "c1", "c2", "b1", "b2"):
+            value = getattr(self, name)
             if not np.isfinite(value) or value < 0.0:
-                raise InputError(f"{flag} must be a non-negative number, got {value:g}.")
+                raise InputError.parameter(name, f"must be a non-negative number, got "
+                                                 f"{value:g}.", value=value, unit=UNITS[name])
         if self.inertia <= 0.0:
-            raise InputError(f"--J must be positive [kg·m²], got {self.inertia:g}.")
+            raise InputError.parameter("inertia", f"must be positive [kg·m²], got "
+                                                  f"{self.inertia:g}.", value=self.inertia,
+                                       unit="kg·m²")
         if self.c1 + self.c2 <= 0.0:
-            raise InputError("--c1 and --c2 are both zero: the coupling has no stiffness, so no "
-                             "natural frequency ω_t and no tuning ratio η. Give c1 + c2 > 0.")
+            raise InputError.parameter(("c1", "c2"), "are both zero: the coupling has no "
+                                                     "stiffness, so no natural frequency ω_t and "
+                                                     "no tuning ratio η. Give c1 + c2 > 0.")
         if self.c1 == 0.0 and self.b1 == 0.0:
-            raise InputError("--c1 and --b1 are both zero: nothing carries the exciting moment "
-                             "to the coupling (the primary node would run away).")
+            raise InputError.parameter(("c1", "b1"), "are both zero: nothing carries the exciting "
+                                                     "moment to the coupling (the primary node "
+                                                     "would run away).")
 
     @property
     def natural_frequency(self) -> float:
@@ -105,7 +111,7 @@ def response(coupling: Coupling, eta: FloatArray) -> Response:
     """Phasor solution at the tuning ratios ``eta`` (vectorised)."""
     eta = np.asarray(eta, dtype=np.float64)
     if np.any(eta < 0.0) or not np.all(np.isfinite(eta)):
-        raise InputError("tuning ratios η must be finite and not negative.")
+        raise InputError.parameter("eta", "(tuning ratios η) must be finite and not negative.")
     j, c1, c2, b1, b2 = coupling.inertia, coupling.c1, coupling.c2, coupling.b1, coupling.b2
     omega = eta * coupling.natural_frequency
     den_phi = (c2 - j * omega ** 2) + 1j * b2 * omega
@@ -146,7 +152,8 @@ def _phase(x: np.ndarray) -> FloatArray:
 def amplitudes(coupling: Coupling, resp: Response, moment: float) -> dict[str, FloatArray]:
     """Physical amplitudes for M̂_E = ``moment`` [N·m]: φ̂, ψ̂, φ̂_r [rad], M̂_Q [N·m]."""
     if not np.isfinite(moment) or moment <= 0.0:
-        raise InputError(f"--moment must be a positive amplitude [N·m], got {moment:g}.")
+        raise InputError.parameter("moment", f"must be a positive amplitude [N·m], got "
+                                             f"{moment:g}.", value=moment, unit="N·m")
     out = {}
     for name, key in (("phi_hat", "phi"), ("psi_hat", "psi"), ("MQ_hat", "q"), ("phir_hat", "r")):
         value = np.abs(resp.phasors[key]) * moment
@@ -167,3 +174,49 @@ def paper_transfer(coupling: Coupling, eta: FloatArray) -> dict[str, FloatArray]
     z = np.sqrt(w ** 2 - 2 * kappa * n + kappa ** 2 * (1 + r ** 2))
     return {"V_phi": 1 / z, "V_psi": w / (z * np.sqrt(1 + r ** 2)),
             "V_q": np.sqrt(1 + m ** 2) / z, "V_r": 1 / np.sqrt(1 + r ** 2)}
+
+
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class OperatingPoints:
+    """Operating speeds placed on the η axis."""
+
+    speeds_rpm: FloatArray
+    """(k,) shaft speeds [rpm]"""
+    order: float
+    """excitation order: Ω = order · 2π·speed/60"""
+    eta: FloatArray
+    """(k,) tuning ratios η = Ω/ω_t"""
+    response: Response
+    """the responses at those η"""
+
+
+def operating_points(coupling: Coupling, speeds_rpm, order: float = 1.0) -> OperatingPoints:
+    """The coupling's response at operating speeds [rpm] for an excitation ``order``.
+
+    >>> from dyade.vibration.coupling import Coupling, operating_points
+    >>> points = operating_points(Coupling(1.0, 1.0, 1.0, 0.05, 0.05), [6.0], order=2)
+    >>> round(float(points.eta[0]), 4), round(float(points.response.transfer["V_phi"][0]), 3)
+    (0.8886, 3.433)
+    """
+    if not np.isfinite(order) or order <= 0:
+        raise InputError.parameter("order", f"must be positive, got {order:g}.", value=order)
+    speeds = np.atleast_1d(np.asarray(speeds_rpm, dtype=float))
+    if np.any(~np.isfinite(speeds) | (speeds <= 0)):
+        raise InputError.parameter("speeds_rpm", "(operating speeds) must be positive [rpm].",
+                                   unit="rpm")
+    omega = order * speeds * 2 * np.pi / 60
+    eta = omega / coupling.natural_frequency
+    return OperatingPoints(speeds, float(order), eta, response(coupling, eta))
+
+
+def peaks(resp: Response) -> dict[str, tuple[float, float] | None]:
+    """The largest value of each transfer function over the computed η and where:
+    name -> (value, η), None where it is not defined."""
+    out: dict[str, tuple[float, float] | None] = {}
+    for name, values in resp.transfer.items():
+        if np.all(np.isnan(values)):
+            out[name] = None
+            continue
+        k = int(np.nanargmax(np.where(np.isnan(values), -np.inf, values)))
+        out[name] = (float(values[k]), float(resp.eta[k]))
+    return out

@@ -1,4 +1,4 @@
-"""Result -> a plain summary dictionary (for JSON output)."""
+"""Result -> a plain summary dictionary: extremes and the figures parts are sized by."""
 
 from __future__ import annotations
 
@@ -8,8 +8,17 @@ import numpy as np
 
 from dyade.linkage.sweep import Result
 from dyade.linkage.model import Revolute
-from dyade.report.columns import Columns
-from dyade.report.tables import cycle_mean
+from dyade.linkage.columns import Columns
+
+
+def cycle_mean(angle: np.ndarray, values: np.ndarray) -> float:
+    """Mean over the crank angle (trapezoid rule), finite values only."""
+    keep = np.isfinite(values)
+    a, v = angle[keep], values[keep]
+    if a.size < 2:
+        return float(v.mean()) if v.size else float("nan")
+    return float(np.sum((v[1:] + v[:-1]) * np.diff(a)) / (2.0 * (a[-1] - a[0])))
+
 
 
 def _extreme(angle, values) -> dict[str, Any]:

@@ -1,0 +1,238 @@
+"""The clearance check over a linkage's cycle (Dresig & Thümmel; closed form in
+``dyade.clearance``).
+
+For each revolute joint: the dominant line of action of its rigid-body force over the
+cycle, whether the force keeps to it (else the model does not apply: the pin travels
+around the bearing instead of crossing it), and every reversal of its sense with the
+slope F0/t0 = |dF/dφ21|·Ω, the peak force and its amplification over the rigid force.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from dyade.arrays import FloatArray
+from dyade.clearance import Peak, peak_force, reduced_mass
+from dyade.errors import InputError
+from dyade.linkage.model import ClearanceData, Mechanism, Revolute
+from dyade.units import RPM
+
+MAX_WANDER = np.deg2rad(20.0)  # [rad] largest direction change off the line of action
+SMALL_FORCE = 0.25  # [-] forces below this share of the peak do not count for the wander
+
+
+@dataclass(frozen=True, slots=True)
+class Reversal:
+    """One sense reversal of a joint force, and its clearance peak."""
+
+    crank_angle: float
+    """[rad] where the force along its line of action passes zero"""
+    slope_per_rad: float
+    """|dF/dφ21| at the reversal [N/rad]"""
+    peak: Peak
+    rigid_force: float
+    """|F| of the rigid model when the peak occurs [N]"""
+
+    @property
+    def amplification(self) -> float:
+        return self.peak.force / self.rigid_force if self.rigid_force > 0 else float("nan")
+
+
+@dataclass(frozen=True, slots=True)
+class JointCheck:
+    """The clearance check of one revolute joint over a mechanism's cycle."""
+
+    joint: tuple[int, int]
+    line_angle: float
+    """direction of the dominant line of action [rad], in [0, π)"""
+    wander: float
+    """largest angle between the force and that line [rad] (forces ≥ 25 % of the peak)"""
+    applies: bool
+    reason: str
+    """why the model does not apply ('' when it does)"""
+    reversals: tuple[Reversal, ...]
+    mass_source: str
+
+
+def line_of_action(force: FloatArray) -> tuple[float, float]:
+    """Dominant line of action of force vectors (n, 2): its angle in [0, π) and the
+    largest angle between a (non-small) force and that line [rad]."""
+    second = force.T @ force
+    values, vectors = np.linalg.eigh(second)
+    u = vectors[:, np.argmax(values)]
+    angle = float(np.arctan2(u[1], u[0]) % np.pi)
+    u = np.array([np.cos(angle), np.sin(angle)])
+    size = np.hypot(force[:, 0], force[:, 1])
+    big = size >= SMALL_FORCE * size.max()
+    along = force @ u
+    across = force[:, 0] * u[1] - force[:, 1] * u[0]
+    off = np.arctan2(np.abs(across[big]), np.abs(along[big]))
+    return angle, float(off.max(initial=0.0))
+
+
+def check_joint(name: tuple[int, int], crank_angle: FloatArray, force: FloatArray,
+                speed: float, data, mass: float, mass_source: str,
+                full_cycle: bool, max_wander: float = MAX_WANDER) -> JointCheck:
+    """Find the reversals of one joint's force and their peak forces (SPEC §2)."""
+    keep = np.all(np.isfinite(force), axis=1)
+    phi, force = crank_angle[keep], force[keep]
+    if phi.size < 3 or not np.any(np.hypot(force[:, 0], force[:, 1]) > 0):
+        return JointCheck(name, np.nan, np.nan, False, "the joint carries no force", (),
+                          mass_source)
+    angle, wander = line_of_action(force)
+    if wander > max_wander:
+        return JointCheck(name, angle, wander, False,
+                          f"the force direction wanders up to {np.rad2deg(wander):.0f}° off its "
+                          f"dominant line of action (the model needs one line, within "
+                          f"{np.rad2deg(max_wander):.0f}°): the pin travels around the bearing "
+                          f"instead of crossing it", (), mass_source)
+    u = np.array([np.cos(angle), np.sin(angle)])
+    magnitude = np.hypot(force[:, 0], force[:, 1])
+    if full_cycle and np.isclose(phi[-1] - phi[0], 2 * np.pi):
+        phi, force, magnitude = phi[:-1], force[:-1], magnitude[:-1]  # 360° repeats 0°
+    along = force @ u
+    phi_all, magnitude_all = phi.copy(), magnitude
+    if full_cycle:  # the cycle closes: compare the last position with the first
+        along_next = np.roll(along, -1)
+        phi_next = np.append(phi[1:], phi[0] + 2 * np.pi)
+    else:
+        along, along_next, phi_next, phi = along[:-1], along[1:], phi[1:], phi[:-1]
+    positive = along >= 0.0
+    crossing = np.flatnonzero(positive != (along_next >= 0.0))
+    period = 2 * np.pi if full_cycle else None
+    reversals = []
+    for k in crossing:
+        a, b = along[k], along_next[k]
+        dphi = phi_next[k] - phi[k]
+        at = phi[k] + a / (a - b) * dphi
+        slope = abs(b - a) / dphi
+        peak = peak_force(mass, data.stiffness, data.clearance, slope * abs(speed))
+        later = at + speed * peak.time_to_peak  # crank angle when the peak occurs
+        rigid = float(np.interp(later, phi_all, magnitude_all, period=period))
+        reversals.append(Reversal(float(at % (2 * np.pi)), float(slope), peak, rigid))
+    return JointCheck(name, angle, wander, True, "", tuple(reversals), mass_source)
+
+
+def joint_mass(mechanism, joint) -> tuple[float | None, str]:
+    """Reduced mass for a joint: given, or m_i·m_j/(m_i + m_j) of its two links (the
+    frame counts as infinitely heavy). None if neither is known."""
+    if joint.clearance is not None and joint.clearance.mass is not None:
+        return joint.clearance.mass, "given"
+    masses = [mechanism.links[link].mass for link in joint.links if link != 1]
+    if not masses or any(m <= 0.0 for m in masses):
+        return None, ""
+    if len(masses) == 1:
+        return masses[0], f"mass of link {[l for l in joint.links if l != 1][0]} (frame side rigid)"
+    a, b = joint.links
+    return reduced_mass(*masses), f"reduced mass of links {a} and {b} (eq. 17)"
+
+
+def check_mechanism(mechanism, result, joints, override=None, mass_override=None,
+                    max_wander: float = MAX_WANDER) -> list:
+    """Clearance check of the given revolute joints from an analysis result.
+
+    ``override``: ClearanceData applied to every joint (CLI), ``mass_override`` [kg],
+    ``max_wander`` [rad]: how far the force may leave its line of action."""
+    forces = result.forces
+    if forces is None:
+        raise InputError("the clearance check needs joint forces: the file has no masses, "
+                         "loads or springs (add mass data, see mechanisms/README.md).")
+    by_name = {j.name: j for j in mechanism.joints}
+    phi = result.crank_angle[result.rows]
+    full = (phi[-1] - phi[0]) >= 2 * np.pi - 1.5 * mechanism.sweep.step
+    checks = []
+    for name in joints:
+        joint = by_name.get(name)
+        if joint is None or not isinstance(joint, Revolute):
+            kinds = ", ".join(f"({a},{b})" for a, b in by_name if isinstance(by_name[(a, b)], Revolute))
+            raise InputError.parameter("joints", f"{name[0]},{name[1]}: the mechanism has no "
+                                                 f"revolute joint ({name[0]},{name[1]}); its "
+                                                 f"revolute joints are {kinds}.", value=name)
+        data = override or joint.clearance
+        mass, source = (mass_override, "given") if mass_override else joint_mass(mechanism, joint)
+        missing = None
+        if data is None:
+            missing = ("no clearance data: give --stiffness and --clearance, or "
+                       "`clearance = { gap = …, stiffness = … }` in its joint table")
+        elif mass is None:
+            missing = (f"no reduced mass: give --mass or `clearance.mass` (links {name[0]} and "
+                       f"{name[1]} have no mass to estimate it from)")
+        if missing:
+            checks.append(JointCheck(name, np.nan, np.nan, False, missing, (), ""))
+            continue
+        force = forces.revolute[name][result.rows]
+        force = np.where(forces.valid[result.rows][:, None], force, np.nan)
+        checks.append(check_joint(name, phi, force, mechanism.crank.speed, data, mass, source,
+                                  bool(full), max_wander))
+    return checks
+
+
+def check(mechanism: Mechanism, *, joints=None, stiffness: float | None = None,
+          clearance: float | None = None, mass: float | None = None,
+          max_wander: float = MAX_WANDER, result=None) -> list[JointCheck]:
+    """The clearance check of a mechanism's revolute joints over its cycle.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        With masses, loads or springs (the check needs the rigid joint forces).
+    joints : iterable of (int, int), optional
+        The revolute joints to check (default: every revolute joint).
+    stiffness, clearance : float, optional
+        Contact stiffness c [N/m] and clearance 2s [m] for every joint checked, together;
+        default: each joint's clearance data from the file.
+    mass : float, optional
+        Reduced mass m [kg] for every joint; default: the file's, or the reduced mass of
+        the joint's two links (eq. 17; the frame counts as rigid).
+    max_wander : float
+        How far [rad] the force may leave its dominant line of action for the model to
+        apply (forces of at least 25 % of the peak count).
+    result : Result, optional
+        An analysis of ``mechanism`` to reuse (default: analysed here).
+
+    Returns
+    -------
+    list of JointCheck
+        One per joint, in the order asked: its line of action, whether the model
+        applies (else why not), and every reversal with its peak force.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> mechanism = dyade.read_mechanism("mechanisms/dyade-16.toml")
+    >>> checks = dyade.check_clearance(mechanism, joints=[(2, 7)], stiffness=1e8,
+    ...                                clearance=1e-4)
+    >>> [round(r.peak.force) for r in checks[0].reversals]
+    [318, 738]
+    """
+    from dyade.linkage.sweep import analyse
+
+    if (stiffness is None) != (clearance is None):
+        raise InputError.parameter("stiffness", "and clearance go together (or neither, to use "
+                                                "the clearance data of the mechanism).")
+    override = ClearanceData(clearance, stiffness, None) if stiffness is not None else None
+    if joints is None:
+        joints = [j.name for j in mechanism.joints if isinstance(j, Revolute)]
+    joints = [(a, b) if a < b else (b, a) for a, b in joints]
+    result = analyse(mechanism) if result is None else result
+    return check_mechanism(mechanism, result, joints, override, mass, max_wander)
+
+
+def speed_study(mechanism: Mechanism, speeds_rpm, **options) -> list[tuple[float, list]]:
+    """The clearance check at each crank speed of ``speeds_rpm`` [rpm] (the crank keeps
+    its sense of rotation); ``options`` as for ``check``.
+
+    Returns (speed [rpm], list of JointCheck) per speed.
+    """
+    sign = 1.0 if mechanism.crank.speed > 0 else -1.0
+    out = []
+    for rpm in speeds_rpm:
+        if not np.isfinite(rpm) or rpm <= 0:
+            raise InputError.parameter("speeds_rpm", f"must be positive speeds [rpm], got "
+                                                     f"{rpm:g}.", value=rpm, unit="rpm")
+        faster = replace(mechanism, crank=replace(mechanism.crank,
+                                                  speed=sign * rpm * RPM))
+        out.append((float(rpm), check(faster, **options)))
+    return out
