@@ -58,17 +58,22 @@ _EXPORTS = {
     "AssemblyError": "dyade.errors",
 }
 
+_SUBMODULES = {"clearance", "errors", "files", "linkage", "units", "vibration"}
+"""packages of the API, loaded on first attribute access (``dyade.clearance``)"""
+
 __all__ = sorted(_EXPORTS) + ["__version__"]
 
 
 def __getattr__(name: str):
     """Load an exported name on first use (PEP 562)."""
+    import importlib
+
+    if name in _SUBMODULES:
+        return importlib.import_module(f"dyade.{name}")
     try:
         where = _EXPORTS[name]
     except KeyError:
         raise AttributeError(f"module 'dyade' has no attribute {name!r}") from None
-    import importlib
-
     module, attribute = where if isinstance(where, tuple) else (where, name)
     value = getattr(importlib.import_module(module), attribute)
     globals()[name] = value

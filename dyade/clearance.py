@@ -1,4 +1,4 @@
-"""Peak force in a revolute joint with clearance (Dresig & Thümmel; SPEC §2).
+"""Peak force in a revolute joint with clearance (Dresig & Thümmel).
 
 Near a reversal the rigid joint force is a ramp F = k·t (k = F0/t0 [N/s]). The pin
 crosses the clearance 2s in free flight and strikes after t1 = cbrt(12·m·s/k) (15)

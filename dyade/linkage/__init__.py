@@ -1,1 +1,2 @@
-"""The DYADE engine: planar linkages as a crank and dyads in assembly order, swept over the crank angle."""
+"""The DYADE engine: planar linkages as a crank and dyads in assembly order, swept
+over the crank angle."""

@@ -1,4 +1,5 @@
-"""Coulomb friction by iteration, dyad by dyad, over the whole sweep (SPEC §1).
+"""Coulomb friction by iteration, dyad by dyad, over the whole sweep (Thümmel & Bartke
+1987, section 4).
 
 For each group (dyads in reverse assembly order, then the crank): (1) solve without
 friction, (2) friction from those reactions, (3) solve again with the friction loads,

@@ -75,7 +75,7 @@ def line_of_action(force: FloatArray) -> tuple[float, float]:
 def check_joint(name: tuple[int, int], crank_angle: FloatArray, force: FloatArray,
                 speed: float, data, mass: float, mass_source: str,
                 full_cycle: bool, max_wander: float = MAX_WANDER) -> JointCheck:
-    """Find the reversals of one joint's force and their peak forces (SPEC §2)."""
+    """Find the reversals of one joint's force and their peak forces (eqs. (27), (36))."""
     keep = np.all(np.isfinite(force), axis=1)
     phi, force = crank_angle[keep], force[keep]
     if phi.size < 3 or not np.any(np.hypot(force[:, 0], force[:, 1]) > 0):

@@ -1,4 +1,4 @@
-"""Kinematics over the whole crank sweep at once (SPEC §1).
+"""Kinematics over the whole crank sweep at once, dyad by dyad as in DYADE.
 
 The crank first, then the dyads in assembly order: each dyad's closure in closed form
 (``dyade.dyads``), then its velocities and accelerations by twists (``dyade.joints``).

@@ -1,4 +1,4 @@
-"""Backward kinetostatics (d'Alembert), dyad by dyad (SPEC §1).
+"""Backward kinetostatics (d'Alembert), dyad by dyad (Thümmel & Bartke 1987, sections 2-3).
 
 Dyads are solved in reverse assembly order, k = last … 2, then the crank. Loads are
 wrenches about the world origin (``dyade.joints``): on every link the known loads Q
@@ -17,8 +17,8 @@ i.e. Mᵀ·W_B = rhs with the transposed loop matrix of the velocity analysis: t
 kinematics' inverse serves again. −W_A and −W_C pass on to g and h. The crank: with
 S₁₂ its unit twist, the drive torque is M_drive = −S₁₂·Q₂ − τ₁₂ and W₁₂ = −Q₂ − M_drive·e_z.
 
-Sign rule (SPEC §1): a joint's force is the one acting on the element of the
-higher-numbered link; a prismatic joint carries a normal force FN along the guide's
+Sign rule (Thümmel & Bartke 1987, section 2): a joint's force is the one acting on the
+element of the higher-numbered link; a prismatic joint carries a normal force FN along the guide's
 left normal n (of the carrier's guide) and a moment M about the slider point.
 """
 
@@ -189,7 +189,7 @@ def backward(mechanism: Mechanism, kin: Kinematics, q: FloatArray, rub=None) -> 
 
 def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
                     drive: FloatArray, frame: FloatArray) -> Forces:
-    """Physical joint forces (sign rule of SPEC §1) from the joint wrenches; the shaking
+    """Physical joint forces (the paper's sign rule) from the joint wrenches; the shaking
     load gets the frame-anchored springs and the drive's reaction."""
     motion = kin.motion
     for spring in mechanism.springs:

@@ -1,21 +1,12 @@
 """The mechanism as dyade sees it inside: frozen dataclasses, SI units, validated.
 
-Every link has its own frame (origin and ξ axis, SPEC §1); every joint is stated in
-the frames of the two links it joins. The file reader (``toml_input``) turns the
-designer's per-kind description into these objects, so the engine never needs to
-know which link of a prismatic pair was written as guide and which as slider.
-
-Link frames of the links a dyad places (documented in ``mechanisms/README.md``):
-
-====  ==========================================  =======================================
-kind  link i                                      link j
-====  ==========================================  =======================================
-RRR   origin A, ξ towards B                       origin C, ξ towards B
-RRP   origin A, ξ towards B                       origin B, ξ along the guide at C
-RPR   origin A, ξ along the guide at B            origin C, ξ along the guide at B
-PRP   origin B, ξ along the guide at A            origin B, ξ along the guide at C
-PPR   origin on guide A, ξ along the guide at A   origin C, ξ along the guide at B
-====  ==========================================  =======================================
+Every link has its own frame (origin and ξ axis, as in the DYADE paper, Thümmel &
+Bartke 1987); every joint is stated in the frames of the two links it joins. The file
+reader (``dyade.files.mechanism``) turns the designer's per-kind description into these
+objects, so the engine never needs to know which link of a prismatic pair was written
+as guide and which as slider. The link frames of the two links a dyad places are part
+of its kind's description (``DyadKind.frames``, ``dyade.linkage.dyads``; documented in
+``mechanisms/README.md``).
 """
 
 from __future__ import annotations
@@ -51,7 +42,7 @@ def toward_higher(name: tuple[int, int], link: int) -> float:
 
 @dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class ClearanceData:
-    """Data of SPEC §2 for a revolute joint with clearance."""
+    """Data of a revolute joint with clearance for the peak-force check (Dresig & Thümmel)."""
 
     clearance: float
     """radial play 2s [m]"""
@@ -235,7 +226,10 @@ class Sweep:
 
 @dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Mechanism:
-    """A whole linkage in assembly order, SI units."""
+    """A whole linkage in assembly order, SI units: the crank, the dyads, the links with
+    their points and mass data, loads, springs, gravity and the crank-angle sweep.
+    Made by ``dyade.read_mechanism`` (a file) or ``dyade.build_mechanism`` (a dict
+    with the same keys), which validate it."""
 
     name: str
     source: str | None

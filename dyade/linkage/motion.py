@@ -1,8 +1,7 @@
 """Motion of the links, the joints' screws, and the constraint residuals.
 
 Velocities, accelerations and forces are written with planar screws about the world
-origin O (SPEC §1: "velocities and accelerations follow from differentiating these
-closures once and twice in time"):
+origin O (the dyad closures differentiated once and twice in time):
 
 * a twist V = (v_x, v_y, ω): ω and the velocity v_O of the link point passing O;
   a point P of the link moves with v_P = v_O + ω·E·P (E: turn by +90°);
@@ -12,7 +11,7 @@ closures once and twice in time"):
 A joint's unit twist S is the relative motion it allows: a revolute joint at P gives
 S = (P_y, −P_x, 1), a prismatic joint with guide direction d gives S = (d_x, d_y, 0).
 So S·W is the moment of W about the pin or the force of W along the guide: the part a
-frictionless joint cannot carry (SPEC §1's "the reaction has no component along the
+frictionless joint cannot carry ("the reaction has no component along the
 joint's freedom"). Arrays of screws have the shape (3, n); links are stored link-major
 so that every component over the sweep is contiguous.
 """

@@ -1,4 +1,4 @@
-"""Self-locking test for sliders with friction (SPEC §1, after Gumpert).
+"""Self-locking test for sliders with friction (Thümmel & Bartke 1987, after Gumpert 1984).
 
 The slider does not lock while
 

@@ -24,7 +24,8 @@ if TYPE_CHECKING:  # imported where used: a kinematics-only run never loads them
 
 @dataclass(frozen=True, slots=True)
 class Plan:
-    """The stages a sweep will run."""
+    """The stages a sweep will run, decided from the data before anything runs
+    (``plan``): each is a tuple of the joints it concerns, or a flag."""
 
     kinematics: bool = True
     kinetostatics: bool = False
@@ -226,7 +227,7 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
     >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/fourbar.toml"))
     >>> cols = result.columns()
     >>> cols["angle_deg"].size, round(float(cols["M_drive"].max()), 3)
-    (361, 5.306)
+    (361, 1.466)
     """
     mechanism = with_sweep(mechanism, start, stop, step)
     if friction_tol is not None:

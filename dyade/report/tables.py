@@ -159,7 +159,7 @@ def clearance_summary(result: Result) -> Table | None:
     """One row per reversal of each checked joint: angle, τ, peak, amplification."""
     if not result.clearance:
         return None
-    table = Table(title="Clearance peaks (Dresig–Thümmel, SPEC §2)", title_justify="left")
+    table = Table(title="Clearance peaks (Dresig & Thümmel)", title_justify="left")
     for head in ("joint", "impacts/rev", "φ21 [°]", "τ", "F12max [N]", "rigid [N]", "×"):
         table.add_column(head, justify="right")
     for check in result.clearance:

@@ -1,4 +1,4 @@
-"""Torsional resonance of a stiff coupling (Strümpfel; SPEC §3), as complex phasors.
+"""Torsional resonance of a stiff coupling (Strümpfel), as complex phasors.
 
 Model: the exciting moment M_E = M̂_E·sin Ωt acts at the primary node ψ (massless),
 which drives the coupling inertia J_K through c1t ∥ b1; the secondary side is held
@@ -36,7 +36,18 @@ UNITS = {"inertia": "kg·m²", "c1": "N·m/rad", "c2": "N·m/rad", "b1": "N·m·
 
 @dataclass(frozen=True, slots=True)
 class Coupling:
-    """The model data (SI)."""
+    """The stiff coupling model (SI): J_K between c1t ∥ b1 (primary, excited) and
+    c2t ∥ b2 (secondary, held).
+
+    Examples
+    --------
+    >>> from dyade.vibration.coupling import Coupling, response
+    >>> coupling = Coupling(inertia=1.0, c1=1.0, c2=1.0, b1=0.05, b2=0.05)
+    >>> round(coupling.resonance(), 4)      # η0, eq. (5)
+    0.7067
+    >>> float(response(coupling, [0.0]).transfer["V_phi"][0])   # static: (c1 + c2)/c2
+    2.0
+    """
 
     inertia: float
     """J_K [kg·m²]"""
@@ -75,7 +86,8 @@ class Coupling:
 
     @property
     def damping_ratio(self) -> float:
-        """D = (b1 + b2)/(2·J_K·ω_t) [-] (SPEC §3; the OCR's square root is a slip)"""
+        """D = (b1 + b2)/(2·J_K·ω_t) [-] (the paper prints a square root here, a slip: D
+        is dimensionless only in this form)"""
         return (self.b1 + self.b2) / (2.0 * self.inertia * self.natural_frequency)
 
     @property
@@ -108,7 +120,9 @@ class Response:
 
 
 def response(coupling: Coupling, eta: FloatArray) -> Response:
-    """Phasor solution at the tuning ratios ``eta`` (vectorised)."""
+    """Phasor solution at the tuning ratios ``eta`` = Ω/ω_t [-] (vectorised): transfer
+    functions V_φ, V_ψ, V_q, V_r (eqs. (4), (7)-(9)), phases α, β, γ, δ (true quadrant)
+    and the phasors per unit exciting moment; unbounded where undamped at resonance."""
     eta = np.asarray(eta, dtype=np.float64)
     if np.any(eta < 0.0) or not np.all(np.isfinite(eta)):
         raise InputError.parameter("eta", "(tuning ratios η) must be finite and not negative.")

@@ -1,5 +1,6 @@
-"""Kind 5, PPR: link i slides on g, link j turns about C and slides on i (SPEC §1);
-linear, one closure; blocked when guides A and B are parallel."""
+"""Kind 5, PPR: link i slides on g, link j turns about C and slides on i; linear, one
+closure (derived for dyade: Part 1 of the DYADE paper is not available); blocked when
+guides A and B are parallel."""
 
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
-"""Kind 4, PRP: the pin B is where two guide lines cross (SPEC §1); linear, one
-closure; blocked when the guides are parallel."""
+"""Kind 4, PRP: the pin B is where two guide lines cross; linear, one closure (derived
+for dyade); blocked when the guides are parallel."""
 
 from __future__ import annotations
 

@@ -1,5 +1,6 @@
 """Kind 3, RPR: both links turn about their pivots, the guide of one passes the slider
-point of the other (SPEC §1): ρ·sin(β0 − ψ) = c0, a tangent to an offset circle.
+point of the other: ρ·sin(β0 − ψ) = c0, a tangent to an offset circle (closed form
+derived for dyade).
 
 Variant +1: the guide direction points from the guide link's pivot towards the other
 link's pivot (d·(O_slider − O_guide) > 0).

@@ -1,4 +1,4 @@
-"""Kind 2, RRP: circle about A meets the guide line at C (SPEC §1).
+"""Kind 2, RRP: circle about A meets the guide line at C (closed form derived for dyade).
 
 Variant +1: B lies ahead of the foot point of A in the guide direction.
 """

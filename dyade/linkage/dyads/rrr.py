@@ -1,4 +1,5 @@
-"""Kind 1, RRR: two circles (SPEC §1). Variant +1: B left of the directed line A→C."""
+"""Kind 1, RRR: two circles (closed form derived for dyade). Variant +1: B left of the
+directed line A→C."""
 
 from __future__ import annotations
 
