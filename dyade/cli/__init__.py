@@ -1,4 +1,6 @@
-"""The ``dyade`` command: a thin shell over ``dyade.analysis``.
+"""The ``dyade`` command: a thin shell over the API (``dyade``).
+
+Each command parses its options, calls the API and hands the result to ``dyade.report``.
 
 Exit codes: 0 success, 1 analysis problem (``DyadeError``), 2 bad input or usage
 (``InputError`` and click's usage errors). Heavy modules (numpy, rich) are imported

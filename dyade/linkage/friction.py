@@ -7,7 +7,7 @@ friction, (2) friction from those reactions, (3) solve again with the friction l
 ``tol`` at every crank position, or after ``max_iter`` steps. Converged groups pass
 their reactions, friction included, on to the links they hang on.
 
-In the wrench form of ``dyade.kinetostatics`` friction is the part τ = S·W a joint
+In the wrench form of ``dyade.linkage.kinetostatics`` friction is the part τ = S·W a joint
 carries along its freedom S (relative rate r along S):
 
 * revolute joint: the friction moment τ = −μ·r_z·|F|·sign(r) about the pin;

@@ -1,7 +1,7 @@
 """Kinematics over the whole crank sweep at once, dyad by dyad as in DYADE.
 
 The crank first, then the dyads in assembly order: each dyad's closure in closed form
-(``dyade.dyads``), then its velocities and accelerations by twists (``dyade.joints``).
+(``dyade.linkage.dyads``), then its velocities and accelerations by twists (``dyade.linkage.motion``).
 A dyad is a loop g –A– i –B– j –C– h between two known links g and h; with the unit
 twists S_A (i relative to g), S_B (j relative to i) and S_C (j relative to h) and the
 joint rates r = (a, b, c),

@@ -1,7 +1,7 @@
 """Backward kinetostatics (d'Alembert), dyad by dyad (Thümmel & Bartke 1987, sections 2-3).
 
 Dyads are solved in reverse assembly order, k = last … 2, then the crank. Loads are
-wrenches about the world origin (``dyade.joints``): on every link the known loads Q
+wrenches about the world origin (``dyade.linkage.motion``): on every link the known loads Q
 (inertia −m·a_S and −J_S·α, gravity, applied loads, springs; the SFX, SFY, SM of the
 paper) plus the reactions of the later dyads. For a dyad g –A– i –B– j –C– h let W_A
 act on i (from g), W_B on j (from i) and W_C on j (from h). Equilibrium of i and j,
@@ -9,7 +9,7 @@ act on i (from g), W_B on j (from i) and W_C on j (from h). Equilibrium of i and
     W_A = W_B − Q_i,   W_C = −Q_j − W_B,
 
 and a frictionless joint carries nothing along its freedom, S·W = 0 (a friction law
-sets S·W = τ instead, ``dyade.friction``), give three equations for W_B:
+sets S·W = τ instead, ``dyade.linkage.friction``), give three equations for W_B:
 
     S_A·W_B = S_A·Q_i + τ_A,   S_B·W_B = τ_B,   −S_C·W_B = S_C·Q_j + τ_C,
 
@@ -91,7 +91,7 @@ def applied_loads(mechanism: Mechanism, kin: Kinematics) -> FloatArray:
         fx, fy, moment = load_values(load, kin.crank_angle)
         if load.local:
             c, s = motion.cos[:, load.link], motion.sin[:, load.link]
-            fx, fy = c * fx - s * fy, s * fx + c * fy
+            fx, fy = c * fx + s * fy, -s * fx + c * fy
         add_force(q[load.link], motion.point(load.link, load.point), np.stack((fx, fy), -1))
         q[load.link, 2] += moment
     for spring in mechanism.springs:
@@ -156,7 +156,7 @@ def backward(mechanism: Mechanism, kin: Kinematics, q: FloatArray, rub=None) -> 
     """Backward pass (module docstring): dyads in reverse assembly order, then the crank.
 
     ``q`` (from ``applied_loads``) is used up: the reactions are added to it.
-    ``rub`` (``dyade.friction``) turns the frictionless joint condition S·W = 0 into its
+    ``rub`` (``dyade.linkage.friction``) turns the frictionless joint condition S·W = 0 into its
     friction law; it is called per group with the frictionless solution.
     """
     frame = np.zeros(q.shape[1:])

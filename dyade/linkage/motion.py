@@ -146,7 +146,7 @@ def dot(a: FloatArray, b: FloatArray) -> FloatArray:
 
 Screw = tuple[FloatArray, FloatArray, float]
 """A unit twist as (v_x (n,), v_y (n,), ω): ω is a constant, 1 or 0, and the
-arithmetic uses that (``dyade.kinematics``)."""
+arithmetic uses that (``dyade.linkage.kinematics``)."""
 
 
 def screw(joint: Joint, motion: Motion, on: int, at=None) -> Screw:

@@ -159,6 +159,11 @@ def pin(joint: Revolute, unknown: int, motion: Motion) -> tuple[FloatArray, Vec]
     return motion.point(p, u_p), u_q
 
 
+def ends(joint: Revolute, first: int) -> tuple[Vec, Vec]:
+    """A revolute joint's local points, the one on link ``first`` first."""
+    return joint.points if joint.links[0] == first else joint.points[::-1]
+
+
 def carry_angle(joint: Prismatic, known: int, unknown: int, motion: Motion) -> None:
     """Set the angle of the link across a prismatic joint from ``known`` (φ_s − φ_c = κ)."""
     offset = joint.relative_angle if joint.carrier == known else -joint.relative_angle
@@ -200,14 +205,3 @@ def solve_lines(n1: FloatArray, c1: FloatArray, n2: FloatArray, c2: FloatArray
     point = np.stack((x, y), axis=-1)
     point[blocked] = np.nan
     return point, sin
-
-
-KIND_MODULES = {1: "rrr", 2: "rrp", 3: "rpr", 4: "prp", 5: "ppr"}
-"""kind number -> module of dyade.dyads with ``close``; see the table in the module
-docstring."""
-
-
-def kind_module(kind: int) -> ModuleType:
-    """The module of dyad kind ``kind``, imported when a mechanism first needs it (a
-    four-bar run need not load the four other kinds)."""
-    return importlib.import_module(f"dyade.linkage.dyads.{KIND_MODULES[kind]}")

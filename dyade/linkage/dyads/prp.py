@@ -13,7 +13,7 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     i, j = dyad.links
     g, h = dyad.known
     joint_a, joint_b, joint_c = dyad.joints
-    b_i, b_j = (joint_b.points if joint_b.links[0] == i else joint_b.points[::-1])
+    b_i, b_j = dyads.ends(joint_b, i)
     dyads.carry_angle(joint_a, g, i, motion)
     dyads.carry_angle(joint_c, h, j, motion)
     n_a, c_a = dyads.guide_line(joint_a, i, motion)

@@ -18,7 +18,7 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     _, h = dyad.known
     joint_a, joint_b, joint_c = dyad.joints
     a, a_i = dyads.pin(joint_a, i, motion)
-    b_i, b_j = (joint_b.points if joint_b.links[0] == i else joint_b.points[::-1])
+    b_i, b_j = dyads.ends(joint_b, i)
     dyads.carry_angle(joint_c, h, j, motion)
     normal, offset = dyads.guide_line(joint_c, j, motion)
     offset = offset + dot(normal, motion.rotated(j, b_j))  # now normal·B = offset

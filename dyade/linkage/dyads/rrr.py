@@ -18,7 +18,7 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     joint_a, joint_b, joint_c = dyad.joints
     (ax, ay), a_i = dyads.pin_xy(joint_a, i, motion)
     (cx, cy), c_j = dyads.pin_xy(joint_c, j, motion)
-    b_i, b_j = (joint_b.points if joint_b.links[0] == i else joint_b.points[::-1])
+    b_i, b_j = dyads.ends(joint_b, i)
     arm_i = np.subtract(b_i, a_i)
     arm_j = np.subtract(b_j, c_j)
     l_i, l_j = float(np.hypot(*arm_i)), float(np.hypot(*arm_j))
