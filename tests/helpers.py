@@ -11,6 +11,9 @@ from dyade.linkage import kinematics
 from dyade.linkage.model import Mechanism
 from dyade.files.mechanism import Reader
 
+ROOT = Path(__file__).resolve().parent.parent
+"""the repository: mechanisms/, and the directory to run ``python -m dyade`` from"""
+
 
 def mechanism_from(data: dict[str, Any]) -> Mechanism:
     return Reader("test.toml").mechanism(data)
@@ -29,4 +32,4 @@ def read_csv(text: str) -> dict[str, np.ndarray]:
 
 
 def shipped(name: str) -> Path:
-    return Path(__file__).resolve().parent.parent / "mechanisms" / name
+    return ROOT / "mechanisms" / name

@@ -6,15 +6,19 @@ from __future__ import annotations
 import csv
 import io
 import json
+import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from rich.table import Table
 
-from dyade.cli import main
+from dyade.cli import main, output
 from dyade.report import csv_rows
 from tests.conftest import SHIPPED
-from tests.helpers import read_csv, shipped
+from tests.helpers import ROOT, read_csv, shipped
 
 BOX = set("─│┌┐└┘├┤┬┴┼━┃┏┓┗┛┣┫┳┻╋╇┡┩╭╮╰╯═║")
 
@@ -62,7 +66,7 @@ def test_set_overrides_nested_keys_like_the_file():
     ("speed", "expected KEY=VALUE"),
 ])
 def test_set_with_a_bad_value_is_a_clear_error(assignment, message):
-    result = CliRunner().invoke(main, ["analyse", str(shipped("fourbar.toml")), "--set", assignment])
+    result = run("analyse", shipped("fourbar.toml"), "--set", assignment)
     assert result.exit_code == 2
     assert message in result.output
 
@@ -83,7 +87,7 @@ def test_init_files_analyse_as_written(tmp_path):
         result = run("analyse", path, "--format", "csv")
         assert result.exit_code == 0, (kind, result.output)
         assert "M_drive" in result.stdout.splitlines()[0]
-    again = CliRunner().invoke(main, ["init", "fourbar", str(tmp_path / "fourbar.toml")])
+    again = run("init", "fourbar", tmp_path / "fourbar.toml")
     assert again.exit_code == 2 and "--force" in again.output
 
 
@@ -118,11 +122,56 @@ def test_piped_output_is_plain(args):
     assert not (set(text) & BOX), sorted(set(text) & BOX)
 
 
-def test_no_color_is_plain_on_a_terminal(monkeypatch):
-    from dyade.cli import output
+class FakeTerminal(io.StringIO):
+    """A stream that says it is a terminal (under pytest stdout never is)."""
 
+    def isatty(self) -> bool:
+        return True
+
+
+def _table() -> Table:
+    table = Table("quantity", "value")
+    table.add_row("omega_3", "12.5")
+    return table
+
+
+def test_no_color_is_plain_on_a_terminal(monkeypatch):
+    monkeypatch.delenv("NO_COLOR", raising=False)
+    assert not output.plain(FakeTerminal())
     monkeypatch.setenv("NO_COLOR", "1")
-    assert output.plain()
+    assert output.plain(FakeTerminal())
+
+
+def test_a_terminal_gets_boxes_and_colour(monkeypatch):
+    # the counter-check of the plain-output tests: the same table on a terminal is boxed
+    monkeypatch.delenv("NO_COLOR", raising=False)
+    monkeypatch.setenv("TERM", "xterm-256color")
+    tty = FakeTerminal()
+    output.console(file=tty).print(_table())
+    text = tty.getvalue()
+    assert set(text) & BOX and "\x1b[" in text, repr(text)
+
+
+def test_no_color_makes_shown_tables_plain_on_a_terminal(monkeypatch):
+    monkeypatch.setenv("NO_COLOR", "1")
+    monkeypatch.setenv("TERM", "xterm-256color")
+    tty = FakeTerminal()
+    monkeypatch.setattr(sys, "stdout", tty)
+    output.show([_table()])
+    text = tty.getvalue()
+    assert "omega_3" in text and "12.5" in text
+    assert "\x1b[" not in text and not set(text) & BOX, repr(text)
+
+
+def test_piped_output_of_the_real_command_is_plain():
+    # a user's shell: a colour terminal, no NO_COLOR; only stdout is a pipe
+    env = {k: v for k, v in os.environ.items() if k != "NO_COLOR"} | {"TERM": "xterm-256color"}
+    run = subprocess.run([sys.executable, "-m", "dyade", "analyse", str(shipped("dyade-16.toml"))],
+                         capture_output=True, text=True, encoding="utf-8", env=env, cwd=ROOT)
+    assert run.returncode == 0, run.stderr
+    assert "omega_3" in run.stdout
+    assert "\x1b[" not in run.stdout
+    assert not set(run.stdout) & BOX, sorted(set(run.stdout) & BOX)
 
 
 def test_interrupted_write_leaves_no_partial_file(tmp_path, monkeypatch):
@@ -133,7 +182,7 @@ def test_interrupted_write_leaves_no_partial_file(tmp_path, monkeypatch):
         raise KeyboardInterrupt
 
     monkeypatch.setattr(csv_rows, "write", explode)
-    result = CliRunner().invoke(main, ["analyse", str(shipped("fourbar.toml")), "-o", str(target)])
+    result = run("analyse", shipped("fourbar.toml"), "-o", target)
     assert result.exit_code == 1 and "Aborted" in result.output  # Ctrl-C, as click reports it
     assert list(tmp_path.iterdir()) == []  # neither the result nor its temporary file
 
@@ -144,8 +193,9 @@ def test_failed_analysis_leaves_the_old_result_untouched(tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text(shipped("fourbar.toml").read_text().replace("lengths = [200, 150]",
                                                                 "lengths = [200, 60]"))
-    result = CliRunner().invoke(main, ["analyse", str(bad), "-o", str(target)])
+    result = run("analyse", bad, "-o", target)  # a bug would raise here, not exit 1
     assert result.exit_code == 1
+    assert "dyad 2 (kind 1 RRR, links 3-4) cannot close" in " ".join(result.output.split())
     assert target.read_text() == "previous result\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.toml", "result.csv"]
 

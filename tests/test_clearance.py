@@ -57,7 +57,36 @@ def test_peak_force_matches_paper():
     assert peak.tau == pytest.approx(3.0285, abs=5e-5)
     assert peak.t1 == pytest.approx(1.817e-3, rel=5e-4)
     assert peak.f_tau == pytest.approx(4.3638, abs=5e-4)
-    assert peak.clearance_share + peak.rigid_share == pytest.approx(peak.force)
+
+
+SHARE_CASES = [                   # mass, stiffness, clearance, slope
+    (3.6, 1e7, 1e-4, 3.6e5),      # the paper: τ ≈ 3.03
+    (0.2, 1e8, 5e-5, 1e4),        # stiff, slow ramp: τ ≈ 41
+    (10.0, 1e6, 2e-4, 5e6),       # soft, fast ramp: τ ≈ 0.42
+    (1.0, 4e6, 1e-4, 2.4e6),      # τ ≈ 1.26: the peak after the first half-wave
+    (2.0, 1e8, 2e-5, 1.2e7),      # τ ≈ 1.92, just below 2
+    (2.0, 1e8, 2e-5, 7e6),        # τ ≈ 2.30, just above 2
+]
+
+
+@pytest.mark.parametrize("mass, stiffness, gap, slope", SHARE_CASES)
+def test_shares_are_the_impact_and_the_rigid_ramp(mass, stiffness, gap, slope):
+    # F12max = c·s·(6/τ + 12/τ² + 12θ*/τ³); with k = 12·m·s/t1³ and m = c/ω² the last two
+    # terms are k·t1 + k·θ*/ω: the rigid force k·t reached at the peak, t = t1 + θ*/ω
+    peak = clearance.peak_force(mass, stiffness, gap, slope)
+    omega = np.sqrt(stiffness / mass)
+    assert peak.t1 == pytest.approx(np.cbrt(12 * mass * (gap / 2) / slope), rel=1e-14)  # eq. (15)
+    tau = omega * peak.t1
+    assert peak.soft == (tau < 2)
+    # 1e-12: a few roundings, and F − 6cs/τ loses up to log10(τ/2) digits to cancellation
+    assert peak.rigid_share == pytest.approx(slope * peak.time_to_peak, rel=1e-12)
+    assert peak.clearance_share == pytest.approx(6 * stiffness * (gap / 2) / tau, rel=1e-12)
+
+
+def test_share_cases_cover_soft_and_hard_impacts():
+    taus = [clearance.peak_force(*case).tau for case in SHARE_CASES]
+    for low, high in ((0, 1), (1, 2), (2, 2.5), (10, np.inf)):  # soft ... around 2 ... stiff
+        assert any(low < tau < high for tau in taus), (low, high)
 
 
 def test_cli_reproduces_the_paper_as_csv():
@@ -73,7 +102,8 @@ def test_cli_reproduces_the_paper_as_csv():
 
 def test_two_masses_give_the_reduced_mass():
     out = CliRunner().invoke(main, ["clearance", "--mass", "6", "--mass", "9", "--stiffness", "1e7",
-                                    "--clearance", "1e-4", "--slope", "360000", "--format", "csv"])
+                                    "--clearance", "1e-4", "--slope", "360000", "--format", "csv"],
+                             catch_exceptions=False)
     assert read_csv(out.stdout)["mass"][0] == pytest.approx(3.6)  # 6·9/15
 
 
@@ -143,13 +173,15 @@ def test_large_tau_rebounds_after_the_peak():
 def test_non_positive_inputs_are_rejected(flag, value):
     args = {"--mass": "3.6", "--stiffness": "1e7", "--clearance": "1e-4", "--slope": "360000"}
     args[flag] = value
-    out = CliRunner().invoke(main, ["clearance", *[x for kv in args.items() for x in kv]])
+    out = CliRunner().invoke(main, ["clearance", *[x for kv in args.items() for x in kv]],
+                             catch_exceptions=False)
     assert out.exit_code == 2
     assert f"{flag} must be a positive number" in out.output
 
 
 def test_missing_standalone_input_is_a_usage_error():
-    out = CliRunner().invoke(main, ["clearance", "--mass", "3.6", "--stiffness", "1e7"])
+    out = CliRunner().invoke(main, ["clearance", "--mass", "3.6", "--stiffness", "1e7"],
+                             catch_exceptions=False)
     assert out.exit_code == 2 and "--clearance, --slope" in out.output
 
 
@@ -195,7 +227,8 @@ def test_every_revolute_joint_gets_peaks_or_a_reason():
 
 def test_a_mechanism_without_forces_is_an_input_error():
     out = CliRunner().invoke(main, ["clearance", str(shipped("scotch-yoke.toml")), "--joint", "2,4",
-                                    "--stiffness", "1e8", "--clearance", "1e-4"])
+                                    "--stiffness", "1e8", "--clearance", "1e-4"],
+                             catch_exceptions=False)
     assert out.exit_code == 2  # no masses in the file: no forces to check
     assert "needs joint forces" in out.output
 

@@ -146,7 +146,8 @@ def test_zero_damping_resonance_is_reported_unbounded():
     assert rows[1]["V_phi"] == rows[1]["V_psi"] == rows[1]["V_q"] == "" and rows[1]["alpha_deg"] == ""
     assert "undamped resonance" in out.stderr and "unbounded" in out.stderr
     table = CliRunner().invoke(main, ["coupling", "--J", "1", "--c1", "1", "--c2", "1",
-                                      "--eta-range", "0:2:0.70710678118654752"])
+                                      "--eta-range", "0:2:0.70710678118654752"],
+                               catch_exceptions=False)
     assert "∞" in table.stdout
 
 
@@ -181,7 +182,7 @@ def test_c2_zero_and_c1_zero():
     (["--J", "1", "--c1", "1", "--c2", "1", "--eta-range", "3:1:0.1"], "--eta-range"),
 ])
 def test_bad_values_are_errors(args, message):
-    out = CliRunner().invoke(main, ["coupling", *args])
+    out = CliRunner().invoke(main, ["coupling", *args], catch_exceptions=False)
     assert out.exit_code == 2, out.output
     assert message in out.output
 
@@ -195,5 +196,5 @@ def test_coupling_file_and_operating_speed(tmp_path):
     eta = 2 * 5 * 2 * np.pi / 60 / np.sqrt(2)
     assert f"{eta:.4g}" in out.stdout
     path.write_text("J = 1.0\nc1 = 1.0\nc2 = 1.0\nb3 = 0.1\n")
-    bad = CliRunner().invoke(main, ["coupling", str(path)])
+    bad = CliRunner().invoke(main, ["coupling", str(path)], catch_exceptions=False)
     assert bad.exit_code == 2 and "unknown key `b3`" in bad.output

@@ -171,12 +171,17 @@ def test_low_friction_variant_does_not_lock():
 
 
 def test_self_locking_exit_status():
-    runner = CliRunner()
+    def run(*extra):  # exceptions propagate: exit code 1 must come from --fail-on-lock
+        return CliRunner().invoke(main, args + list(extra), catch_exceptions=False)
+
     args = ["analyse", str(shipped("self-locking.toml")), "--format", "csv"]
-    assert runner.invoke(main, args).exit_code == 0
-    failing = runner.invoke(main, args + ["--fail-on-lock"])
-    assert failing.exit_code == 1 and "self-locks" in failing.output
-    header = runner.invoke(main, args).stdout.splitlines()[0].split(",")
+    passing = run()
+    assert passing.exit_code == 0
+    failing = run("--fail-on-lock")
+    assert failing.exit_code == 1
+    assert "Error: a slider self-locks (see the warning above); --fail-on-lock was given." in failing.stderr
+    assert "slider (1,4) locks (self-locking)" in failing.stderr
+    header = passing.stdout.splitlines()[0].split(",")
     for name in ("MR_1_2", "MR_2_3", "MR_3_4", "FR_1_4", "P_friction", "friction_iterations",
                  "lock_margin_1_4"):
         assert name in header

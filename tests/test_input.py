@@ -118,8 +118,9 @@ def test_sweep_options_and_bad_step(tmp_path):
 
 
 def test_missing_file_is_a_usage_error(tmp_path):
-    result = CliRunner().invoke(main, ["analyse", str(tmp_path / "nope.toml")])
-    assert result.exit_code == 2
+    result = CliRunner().invoke(main, ["analyse", str(tmp_path / "nope.toml")],
+                                catch_exceptions=False)
+    assert result.exit_code == 2 and "nope.toml" in result.output
 
 
 def test_csv_has_the_contract_columns(tmp_path, mechanisms_dir):

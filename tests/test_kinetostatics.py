@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import tomllib
 from dataclasses import replace
 
 import numpy as np
@@ -9,6 +10,7 @@ import pytest
 from click.testing import CliRunner
 from hypothesis import assume, given
 
+import dyade
 from dyade.linkage import sweep as analysis, kinematics, kinetostatics
 from dyade.files import mechanism as toml_input
 from dyade.cli import main
@@ -239,3 +241,25 @@ def test_dead_centre_forces_are_flagged_not_printed(tmp_path):
     assert np.all(np.isfinite(cols["M_drive"][~near]))
     assert "forces are not given at crank angles" in out.stderr
     assert "dead centre" in out.stderr
+
+
+@pytest.mark.parametrize("link, point", [(3, "K"), (4, "R")], ids=["coupler", "rocker"])
+def test_load_in_the_link_frame_turns_with_the_link(link, point):
+    # No masses: the only load is a constant force (ξ, η) in link k's frame at point P.
+    # Virtual power: M_drive·Ω + F·v_P = 0, with F = R(φ_k)·(ξ, η) rotated here from the
+    # CSV's phi_k_deg, and Ω, v_P from its columns (a sign slip in the rotation breaks it)
+    data = tomllib.loads(shipped("fourbar.toml").read_text())
+    data["links"] = {"3": {"points": {"K": [100, 40]}}, "4": {"points": {"R": [120, 25]}}}
+    data["load"] = [{"link": link, "point": point, "force": [30.0, -70.0], "frame": "link"}]
+    result = dyade.analyse(mechanism_from(data))
+    cols = result.columns()
+    valid = cols["forces_valid"] == 1
+    assert valid.sum() > 300
+    phi = np.deg2rad(cols[f"phi_{link}_deg"][valid])
+    assert np.ptp(phi) > np.deg2rad(10)  # the link turns, so the frames differ
+    xi, eta = 30.0, -70.0
+    fx, fy = np.cos(phi) * xi - np.sin(phi) * eta, np.sin(phi) * xi + np.cos(phi) * eta
+    load_power = fx * cols[f"vx_{point}"][valid] + fy * cols[f"vy_{point}"][valid]
+    drive_power = cols["M_drive"][valid] * cols["omega_2"][valid]
+    # 1e-9 of the largest load power: one dyad solve, no iteration
+    assert np.allclose(drive_power, -load_power, rtol=0, atol=1e-9 * np.max(np.abs(load_power)))

@@ -43,7 +43,7 @@ def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = Swe
     from dyade.linkage.sweep import with_sweep
 
     overrides = dict(schema.parse_assignment(a) for a in assignments)
-    data = reader.load_data(path, overrides)
+    data = reader.load_data(path, overrides, "--set")
     mechanism = reader.build(data, path)
     if sweep.start is None and sweep.stop is None and sweep.step is None:
         return mechanism, data

@@ -82,13 +82,14 @@ def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = N
     return build(load_data(path, overrides), path)
 
 
-def load_data(path: str | os.PathLike, overrides: dict[str, Any] | None = None
-              ) -> dict[str, Any]:
-    """The file's TOML data with ``overrides`` (dotted key -> value) applied."""
+def load_data(path: str | os.PathLike, overrides: dict[str, Any] | None = None,
+              what: str = "override") -> dict[str, Any]:
+    """The file's TOML data with ``overrides`` (dotted key -> value) applied; ``what``
+    names them in messages."""
     path = os.fspath(path)
     data = read_toml(path)
     for key, value in (overrides or {}).items():
-        set_dotted(data, key, value, os.path.basename(path))
+        set_dotted(data, key, value, os.path.basename(path), what)
     return data
 
 

@@ -67,31 +67,33 @@ def parse_assignment(text: str) -> tuple[str, Any]:
     return key, value
 
 
-def set_dotted(data: dict[str, Any], dotted: str, value: Any, label: str = "") -> None:
-    """Replace the key at a dotted path (array entries by 1-based index) in ``data``."""
+def set_dotted(data: dict[str, Any], dotted: str, value: Any, label: str = "",
+               what: str = "override") -> None:
+    """Replace the key at a dotted path (array entries by 1-based index) in ``data``;
+    ``what`` names the overrides in messages (the command line says ``--set``)."""
     parts = dotted.split(".")
     target: Any = data
     for depth, part in enumerate(parts[:-1]):
         where = ".".join(parts[:depth + 1])
         if isinstance(target, list):
             if not part.isdigit() or not 1 <= int(part) <= len(target):
-                raise InputError(f"{label}: --set {dotted}: `{where}` needs an index 1…"
+                raise InputError(f"{label}: {what} {dotted}: `{where}` needs an index 1…"
                                  f"{len(target)} (the file has {len(target)}).")
             target = target[int(part) - 1]
         elif isinstance(target, dict):
             target = target.setdefault(part, {})
         else:
-            raise InputError(f"{label}: --set {dotted}: `{'.'.join(parts[:depth])}` is a value, "
+            raise InputError(f"{label}: {what} {dotted}: `{'.'.join(parts[:depth])}` is a value, "
                              f"not a table.")
     if isinstance(target, list):
         last = parts[-1]
         if not last.isdigit() or not 1 <= int(last) <= len(target):
-            raise InputError(f"{label}: --set {dotted}: index {last} is outside 1…{len(target)}.")
+            raise InputError(f"{label}: {what} {dotted}: index {last} is outside 1…{len(target)}.")
         target[int(last) - 1] = value
     elif isinstance(target, dict):
         target[parts[-1]] = value
     else:
-        raise InputError(f"{label}: --set {dotted}: `{'.'.join(parts[:-1])}` is a value, not a table.")
+        raise InputError(f"{label}: {what} {dotted}: `{'.'.join(parts[:-1])}` is a value, not a table.")
 
 
 def suggest(key: str, allowed: set[str] | dict) -> str:

@@ -19,6 +19,12 @@ from dyade.errors import InputError
 from dyade.linkage.model import ClearanceData, Mechanism, Revolute
 from dyade.units import RPM
 
+MISSING = {
+    "data": ("no clearance data: give {stiffness} and {clearance}, or "
+             "`clearance = {{ gap = …, stiffness = … }}` in its joint table"),
+    "mass": ("no reduced mass: give {mass} or `clearance.mass` (links {a} and {b} have no "
+             "mass to estimate it from)")}
+"""why a joint cannot be checked: what is missing -> the reason, its inputs as fields"""
 MAX_WANDER = np.deg2rad(20.0)  # [rad] largest direction change off the line of action
 SMALL_FORCE = 0.25  # [-] forces below this share of the peak do not count for the wander
 
@@ -54,6 +60,8 @@ class JointCheck:
     """why the model does not apply ('' when it does)"""
     reversals: tuple[Reversal, ...]
     mass_source: str
+    missing: str = ""
+    """what the check lacks: "data" (clearance data), "mass" or "" (see ``MISSING``)"""
 
 
 def line_of_action(force: FloatArray) -> tuple[float, float]:
@@ -154,13 +162,13 @@ def check_mechanism(mechanism, result, joints, override=None, mass_override=None
         mass, source = (mass_override, "given") if mass_override else joint_mass(mechanism, joint)
         missing = None
         if data is None:
-            missing = ("no clearance data: give --stiffness and --clearance, or "
-                       "`clearance = { gap = …, stiffness = … }` in its joint table")
+            missing = "data"
         elif mass is None:
-            missing = (f"no reduced mass: give --mass or `clearance.mass` (links {name[0]} and "
-                       f"{name[1]} have no mass to estimate it from)")
+            missing = "mass"
         if missing:
-            checks.append(JointCheck(name, np.nan, np.nan, False, missing, (), ""))
+            reason = MISSING[missing].format(a=name[0], b=name[1], stiffness="the stiffness",
+                                             clearance="the clearance", mass="the mass")
+            checks.append(JointCheck(name, np.nan, np.nan, False, reason, (), "", missing))
             continue
         force = forces.revolute[name][result.rows]
         force = np.where(forces.valid[result.rows][:, None], force, np.nan)

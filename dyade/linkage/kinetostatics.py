@@ -91,7 +91,7 @@ def applied_loads(mechanism: Mechanism, kin: Kinematics) -> FloatArray:
         fx, fy, moment = load_values(load, kin.crank_angle)
         if load.local:
             c, s = motion.cos[:, load.link], motion.sin[:, load.link]
-            fx, fy = c * fx + s * fy, -s * fx + c * fy
+            fx, fy = c * fx - s * fy, s * fx + c * fy
         add_force(q[load.link], motion.point(load.link, load.point), np.stack((fx, fy), -1))
         q[load.link, 2] += moment
     for spring in mechanism.springs:

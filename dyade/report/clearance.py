@@ -11,6 +11,7 @@ import time
 import numpy as np
 
 from dyade import clearance as engine
+from dyade.linkage.joint_clearance import MISSING
 
 STANDALONE_COLUMNS = ["mass", "stiffness", "clearance", "slope", "t1", "v1", "tau", "f_tau",
                       "F_max"]
@@ -154,7 +155,11 @@ def mechanism_warnings(skipped: list, rows: list[dict]) -> list[str]:
                             f"action {np.rad2deg(check.line_angle):.0f}°): no reversal, no "
                             f"clearance impact.")
         else:
-            warnings.append(f"joint ({a},{b}): not checked — {check.reason}.")
+            reason = check.reason
+            if check.missing:  # name the inputs as the command's flags
+                reason = MISSING[check.missing].format(a=a, b=b, stiffness="--stiffness",
+                                                       clearance="--clearance", mass="--mass")
+            warnings.append(f"joint ({a},{b}): not checked — {reason}.")
     if any(row.get("soft") for row in rows):
         warnings.append("note: reversals with τ < 2 are soft impacts: their peak comes after the "
                         "first contact half-wave (see `dyade clearance --help`).")
@@ -197,3 +202,4 @@ def cell_pretty(value) -> str:
     if isinstance(value, float):
         return f"{value:.5g}" if abs(value) < 1e5 else f"{value:.4g}"
     return str(value)
+
