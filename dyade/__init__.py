@@ -13,9 +13,9 @@ The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``
 - ``plan(mechanism)`` -> ``Plan``; ``analyse(mechanism, ...)`` -> ``Result`` with
   ``.columns()``, ``.summary()``, ``.notes``, ``.to_pandas()``
 - ``check_clearance(mechanism, ...)``, ``clearance_speed_study(mechanism, speeds, ...)``,
-  ``peak_force(mass, stiffness, clearance, slope)``, ``simulate_clearance(...)``
+  ``peak_force(mass, stiffness, *, clearance, slope)``, ``simulate_clearance(...)``
 - ``Coupling``, ``read_coupling(path)``, ``coupling_response(coupling, eta)``,
-  ``operating_points(coupling, speeds_rpm, order=1)``
+  ``operating_points(coupling, speeds_rpm, *, order=1)``
 - ``accuracy_studies(mechanism)``
 - ``DyadeError``, ``InputError``, ``AssemblyError``
 

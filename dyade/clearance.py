@@ -96,7 +96,7 @@ def check_positive(**values: float) -> None:
                                        value=value, unit=UNITS.get(name))
 
 
-def peak_force(mass: float, stiffness: float, clearance: float, slope: float) -> Peak:
+def peak_force(mass: float, stiffness: float, *, clearance: float, slope: float) -> Peak:
     """Closed-form peak force at a reversal of a joint force (eqs. (15)-(36)).
 
     Parameters
@@ -158,7 +158,7 @@ class Simulation:
     assumption)"""
 
 
-def simulate(mass: float, stiffness: float, clearance: float, slope: float,
+def simulate(mass: float, stiffness: float, *, clearance: float, slope: float,
              steps_per_period: int = 400) -> Simulation:
     """Integrate m·z'' = k·t − c·max(z − 2s, 0) from rest at z = 0 (pin against the far
     side of the bearing at the reversal, t = 0). Free flight to z = 2s, then contact;
@@ -247,20 +247,22 @@ def _hermite_peak(z0: float, v0: float, z1: float, v1: float, a0: float, h: floa
     return float(cubic(best)), float(best * h)
 
 
-def peaks_over_speed(mass: float, stiffness: float, clearance: float, slope: float,
+def peaks_over_speed(mass: float, stiffness: float, *, clearance: float, slope: float,
                      speed_rpm: float, speeds_rpm) -> list[tuple[float, Peak]]:
     """The peak force against crank speed: the force slope at the reversal grows with
     Ω³ (eq. (30): F0/t0 = k1·Ω³), from ``slope`` [N/s] at ``speed_rpm`` [rpm].
 
     Returns (speed [rpm], Peak) for every speed of ``speeds_rpm``.
 
-    >>> [round(p.force) for _, p in peaks_over_speed(3.6, 1e7, 1e-4, 3.6e5, 300, [300, 600])]
+    >>> [round(p.force) for _, p in peaks_over_speed(3.6, 1e7, clearance=1e-4, slope=3.6e5,
+    ...                                                    speed_rpm=300, speeds_rpm=[300, 600])]
     [2182, 11099]
     """
     if not np.isfinite(speed_rpm) or speed_rpm <= 0.0:
         raise InputError.parameter("speed_rpm", f"must be a positive speed [rpm], got "
                                                 f"{speed_rpm:g}.", value=speed_rpm, unit="rpm")
-    return [(float(rpm), peak_force(mass, stiffness, clearance, scaled_slope(slope, speed_rpm, rpm)))
+    return [(float(rpm), peak_force(mass, stiffness, clearance=clearance,
+                                    slope=scaled_slope(slope, speed_rpm, rpm)))
             for rpm in speeds_rpm]
 
 

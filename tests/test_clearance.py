@@ -73,7 +73,7 @@ SHARE_CASES = [                   # mass, stiffness, clearance, slope
 def test_shares_are_the_impact_and_the_rigid_ramp(mass, stiffness, gap, slope):
     # F12max = c·s·(6/τ + 12/τ² + 12θ*/τ³); with k = 12·m·s/t1³ and m = c/ω² the last two
     # terms are k·t1 + k·θ*/ω: the rigid force k·t reached at the peak, t = t1 + θ*/ω
-    peak = clearance.peak_force(mass, stiffness, gap, slope)
+    peak = clearance.peak_force(mass, stiffness, clearance=gap, slope=slope)
     omega = np.sqrt(stiffness / mass)
     assert peak.t1 == pytest.approx(np.cbrt(12 * mass * (gap / 2) / slope), rel=1e-14)  # eq. (15)
     tau = omega * peak.t1
@@ -84,7 +84,7 @@ def test_shares_are_the_impact_and_the_rigid_ramp(mass, stiffness, gap, slope):
 
 
 def test_share_cases_cover_soft_and_hard_impacts():
-    taus = [clearance.peak_force(*case).tau for case in SHARE_CASES]
+    taus = [clearance.peak_force(*case[:2], clearance=case[2], slope=case[3]).tau for case in SHARE_CASES]
     for low, high in ((0, 1), (1, 2), (2, 2.5), (10, np.inf)):  # soft ... around 2 ... stiff
         assert any(low < tau < high for tau in taus), (low, high)
 
@@ -147,8 +147,8 @@ def test_paper_eq_36_is_our_f_for_tau_at_least_2():
     (10.0, 1e6, 2e-4, 5e6),       # soft, fast ramp (τ < 2)
 ])
 def test_simulation_agrees_with_closed_form(mass, stiffness, gap, slope):
-    closed = clearance.peak_force(mass, stiffness, gap, slope)
-    sim = clearance.simulate(mass, stiffness, gap, slope, steps_per_period=400)
+    closed = clearance.peak_force(mass, stiffness, clearance=gap, slope=slope)
+    sim = clearance.simulate(mass, stiffness, clearance=gap, slope=slope, steps_per_period=400)
     assert sim.contact_to_peak
     assert sim.t1 == pytest.approx(closed.t1, rel=1e-9)
     assert sim.force == pytest.approx(closed.force, rel=1e-7)
@@ -156,14 +156,14 @@ def test_simulation_agrees_with_closed_form(mass, stiffness, gap, slope):
 
 
 def test_simulation_error_falls_at_fourth_order():
-    closed = clearance.peak_force(3.6, 1e7, 1e-4, 3.6e5).force
-    errors = [abs(clearance.simulate(3.6, 1e7, 1e-4, 3.6e5, n).force - closed) for n in (50, 100, 200)]
+    closed = clearance.peak_force(3.6, 1e7, clearance=1e-4, slope=3.6e5).force
+    errors = [abs(clearance.simulate(3.6, 1e7, clearance=1e-4, slope=3.6e5, steps_per_period=n).force - closed) for n in (50, 100, 200)]
     assert errors[0] / errors[1] > 4 and errors[1] / errors[2] > 4
 
 
 def test_large_tau_rebounds_after_the_peak():
     # stiff contact, slow ramp: the pin bounces off after the first half-wave
-    sim = clearance.simulate(0.2, 1e8, 5e-5, 1e4, steps_per_period=400)
+    sim = clearance.simulate(0.2, 1e8, clearance=5e-5, slope=1e4, steps_per_period=400)
     assert sim.separates and sim.rebound_speed > 0
     assert sim.separation_time > sim.time_to_peak
 

@@ -71,14 +71,14 @@ def coupling(coupling_file: Path | None, inertia, c1, c2, b1, b2, eta_range, mom
     eta = np.array(value_range(data.get("eta_range", "0:3:0.01"), "--eta-range", ""))
     with flags(names):
         resp = engine.response(model, eta)
-        amplitudes = (engine.amplitudes(model, resp, float(data["moment"])) if "moment" in data
+        amplitudes = (engine.amplitudes(model, resp, moment=float(data["moment"])) if "moment" in data
                       else None)
         operating = None
         if data.get("speed_rpm") is not None:
             speeds_rpm = data["speed_rpm"]
             operating = engine.operating_points(
                 model, speeds_rpm if isinstance(speeds_rpm, list) else [speeds_rpm],
-                float(data.get("order", 1.0)))
+                order=float(data.get("order", 1.0)))
     cols, names = report.columns(resp, amplitudes)
     warnings = report.notes(model, resp, eta)
     if fmt in ("csv", "json"):

@@ -122,18 +122,21 @@ def clearance_simulation(result: analysis.Result, steps=SIM_STEPS, repeats: int 
         peak = check.reversals[0].peak
         a, b = check.joint
         args = (peak.mass, peak.stiffness, peak.clearance, peak.slope)
-        seconds, closed = _timed(lambda: clearance.peak_force(*args), repeats)
+        seconds, closed = _timed(lambda: clearance.peak_force(*args[:2], clearance=args[2],
+                                                              slope=args[3]), repeats)
         rows.append(Row("clearance", "closed form", seconds, f"F12max {a}_{b}", closed.force,
                         np.nan, f"tau {closed.tau:.4g}"))
         for n in steps:
-            seconds, sim = _timed(lambda: clearance.simulate(*args, n), repeats)
+            seconds, sim = _timed(lambda: clearance.simulate(*args[:2], clearance=args[2],
+                                                           slope=args[3], steps_per_period=n),
+                                  repeats)
             rows.append(Row("clearance", f"RK4 {n}/period", seconds, f"F12max {a}_{b}",
                             sim.force, abs(sim.force - closed.force) / closed.force,
                             f"{sim.steps} steps"))
     return rows
 
 
-def studies(mechanism: Mechanism, repeats: int = 3) -> list[Row]:
+def studies(mechanism: Mechanism, *, repeats: int = 3) -> list[Row]:
     """Every study the mechanism calls for: the crank step always, the friction
     tolerance with friction, closed form against simulation with clearance data; each
     setting timed (best of ``repeats``) and its peaks compared with the finest one."""

@@ -116,7 +116,7 @@ def check_joint(name: tuple[int, int], crank_angle: FloatArray, force: FloatArra
         dphi = phi_next[k] - phi[k]
         at = phi[k] + a / (a - b) * dphi
         slope = abs(b - a) / dphi
-        peak = peak_force(mass, data.stiffness, data.clearance, slope * abs(speed))
+        peak = peak_force(mass, data.stiffness, clearance=data.clearance, slope=slope * abs(speed))
         later = at + speed * peak.time_to_peak  # crank angle when the peak occurs
         rigid = float(np.interp(later, phi_all, magnitude_all, period=period))
         reversals.append(Reversal(float(at % (2 * np.pi)), float(slope), peak, rigid))

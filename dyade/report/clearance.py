@@ -31,7 +31,7 @@ def standalone_rows(mass: float, stiffness: float, gap: float,
     rows = []
     for rpm, k in cases:
         started = time.perf_counter()
-        peak = engine.peak_force(mass, stiffness, gap, k)
+        peak = engine.peak_force(mass, stiffness, clearance=gap, slope=k)
         closed_time = time.perf_counter() - started
         row = {"speed_rpm": rpm, "mass": mass, "stiffness": stiffness, "clearance": gap,
                "slope": k, "t1": peak.t1, "v1": peak.v1, "tau": peak.tau, "f_tau": peak.f_tau,
@@ -81,7 +81,7 @@ def standalone_table(rows: list[dict], speeds: bool, simulate: bool):
 
 def simulated(mass, stiffness, gap, slope, steps, closed) -> dict:
     started = time.perf_counter()
-    sim = engine.simulate(mass, stiffness, gap, slope, steps)
+    sim = engine.simulate(mass, stiffness, clearance=gap, slope=slope, steps_per_period=steps)
     elapsed = time.perf_counter() - started
     return {"F_sim": sim.force, "sim_rel_diff": (sim.force - closed) / closed,
             "sim_steps": sim.steps, "sim_time_s": elapsed, "separates": sim.separates,

@@ -163,7 +163,7 @@ def _phase(x: np.ndarray) -> FloatArray:
     return np.where((np.abs(x) == 0.0) | ~np.isfinite(x), np.nan, angle)
 
 
-def amplitudes(coupling: Coupling, resp: Response, moment: float) -> dict[str, FloatArray]:
+def amplitudes(coupling: Coupling, resp: Response, *, moment: float) -> dict[str, FloatArray]:
     """Physical amplitudes for M̂_E = ``moment`` [N·m]: φ̂, ψ̂, φ̂_r [rad], M̂_Q [N·m]."""
     if not np.isfinite(moment) or moment <= 0.0:
         raise InputError.parameter("moment", f"must be a positive amplitude [N·m], got "
@@ -204,7 +204,7 @@ class OperatingPoints:
     """the responses at those η"""
 
 
-def operating_points(coupling: Coupling, speeds_rpm, order: float = 1.0) -> OperatingPoints:
+def operating_points(coupling: Coupling, speeds_rpm, *, order: float = 1.0) -> OperatingPoints:
     """The coupling's response at operating speeds [rpm] for an excitation ``order``.
 
     >>> from dyade.vibration.coupling import Coupling, operating_points

@@ -82,12 +82,12 @@ def test_dyade16_with_friction_3600(benchmark):
 
 
 def test_clearance_closed_form(benchmark):
-    benchmark(clearance.peak_force, 3.6, 1e7, 1e-4, 3.6e5)
+    benchmark(clearance.peak_force, 3.6, 1e7, clearance=1e-4, slope=3.6e5)
 
 
 @pytest.mark.parametrize("steps", [50, 400])
 def test_clearance_simulation(benchmark, steps):
-    benchmark(clearance.simulate, 3.6, 1e7, 1e-4, 3.6e5, steps)
+    benchmark(clearance.simulate, 3.6, 1e7, clearance=1e-4, slope=3.6e5, steps_per_period=steps)
 
 
 def test_coupling_100000_eta(benchmark):
