@@ -69,7 +69,7 @@ def test_assembly_error_names_the_parameter_and_the_cli_the_flag(tmp_path):
     from click.testing import CliRunner
 
     short = dyade.read_mechanism(shipped("fourbar.toml"),
-                                 overrides={"dyad.1.lengths": [200, 60]})
+                                 overrides={"dyad.2.lengths": [200, 60]})
     with pytest.raises(dyade.AssemblyError) as err:
         dyade.analyse(short)
     assert "allow_partial=True" in str(err.value) and "--" not in str(err.value)
@@ -77,7 +77,7 @@ def test_assembly_error_names_the_parameter_and_the_cli_the_flag(tmp_path):
     partial = dyade.analyse(short, allow_partial=True)
     assert partial.notes[0].kind == "partial" and partial.rows.sum() < partial.rows.size
     result = CliRunner().invoke(main, ["analyse", str(shipped("fourbar.toml")), "--set",
-                                       "dyad.1.lengths=[200,60]"], catch_exceptions=False)
+                                       "dyad.2.lengths=[200,60]"], catch_exceptions=False)
     assert result.exit_code == 1 and "use --allow-partial" in result.output
 
 

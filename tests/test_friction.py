@@ -115,8 +115,8 @@ def test_scotch_yoke_by_hand():
     # FN = m·g, slot force N = m·a_x + μ·m·g·sign(v), M_drive = −r·sin φ·N
     #   = m·r²·Ω²·sin φ·cos φ + μ·m·g·r·|sin φ|
     mechanism = toml_input.read_mechanism(shipped("scotch-yoke.toml"), overrides={
-        "gravity": True, "links.3.mass": 2.0, "dyad.1.A.friction": 0.2,
-        "dyad.1.A.slider_length": 40.0, "dyad.1.A.slider_height": 20.0})
+        "gravity": True, "links.3.mass": 2.0, "dyad.2.A.friction": 0.2,
+        "dyad.2.A.slider_length": 40.0, "dyad.2.A.slider_height": 20.0})
     result = analysis.run(mechanism)
     assert result.plan.friction == ((1, 3),)
     phi = result.crank_angle

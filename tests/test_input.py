@@ -39,19 +39,19 @@ def test_good_file_exits_zero(tmp_path):
 
 
 @pytest.mark.parametrize("change, message", [
-    (("variant = 1", "varient = 1"), "unknown key `dyad.1.varient`. Did you mean `variant`?"),
+    (("variant = 1", "varient = 1"), "unknown key `dyad.2.varient`. Did you mean `variant`?"),
     (("speed_rpm = 300", "speed_rmp = 300"), "unknown key `crank.speed_rmp`. Did you mean `speed_rpm`?"),
     (("lengths = [200, 150]", "lengths = [200, \"150\"]"),
-     "`dyad.1.lengths.2` must be a number [mm], got \"150\"."),
-    (("lengths = [200, 150]", "lengths = [200, -150]"), "`dyad.1.lengths.2` must be positive [mm], got -150."),
-    (("lengths = [200, 150]", "lengths = [200, 0]"), "`dyad.1.lengths.2` must be positive [mm], got 0."),
+     "`dyad.2.lengths.2` must be a number [mm], got \"150\"."),
+    (("lengths = [200, 150]", "lengths = [200, -150]"), "`dyad.2.lengths.2` must be positive [mm], got -150."),
+    (("lengths = [200, 150]", "lengths = [200, 0]"), "`dyad.2.lengths.2` must be positive [mm], got 0."),
     (("length = 50", "length = 0"), "`crank.length` must be positive [mm], got 0."),
     (("speed_rpm = 300", ""), "`crank.speed_rpm` is missing."),
-    (("links = [3, 4]", "links = [3, 3]"), "`dyad.1.links` must be two different new link numbers"),
-    (("A = { link = 2", "A = { link = 5"), "`dyad.1.A.link` is link 5, which is not placed yet"),
-    (("point = \"B0\"", "point = \"B1\""), "`dyad.1.C.point` names point \"B1\", which link 1 does not have"),
-    (("kind = \"RRR\"", "kind = \"RRX\""), "`dyad.1.kind` must be 1-5 or one of RRR, RRP, RPR, PRP, PPR, got \"RRX\"."),
-    (("variant = 1", "variant = 2"), "`dyad.1.variant` must be +1 or -1 (assembly variant), got 2."),
+    (("links = [3, 4]", "links = [3, 3]"), "`dyad.2.links` must be two different new link numbers"),
+    (("A = { link = 2", "A = { link = 5"), "`dyad.2.A.link` is link 5, which is not placed yet"),
+    (("point = \"B0\"", "point = \"B1\""), "`dyad.2.C.point` names point \"B1\", which link 1 does not have"),
+    (("kind = \"RRR\"", "kind = \"RRX\""), "`dyad.2.kind` must be 1-5 or one of RRR, RRP, RPR, PRP, PPR, got \"RRX\"."),
+    (("variant = 1", "variant = 2"), "`dyad.2.variant` must be +1 or -1 (assembly variant), got 2."),
     (("units = { length = \"mm\" }", "units = { length = \"inch\" }"), "`units.length` must be one of m, cm, mm, um"),
     (("[crank]", "[crank]\ndirection = \"left\""), "`crank.direction` must be \"ccw\""),
 ])
@@ -81,7 +81,7 @@ def test_duplicate_links_across_dyads(tmp_path):
         """)
     result = run(tmp_path, text)
     assert result.exit_code == 2
-    assert "`dyad.2.links` uses link 4 again" in result.output
+    assert "`dyad.3.links` uses link 4 again" in result.output
 
 
 def test_links_table_for_a_link_nobody_places(tmp_path):
@@ -156,4 +156,4 @@ def test_top_level_key_after_a_table_gets_a_hint(tmp_path):
     result = run(tmp_path, FOURBAR + "gravity = true\n")
     text = " ".join(result.output.split())
     assert result.exit_code == 2
-    assert "unknown key `dyad.1.gravity`" in text and "is a top-level key" in text
+    assert "unknown key `dyad.2.gravity`" in text and "is a top-level key" in text

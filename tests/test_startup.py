@@ -40,7 +40,7 @@ def test_help_imports_no_numpy():
 def test_csv_run_imports_only_what_it_uses():
     modules = _imported(["analyse", str(shipped("fourbar.toml")), "--format", "csv"])
     assert "numpy" in modules and "dyade.linkage.kinetostatics" in modules  # it did run
-    unwanted = {"pathlib", "json", "difflib", "tomli_w", "dyade.cli.clearance",
+    unwanted = {"pathlib", "json", "difflib", "tomlkit", "dyade.cli.clearance",
                 "dyade.cli.coupling", "dyade.cli.accuracy", "dyade.linkage.friction",
                 "dyade.linkage.self_locking", "dyade.clearance", "dyade.report.tables"}
     assert not (modules & unwanted)

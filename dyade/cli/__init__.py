@@ -40,14 +40,34 @@ class DyadeGroup(click.Group):
         keep_freed_memory()  # a process-wide setting: the command's to make, not the library's
         try:
             return super().invoke(ctx)
+        except KeyboardInterrupt:  # Ctrl-C: the shell's convention, 128 + SIGINT
+            click.echo("Interrupted.", err=True)
+            raise click.exceptions.Exit(130) from None
         except InputError as err:
             raise click.UsageError(str(err)) from None  # exit 2
         except DyadeError as err:
             raise click.ClickException(str(err)) from None  # exit 1
 
 
+def _version(ctx: click.Context, _: click.Parameter, value: bool) -> None:
+    """--version: dyade's, Python's and numpy's versions (numpy's from its metadata, so
+    that asking costs no numpy import)."""
+    if not value or ctx.resilient_parsing:
+        return
+    import platform
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        numpy = version("numpy")
+    except PackageNotFoundError:  # pragma: no cover - numpy is a dependency
+        numpy = "not installed"
+    click.echo(f"dyade {__version__} (Python {platform.python_version()}, numpy {numpy})")
+    ctx.exit()
+
+
 @click.group(cls=DyadeGroup, context_settings={"help_option_names": ["-h", "--help"]})
-@click.version_option(__version__, prog_name="dyade")
+@click.option("--version", is_flag=True, expose_value=False, is_eager=True, callback=_version,
+              help="Show dyade's, Python's and numpy's versions and exit.")
 def main() -> None:
     """Kinematics and kinetostatics of planar linkages built from dyads.
 

@@ -32,7 +32,7 @@ def accuracy(mechanism_file: Path, assignments, repeats: int, fmt: str, output) 
     import dyade
     from dyade.report import accuracy as report
 
-    mechanism, _ = load(mechanism_file, assignments)
+    mechanism = load(mechanism_file, assignments).mechanism
     records = report.records(dyade.accuracy_studies(mechanism, repeats=repeats))
     if fmt == "csv":
         write_rows(records, report.COLUMNS, output)

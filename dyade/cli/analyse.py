@@ -13,7 +13,7 @@ from dyade.cli import main
 from dyade.cli.output import atomic, console, flags, show, write_json
 
 # paths stay strings on the way of `dyade analyse`: pathlib alone costs 5 ms of start-up
-MECHANISM_FILE = click.Path(exists=True, dir_okay=False)
+MECHANISM_FILE = click.Path(exists=True, dir_okay=False, allow_dash=True)
 SUFFIX = {"csv": ".csv", "json": ".json", "table": ".txt"}
 FLAGS = {"friction_tol": "--friction-tol", "friction_max_iter": "--friction-max-iter",
          "start": "--start", "stop": "--stop", "step": "--step"}
@@ -22,7 +22,7 @@ FLAGS = {"friction_tol": "--friction-tol", "friction_max_iter": "--friction-max-
 set_option = click.option(
     "--set", "assignments", multiple=True, metavar="KEY=VALUE",
     help="Override a key of the file without editing it, with its dotted path as in the file "
-         "(repeatable): --set crank.speed_rpm=600 --set dyad.1.lengths=[200,150]. Validated "
+         "(repeatable): --set crank.speed_rpm=600 --set dyad.2.lengths=[200,150]. Validated "
          "like the file.")
 
 
@@ -35,18 +35,40 @@ class SweepOptions(NamedTuple):
     step: float | None = None
 
 
-def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = SweepOptions()):
-    """Read a mechanism with --set overrides and --start/--stop/--step [°]; returns the
-    mechanism and the effective TOML data (for --save-as)."""
+class Loaded(NamedTuple):
+    """A mechanism as read, with what --save-as needs to write it again."""
+
+    mechanism: Any
+    text: str
+    """the file's text as read (or standard input's)"""
+    overrides: dict[str, Any]
+    """--set key -> value"""
+    label: str
+
+
+def read_input(path: str) -> tuple[str, str]:
+    """The text of an input file, or of standard input for "-"; and its name."""
+    from dyade.files import schema
+
+    if path == "-":
+        return sys.stdin.read(), "<stdin>"
+    return schema.read_text(path), path
+
+
+def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = SweepOptions()
+         ) -> Loaded:
+    """Read a mechanism ("-": standard input) with --set overrides and
+    --start/--stop/--step [°]."""
     from dyade.files import mechanism as reader
     from dyade.files import schema
     from dyade.linkage.sweep import with_sweep
 
     overrides = dict(schema.parse_assignment(a) for a in assignments)
-    data = reader.load_data(path, overrides, "--set")
-    mechanism = reader.build(data, path)
+    text, label = read_input(path)
+    data = reader.load_data(label, overrides, "--set", text)
+    mechanism = reader.build(data, label)
     if sweep.start is None and sweep.stop is None and sweep.step is None:
-        return mechanism, data
+        return Loaded(mechanism, text, overrides, label)
     current = mechanism.sweep  # the sweep options are in degrees whatever the file's unit
     start = math.radians(sweep.start) if sweep.start is not None else current.start
     stop = (math.radians(sweep.stop) if sweep.stop is not None
@@ -57,16 +79,18 @@ def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = Swe
     if stop < start:
         raise click.BadParameter(f"must not be below the start angle, got {sweep.stop:g}.",
                                  param_hint="--stop")
-    return with_sweep(mechanism, start, stop, step), data
+    return Loaded(with_sweep(mechanism, start, stop, step), text, overrides, label)
 
 
-def save_as(data: dict[str, Any], path: str) -> None:
-    """Write the effective mechanism (after --set) as TOML, atomically."""
-    from dyade.files.mechanism import dumps
+def save_as(loaded: Loaded, path: str) -> None:
+    """Write the effective mechanism (after --set) as TOML, atomically: the input's text
+    with the overridden values replaced, its comments and layout kept."""
+    from dyade.files.mechanism import edited
 
+    text = edited(loaded.text, loaded.overrides, os.path.basename(loaded.label), "--set")
     with atomic(path) as handle:
         handle.write("# written by dyade --save-as: the effective mechanism after --set\n")
-        handle.write(dumps(data))
+        handle.write(text)
 
 
 @main.command()
@@ -78,7 +102,7 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
     from dyade.linkage.sweep import plan
     from dyade.report import tables
 
-    mechanism, _ = load(mechanism_file, assignments)
+    mechanism = load(mechanism_file, assignments).mechanism
     show([tables.describe(mechanism, plan(mechanism))])
 
 
@@ -140,7 +164,9 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
         return
     if save_as:
         raise click.UsageError("--save-as takes one input file.")
-    if output is None:
+    if "-" in mechanism_files:
+        raise click.UsageError("standard input (-) can be the only input file.")
+    if output is None or output == "-":
         raise click.UsageError(f"{len(mechanism_files)} input files need -o DIR: one result file "
                                f"per input is written there.")
     if os.path.exists(output) and not os.path.isdir(output):
@@ -153,11 +179,24 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
         raise DyadeError(f"{len(failures)} of {len(mechanism_files)} files failed:\n{lines}")
 
 
+FORMATS = {".csv": "csv", ".json": "json", ".txt": "table", "": "csv"}
+"""suffix of -o -> format (no suffix, or a directory: csv)"""
+
+
 def infer_format(output: str | None) -> str:
-    """table on stdout; with -o, from the suffix (.json, .txt), else csv."""
-    if output is None:
+    """table on stdout; with -o, from the suffix (.csv, .json, .txt); an unknown suffix
+    is an error that lists the formats."""
+    if output is None or output == "-":
         return "table"
-    return {".json": "json", ".txt": "table"}.get(os.path.splitext(output)[1].lower(), "csv")
+    if os.path.isdir(output):
+        return "csv"
+    suffix = os.path.splitext(output)[1].lower()
+    if suffix not in FORMATS:
+        raise click.BadParameter(f"{output}: dyade does not write {suffix} files. It writes "
+                                 f".csv (the sweep), .json (columns, units, summary, warnings) "
+                                 f"and .txt (the summary table); or give --format "
+                                 f"table|csv|json.", param_hint="-o")
+    return FORMATS[suffix]
 
 
 def batch(paths, directory: str, run_one, suffix: str) -> list[tuple[str, str]]:
@@ -213,12 +252,14 @@ class Job(NamedTuple):
     fail_on_lock: bool
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
+        output = None if output == "-" else output  # -o -: standard output
         from dyade.errors import AssemblyError, DyadeError
         from dyade.linkage.sweep import analyse
 
-        mechanism, data = load(path, self.assignments, self.sweep)
+        loaded = load(path, self.assignments, self.sweep)
+        mechanism = loaded.mechanism
         if save_as_path:
-            save_as(data, save_as_path)
+            save_as(loaded, save_as_path)
         try:
             with flags(FLAGS):
                 result = analyse(mechanism, allow_partial=self.allow_partial,
@@ -267,18 +308,22 @@ KIND_ALIASES = {"rrr": "fourbar", "four-bar": "fourbar", "rrp": "slider-crank",
 @main.command()
 @click.argument("kind", type=click.Choice(sorted(TEMPLATES) + sorted(KIND_ALIASES),
                                           case_sensitive=False))
-@click.argument("file", type=click.Path(dir_okay=False, writable=True))
+@click.argument("file", type=click.Path(dir_okay=False, writable=True, allow_dash=True))
 @click.option("--force", is_flag=True, help="Overwrite FILE if it exists.")
 def init(kind: str, file: str, force: bool) -> None:
     """Write a commented starting mechanism FILE for KIND: fourbar (RRR), slider-crank
     (RRP), slotted-lever (RPR), tangent-drive (PRP) or scotch-yoke (PPR). The file is
-    valid and analysable as written: edit the numbers, then `dyade analyse FILE`."""
+    valid and analysable as written: edit the numbers, then `dyade analyse FILE`.
+    FILE "-" prints the template."""
     from importlib.resources import files
 
     name = KIND_ALIASES.get(kind.lower(), kind.lower())
+    text = files("dyade").joinpath("templates", f"{name}.toml").read_text(encoding="utf-8")
+    if file == "-":
+        click.echo(text, nl=False)
+        return
     if os.path.exists(file) and not force:
         raise click.UsageError(f"{file} exists; give --force to overwrite it.")
-    text = files("dyade").joinpath("templates", f"{name}.toml").read_text(encoding="utf-8")
     with atomic(file) as handle:
         handle.write(text)
     console(stderr=True).print(f"wrote {file} ({name}, dyad kind {TEMPLATES[name]}); next: "

@@ -161,9 +161,10 @@ def _standalone(mass, stiffness, gap, slope, speed_rpm, speeds, simulate, sim_st
 def _over_mechanism(path, joints, mass, stiffness, gap, speeds, simulate, sim_steps, fmt, output,
                     max_wander):
     import dyade
+    from dyade.cli.analyse import load
     from dyade.report import clearance as report
 
-    mechanism = dyade.read_mechanism(path)
+    mechanism = load(path).mechanism
     options = {"joints": joints or None, "stiffness": stiffness, "clearance": gap, "mass": mass,
                "max_wander": max_wander}
     with flags(FLAGS):

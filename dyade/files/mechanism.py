@@ -55,6 +55,9 @@ MIDDLE_P_KEYS = {"guide", "offset", "angle", "point", "slider_length", "slider_h
 DYAD_KEYS_COMMON = {"kind", "links", "A", "B", "C", "variant", "name"}
 GRAVITY_KEYS = {"x", "y"}
 STANDARD_GRAVITY = 9.80665  # [m/s²]
+NUMBERING = {"dyad": (2, "dyads are numbered as in DYADE: the crank is dyad 1, the first "
+                         "[[dyad]] table dyad 2")}
+"""arrays of tables whose entries are not numbered from 1, for keys and overrides"""
 
 
 def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = None
@@ -83,14 +86,27 @@ def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = N
 
 
 def load_data(path: str | os.PathLike, overrides: dict[str, Any] | None = None,
-              what: str = "override") -> dict[str, Any]:
+              what: str = "override", text: str | None = None) -> dict[str, Any]:
     """The file's TOML data with ``overrides`` (dotted key -> value) applied; ``what``
-    names them in messages."""
+    names them in messages; ``text``: the file's content when already read (stdin)."""
     path = os.fspath(path)
-    data = read_toml(path)
+    data = read_toml(path, text)
     for key, value in (overrides or {}).items():
-        set_dotted(data, key, value, os.path.basename(path), what)
+        set_dotted(data, key, value, os.path.basename(path), what, NUMBERING)
     return data
+
+
+def edited(text: str, overrides: dict[str, Any], label: str = "mechanism",
+           what: str = "override") -> str:
+    """The file's text with ``overrides`` applied and everything else kept: comments,
+    key order, inline tables, short arrays on one line (``--save-as``; tomlkit edits the
+    parsed document in place)."""
+    import tomlkit
+
+    document = tomlkit.parse(text)
+    for key, value in overrides.items():
+        set_dotted(document, key, value, label, what, NUMBERING)
+    return tomlkit.dumps(document)
 
 
 def build(data: dict[str, Any], path: str | os.PathLike | None = None) -> Mechanism:
@@ -101,10 +117,10 @@ def build(data: dict[str, Any], path: str | os.PathLike | None = None) -> Mechan
 
 
 def dumps(data: dict[str, Any]) -> str:
-    """Mechanism data as TOML text (``--save-as``)."""
-    import tomli_w
+    """Mechanism data (a dict with the keys of a mechanism file) as TOML text."""
+    import tomlkit
 
-    return tomli_w.dumps(data)
+    return tomlkit.dumps(data)
 
 
 class Reader(TableReader):
@@ -359,7 +375,7 @@ class Reader(TableReader):
         return guide
 
     def dyad(self, table: Any, number: int) -> Dyad:
-        key = f"dyad.{number - 1}"
+        key = f"dyad.{number}"
         if not isinstance(table, dict):
             raise self.fail(key, f"must be a table, got {_show(table)}.")
         kind = self.kind(self.required(table, "kind", key), f"{key}.kind")
@@ -520,7 +536,7 @@ class Reader(TableReader):
             for letter, joint in zip("ABC", dyad.joints):
                 name = joint.name
                 if name in seen:
-                    raise self.fail(f"dyad.{dyad.number - 1}.{letter}",
+                    raise self.fail(f"dyad.{dyad.number}.{letter}",
                                     f"joins links {name[0]} and {name[1]}, which {seen[name]} "
                                     f"already joins; two joints between the same links are "
                                     f"not a dyad chain.")

@@ -32,19 +32,30 @@ class Field(NamedTuple):
     """value when the key is absent (None: absent stays absent)"""
 
 
-def read_toml(path: str | os.PathLike) -> dict[str, Any]:
+def read_toml(path: str | os.PathLike, text: str | None = None) -> dict[str, Any]:
     """A TOML file as a dict; InputError naming the file when it cannot be read, is not
-    UTF-8 text or is not valid TOML."""
+    UTF-8 text or is not valid TOML. ``text``: the content, already read (standard
+    input), with ``path`` naming it."""
+    path = os.fspath(path)
+    return _parse(read_text(path) if text is None else text, path)
+
+
+def read_text(path: str | os.PathLike) -> str:
+    """A file's UTF-8 text; InputError naming the file when it cannot be read or is not
+    UTF-8 text."""
     path = os.fspath(path)
     try:
         with open(path, encoding="utf-8") as handle:
-            text = handle.read()
+            return handle.read()
     except OSError as err:
         raise InputError(f"{path}: cannot read the file ({err.strerror}).", source=path) from None
     except UnicodeDecodeError as err:
         raise InputError(f"{path}: not a UTF-8 text file (byte {err.start}: "
                          f"{err.object[err.start:err.start + 1]!r}); save it as UTF-8 TOML.",
                          source=path) from None
+
+
+def _parse(text: str, path: str) -> dict[str, Any]:
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
@@ -68,32 +79,36 @@ def parse_assignment(text: str) -> tuple[str, Any]:
 
 
 def set_dotted(data: dict[str, Any], dotted: str, value: Any, label: str = "",
-               what: str = "override") -> None:
-    """Replace the key at a dotted path (array entries by 1-based index) in ``data``;
+               what: str = "override", first: dict[str, tuple[int, str]] | None = None
+               ) -> None:
+    """Replace the key at a dotted path in ``data``; array entries by number, from 1 or
+    from ``first[path] = (number of the first entry, what that numbering is)``.
     ``what`` names the overrides in messages (the command line says ``--set``)."""
     parts = dotted.split(".")
     target: Any = data
-    for depth, part in enumerate(parts[:-1]):
-        where = ".".join(parts[:depth + 1])
+    for depth, part in enumerate(parts):
+        path = ".".join(parts[:depth])  # the container's path
+        final = depth == len(parts) - 1
         if isinstance(target, list):
-            if not part.isdigit() or not 1 <= int(part) <= len(target):
-                raise InputError(f"{label}: {what} {dotted}: `{where}` needs an index 1…"
-                                 f"{len(target)} (the file has {len(target)}).")
-            target = target[int(part) - 1]
+            base, why = (first or {}).get(path, (1, ""))
+            top = base + len(target) - 1
+            if not part.isdigit() or not base <= int(part) <= top:
+                numbers = f"{base}…{top}" if target else "none"
+                raise InputError(f"{label}: {what} {dotted}: the entries of `{path}` are numbered "
+                                 f"{numbers}, got {part}{f' ({why})' if why else ''}.",
+                                 source=label, key=dotted)
+            if final:
+                target[int(part) - base] = value
+                return
+            target = target[int(part) - base]
         elif isinstance(target, dict):
+            if final:
+                target[part] = value
+                return
             target = target.setdefault(part, {})
         else:
-            raise InputError(f"{label}: {what} {dotted}: `{'.'.join(parts[:depth])}` is a value, "
-                             f"not a table.")
-    if isinstance(target, list):
-        last = parts[-1]
-        if not last.isdigit() or not 1 <= int(last) <= len(target):
-            raise InputError(f"{label}: {what} {dotted}: index {last} is outside 1…{len(target)}.")
-        target[int(last) - 1] = value
-    elif isinstance(target, dict):
-        target[parts[-1]] = value
-    else:
-        raise InputError(f"{label}: {what} {dotted}: `{'.'.join(parts[:-1])}` is a value, not a table.")
+            raise InputError(f"{label}: {what} {dotted}: `{path}` is a value, not a table.",
+                             source=label, key=dotted)
 
 
 def suggest(key: str, allowed: set[str] | dict) -> str:
