@@ -108,3 +108,59 @@ def test_version_names_python_and_numpy():
 
     text = run("--version").stdout
     assert f"Python {platform.python_version()}" in text and f"numpy {version('numpy')}" in text
+
+
+# -- 2. JSON that loads as a table --------------------------------------------------------
+JSON_RUNS = {
+    "analyse": ["analyse", shipped("dyade-16.toml"), "--format", "json"],
+    "clearance": ["clearance", shipped("dyade-16.toml"), "--stiffness", "1e8", "--clearance",
+                  "1e-4", "--format", "json"],
+    "coupling": ["coupling", shipped("coupling/stiff-coupling.toml"), "--format", "json"],
+    "accuracy": ["accuracy", shipped("fourbar.toml"), "--repeats", "1", "--format", "json"],
+}
+
+
+@pytest.mark.parametrize("command", JSON_RUNS)
+def test_every_json_has_one_shape_and_loads_as_a_table(command):
+    pandas = pytest.importorskip("pandas")
+    obj = json.loads(run(*JSON_RUNS[command]).stdout)
+    assert list(obj) == ["columns", "units", "summary", "warnings", "meta"]
+    assert obj["meta"]["command"] == command and set(obj["units"]) == set(obj["columns"])
+    frame = pandas.DataFrame(obj["columns"])
+    assert len(frame) > 0 and list(frame.columns) == list(obj["columns"])
+
+
+@pytest.mark.parametrize("command, csv_args", [
+    ("analyse", ["analyse", shipped("dyade-16.toml"), "--format", "csv"]),
+    ("coupling", ["coupling", shipped("coupling/stiff-coupling.toml"), "--format", "csv"]),
+])
+def test_json_numbers_are_the_csv_numbers(command, csv_args):
+    """Each JSON number is the CSV field read as a number (no 3.0000000000000004 where the
+    CSV says 3), and each empty CSV field is null."""
+    obj = json.loads(run(*JSON_RUNS[command]).stdout)["columns"]
+    lines = run(*csv_args).stdout.strip().splitlines()
+    names = lines[0].split(",")
+    for row, line in enumerate(lines[1:]):
+        for name, field in zip(names, line.split(",")):
+            value = obj[name][row]
+            assert (value is None) if field == "" else value == float(field), (name, row)
+
+
+def test_coupling_json_has_operating_points_and_peaks():
+    summary = json.loads(run(*JSON_RUNS["coupling"]).stdout)["summary"]
+    points = summary["operating_points"]
+    assert points["speed_rpm"] == [1450.0, 2900.0] and points["order"] == 2.0
+    assert len(points["eta"]) == 2 and len(points["V_phi"]) == 2
+    assert summary["peaks"]["V_phi"]["unbounded"] is False and summary["peaks"]["V_phi"]["value"] > 1
+
+
+# -- 8. coupling: an undamped peak is unbounded, not a grid value -----------------------------
+def test_an_undamped_peak_is_unbounded_at_eta0_on_any_grid():
+    for grid in ("0:3:0.01", "0:3.003:0.0100001"):
+        text = run("coupling", "--J", 1, "--c1", 1, "--c2", 1, "--eta-range", grid).stdout
+        assert "peak of V_phi" in text and "unbounded at η0 = 0.7071" in text
+        assert "every 8. of" not in text and "301 rows, every 8th" in text
+    damped = run("coupling", "--J", 1, "--c1", 1, "--c2", 1, "--b2", "0.1").stdout
+    assert "unbounded" not in damped and "peak of V_phi (in the range)" in damped
+    with_speeds = run("coupling", "--J", 1, "--c1", 1, "--c2", 1, "--speed-rpm", 5).stdout
+    assert "speed [rpm]" in with_speeds and "η [-]" in with_speeds  # units on every header

@@ -37,7 +37,11 @@ def accuracy(mechanism_file: Path, assignments, repeats: int, fmt: str, output) 
     if fmt == "csv":
         write_rows(records, report.COLUMNS, output)
     elif fmt == "json":
-        write_json({name: [r[name] for r in records] for name in report.COLUMNS}
-                   | {"summary": {"mechanism": mechanism.name}, "warnings": []}, output)
+        from dyade.report.document import document
+
+        write_json(document("accuracy", {name: [r[name] for r in records]
+                                         for name in report.COLUMNS},
+                            report.UNITS, {"mechanism": mechanism.name}, [],
+                            mechanism=mechanism.name), output)
     else:
         show(report.tables(mechanism.name, records), output)

@@ -281,8 +281,13 @@ class Job(NamedTuple):
             else:
                 csv_rows.write(cols, sys.stdout)
         elif self.fmt == "json":
-            write_json(cols | {"summary": result.summary(cols),
-                               "warnings": [note.text for note in result.notes]}, output)
+            from dyade.linkage.columns import unit_of
+            from dyade.report.document import document
+
+            write_json(document("analyse", cols, {name: unit_of(name) for name in cols},
+                                result.summary(cols), [note.text for note in result.notes],
+                                mechanism=mechanism.name, source=loaded.label,
+                                positions=int(cols["angle_deg"].size)), output)
         else:
             from dyade.report import tables
 
@@ -292,7 +297,7 @@ class Job(NamedTuple):
             err = console(stderr=True)
             prefix = f"{os.path.basename(path)}: " if output else ""
             for note in result.notes:
-                err.print(f"warning: {prefix}{note}")
+                err.print(f"warning: {prefix}{note}", markup=False)
         locks = any(lock.locks[result.rows].any() for lock in (result.locking or {}).values())
         if self.fail_on_lock and locks:
             raise DyadeError("a slider self-locks (see the warning above); --fail-on-lock was "

@@ -28,17 +28,20 @@ def _joint(text: str) -> tuple[int, int]:
 
 def _emit(rows: list[dict], names: list[str], fmt: str, output: Path | None,
           summary: dict, warnings: list[str], parts) -> None:
-    """CSV rows, JSON (columns as arrays + summary + warnings) or rich tables."""
+    """CSV rows, JSON (columns, units, summary, warnings, meta) or rich tables."""
     if fmt == "csv":
         write_rows(rows, names, output)
     elif fmt == "json":
-        obj = {name: [row.get(name) for row in rows] for name in names}
-        write_json(obj | {"summary": summary, "warnings": warnings}, output)
+        from dyade.report.clearance import UNITS
+        from dyade.report.document import document
+
+        cols = {name: [row.get(name) for row in rows] for name in names}
+        write_json(document("clearance", cols, UNITS, summary, warnings), output)
     else:
         show(parts(), output)
     err = console(stderr=True)
     for line in warnings:
-        err.print(line)
+        err.print(line, markup=False)
 
 
 @main.command()

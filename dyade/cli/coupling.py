@@ -87,13 +87,14 @@ def coupling(coupling_file: Path | None, inertia, c1, c2, b1, b2, eta_range, mom
         if fmt == "csv":
             write_rows([dict(zip(names, row)) for row in table.tolist()], names, output)
         else:
-            summary = {"omega_t": model.natural_frequency, "D": model.damping_ratio,
-                       "kappa": model.kappa, "eta0": model.resonance()}
-            write_json({name: table[:, k] for k, name in enumerate(names)}
-                       | {"summary": summary, "warnings": warnings}, output)
+            from dyade.report.document import document
+
+            write_json(document("coupling", {name: table[:, k] for k, name in enumerate(names)},
+                                report.UNITS, report.summary(model, resp, operating), warnings,
+                                name=data.get("name")), output)
     else:
         show(report.tables(model, resp, cols, names, operating), output,
              width=140 if output else None)
     err = console(stderr=True)
     for line in warnings:
-        err.print(line)
+        err.print(line, markup=False)

@@ -81,9 +81,27 @@ def _plain_renderable(part: Any) -> Any:
     return part
 
 
+def literal(table: Any) -> Any:
+    """A table whose texts are shown as written: rich would read "[rpm]" or "[ms]" in a
+    header as markup and drop it. Its title, caption, headers and cells are escaped."""
+    from rich.markup import escape
+    from rich.table import Table
+
+    if not isinstance(table, Table):
+        return table
+    for name in ("title", "caption"):
+        if isinstance(getattr(table, name), str):
+            setattr(table, name, escape(getattr(table, name)))
+    for column in table.columns:
+        if isinstance(column.header, str):
+            column.header = escape(column.header)
+        column._cells = [escape(c) if isinstance(c, str) else c for c in column._cells]
+    return table
+
+
 def show(parts: Iterable[Any], output: str | os.PathLike | None = None, width: int | None = None) -> None:
     """Print rich renderables to stdout or (atomically) to a file."""
-    parts = [p for p in parts if p is not None]
+    parts = [literal(p) for p in parts if p is not None]
     if output:
         with atomic(output) as handle:
             con = console(file=handle, width=width or 160)
@@ -121,7 +139,8 @@ def write_rows(rows: list[dict], names: list[str], output: str | os.PathLike | N
 
 
 def jsonable(value: Any) -> Any:
-    """numpy and floats to JSON values; NaN and inf become null."""
+    """numpy and floats to JSON values, numbers as in the CSV (15 significant digits: no
+    3.0000000000000004 where the CSV says 3); NaN and inf become null."""
     import numpy as np
 
     if isinstance(value, dict):
@@ -132,7 +151,7 @@ def jsonable(value: Any) -> Any:
         return [jsonable(v) for v in value.tolist()]
     if isinstance(value, (np.floating, float)):
         value = float(value)
-        return value + 0.0 if math.isfinite(value) else None
+        return float(f"{value + 0.0:.15g}") if math.isfinite(value) else None
     if isinstance(value, (np.integer,)):
         return int(value)
     if isinstance(value, np.bool_):

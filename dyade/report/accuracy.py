@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 COLUMNS = ["study", "setting", "time_ms", "quantity", "value", "rel_error", "note"]
+UNITS = {"time_ms": "ms", "rel_error": "-", "value": "N or N·m (see quantity)"}
 
 
 def records(rows) -> list[dict]:

@@ -21,6 +21,12 @@ MECHANISM_COLUMNS = ["joint", "reversal", "angle_deg", "slope", "t1", "v1", "tau
                      "F_max", "F_clearance", "F_rigid", "amplification", "mass", "stiffness",
                      "clearance", "line_deg", "wander_deg"]
 TITLE = "Dresig & Thümmel, eq. (36)"
+UNITS = {"speed_rpm": "rpm", "mass": "kg", "stiffness": "N/m", "clearance": "m",
+         "slope": "N/s", "t1": "s", "v1": "m/s", "tau": "-", "f_tau": "-", "F_max": "N",
+         "F_clearance": "N", "F_rigid": "N", "amplification": "-", "angle_deg": "°",
+         "line_deg": "°", "wander_deg": "°", "reversal": "-", "joint": "",
+         "F_sim": "N", "sim_rel_diff": "-", "sim_steps": "-", "sim_time_s": "s",
+         "closed_time_s": "s", "separates": "1/0"}
 
 
 def standalone_rows(mass: float, stiffness: float, gap: float,

@@ -7,6 +7,8 @@ from typing import Any
 
 import numpy as np
 
+from dyade.vibration import coupling as engine
+
 COLUMNS = ["eta", "V_phi", "V_psi", "V_q", "V_r", "alpha_deg", "beta_deg", "gamma_deg",
            "delta_deg"]
 MOMENT_COLUMNS = ["phi_hat", "psi_hat", "MQ_hat", "phir_hat"]
@@ -53,26 +55,30 @@ def tables(model, resp, cols, names, operating):
     if eta0 is not None:
         summary.add_row("  resonance speed ω = η0·ω_t", fmt(eta0 * model.natural_frequency), "rad/s")
     eta = cols["eta"]
-    for name in ("V_phi", "V_psi", "V_q", "V_r"):
-        values = cols[name]
-        if np.all(np.isnan(values)):
+    for name, peak in engine.peaks(resp, model).items():
+        if peak is None:
             summary.add_row(f"peak of {name}", "not defined", "")
-            continue
-        k = int(np.nanargmax(np.where(np.isnan(values), -np.inf, values)))
-        summary.add_row(f"peak of {name} (in the range)", f"{fmt(values[k])} at η = {eta[k]:.4g}", "-")
+        elif math.isinf(peak[0]):
+            summary.add_row(f"peak of {name}", f"unbounded at η0 = {peak[1]:.4g}", "-")
+        else:
+            summary.add_row(f"peak of {name} (in the range)", f"{fmt(peak[0])} at η = {peak[1]:.4g}",
+                            "-")
     parts = [summary]
     if operating is not None:
         speeds, op_eta, op = operating.speeds_rpm, operating.eta, operating.response
-        table = Table(title="Operating points", title_justify="left")
-        for head in ("speed [rpm]", "η", "V_φ", "V_ψ", "V_q", "V_r"):
+        table = Table(title=f"Operating points (excitation order {operating.order:g})",
+                      title_justify="left")
+        for head in ("speed [rpm]", "η [-]", "V_φ [-]", "V_ψ [-]", "V_q [-]", "V_r [-]"):
             table.add_column(head, justify="right")
         for k in range(speeds.size):
             table.add_row(fmt(speeds[k]), fmt(op_eta[k], 4),
                           *[fmt(op.transfer[n][k], 4) for n in ("V_phi", "V_psi", "V_q", "V_r")])
         parts.append(table)
     stride = max(1, int(np.ceil(eta.size / 40)))
-    note = f" (every {stride}. of {eta.size} rows; --format csv for all)" if stride > 1 else ""
-    heads = {"eta": "η", "V_phi": "V_φ", "V_psi": "V_ψ", "V_q": "V_q", "V_r": "V_r",
+    note = (f" ({eta.size} rows, every {ordinal(stride)} shown; --format csv for all)"
+            if stride > 1 else "")
+    heads = {"eta": "η [-]", "V_phi": "V_φ [-]", "V_psi": "V_ψ [-]", "V_q": "V_q [-]",
+             "V_r": "V_r [-]",
              "alpha_deg": "α [°] (φ)", "beta_deg": "β [°] (ψ)", "gamma_deg": "γ [°] (M_Q)",
              "delta_deg": "δ [°] (φ_r)", "phi_hat": "φ̂ [rad]", "psi_hat": "ψ̂ [rad]",
              "MQ_hat": "M̂_Q [N·m]", "phir_hat": "φ̂_r [rad]"}
@@ -89,6 +95,36 @@ def tables(model, resp, cols, names, operating):
             table.add_row(*[fmt(float(cols[name][k]) + 0.0, 5) for name in group])
         parts.append(table)
     return parts
+
+
+def ordinal(n: int) -> str:
+    """1st, 2nd, 3rd, 4th, …, 11th, 12th, 13th, 21st."""
+    suffix = "th" if 10 <= n % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(n % 10, "th")
+    return f"{n}{suffix}"
+
+
+UNITS = {"eta": "-", "V_phi": "-", "V_psi": "-", "V_q": "-", "V_r": "-", "alpha_deg": "°",
+         "beta_deg": "°", "gamma_deg": "°", "delta_deg": "°", "phi_hat": "rad",
+         "psi_hat": "rad", "MQ_hat": "N·m", "phir_hat": "rad"}
+
+
+def summary(model, resp, operating) -> dict[str, Any]:
+    """The figures of the model and of the response, for JSON."""
+    out: dict[str, Any] = {"omega_t": model.natural_frequency,
+                           "f_t_Hz": model.natural_frequency / (2 * math.pi),
+                           "D": model.damping_ratio, "kappa": model.kappa,
+                           "eta0": model.resonance(),
+                           "eta_unbounded": engine.undamped_resonance(model), "peaks": {}}
+    for name, peak in engine.peaks(resp, model).items():
+        out["peaks"][name] = (None if peak is None else
+                              {"value": None if math.isinf(peak[0]) else peak[0],
+                               "eta": peak[1], "unbounded": math.isinf(peak[0])})
+    if operating is not None:
+        out["operating_points"] = {"order": operating.order,
+                                   "speed_rpm": operating.speeds_rpm, "eta": operating.eta,
+                                   **{name: values for name, values in
+                                      operating.response.transfer.items()}}
+    return out
 
 
 def notes(model, resp, eta) -> list[str]:

@@ -223,14 +223,36 @@ def operating_points(coupling: Coupling, speeds_rpm, *, order: float = 1.0) -> O
     return OperatingPoints(speeds, float(order), eta, response(coupling, eta))
 
 
-def peaks(resp: Response) -> dict[str, tuple[float, float] | None]:
+def undamped_resonance(coupling: Coupling) -> float | None:
+    """The tuning ratio η where the response is unbounded: without damping on the
+    secondary side (b2 = 0) at η = sqrt(1 − κ) = sqrt(c2/(c1 + c2)), eq. (6); None when
+    b2 > 0 (every response finite)."""
+    if coupling.b2 > 0.0:
+        return None
+    return float(np.sqrt(1.0 - coupling.kappa))
+
+
+def peaks(resp: Response, coupling: Coupling | None = None
+          ) -> dict[str, tuple[float, float] | None]:
     """The largest value of each transfer function over the computed η and where:
-    name -> (value, η), None where it is not defined."""
+    name -> (value, η), None where it is not defined. With ``coupling``, an undamped
+    resonance inside the range is the peak of V_φ, V_ψ and V_q: (inf, η0) whether or
+    not a computed η falls on it.
+
+    >>> from dyade.vibration.coupling import Coupling, peaks, response
+    >>> undamped = Coupling(1.0, 1.0, 1.0, 0.0, 0.0)
+    >>> peaks(response(undamped, np.linspace(0, 3, 301)), undamped)["V_phi"]
+    (inf, 0.7071067811865476)
+    """
     out: dict[str, tuple[float, float] | None] = {}
+    eta_u = None if coupling is None else undamped_resonance(coupling)
+    inside = eta_u is not None and resp.eta.min() <= eta_u <= resp.eta.max()
     for name, values in resp.transfer.items():
         if np.all(np.isnan(values)):
             out[name] = None
-            continue
-        k = int(np.nanargmax(np.where(np.isnan(values), -np.inf, values)))
-        out[name] = (float(values[k]), float(resp.eta[k]))
+        elif inside and name != "V_r":
+            out[name] = (float("inf"), eta_u)
+        else:
+            k = int(np.nanargmax(np.where(np.isnan(values), -np.inf, values)))
+            out[name] = (float(values[k]), float(resp.eta[k]))
     return out
