@@ -110,6 +110,7 @@ def test_json_has_the_csv_names_summary_and_warnings():
 
 @pytest.mark.parametrize("args", [
     ["analyse", shipped("dyade-16.toml")],
+    ["analyse", shipped("dyade-16.toml"), "--all"],
     ["describe", shipped("dyade-16.toml")],
     ["clearance", shipped("dyade-16.toml")],
     ["coupling", "--J", "1", "--c1", "1", "--c2", "1", "--b1", "0.1"],
@@ -167,7 +168,8 @@ def test_no_color_makes_shown_tables_plain_on_a_terminal(monkeypatch):
 def test_piped_output_of_the_real_command_is_plain():
     # a user's shell: a colour terminal, no NO_COLOR; only stdout is a pipe
     env = {k: v for k, v in os.environ.items() if k != "NO_COLOR"} | {"TERM": "xterm-256color"}
-    run = subprocess.run([sys.executable, "-m", "dyade", "analyse", str(shipped("dyade-16.toml"))],
+    run = subprocess.run([sys.executable, "-m", "dyade", "analyse", str(shipped("dyade-16.toml")),
+                          "--all"],
                          capture_output=True, text=True, encoding="utf-8", env=env, cwd=ROOT)
     assert run.returncode == 0, run.stderr
     assert "omega_3" in run.stdout

@@ -164,3 +164,62 @@ def test_an_undamped_peak_is_unbounded_at_eta0_on_any_grid():
     assert "unbounded" not in damped and "peak of V_phi (in the range)" in damped
     with_speeds = run("coupling", "--J", 1, "--c1", 1, "--c2", 1, "--speed-rpm", 5).stdout
     assert "speed [rpm]" in with_speeds and "η [-]" in with_speeds  # units on every header
+
+
+# -- 3. a summary a designer reads in ten seconds -----------------------------------------
+def test_the_default_table_shows_the_key_results_first():
+    text = run("analyse", shipped("dyade-16.toml")).stdout
+    lines = text.splitlines()
+    assert len(lines) < 80  # the full table (--all) is over 300 lines
+    first = next(k for k, line in enumerate(lines) if "drive torque max" in line)
+    assert first < 5 and "omega_3" not in text
+    assert "peak force F_2_5" in text and "smallest transmission angle, dyad 7" in text
+    assert "stroke of slider (1,12)" in text and "time ratio" in text
+    full = run("analyse", shipped("dyade-16.toml"), "--all").stdout
+    assert "omega_3" in full and len(full.splitlines()) > 250
+
+
+def test_round_off_and_constant_columns_are_not_numbers_to_read():
+    """dyade-16's slider (1,9) carries no normal force: 1e-14 N of round-off is shown as
+    0; the frame joints' constant coordinates are named once in the caption."""
+    text = run("analyse", shipped("dyade-16.toml")).stdout
+    row = next(line for line in text.splitlines() if "FN_1_9" in line)
+    assert row.split()[3] == "0"
+    full = run("analyse", shipped("dyade-16.toml"), "--all").stdout
+    assert "constant over the sweep:" in full
+    assert not any(line.startswith("x_1_2 ") for line in full.splitlines())
+
+
+def test_columns_choose_and_units_file_shows_millimetres(tmp_path):
+    csv = read_csv(run("analyse", shipped("fourbar.toml"), "--format", "csv",
+                       "--columns", "M_drive,F_*").stdout)
+    assert list(csv) == ["angle_deg", "F_1_2", "F_2_3", "F_3_4", "F_1_4", "M_drive"]
+    none = run("analyse", shipped("fourbar.toml"), "--columns", "nothing*")
+    assert none.exit_code == 2 and "no column matches nothing*" in none.output
+    si = run("analyse", shipped("slider-crank.toml"), "--columns", "s_1_4").stdout
+    mm = run("analyse", shipped("slider-crank.toml"), "--columns", "s_1_4", "--units",
+             "file").stdout
+    si_row = next(line for line in si.splitlines() if line.startswith("s_1_4"))
+    mm_row = next(line for line in mm.splitlines() if line.startswith("s_1_4"))
+    assert si_row.split()[1] == "m" and mm_row.split()[1] == "mm"
+    assert float(mm_row.split()[2]) == pytest.approx(1e3 * float(si_row.split()[2]), rel=1e-5)
+
+
+def test_time_ratios_equal_the_closed_forms():
+    """Offset slider-crank (r 40, l 160, e 10 mm): Q = (180° + α)/(180° − α) with
+    α = asin(e/(l − r)) − asin(e/(l + r)); crank and slotted lever (r 60, pivots 150 mm
+    apart): the return stroke takes 2·acos(r/d) of crank angle."""
+    import math
+
+    import dyade
+
+    alpha = math.degrees(math.asin(10 / 120) - math.asin(10 / 200))
+    slider = dyade.analyse(dyade.read_mechanism(shipped("slider-crank.toml"))).summary()
+    assert slider["strokes"]["1_4"]["time_ratio"] == pytest.approx((180 + alpha) / (180 - alpha),
+                                                                   rel=1e-5)
+    back = 2 * math.degrees(math.acos(60 / 150))
+    lever = dyade.analyse(dyade.read_mechanism(shipped("slotted-lever.toml"))).summary()
+    assert lever["swings"]["4"]["time_ratio"] == pytest.approx((360 - back) / back, rel=1e-4)
+    # the stroke: the slider's extreme positions, crank and rod in line
+    stroke = math.sqrt(200 ** 2 - 10 ** 2) - math.sqrt(120 ** 2 - 10 ** 2)
+    assert slider["strokes"]["1_4"]["stroke"] == pytest.approx(stroke * 1e-3, rel=1e-4)

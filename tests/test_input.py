@@ -134,7 +134,7 @@ def test_csv_has_the_contract_columns(tmp_path, mechanisms_dir):
 
 
 def test_piped_table_is_plain(mechanisms_dir):
-    result = CliRunner().invoke(main, ["analyse", str(mechanisms_dir / "fourbar.toml")],
+    result = CliRunner().invoke(main, ["analyse", str(mechanisms_dir / "fourbar.toml"), "--all"],
                                 catch_exceptions=False)
     assert result.exit_code == 0
     assert "\x1b[" not in result.stdout

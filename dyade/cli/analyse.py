@@ -131,6 +131,15 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
 @click.option("--friction-max-iter", type=click.IntRange(min=1),
               help="Most friction iterations per dyad and position  [default: file's "
                    "[friction] max_iter, 50]; positions not converged are named on stderr.")
+@click.option("--all", "show_all", is_flag=True,
+              help="Table: min and max of every column and where, the force summary and the "
+                   "clearance peaks (default: the key results only).")
+@click.option("--columns", "patterns", metavar="PATTERN",
+              help="Only the columns whose names match these comma-separated glob patterns "
+                   "(every format; angle_deg always): --columns 'M_drive,F_*,mu_*'.")
+@click.option("--units", type=click.Choice(["si", "file"]), default="si", show_default=True,
+              help="Table lengths in SI (m) or in the file's length unit ([units] length); "
+                   "CSV and JSON stay SI.")
 @click.option("--fail-on-lock", is_flag=True,
               help="Exit with status 1 when a slider self-locks (otherwise a locking slider is "
                    "a finding: reported, exit status 0).")
@@ -138,7 +147,7 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
             start: float | None, stop: float | None, step: float | None,
             assignments: tuple[str, ...], save_as: str | None, allow_partial: bool,
             friction_tol: float | None, friction_max_iter: int | None,
-            fail_on_lock: bool) -> None:
+            show_all: bool, patterns: str | None, units: str, fail_on_lock: bool) -> None:
     """Sweep the crank of MECHANISM_FILES: positions, velocities and accelerations of every
     link, joint and named point.
 
@@ -157,8 +166,9 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
     from dyade.errors import DyadeError
 
     fmt = fmt or infer_format(output)
+    chosen = tuple(p.strip() for p in patterns.split(",") if p.strip()) if patterns else ()
     job = Job(fmt, SweepOptions(start, stop, step), assignments, allow_partial, friction_tol,
-              friction_max_iter, fail_on_lock)
+              friction_max_iter, fail_on_lock, show_all, chosen, units)
     if len(mechanism_files) == 1 and not (output and os.path.isdir(output)):
         job.run(mechanism_files[0], output, save_as)
         return
@@ -250,6 +260,10 @@ class Job(NamedTuple):
     friction_tol: float | None
     friction_max_iter: int | None
     fail_on_lock: bool
+    show_all: bool = False
+    columns: tuple[str, ...] = ()
+    """glob patterns of the columns to keep (all when empty)"""
+    units: str = "si"
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
         output = None if output == "-" else output  # -o -: standard output
@@ -272,6 +286,16 @@ class Job(NamedTuple):
                                 "or use --allow-partial to analyse only where it closes.",
                                 err.problems, err.partial) from None
         cols = result.columns()
+        every = cols
+        if self.columns:
+            from dyade.report.tables import select
+
+            cols = select(cols, list(self.columns))
+            if len(cols) == 1:
+                raise click.BadParameter(f"no column matches {', '.join(self.columns)}; the "
+                                         f"columns are {', '.join(list(every)[:12])}, … "
+                                         f"(mechanisms/README.md lists them).",
+                                         param_hint="--columns")
         if self.fmt == "csv":
             from dyade.report import csv_rows
 
@@ -291,8 +315,15 @@ class Job(NamedTuple):
         else:
             from dyade.report import tables
 
-            show([tables.sweep_summary(result, cols), tables.force_summary(result, cols),
-                  tables.clearance_summary(result)], output)
+            unit = mechanism.units[0] if self.units == "file" else "m"
+            if self.columns:
+                parts = [tables.sweep_summary(result, cols, unit)]
+            elif self.show_all:
+                parts = [tables.sweep_summary(result, cols, unit),
+                         tables.force_summary(result, cols), tables.clearance_summary(result)]
+            else:
+                parts = [tables.key_results(result, cols, result.summary(cols), unit)]
+            show(parts, output)
         if result.notes:  # rich is only loaded when there is something to say
             err = console(stderr=True)
             prefix = f"{os.path.basename(path)}: " if output else ""

@@ -200,7 +200,8 @@ class Reader(TableReader):
         springs = tuple(self.spring(t, f"spring.{k}", links)
                         for k, t in enumerate(_list(data.get("spring", []), "spring", self), 1))
         return Mechanism(name, self.source, crank, dyads, links, sweep, gravity, loads, springs,
-                         dead_centre, friction_tol, friction_max_iter)
+                         dead_centre, friction_tol, friction_max_iter,
+                         (self.length_unit, self.angle_unit))
 
     def units(self, table: Any) -> None:
         self.keys(table, "units", UNIT_KEYS)

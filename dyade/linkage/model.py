@@ -246,6 +246,8 @@ class Mechanism:
     """Band around transmission angles 0° and 180° treated as dead centre [rad]."""
     friction_tol: float = 1e-9
     friction_max_iter: int = 50
+    units: tuple[str, str] = ("m", "deg")
+    """The file's length and angle units (for showing results as the file has them)."""
 
     @property
     def joints(self) -> list[Joint]:

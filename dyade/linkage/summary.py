@@ -20,6 +20,80 @@ def cycle_mean(angle: np.ndarray, values: np.ndarray) -> float:
     return float(np.sum((v[1:] + v[:-1]) * np.diff(a)) / (2.0 * (a[-1] - a[0])))
 
 
+def full_cycle(angle_deg: np.ndarray) -> bool:
+    """The positions cover one whole crank revolution (to within a step)."""
+    if angle_deg.size < 3:
+        return False
+    step = float(np.min(np.diff(angle_deg)))
+    return float(angle_deg[-1] - angle_deg[0]) >= 360.0 - 1.5 * step
+
+
+def time_ratio(angle_deg: np.ndarray, output: np.ndarray) -> float | None:
+    """Time ratio of a quick-return output over one crank revolution at constant speed:
+    the longer of the two crank-angle spans between its extreme positions over the
+    shorter (1 for a symmetric drive). None unless the positions cover a revolution and
+    the output has exactly one maximum and one minimum per revolution."""
+    keep = np.isfinite(output)
+    if not keep.all() or not full_cycle(angle_deg):
+        return None
+    cycle = output[:-1] if angle_deg[-1] - angle_deg[0] >= 360.0 - 1e-9 else output
+    rises = np.diff(np.append(cycle, cycle[0])) > 0
+    if np.count_nonzero(rises != np.roll(rises, 1)) != 2:  # one rise, one fall
+        return None
+    step = float(angle_deg[1] - angle_deg[0])
+    top, bottom = _vertex(angle_deg, cycle, step, 1.0), _vertex(angle_deg, cycle, step, -1.0)
+    forward = (top - bottom) % 360.0
+    spans = sorted((forward, 360.0 - forward))
+    return spans[1] / spans[0] if spans[0] > 0 else None
+
+
+def _vertex(angle_deg: np.ndarray, cycle: np.ndarray, step: float, sign: float) -> float:
+    """Crank angle [°] of the maximum (sign +1) or minimum (−1) of a periodic sampled
+    output, refined by the parabola through it and its two neighbours (error ∝ step³
+    instead of half a step)."""
+    k = int(np.argmax(sign * cycle))
+    before, here, after = cycle[k - 1], cycle[k], cycle[(k + 1) % cycle.size]
+    curvature = before - 2.0 * here + after
+    shift = 0.5 * (before - after) / curvature if curvature != 0.0 else 0.0
+    return float(angle_deg[k] + shift * step)
+
+
+def motion_figures(result: Result, cols: Columns) -> dict[str, Any]:
+    """What a designer reads off the kinematics: the smallest transmission angle of each
+    dyad (its distance from a dead centre) and where, the stroke of every slider and the
+    swing of every rocker (a link turning about a frame pivot without turning round),
+    each with its time ratio."""
+    angle = cols["angle_deg"]
+    mechanism = result.mechanism
+    out: dict[str, Any] = {"transmission": {}, "strokes": {}, "swings": {}}
+    for dyad in mechanism.dyads:
+        mu = cols[f"mu_{dyad.number}_deg"]
+        if not np.isfinite(mu).any():
+            continue
+        off = np.minimum(mu, 180.0 - mu)  # the angle to the nearer dead centre
+        k = int(np.nanargmin(off))
+        out["transmission"][str(dyad.number)] = {"min_deg": off[k], "at_deg": angle[k]}
+    for joint in mechanism.joints:
+        a, b = joint.name
+        if isinstance(joint, Revolute):
+            continue
+        travel = cols[f"s_{a}_{b}"]
+        stroke = float(np.nanmax(travel) - np.nanmin(travel))
+        if stroke > 1e-12 * max(float(np.nanmax(np.abs(travel))), 1e-300):
+            out["strokes"][f"{a}_{b}"] = {"stroke": stroke,
+                                         "time_ratio": time_ratio(angle, travel)}
+    for link in mechanism.moving_links[1:]:
+        pivoted = any(isinstance(j, Revolute) and 1 in j.links and link in j.links
+                      for j in mechanism.joints)
+        phi = cols[f"phi_{link}_deg"]
+        if not pivoted or not np.isfinite(phi).all():
+            continue
+        turned = np.rad2deg(np.unwrap(np.deg2rad(phi)))
+        swing = float(turned.max() - turned.min())
+        if 1e-9 < swing < 359.0:
+            out["swings"][str(link)] = {"swing_deg": swing, "time_ratio": time_ratio(angle, turned)}
+    return out
+
 
 def _extreme(angle, values) -> dict[str, Any]:
     finite = np.isfinite(values)
@@ -34,7 +108,7 @@ def summary(result: Result, cols: Columns) -> dict[str, Any]:
     """Per column min/max and where; drive, friction, self-locking, clearance figures."""
     angle = cols["angle_deg"]
     out: dict[str, Any] = {"mechanism": result.mechanism.name, "positions": int(angle.size),
-                           "effects": result.plan.effects(),
+                           "effects": result.plan.effects(), **motion_figures(result, cols),
                            "columns": {name: _extreme(angle, values)
                                        for name, values in cols.items() if name != "angle_deg"}}
     if result.forces is not None:

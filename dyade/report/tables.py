@@ -10,10 +10,52 @@ from dyade.linkage.sweep import Plan, Result
 from dyade.linkage.model import FRAME, Mechanism, Prismatic, Revolute
 from dyade.linkage.columns import Columns, unit_of
 from dyade.linkage.summary import cycle_mean
+from dyade.units import LENGTH_FACTORS
 
 
-def sweep_summary(result: Result, cols: Columns) -> Table:
-    """Per column: min and max over the sweep and the crank angle of each."""
+NOISE = 1e-12  # [-] values below this share of their column's largest are round-off: 0
+
+
+def display(unit: str, length_unit: str) -> tuple[float, str]:
+    """Factor and unit to show a value of ``unit`` with lengths in ``length_unit``."""
+    if length_unit == "m" or unit not in ("m", "m/s", "m/s²"):
+        return 1.0, unit
+    return 1.0 / LENGTH_FACTORS[length_unit], length_unit + unit[1:]
+
+
+def number(value: float, scale: float = 0.0) -> str:
+    """A value to 6 significant digits; round-off noise (below NOISE of ``scale``) as 0."""
+    if not np.isfinite(value):
+        return "—"
+    if abs(value) <= NOISE * scale:
+        return "0"
+    return f"{value + 0.0:.6g}"
+
+
+def select(cols: Columns, patterns: list[str]) -> Columns:
+    """The columns whose names match any of the glob ``patterns`` (angle_deg always)."""
+    from fnmatch import fnmatchcase
+
+    return {name: values for name, values in cols.items()
+            if name == "angle_deg" or any(fnmatchcase(name, p) for p in patterns)}
+
+
+def unit_scales(cols: Columns) -> dict[str, float]:
+    """The largest magnitude of all columns of each unit: the scale against which a
+    value is round-off (a force of 1e-14 N in a joint of a machine with 300 N forces)."""
+    out: dict[str, float] = {}
+    for name, values in cols.items():
+        finite = values[np.isfinite(values)]
+        if finite.size:
+            unit = unit_of(name)
+            out[unit] = max(out.get(unit, 0.0), float(np.max(np.abs(finite))))
+    return out
+
+
+def sweep_summary(result: Result, cols: Columns, length_unit: str = "m") -> Table:
+    """Per column: min and max over the sweep and the crank angle of each; constant
+    columns (frame joints, the crank's speed) are left out and named in the caption,
+    round-off noise is shown as 0."""
     angle = cols["angle_deg"]
     table = Table(title=f"{result.mechanism.name}: {angle.size} crank positions "
                         f"{angle[0]:.1f}°–{angle[-1]:.1f}°", title_justify="left")
@@ -21,17 +63,85 @@ def sweep_summary(result: Result, cols: Columns) -> Table:
     table.add_column("unit")
     for head in ("min", "at φ21 [°]", "max", "at φ21 [°]"):
         table.add_column(head, justify="right")
+    constant = []
+    scales = unit_scales(cols)
     for name, values in cols.items():
         if name == "angle_deg":
             continue
+        factor, unit = display(unit_of(name), length_unit)
         finite = np.isfinite(values)
         if not finite.any():
-            table.add_row(name, unit_of(name), "—", "", "—", "")
+            table.add_row(name, unit, "—", "", "—", "")
             continue
-        masked = np.where(finite, values, np.nan)
+        masked = np.where(finite, values, np.nan) * factor
         lo, hi = int(np.nanargmin(masked)), int(np.nanargmax(masked))
-        table.add_row(name, unit_of(name), f"{values[lo] + 0.0:.6g}", f"{angle[lo]:.1f}",
-                      f"{values[hi] + 0.0:.6g}", f"{angle[hi]:.1f}")
+        scale = scales[unit_of(name)] * factor
+        if masked[hi] - masked[lo] <= NOISE * scale and finite.all():
+            constant.append(f"{name} = {number(masked[lo], scale)}{f' {unit}' if unit else ''}")
+            continue
+        table.add_row(name, unit, number(masked[lo], scale), f"{angle[lo]:.1f}",
+                      number(masked[hi], scale), f"{angle[hi]:.1f}")
+    if constant:
+        table.caption = "constant over the sweep: " + ", ".join(constant)
+        table.caption_justify = "left"
+    return table
+
+
+def key_results(result: Result, cols: Columns, summary: dict, length_unit: str = "m"
+                ) -> Table:
+    """The results that matter first: drive torque and power, each joint's peak force,
+    the smallest transmission angle of each dyad, strokes, swings and time ratios,
+    self-locking and clearance peaks."""
+    angle = cols["angle_deg"]
+    mechanism = result.mechanism
+    rpm = abs(mechanism.crank.speed) * 60.0 / (2.0 * np.pi)
+    table = Table(title=f"{mechanism.name}: {angle.size} crank positions "
+                        f"{angle[0]:.1f}°–{angle[-1]:.1f}° at {rpm:g} rpm — key results",
+                  title_justify="left", caption="--all: min and max of every column; "
+                  "--columns PATTERN to choose columns", caption_justify="left")
+    for head, justify in (("quantity", "left"), ("value", "right"), ("unit", "left"),
+                          ("at φ21 [°]", "right")):
+        table.add_column(head, justify=justify)
+    drive = summary.get("drive")
+    if drive:
+        torque = cols["M_drive"]
+        for label, pick in (("drive torque max", np.nanargmax), ("drive torque min", np.nanargmin)):
+            if np.isfinite(torque).any():
+                k = int(pick(torque))
+                table.add_row(label, number(torque[k]), "N·m", f"{angle[k]:.1f}")
+        table.add_row("drive torque RMS", number(drive["M_rms"]), "N·m", "")
+        table.add_row("mean drive power", number(drive["P_mean"]), "W", "")
+        if "friction" in summary:
+            table.add_row("mean friction power", number(summary["friction"]["P_mean"]), "W", "")
+        peaks = summary.get("joint_peaks", {})
+        largest = max((abs(p["value"]) for p in peaks.values()), default=0.0)
+        for name, peak in peaks.items():
+            table.add_row(f"peak force {name}", number(abs(peak["value"]), largest), "N",
+                          f"{peak['at_deg']:.1f}")
+    for number_, figure in summary["transmission"].items():
+        table.add_row(f"smallest transmission angle, dyad {number_}", number(figure["min_deg"]),
+                      "°", f"{figure['at_deg']:.1f}")
+    for name, figure in summary["strokes"].items():
+        factor, unit = display("m", length_unit)
+        joint = name.replace("_", ",")
+        table.add_row(f"stroke of slider ({joint})", number(figure["stroke"] * factor), unit, "")
+        if figure["time_ratio"] is not None:
+            table.add_row(f"  time ratio ({joint})", number(figure["time_ratio"]), "-", "")
+    for link, figure in summary["swings"].items():
+        table.add_row(f"swing of link {link}", number(figure["swing_deg"]), "°", "")
+        if figure["time_ratio"] is not None:
+            table.add_row(f"  time ratio (link {link})", number(figure["time_ratio"]), "-", "")
+    for name, lock in (summary.get("self_locking") or {}).items():
+        joint = name.replace("_", ",")
+        where = lock["locking_angles_deg"]
+        table.add_row(f"self-locking, slider ({joint})",
+                      f"{len(where)} positions" if lock["locks"] else "none", "",
+                      f"{where[0]:.1f}–{where[-1]:.1f}" if lock["locks"] else "")
+    for check in summary.get("clearance") or []:
+        joint = check["joint"].replace("_", ",")
+        for rev in check["reversals"]:
+            table.add_row(f"clearance peak ({joint}), τ = {rev['tau']:.3g}", number(rev["F_max"]),
+                          "N", f"{rev['angle_deg']:.1f}")
     return table
 
 
