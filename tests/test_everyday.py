@@ -98,7 +98,7 @@ def test_keys_messages_and_columns_count_dyads_alike(tmp_path):
     header = run("analyse", shipped("fourbar.toml"), "--format", "csv").stdout.splitlines()[0]
     assert "mu_2_deg" in header.split(",")
     described = run("describe", shipped("fourbar.toml")).stdout
-    assert "dyad 2:" in described
+    assert "dyad 2 ([[dyad]] table 1): kind 1 RRR" in described
 
 
 # -- 11. version ---------------------------------------------------------------------------
@@ -223,3 +223,35 @@ def test_time_ratios_equal_the_closed_forms():
     # the stroke: the slider's extreme positions, crank and rod in line
     stroke = math.sqrt(200 ** 2 - 10 ** 2) - math.sqrt(120 ** 2 - 10 ** 2)
     assert slider["strokes"]["1_4"]["stroke"] == pytest.approx(stroke * 1e-3, rel=1e-4)
+
+
+# -- 4. describe shows what will be computed with -----------------------------------------
+def test_describe_shows_the_data_in_the_files_units():
+    text = " ".join(run("describe", shipped("dyade-16.toml")).stdout.split())
+    assert "lengths in mm" in text
+    assert "link 3: joint distance 200 mm; mass 1.2 kg, centre (100, 0) mm (ξ, η), J_s 0.004" in text
+    assert "guide on link 1 through (0, 30) mm at 180°" in text
+    assert "A: joint (2,7) revolute; clearance 2s = 0.1 mm, contact stiffness 2e+08 N/m" in text
+    assert "gravity (0, -9.80665) m/s²" in text and "spring table return spring" in text
+    assert "load 1 on link 6 at (0, 0) mm, world (x, y): table of 5 rows" in text
+    friction = " ".join(run("describe", shipped("self-locking.toml")).stdout.split())
+    assert "μ = 0.25" in friction and "slider L =" in friction
+
+
+@pytest.mark.parametrize("lengths, kind", [
+    ("[200, 150]", "Grashof crank-rocker"),       # 50 + 250 < 200 + 150
+    ("[120, 100]", "non-Grashof"),                # 50 + 250 > 120 + 100
+    ("[200, 100]", "Grashof change point"),       # 50 + 250 = 200 + 100
+])
+def test_describe_gives_the_grashof_type(lengths, kind):
+    text = " ".join(run("describe", shipped("fourbar.toml"), "--set",
+                        f"dyad.2.lengths={lengths}").stdout.split())
+    assert kind in text
+
+
+def test_describe_gives_stroke_and_time_ratio_of_a_slider_crank():
+    text = " ".join(run("describe", shipped("slider-crank.toml")).stdout.split())
+    assert "slider-crank: crank 40 mm, connecting rod 160 mm" in text
+    assert "slider stroke 80.1" in text and "time ratio 1.021" in text
+    rocker = " ".join(run("describe", shipped("fourbar.toml")).stdout.split())
+    assert "rocker swing 38.99°, time ratio 1.015" in rocker

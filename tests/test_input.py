@@ -146,7 +146,7 @@ def test_describe_lists_the_dyads_and_effects(mechanisms_dir):
                                 catch_exceptions=False)
     text = " ".join(result.stdout.split())
     assert result.exit_code == 0
-    assert "dyad 8: kind 1 RRR" in text
+    assert "dyad 8 ([[dyad]] table 7): kind 1 RRR" in text
     assert "(1,6) prismatic" in text
     assert "F = 3·(16−1) − 2·22 = 1" in text
     assert "kinematics" in text

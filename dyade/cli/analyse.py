@@ -100,10 +100,12 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
     """Show MECHANISM_FILE in assembly order: crank, dyads, joints, link points, mobility,
     and which effects an analysis will simulate."""
     from dyade.linkage.sweep import plan
+    from dyade.report import describe as report
     from dyade.report import tables
 
     mechanism = load(mechanism_file, assignments).mechanism
-    show([tables.describe(mechanism, plan(mechanism))])
+    the_plan = plan(mechanism)
+    show([report.describe(mechanism, the_plan, tables.skipped(the_plan))])
 
 
 @main.command()

@@ -77,7 +77,7 @@ def _plain_renderable(part: Any) -> Any:
                 walk(child, depth + 1)
 
         walk(part, 0)
-        return "\n".join(lines)
+        return Text("\n".join(lines))  # already plain: no second markup pass
     return part
 
 

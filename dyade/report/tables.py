@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 from rich.table import Table
-from rich.tree import Tree
 
 from dyade.linkage.sweep import Plan, Result
 from dyade.linkage.model import FRAME, Mechanism, Prismatic, Revolute
@@ -145,56 +144,6 @@ def key_results(result: Result, cols: Columns, summary: dict, length_unit: str =
     return table
 
 
-def _joint_label(joint: Revolute | Prismatic) -> str:
-    a, b = joint.name
-    if isinstance(joint, Revolute):
-        return f"({a},{b}) revolute"
-    return (f"({a},{b}) prismatic, guide on link {joint.carrier}, slider link {joint.slider}, "
-            f"guide angle {np.rad2deg(joint.guide_angle):g}°")
-
-
-def describe(mechanism: Mechanism, the_plan: Plan) -> Tree:
-    """The mechanism in assembly order, its mobility and the effects to simulate."""
-    tree = Tree(f"[bold]{mechanism.name}[/bold]"
-                + (f"  ({mechanism.source})" if mechanism.source else ""))
-    frame_points = mechanism.links[FRAME].points
-    frame = tree.add("link 1: frame")
-    for name, (x, y) in frame_points.items():
-        frame.add(f"point {name} = ({x * 1e3:g}, {y * 1e3:g}) mm")
-    crank = mechanism.crank
-    rpm = abs(crank.speed) * 60.0 / (2.0 * np.pi)
-    sense = "counter-clockwise" if crank.speed > 0 else "clockwise"
-    node = tree.add(f"dyad 1: link 2 crank, length {crank.length * 1e3:g} mm, {rpm:g} rpm {sense}")
-    node.add(f"joint {_joint_label(crank.joint)} at ({crank.pivot[0] * 1e3:g}, "
-             f"{crank.pivot[1] * 1e3:g}) mm")
-    _points(node, mechanism, 2)
-    for dyad in mechanism.dyads:
-        i, j = dyad.links
-        g, h = dyad.known
-        variant = f", assembly variant {dyad.variant:+d}" if dyad.variant else ""
-        node = tree.add(f"dyad {dyad.number}: kind {dyad.kind.number} {dyad.kind.name}, "
-                        f"links i={i}, j={j}, attached to links {g} and {h}{variant}")
-        for letter, joint in zip("ABC", dyad.joints):
-            node.add(f"{letter}: joint {_joint_label(joint)}")
-        for link in dyad.links:
-            _points(node, mechanism, link)
-    links = 1 + len(mechanism.moving_links)
-    revolute = sum(isinstance(j, Revolute) for j in mechanism.joints)
-    prismatic = len(mechanism.joints) - revolute
-    mobility = 3 * (links - 1) - 2 * len(mechanism.joints)
-    tree.add(f"mobility (Grübler) F = 3·({links}−1) − 2·{len(mechanism.joints)} = {mobility}"
-             f"  [{links} links, {revolute} revolute, {prismatic} prismatic joints]")
-    effects = tree.add("effects simulated")
-    for line in the_plan.effects():
-        effects.add(line)
-    for line in skipped(the_plan):
-        effects.add(f"[dim]not simulated — {line}[/dim]")
-    sweep = mechanism.sweep
-    tree.add(f"sweep: crank angle {np.rad2deg(sweep.start):g}° to {np.rad2deg(sweep.stop):g}° "
-             f"in steps of {np.rad2deg(sweep.step):g}° ({sweep.angles().size} positions)")
-    return tree
-
-
 def skipped(the_plan: Plan) -> list[str]:
     """Effects the file does not call for, and what would turn them on."""
     out = []
@@ -208,11 +157,6 @@ def skipped(the_plan: Plan) -> list[str]:
         out.append("clearance peaks: no joint has clearance data "
                    "(or run `dyade clearance FILE --stiffness … --clearance …`)")
     return out
-
-
-def _points(node: Tree, mechanism: Mechanism, link: int) -> None:
-    for name, (xi, eta) in mechanism.links[link].points.items():
-        node.add(f"link {link} point {name} = ({xi * 1e3:g}, {eta * 1e3:g}) mm (ξ, η)")
 
 
 def force_summary(result: Result, cols: Columns) -> Table | None:
