@@ -255,3 +255,33 @@ def test_describe_gives_stroke_and_time_ratio_of_a_slider_crank():
     assert "slider stroke 80.1" in text and "time ratio 1.021" in text
     rocker = " ".join(run("describe", shipped("fourbar.toml")).stdout.split())
     assert "rocker swing 38.99°, time ratio 1.015" in rocker
+
+
+# -- 7. clearance over a mechanism: rebound and every speed accounted for ---------------------
+def test_clearance_simulation_over_a_mechanism_shows_the_rebound():
+    result = run("clearance", shipped("dyade-16.toml"), "--stiffness", "1e8", "--clearance",
+                 "1e-4", "--joint", "2,7", "--simulate")
+    assert "after the peak" in result.stdout and "separates at" in result.stdout
+    assert "joint (2,7) reversal 1: after the peak the masses separate" in result.stderr
+    import csv
+    import io
+
+    rows = list(csv.DictReader(io.StringIO(run(
+        "clearance", shipped("dyade-16.toml"), "--stiffness", "1e8", "--clearance", "1e-4",
+        "--joint", "2,7", "--simulate", "--format", "csv").stdout)))
+    assert len(rows) == 2
+    assert all(r["separates"] == "1" and float(r["rebound_speed"]) > 0 for r in rows)
+
+
+def test_a_speed_range_accounts_for_every_joint_at_every_speed():
+    """The four-bar's frame-side joints cannot be checked (no reduced mass, or a force that
+    turns round the bearing): each appears at each speed with its reason."""
+    text = run("clearance", shipped("fourbar.toml"), "--stiffness", "1e8", "--clearance", "1e-4",
+               "--speed-range", "100:300:100", "--format", "json").stdout
+    cols = json.loads(text)["columns"]
+    seen = {(rpm, joint) for rpm, joint in zip(cols["speed_rpm"], cols["joint"])}
+    assert seen == {(rpm, joint) for rpm in (100.0, 200.0, 300.0)
+                    for joint in ("1-2", "2-3", "3-4", "1-4")}
+    notes = [n for n in cols["note"] if n]
+    assert any("no reduced mass: give --mass" in n for n in notes)
+    assert any("wanders up to" in n for n in notes)

@@ -117,11 +117,19 @@ def notes(row: dict, where: str = "") -> list[str]:
 def mechanism_rows(study: list[tuple[float | None, list]], simulate: bool, sim_steps: int
                    ) -> tuple[list[dict], list]:
     """One row per reversal of each checked joint at each speed; and the checks of the
-    first speed that gave no rows (no reversal, or the model does not apply)."""
+    first speed that gave no rows (no reversal, or the model does not apply). Over a
+    speed range a joint that gives no reversal rows at a speed gets a row of its own
+    with the reason in ``note``, so that no speed is silently missing."""
     rows, skipped = [], []
     first = study[0][0]
     for rpm, checks in study:
         for check in checks:
+            if rpm is not None and not (check.applies and check.reversals):
+                a, b = check.joint
+                why = (check.reason if not check.applies
+                       else "no reversal: the force keeps one sense over the cycle")
+                rows.append({"speed_rpm": rpm, "joint": f"{a}-{b}", "note": f"not checked — "
+                             f"{_flagged(check, why)}" if not check.applies else why})
             if not check.applies:
                 if rpm == first:
                     skipped.append(check)
@@ -141,6 +149,8 @@ def mechanism_rows(study: list[tuple[float | None, list]], simulate: bool, sim_s
                 if simulate:
                     row.update(simulated(peak.mass, peak.stiffness, peak.clearance,
                                          peak.slope, sim_steps, peak.force))
+                    row["rebound"] = (f"separates at {row['rebound_speed']:.3g} m/s"
+                                      if row["separates"] else "stays in contact")
                 rows.append(row)
             if not check.reversals and rpm == first:
                 skipped.append(check)
@@ -148,8 +158,9 @@ def mechanism_rows(study: list[tuple[float | None, list]], simulate: bool, sim_s
 
 
 def mechanism_names(speeds: bool, simulate: bool) -> list[str]:
-    return (["speed_rpm"] if speeds else []) + MECHANISM_COLUMNS + (
-        ["F_sim", "sim_rel_diff", "separates"] if simulate else [])
+    return ((["speed_rpm"] if speeds else []) + MECHANISM_COLUMNS
+            + (["F_sim", "sim_rel_diff", "separates", "rebound_speed"] if simulate else [])
+            + (["note"] if speeds else []))
 
 
 def mechanism_warnings(skipped: list, rows: list[dict]) -> list[str]:
@@ -161,15 +172,25 @@ def mechanism_warnings(skipped: list, rows: list[dict]) -> list[str]:
                             f"action {np.rad2deg(check.line_angle):.0f}°): no reversal, no "
                             f"clearance impact.")
         else:
-            reason = check.reason
-            if check.missing:  # name the inputs as the command's flags
-                reason = MISSING[check.missing].format(a=a, b=b, stiffness="--stiffness",
-                                                       clearance="--clearance", mass="--mass")
-            warnings.append(f"joint ({a},{b}): not checked — {reason}.")
+            warnings.append(f"joint ({a},{b}): not checked — {_flagged(check, check.reason)}.")
     if any(row.get("soft") for row in rows):
         warnings.append("note: reversals with τ < 2 are soft impacts: their peak comes after the "
                         "first contact half-wave (see `dyade clearance --help`).")
+    for row in rows:  # with --simulate: what happens after each peak
+        if row.get("separates"):
+            at = f" at {row['speed_rpm']:g} rpm" if row.get("speed_rpm") is not None else ""
+            where = f"joint ({row['joint'].replace('-', ',')}) reversal {row['reversal']}{at}: "
+            warnings += [line for line in notes(row, where) if "separate" in line]
     return warnings
+
+
+def _flagged(check, reason: str) -> str:
+    """A check's reason with the missing inputs named as the command's flags."""
+    if not check.missing:
+        return reason
+    a, b = check.joint
+    return MISSING[check.missing].format(a=a, b=b, stiffness="--stiffness",
+                                         clearance="--clearance", mass="--mass")
 
 
 def mechanism_table(name, rows, speeds, simulate):
@@ -177,8 +198,9 @@ def mechanism_table(name, rows, speeds, simulate):
 
     lines = {}
     for row in rows:
-        lines.setdefault(row["joint"], (row["line_deg"], row["wander_deg"], row["mass"],
-                                        row["mass_source"]))
+        if "line_deg" in row:
+            lines.setdefault(row["joint"], (row["line_deg"], row["wander_deg"], row["mass"],
+                                            row["mass_source"]))
     caption = "; ".join(f"({j.replace('-', ',')}): line {line:.0f}°, wander {wander:.0f}°, "
                         f"m = {mass:.3g} kg ({source})"
                         for j, (line, wander, mass, source) in lines.items())
@@ -189,15 +211,17 @@ def mechanism_table(name, rows, speeds, simulate):
              ("slope", "F0/t0 [N/s]"), ("tau", "τ"), ("F_max", "F12max [N]"),
              ("F_rigid", "rigid [N]"), ("amplification", "×")]
     if simulate:
-        show += [("F_sim", "simulated [N]")]
+        show += [("F_sim", "simulated [N]"), ("rebound", "after the peak")]
+    if any("note" in row for row in rows):
+        show += [("note", "note")]
     fill(table, show, rows)
     return table
 
 
 def fill(table, show: list[tuple[str, str]], rows: list[dict]) -> None:
     """Right-aligned columns (key, heading) and one table row per result row."""
-    for _, head in show:
-        table.add_column(head, justify="right")
+    for key, head in show:
+        table.add_column(head, justify="left" if key in ("note", "rebound") else "right")
     for row in rows:
         table.add_row(*[cell_pretty(row.get(key)) for key, _ in show])
 
