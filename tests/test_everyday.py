@@ -261,7 +261,7 @@ def test_describe_gives_stroke_and_time_ratio_of_a_slider_crank():
 def test_clearance_simulation_over_a_mechanism_shows_the_rebound():
     result = run("clearance", shipped("dyade-16.toml"), "--stiffness", "1e8", "--clearance",
                  "1e-4", "--joint", "2,7", "--simulate")
-    assert "after the peak" in result.stdout and "separates at" in result.stdout
+    assert "rebound [m/s]" in result.stdout
     assert "joint (2,7) reversal 1: after the peak the masses separate" in result.stderr
     import csv
     import io
@@ -285,3 +285,48 @@ def test_a_speed_range_accounts_for_every_joint_at_every_speed():
     notes = [n for n in cols["note"] if n]
     assert any("no reduced mass: give --mass" in n for n in notes)
     assert any("wanders up to" in n for n in notes)
+
+
+# -- 9. narrow terminals ------------------------------------------------------------------------
+NARROW = [
+    ["analyse", shipped("dyade-16.toml")],
+    ["analyse", shipped("dyade-16.toml"), "--all"],
+    ["describe", shipped("dyade-16.toml")],
+    ["clearance", shipped("dyade-16.toml"), "--stiffness", "1e8", "--clearance", "1e-4",
+     "--simulate"],
+    ["clearance", "--mass", "3.6", "--stiffness", "1e7", "--clearance", "1e-4", "--slope",
+     "360000", "--speed-rpm", "300", "--speed-range", "100:600:100", "--simulate"],
+    ["coupling", shipped("coupling/stiff-coupling.toml")],
+    ["accuracy", shipped("dyade-16.toml"), "--repeats", "1"],
+]
+
+
+@pytest.mark.parametrize("args", NARROW, ids=lambda a: " ".join(str(x) for x in a[:2]))
+def test_an_80_column_terminal_wraps_and_never_cuts(args):
+    result = CliRunner(env={"COLUMNS": "80"}).invoke(main, [str(a) for a in args],
+                                                      catch_exceptions=False)
+    assert result.exit_code == 0
+    assert "…" not in result.stdout
+    assert max(len(line) for line in result.stdout.splitlines()) <= 80
+
+
+def test_every_table_header_carries_its_unit():
+    """A number without its unit is half a result: the headers of the numeric columns
+    say it in brackets (or a unit column does)."""
+    import re
+
+    texts = [run("clearance", shipped("dyade-16.toml"), "--stiffness", "1e8", "--clearance",
+                 "1e-4").stdout,
+             run("coupling", shipped("coupling/stiff-coupling.toml")).stdout,
+             run("accuracy", shipped("fourbar.toml"), "--repeats", "1").stdout]
+    for header in ("φ21 [°]", "F0/t0 [N/s]", "τ [-]", "F12max [N]", "× [-]", "speed [rpm]",
+                   "η [-]", "V_φ [-]", "time [ms]", "relative error [-]"):
+        assert any(header in text for text in texts), header
+    assert not re.search(r"\btime\s{2,}note", texts[2])  # "[ms]" used to vanish as markup
+
+
+def test_help_examples_are_not_rewrapped():
+    result = CliRunner(env={"COLUMNS": "60"}).invoke(main, ["clearance", "--help"])
+    assert "    dyade clearance --mass 3.6 --stiffness 1e7 --clearance 1e-4 --slope 360000" \
+        in result.output
+    assert "_DYADE_COMPLETE=bash_source dyade" in run("--help").output

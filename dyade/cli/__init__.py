@@ -74,8 +74,15 @@ def main() -> None:
     A mechanism file (TOML) lists the frame points, the crank (link 2) and the dyads in
     assembly order; see mechanisms/README.md for every key. Start with
 
+    \b
         dyade describe mechanisms/fourbar.toml
-
+        dyade analyse mechanisms/fourbar.toml
         dyade analyse mechanisms/fourbar.toml --format csv -o fourbar.csv
+
+    Shell completion: put this line in ~/.bashrc (zsh_source in ~/.zshrc, fish_source
+    for fish):
+
+    \b
+        eval "$(_DYADE_COMPLETE=bash_source dyade)"
     """
 

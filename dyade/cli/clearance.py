@@ -84,10 +84,12 @@ def clearance(mechanism_files: tuple[Path, ...], joints: tuple[str, ...], masses
     Where a joint force reverses its sense, the pin crosses the clearance 2s and strikes
     the bearing. Standalone, from four numbers:
 
+    \b
         dyade clearance --mass 3.6 --stiffness 1e7 --clearance 1e-4 --slope 360000
 
     gives the paper's 2182 N. Over a mechanism (the rigid forces from its kinetostatics):
 
+    \b
         dyade clearance mechanisms/dyade-16.toml --stiffness 1e8 --clearance 1e-4
 
     checks every revolute joint: the dominant line of action of its force, whether the

@@ -43,6 +43,7 @@ def coupling(coupling_file: Path | None, inertia, c1, c2, b1, b2, eta_range, mom
     (counter-moment), V_r (relative angle) and their phases α, β, γ, δ (lead over M_E, true
     quadrant), plus ω_t, D, the resonance η0 (eq. 5) and the peak of each V:
 
+    \b
         dyade coupling --J 1 --c1 1 --c2 1 --b1 0.05 --b2 0.05 --eta-range 0:3:0.01
 
     The same data may come from a TOML file with keys J, c1, c2, b1, b2, and optionally

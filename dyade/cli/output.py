@@ -93,6 +93,7 @@ def literal(table: Any) -> Any:
         if isinstance(getattr(table, name), str):
             setattr(table, name, escape(getattr(table, name)))
     for column in table.columns:
+        column.overflow = "fold"  # a narrow terminal wraps a value, never cuts it ("3.5…")
         if isinstance(column.header, str):
             column.header = escape(column.header)
         column._cells = [escape(c) if isinstance(c, str) else c for c in column._cells]

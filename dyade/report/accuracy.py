@@ -16,8 +16,9 @@ def records(rows) -> list[dict]:
 
 
 def tables(name: str, records: list[dict]):
-    """One table per study: settings down, the relative error of each quantity across
-    (the reference setting shows its values)."""
+    """Per study two narrow tables: what each setting costs (time, note), and the
+    relative error of each peak per setting, quantities down and settings across (the
+    reference setting shows its values)."""
     from rich.table import Table
 
     parts = []
@@ -25,27 +26,29 @@ def tables(name: str, records: list[dict]):
         mine = [r for r in records if r["study"] == study]
         settings = list(dict.fromkeys(r["setting"] for r in mine))
         quantities = list(dict.fromkeys(r["quantity"] for r in mine))
-        table = Table(title=f"{name}: {study} (errors relative to {settings[-1] if study != 'clearance' else 'the closed form'})",
-                      title_justify="left")
-        table.add_column("setting")
-        table.add_column("time [ms]", justify="right")
-        table.add_column("note")
-        for quantity in quantities[:8]:
-            table.add_column(quantity, justify="right")
+        reference = "the closed form" if study == "clearance" else settings[-1]
+        cost = Table(title=f"{name}: {study} — cost of each setting", title_justify="left")
+        for head, justify in (("setting", "left"), ("time [ms]", "right"), ("note", "left")):
+            cost.add_column(head, justify=justify)
         for setting in settings:
-            row = [r for r in mine if r["setting"] == setting]
-            cells = {r["quantity"]: r for r in row}
+            row = next(r for r in mine if r["setting"] == setting)
+            cost.add_row(setting, f"{row['time_ms']:.3g}", row["note"])
+        errors = Table(title=f"{name}: {study} — relative error [-] of each peak against "
+                             f"{reference} (its own column: the value)", title_justify="left")
+        errors.add_column("quantity")
+        for setting in settings:
+            errors.add_column(setting, justify="right")
+        cells = {(r["setting"], r["quantity"]): r for r in mine}
+        for quantity in quantities:
             values = []
-            for quantity in quantities[:8]:
-                r = cells.get(quantity)
+            for setting in settings:
+                r = cells.get((setting, quantity))
                 if r is None:
                     values.append("")
                 elif isinstance(r["rel_error"], float) and not math.isnan(r["rel_error"]):
                     values.append(f"{r['rel_error']:.1e}")
                 else:
                     values.append(f"{r['value']:.5g}")
-            table.add_row(setting, f"{row[0]['time_ms']:.3g}", row[0]["note"], *values)
-        if len(quantities) > 8:
-            table.caption = f"{len(quantities) - 8} more quantities: --format csv"
-        parts.append(table)
+            errors.add_row(quantity, *values)
+        parts += [cost, errors]
     return parts

@@ -77,7 +77,7 @@ def standalone_table(rows: list[dict], speeds: bool, simulate: bool):
         for label, key, unit in lines:
             table.add_row(label, cell_pretty(row[key]), unit)
     else:
-        show_cols = [("speed_rpm", "speed [rpm]"), ("slope", "F0/t0 [N/s]"), ("tau", "τ"),
+        show_cols = [("speed_rpm", "speed [rpm]"), ("slope", "F0/t0 [N/s]"), ("tau", "τ [-]"),
                      ("F_max", "F12max [N]"), ("F_clearance", "6cs/τ [N]")]
         if simulate:
             show_cols += [("F_sim", "simulated [N]")]
@@ -149,8 +149,8 @@ def mechanism_rows(study: list[tuple[float | None, list]], simulate: bool, sim_s
                 if simulate:
                     row.update(simulated(peak.mass, peak.stiffness, peak.clearance,
                                          peak.slope, sim_steps, peak.force))
-                    row["rebound"] = (f"separates at {row['rebound_speed']:.3g} m/s"
-                                      if row["separates"] else "stays in contact")
+                    row["rebound"] = (f"{row['rebound_speed']:.3g}" if row["separates"]
+                                      else "none")
                 rows.append(row)
             if not check.reversals and rpm == first:
                 skipped.append(check)
@@ -204,14 +204,16 @@ def mechanism_table(name, rows, speeds, simulate):
     caption = "; ".join(f"({j.replace('-', ',')}): line {line:.0f}°, wander {wander:.0f}°, "
                         f"m = {mass:.3g} kg ({source})"
                         for j, (line, wander, mass, source) in lines.items())
+    if caption:
+        caption += ". One impact per row and revolution; sim: the direct simulation."
     table = Table(title=f"{name}: clearance peaks per reversal (Dresig & Thümmel)", title_justify="left",
                   caption=caption or None, caption_justify="left")
-    show = [("speed_rpm", "rpm")] if speeds else []
-    show += [("joint", "joint"), ("impacts", "impacts/rev"), ("angle_deg", "φ21 [°]"),
-             ("slope", "F0/t0 [N/s]"), ("tau", "τ"), ("F_max", "F12max [N]"),
-             ("F_rigid", "rigid [N]"), ("amplification", "×")]
+    show = [("speed_rpm", "speed [rpm]")] if speeds else []
+    show += [("joint", "joint"), ("angle_deg", "φ21 [°]"),
+             ("slope", "F0/t0 [N/s]"), ("tau", "τ [-]"), ("F_max", "F12max [N]"),
+             ("F_rigid", "rigid [N]"), ("amplification", "× [-]")]
     if simulate:
-        show += [("F_sim", "simulated [N]"), ("rebound", "after the peak")]
+        show += [("F_sim", "sim [N]"), ("rebound", "rebound [m/s]")]
     if any("note" in row for row in rows):
         show += [("note", "note")]
     fill(table, show, rows)

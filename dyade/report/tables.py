@@ -214,7 +214,8 @@ def clearance_summary(result: Result) -> Table | None:
     if not result.clearance:
         return None
     table = Table(title="Clearance peaks (Dresig & Thümmel)", title_justify="left")
-    for head in ("joint", "impacts/rev", "φ21 [°]", "τ", "F12max [N]", "rigid [N]", "×"):
+    for head in ("joint", "impacts [1/rev]", "φ21 [°]", "τ [-]", "F12max [N]", "rigid [N]",
+                 "× [-]"):
         table.add_column(head, justify="right")
     for check in result.clearance:
         a, b = check.joint
