@@ -109,7 +109,8 @@ def key_results(result: Result, cols: Columns, summary: dict, length_unit: str =
                 k = int(pick(torque))
                 table.add_row(label, number(torque[k]), "N·m", f"{angle[k]:.1f}")
         table.add_row("drive torque RMS", number(drive["M_rms"]), "N·m", "")
-        table.add_row("mean drive power", number(drive["P_mean"]), "W", "")
+        power_scale = float(np.nanmax(np.abs(cols["P_drive"]), initial=0.0))
+        table.add_row("mean drive power", number(drive["P_mean"], power_scale), "W", "")
         if "friction" in summary:
             table.add_row("mean friction power", number(summary["friction"]["P_mean"]), "W", "")
         peaks = summary.get("joint_peaks", {})
