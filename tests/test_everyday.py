@@ -330,3 +330,44 @@ def test_help_examples_are_not_rewrapped():
     assert "    dyade clearance --mass 3.6 --stiffness 1e7 --clearance 1e-4 --slope 360000" \
         in result.output
     assert "_DYADE_COMPLETE=bash_source dyade" in run("--help").output
+
+
+# -- 6. examples that make physical sense -------------------------------------------------------
+def test_every_shipped_example_says_what_to_look_for():
+    for path in sorted((ROOT / "mechanisms").glob("*.toml")):
+        if path.name == "self-locking.toml":  # explained at length in its own header
+            continue
+        assert "# What to look for" in path.read_text(), path.name
+
+
+def test_dyade16_drive_supplies_the_cutting_work():
+    """The cutting force resists the knife, so the mean drive power is the (positive)
+    work the cut takes per revolution over its period: independently, −mean(F·v) of the
+    load at the knife slide; gravity and the return spring are conservative."""
+    import numpy as np
+
+    import dyade
+
+    mechanism = dyade.read_mechanism(shipped("dyade-16.toml"))
+    cols = dyade.analyse(mechanism).columns()
+    load, = mechanism.loads
+    angle = np.deg2rad(cols["angle_deg"])
+    fx = np.interp(angle, load.angles, load.fx, period=2 * np.pi)
+    load_power = fx * cols["vx_5_6"]  # the knife slide 6 moves with its pin (5,6)
+    mean = np.trapezoid(load_power, angle) / (2 * np.pi)
+    drive = np.trapezoid(cols["P_drive"], angle) / (2 * np.pi)
+    assert mean < -50.0 and drive == pytest.approx(-mean, rel=1e-6)
+
+
+# -- 3 (files). one rule for missing folders, unwritable targets --------------------------------
+def test_missing_folders_are_created_and_unwritable_targets_are_named(tmp_path):
+    target = tmp_path / "new" / "deeper" / "fourbar.csv"
+    assert run("analyse", shipped("fourbar.toml"), "-o", target).exit_code == 0
+    assert target.read_text().startswith("angle_deg,")
+    saved = tmp_path / "variants" / "long.toml"
+    assert run("analyse", shipped("fourbar.toml"), "--save-as", saved, "--format",
+               "csv").exit_code == 0 and saved.exists()
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    bad = run("analyse", shipped("fourbar.toml"), "-o", blocker / "x.csv")
+    assert bad.exit_code == 2 and "cannot write the file" in bad.output

@@ -34,15 +34,25 @@ def console(stderr: bool = False, file: TextIO | None = None, width: int | None 
 
 
 class atomic:
-    """Write to a temporary file beside ``path``, rename on success, remove on failure."""
+    """Write to a temporary file beside ``path``, rename on success, remove on failure.
+    A missing folder of ``path`` is created (one rule for -o, --save-as and init); a
+    target that cannot be written is an InputError naming it (exit 2)."""
 
     def __init__(self, path: str | os.PathLike) -> None:
         self.path = os.fspath(path)
-        folder, name = os.path.split(self.path)
-        self.tmp = os.path.join(folder, f".{name}.part")
+        self.folder, name = os.path.split(self.path)
+        self.tmp = os.path.join(self.folder, f".{name}.part")
 
     def __enter__(self) -> TextIO:
-        self.handle = open(self.tmp, "w", encoding="utf-8", newline="")
+        from dyade.errors import InputError
+
+        try:
+            if self.folder:
+                os.makedirs(self.folder, exist_ok=True)
+            self.handle = open(self.tmp, "w", encoding="utf-8", newline="")
+        except OSError as err:
+            raise InputError(f"{self.path}: cannot write the file ({err.strerror}).",
+                             source=self.path) from None
         return self.handle
 
     def __exit__(self, exc_type, exc, tb) -> None:
