@@ -38,15 +38,43 @@ class DyadeGroup(click.Group):
         from dyade.errors import DyadeError, InputError
 
         keep_freed_memory()  # a process-wide setting: the command's to make, not the library's
+        _process_settings()
         try:
             return super().invoke(ctx)
         except KeyboardInterrupt:  # Ctrl-C: the shell's convention, 128 + SIGINT
             click.echo("Interrupted.", err=True)
             raise click.exceptions.Exit(130) from None
+        except Terminated:  # SIGTERM: 128 + 15; files being written are removed on the way
+            click.echo("Terminated.", err=True)
+            raise click.exceptions.Exit(143) from None
         except InputError as err:
             raise click.UsageError(str(err)) from None  # exit 2
         except DyadeError as err:
             raise click.ClickException(str(err)) from None  # exit 1
+
+
+class Terminated(Exception):
+    """SIGTERM arrived: unwind (removing partial files) and exit 143."""
+
+
+def _process_settings() -> None:
+    """What a command may set for the whole process and a library may not: SIGTERM
+    unwinds like Ctrl-C (so no partial file is left), and a Python warning, should one
+    ever escape the engine, is one line on stderr, not a source listing."""
+    import signal
+    import threading
+    import warnings
+
+    def terminate(signum, frame):
+        raise Terminated
+
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGTERM, terminate)
+
+    def one_line(message, category, filename, lineno, file=None, line=None):
+        click.echo(f"warning: {message} ({category.__name__}; please report it)", err=True)
+
+    warnings.showwarning = one_line
 
 
 def _version(ctx: click.Context, _: click.Parameter, value: bool) -> None:

@@ -10,13 +10,15 @@ from typing import Any, NamedTuple
 import click
 
 from dyade.cli import main
+from dyade.cli.options import FINITE, POSITIVE
 from dyade.cli.output import atomic, console, flags, show, write_json
 
 # paths stay strings on the way of `dyade analyse`: pathlib alone costs 5 ms of start-up
 MECHANISM_FILE = click.Path(exists=True, dir_okay=False, allow_dash=True)
 SUFFIX = {"csv": ".csv", "json": ".json", "table": ".txt"}
 FLAGS = {"friction_tol": "--friction-tol", "friction_max_iter": "--friction-max-iter",
-         "start": "--start", "stop": "--stop", "step": "--step"}
+         "start": "--start", "stop": "--stop", "step": "--step",
+         "sweep": "the sweep (--start, --stop, --step)", "max_memory": "--max-memory"}
 """API parameter -> the flag it comes from"""
 
 set_option = click.option(
@@ -79,7 +81,8 @@ def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = Swe
     if stop < start:
         raise click.BadParameter(f"must not be below the start angle, got {sweep.stop:g}.",
                                  param_hint="--stop")
-    return Loaded(with_sweep(mechanism, start, stop, step), text, overrides, label)
+    with flags(FLAGS):
+        return Loaded(with_sweep(mechanism, start, stop, step), text, overrides, label)
 
 
 def save_as(loaded: Loaded, path: str) -> None:
@@ -117,9 +120,9 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
 @click.option("-o", "--output", type=click.Path(writable=True),
               help="Write to this file instead of standard output; with several input files a "
                    "directory, which gets one result per input (NAME.csv, NAME.json, NAME.txt).")
-@click.option("--start", type=float, help="First crank angle [°] (overrides [sweep] start).")
-@click.option("--stop", type=float, help="Last crank angle [°] (default: start + 360).")
-@click.option("--step", type=float, help="Crank angle step [°] (overrides [sweep] step).")
+@click.option("--start", type=FINITE, help="First crank angle [°] (overrides [sweep] start).")
+@click.option("--stop", type=FINITE, help="Last crank angle [°] (default: start + 360).")
+@click.option("--step", type=POSITIVE, help="Crank angle step [°] (overrides [sweep] step).")
 @set_option
 @click.option("--save-as", type=click.Path(dir_okay=False, writable=True),
               help="Write the effective mechanism (after --set) to this TOML file, to keep a "
@@ -127,7 +130,7 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
 @click.option("--allow-partial", is_flag=True,
               help="Analyse only the crank angles where every dyad closes; the others are "
                    "left out of the output (and named on stderr) instead of failing.")
-@click.option("--friction-tol", type=click.FloatRange(min=0.0, min_open=True),
+@click.option("--friction-tol", type=POSITIVE,
               help="Stop the friction iteration at a position when the relative change of "
                    "its joint forces is below this [-]  [default: file's [friction] tol, 1e-9].")
 @click.option("--friction-max-iter", type=click.IntRange(min=1),
@@ -142,6 +145,9 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
 @click.option("--units", type=click.Choice(["si", "file"]), default="si", show_default=True,
               help="Table lengths in SI (m) or in the file's length unit ([units] length); "
                    "CSV and JSON stay SI.")
+@click.option("--max-memory", type=POSITIVE, default=4096, show_default=True, metavar="MB",
+              help="Refuse, before computing, a sweep estimated to need more memory [MB] "
+                   "(positions × columns × 90 B).")
 @click.option("--fail-on-lock", is_flag=True,
               help="Exit with status 1 when a slider self-locks (otherwise a locking slider is "
                    "a finding: reported, exit status 0).")
@@ -149,7 +155,8 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
             start: float | None, stop: float | None, step: float | None,
             assignments: tuple[str, ...], save_as: str | None, allow_partial: bool,
             friction_tol: float | None, friction_max_iter: int | None,
-            show_all: bool, patterns: str | None, units: str, fail_on_lock: bool) -> None:
+            show_all: bool, patterns: str | None, units: str, max_memory: float,
+            fail_on_lock: bool) -> None:
     """Sweep the crank of MECHANISM_FILES: positions, velocities and accelerations of every
     link, joint and named point.
 
@@ -170,7 +177,7 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
     fmt = fmt or infer_format(output)
     chosen = tuple(p.strip() for p in patterns.split(",") if p.strip()) if patterns else ()
     job = Job(fmt, SweepOptions(start, stop, step), assignments, allow_partial, friction_tol,
-              friction_max_iter, fail_on_lock, show_all, chosen, units)
+              friction_max_iter, fail_on_lock, show_all, chosen, units, max_memory * 2 ** 20)
     if len(mechanism_files) == 1 and not (output and os.path.isdir(output)):
         job.run(mechanism_files[0], output, save_as)
         return
@@ -266,6 +273,8 @@ class Job(NamedTuple):
     columns: tuple[str, ...] = ()
     """glob patterns of the columns to keep (all when empty)"""
     units: str = "si"
+    max_memory: float | None = None
+    """[B]"""
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
         output = None if output == "-" else output  # -o -: standard output
@@ -280,7 +289,8 @@ class Job(NamedTuple):
             with flags(FLAGS):
                 result = analyse(mechanism, allow_partial=self.allow_partial,
                                  friction_tol=self.friction_tol,
-                                 friction_max_iter=self.friction_max_iter)
+                                 friction_max_iter=self.friction_max_iter,
+                                 max_memory=self.max_memory)
         except AssemblyError as err:
             if not err.partial:
                 raise

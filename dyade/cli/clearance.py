@@ -9,7 +9,7 @@ import click
 
 from dyade.cli import main
 from dyade.cli.analyse import MECHANISM_FILE, SUFFIX, batch
-from dyade.cli.options import value_range
+from dyade.cli.options import FINITE, Number, value_range
 from dyade.cli.output import console, flags, show, write_json, write_rows
 
 FLAGS = {"mass": "--mass", "stiffness": "--stiffness", "clearance": "--clearance",
@@ -49,15 +49,15 @@ def _emit(rows: list[dict], names: list[str], fmt: str, output: Path | None,
 @click.option("--joint", "joints", multiple=True, metavar="I,J",
               help="Revolute joint to check, e.g. --joint 5,6 (repeatable); default: every "
                    "revolute joint (with a file).")
-@click.option("--mass", "masses", type=float, multiple=True, metavar="KG",
+@click.option("--mass", "masses", type=FINITE, multiple=True, metavar="KG",
               help="Reduced mass m [kg]; give it twice (--mass m11 --mass m22) for the two "
                    "masses of eq. (17). With a file: default from the joint's "
                    "`clearance.mass` or the two links' masses.")
-@click.option("--stiffness", type=float, help="Contact stiffness c [N/m] (typical 1e7…1e9).")
-@click.option("--clearance", "gap", type=float,
+@click.option("--stiffness", type=FINITE, help="Contact stiffness c [N/m] (typical 1e7…1e9).")
+@click.option("--clearance", "gap", type=FINITE,
               help="Clearance (radial play) 2s [m] (typical 2e-5…2e-4).")
-@click.option("--slope", type=float, help="Standalone: force slope F0/t0 at the reversal [N/s].")
-@click.option("--speed-rpm", type=float,
+@click.option("--slope", type=FINITE, help="Standalone: force slope F0/t0 at the reversal [N/s].")
+@click.option("--speed-rpm", type=FINITE,
               help="Standalone: crank speed [rpm] at which --slope holds (for --speed-range).")
 @click.option("--speed-range", metavar="START:STOP:STEP",
               help="Peak force against crank speed [rpm]; the slope grows with Ω³ (eq. 30).")
@@ -66,7 +66,7 @@ def _emit(rows: list[dict], names: list[str], fmt: str, output: Path | None,
                    "each method and whether contact holds (rebound).")
 @click.option("--sim-steps", type=click.IntRange(min=10), default=400, show_default=True,
               help="RK4 steps per contact period for --simulate.")
-@click.option("--max-wander", type=click.FloatRange(min=0, max=90), default=20.0,
+@click.option("--max-wander", type=Number(low=0.0, high=90.0), default=20.0,
               show_default=True,
               help="Largest angle [°] the force may leave its line of action (forces ≥ 25 % of "
                    "the peak) for the model to apply.")
@@ -153,6 +153,9 @@ def _standalone(mass, stiffness, gap, slope, speed_rpm, speeds, simulate, sim_st
                                f"mechanism file).")
     if speeds and speed_rpm is None:
         raise click.UsageError("--speed-range needs --speed-rpm: the speed at which --slope holds.")
+    if speed_rpm is not None and speed_rpm <= 0:
+        raise click.BadParameter(f"must be a positive speed [rpm], got {speed_rpm:g}.",
+                                 param_hint="--speed-rpm")
     cases = ([(None, slope)] if not speeds
              else [(rpm, engine.scaled_slope(slope, speed_rpm, rpm)) for rpm in speeds])
     with flags(FLAGS):

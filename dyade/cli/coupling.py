@@ -8,7 +8,7 @@ from typing import Any
 import click
 
 from dyade.cli import main
-from dyade.cli.options import value_range
+from dyade.cli.options import FINITE, value_range
 from dyade.cli.output import console, flags, show, write_json, write_rows
 
 
@@ -16,18 +16,18 @@ from dyade.cli.output import console, flags, show, write_json, write_rows
 @main.command()
 @click.argument("coupling_file", type=click.Path(exists=True, dir_okay=False, path_type=Path),
                 required=False)
-@click.option("--J", "inertia", type=float, help="Coupling inertia J_K [kg·m²].")
-@click.option("--c1", type=float, help="Primary-side torsional stiffness c1t [N·m/rad].")
-@click.option("--c2", type=float, help="Secondary-side torsional stiffness c2t [N·m/rad].")
-@click.option("--b1", type=float, help="Primary-side damping b1 [N·m·s/rad] (default 0).")
-@click.option("--b2", type=float, help="Secondary-side damping b2 [N·m·s/rad] (default 0).")
+@click.option("--J", "inertia", type=FINITE, help="Coupling inertia J_K [kg·m²].")
+@click.option("--c1", type=FINITE, help="Primary-side torsional stiffness c1t [N·m/rad].")
+@click.option("--c2", type=FINITE, help="Secondary-side torsional stiffness c2t [N·m/rad].")
+@click.option("--b1", type=FINITE, help="Primary-side damping b1 [N·m·s/rad] (default 0).")
+@click.option("--b2", type=FINITE, help="Secondary-side damping b2 [N·m·s/rad] (default 0).")
 @click.option("--eta-range", metavar="START:STOP:STEP",
               help="Tuning ratios η = Ω/ω_t to evaluate  [default: 0:3:0.01].")
-@click.option("--moment", type=float,
+@click.option("--moment", type=FINITE,
               help="Exciting moment amplitude M̂_E [N·m]: adds φ̂, ψ̂ [rad], M̂_Q [N·m], φ̂_r [rad].")
-@click.option("--speed-rpm", "speeds", type=float, multiple=True,
+@click.option("--speed-rpm", "speeds", type=FINITE, multiple=True,
               help="Operating speed [rpm] to place on the η axis (repeatable), with --order.")
-@click.option("--order", type=float, default=None,
+@click.option("--order", type=FINITE, default=None,
               help="Excitation order: Ω = order · 2π·speed/60  [default: 1].")
 @click.option("--format", "fmt", type=click.Choice(["table", "csv", "json"]), default="table",
               show_default=True, help="csv/json: every η value.")

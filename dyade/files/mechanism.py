@@ -34,6 +34,7 @@ from dyade.linkage.model import (
     Spring,
     Sweep,
     Vec,
+    sweep_problem,
 )
 from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS, rpm_to_rad_per_s
 
@@ -147,6 +148,10 @@ class Reader(TableReader):
                 or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)):
             raise self.fail(key, f"must be a pair of numbers [ξ, η] [{self.length_unit}], "
                                  f"got {_show(value)}.", value, self.length_unit)
+        if not all(math.isfinite(v) for v in value):
+            raise self.fail(key, f"must be a pair of finite numbers [ξ, η] "
+                                 f"[{self.length_unit}], got {_show(value)}.", value,
+                            self.length_unit)
         return (float(value[0]) * self.length, float(value[1]) * self.length)
 
     # -- whole file ----------------------------------------------------------------
@@ -228,6 +233,9 @@ class Reader(TableReader):
                                           f"got {_fmt(stop)}.")
         dead = self.number(table.get("dead_centre", 2.0 * math.pi / 180.0 / self.angle),
                            "sweep.dead_centre", self.angle_unit, non_negative=True)
+        problem = sweep_problem(start * self.angle, stop * self.angle, step * self.angle)
+        if problem:
+            raise self.fail("sweep", f"{problem}.")
         return Sweep(start * self.angle, stop * self.angle, step * self.angle), dead * self.angle
 
     def named_points(self, table: Any, key: str) -> dict[str, Vec]:
@@ -481,9 +489,11 @@ class Reader(TableReader):
             parsed = []
             for r, row in enumerate(rows, 1):
                 if (not isinstance(row, list) or len(row) != 4
-                        or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in row)):
-                    raise self.fail(f"{key}.table.{r}", f"must be [angle [{self.angle_unit}], "
-                                                        f"Fx [N], Fy [N], M [N·m]], got {_show(row)}.")
+                        or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in row)
+                        or not all(math.isfinite(v) for v in row)):
+                    raise self.fail(f"{key}.table.{r}", f"must be four finite numbers [angle "
+                                                        f"[{self.angle_unit}], Fx [N], Fy [N], "
+                                                        f"M [N·m]], got {_show(row)}.", row)
                 parsed.append([float(v) for v in row])
             arr = np.array(parsed)
             angles = arr[:, 0] * self.angle
@@ -493,8 +503,10 @@ class Reader(TableReader):
             return Load(link, point, angles, arr[:, 1], arr[:, 2], arr[:, 3], frame == "link")
         force = table.get("force", [0.0, 0.0])
         if (not isinstance(force, list) or len(force) != 2
-                or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in force)):
-            raise self.fail(f"{key}.force", f"must be [Fx, Fy] [N], got {_show(force)}.")
+                or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in force)
+                or not all(math.isfinite(v) for v in force)):
+            raise self.fail(f"{key}.force", f"must be two finite numbers [Fx, Fy] [N], got "
+                                            f"{_show(force)}.", force, "N")
         moment = self.number(table.get("moment", 0.0), f"{key}.moment", "N·m")
         return Load(link, point, None, np.array([float(force[0])]), np.array([float(force[1])]),
                     np.array([moment]), frame == "link")

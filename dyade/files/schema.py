@@ -60,6 +60,9 @@ def _parse(text: str, path: str) -> dict[str, Any]:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise InputError(f"{path}: not valid TOML: {err}.", source=path) from None
+    except RecursionError:
+        raise InputError(f"{path}: arrays or tables nested too deeply to read; no dyade file "
+                         f"needs more than three levels.", source=path) from None
 
 
 def parse_assignment(text: str) -> tuple[str, Any]:

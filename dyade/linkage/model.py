@@ -211,6 +211,25 @@ class Crank:
     """Joint (1,2)."""
 
 
+MAX_SWEEP_ANGLE = 2.0 * math.pi * 1e4  # [rad] 10 000 revolutions: beyond, steps blur
+MIN_SWEEP_STEP = 1e-9  # [rad] finer steps are below double precision at large angles
+
+
+def sweep_problem(start: float, stop: float, step: float) -> str | None:
+    """Why a crank-angle sweep [rad] cannot be computed as asked, or None."""
+    if not all(math.isfinite(v) for v in (start, stop, step)):
+        return "needs finite angles"
+    if max(abs(start), abs(stop)) > MAX_SWEEP_ANGLE:
+        return (f"reaches {math.degrees(max(abs(start), abs(stop))):.6g}°: crank angles must "
+                f"lie within ±{math.degrees(MAX_SWEEP_ANGLE):.0f}° (10 000 revolutions), where "
+                f"double precision still tells the positions apart")
+    if step < MIN_SWEEP_STEP:
+        return f"has a step of {math.degrees(step):.3g}°, below {math.degrees(MIN_SWEEP_STEP):.1e}°"
+    if stop < start:
+        return "stops below its start"
+    return None
+
+
 @dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Sweep:
     """Crank angles φ21 from ``start`` to ``stop`` (inclusive) in steps of ``step`` [rad]."""
@@ -219,9 +238,13 @@ class Sweep:
     stop: float
     step: float
 
+    @property
+    def count(self) -> int:
+        """The number of positions."""
+        return int(np.floor((self.stop - self.start) / self.step + 1e-9)) + 1
+
     def angles(self) -> FloatArray:
-        count = int(np.floor((self.stop - self.start) / self.step + 1e-9)) + 1
-        return self.start + self.step * np.arange(count, dtype=np.float64)
+        return self.start + self.step * np.arange(self.count, dtype=np.float64)
 
 
 @dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality

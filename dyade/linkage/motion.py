@@ -156,6 +156,9 @@ def screw(joint: Joint, motion: Motion, on: int, at=None) -> Screw:
     for the carrier. ``at``: a revolute joint's world position (x, y) when already known."""
     if isinstance(joint, Revolute):
         x, y = motion.point_xy(joint.links[0], joint.points[0]) if at is None else at
+        if np.ndim(x) == 0:  # a frame point, known as plain numbers
+            n = motion.angle.shape[0]
+            x, y = np.full(n, float(x)), np.full(n, float(y))
         return y, -x, 1.0
     dx, dy = guide_direction(joint, motion)
     if on == joint.slider:

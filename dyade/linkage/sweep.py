@@ -16,7 +16,7 @@ import numpy as np
 
 from dyade.errors import AssemblyError, InputError
 from dyade.linkage import kinematics, kinetostatics
-from dyade.linkage.model import FloatArray, Mechanism, Sweep
+from dyade.linkage.model import FloatArray, Mechanism, Revolute, Sweep, sweep_problem
 
 if TYPE_CHECKING:  # imported where used: a kinematics-only run never loads them
     from dyade.linkage import friction
@@ -152,15 +152,23 @@ def ranges(crank_angle: FloatArray, mask: FloatArray) -> list[tuple[float, float
     return [(float(crank_angle[a]), float(crank_angle[b - 1])) for a, b in zip(edges[::2], edges[1::2])]
 
 
-def format_ranges(spans: list[tuple[float, float]], limit: int = 6) -> str:
-    """'212.0°–247.5°, 300.0°' for crank-angle ranges [rad]."""
+def format_ranges(spans: list[tuple[float, float]], limit: int = 6, digits: int = 1) -> str:
+    """'212.0°–247.5°, 300.0°' for crank-angle ranges [rad], with ``digits`` decimals."""
     parts = []
     for first, last in spans:
         a, b = np.rad2deg(first), np.rad2deg(last)
-        parts.append(f"{a:.1f}°" if first == last else f"{a:.1f}°–{b:.1f}°")
+        parts.append(f"{a:.{digits}f}°" if first == last else f"{a:.{digits}f}°–{b:.{digits}f}°")
     if len(parts) > limit:
         parts = parts[:limit] + [f"and {len(parts) - limit} more"]
     return ", ".join(parts)
+
+
+def decimals(crank_angle: FloatArray) -> int:
+    """Decimals [°] that tell the positions of a sweep apart: 1 for 1°, 2 for 0.01°."""
+    if crank_angle.size < 2:
+        return 1
+    step = float(np.rad2deg(np.min(np.abs(np.diff(crank_angle)))))
+    return int(min(6, max(1, np.ceil(-np.log10(step) - 1e-9)))) if step > 0 else 1
 
 
 def with_sweep(mechanism: Mechanism, start: float | None = None, stop: float | None = None,
@@ -184,13 +192,53 @@ def with_sweep(mechanism: Mechanism, start: float | None = None, stop: float | N
     if stop < start:
         raise InputError.parameter("stop", f"must not be below the start angle [rad], got "
                                            f"{stop:g}.", value=stop, unit="rad")
+    problem = sweep_problem(start, stop, step)
+    if problem:
+        raise InputError.parameter("sweep", f"{problem}.", unit="rad")
     return replace(mechanism, sweep=Sweep(start, stop, step))
+
+
+MAX_MEMORY = 4 << 30  # [B] default bound on what a sweep may take (overridable)
+BYTES_PER_VALUE = 90  # [B] per column and position: arrays, the table and its CSV text
+"""measured: dyade-16 (269 columns) and the four-bar (59) at 3 600 and 36 000 positions
+peak at 84-86 B per column and position in `dyade analyse --format csv`"""
+
+
+def memory_estimate(mechanism: Mechanism, positions: int) -> int:
+    """What a sweep of ``positions`` will take [B], from its column count."""
+    revolute = sum(isinstance(j, Revolute) for j in mechanism.joints)
+    prismatic = len(mechanism.joints) - revolute
+    columns = (1 + 3 * len(mechanism.moving_links) + 6 * revolute + 3 * prismatic
+               + 6 * len(mechanism.named_points) + len(mechanism.dyads))
+    if mechanism.has_dynamics:
+        rubbing = sum(j.friction > 0.0 for j in mechanism.joints)
+        columns += 3 * revolute + 2 * prismatic + 6 + 2 * rubbing + (2 if rubbing else 0)
+    return BYTES_PER_VALUE * columns * positions + (50 << 20)
+
+
+def check_size(mechanism: Mechanism, positions: int, max_memory: float | None) -> None:
+    """Refuse a sweep that would take more than ``max_memory`` [B], before allocating."""
+    bound = MAX_MEMORY if max_memory is None else max_memory
+    need = memory_estimate(mechanism, positions)
+    if need > bound:
+        raise InputError.parameter(
+            "max_memory", f"is {_size(bound)}, and this sweep of {positions:,} positions would "
+                          f"take about {_size(need)}. Use a coarser step or a shorter range, or "
+                          f"raise the bound.", value=bound, unit="B")
+
+
+def _size(nbytes: float) -> str:
+    for unit in ("B", "kB", "MB", "GB", "TB", "PB"):
+        if nbytes < 1000 or unit == "PB":
+            return f"{nbytes:.3g} {unit}"
+        nbytes /= 1000
 
 
 def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | None = None,
             step: float | None = None, crank_angle: FloatArray | None = None,
             allow_partial: bool = False, friction_tol: float | None = None,
-            friction_max_iter: int | None = None, plan: Plan | None = None) -> Result:
+            friction_max_iter: int | None = None, plan: Plan | None = None,
+            max_memory: float | None = None) -> Result:
     """Sweep the crank: kinematics, and what the mechanism calls for (``plan``).
 
     Parameters
@@ -211,6 +259,9 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
         Most friction iterations per dyad and position.
     plan : Plan, optional
         The stages to run (default: ``plan(mechanism)``).
+    max_memory : float, optional
+        Refuse, before allocating anything, a sweep estimated to take more memory [B]
+        (default ``MAX_MEMORY``, 4 GiB).
 
     Returns
     -------
@@ -241,6 +292,8 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
                                                             f"{friction_max_iter}.",
                                        value=friction_max_iter)
         mechanism = replace(mechanism, friction_max_iter=friction_max_iter)
+    positions = mechanism.sweep.count if crank_angle is None else np.size(crank_angle)
+    check_size(mechanism, positions, max_memory)
     return run(mechanism, plan, allow_partial, crank_angle)
 
 
@@ -254,6 +307,7 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
     _dead_centres(mechanism, kin, rows, notes)
     forces = rubbing = locking = None
     angle = kin.crank_angle
+    digits = decimals(angle)
     if the_plan.friction:
         from dyade.linkage import friction, self_locking
 
@@ -267,7 +321,7 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
                     spans = ranges(angle, lock.locks & rows)
                     notes.append(Note("self_locking", f"slider ({name[0]},{name[1]})", tuple(spans),
                                       f"slider ({name[0]},{name[1]}) locks (self-locking) at crank "
-                                      f"angles {format_ranges(spans)}."))
+                                      f"angles {format_ranges(spans, digits=digits)}."))
     elif the_plan.kinetostatics:
         forces = kinetostatics.solve(mechanism, kin)
     if forces is not None:
@@ -275,9 +329,10 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
         if invalid.any():
             spans = ranges(angle, invalid)
             notes.append(Note("forces_invalid", "", tuple(spans),
-                              f"forces are not given at crank angles {format_ranges(spans)}: a "
-                              f"dyad is at or near a dead centre or blocked position, where the "
-                              f"rigid model is invalid (forces_valid = 0, force fields empty)."))
+                              f"forces are not given at crank angles "
+                              f"{format_ranges(spans, digits=digits)}: a dyad is at or near a "
+                              f"dead centre or blocked position, where the rigid model is "
+                              f"invalid (forces_valid = 0, force fields empty)."))
     result = Result(mechanism, the_plan, kin, forces, rows, notes, rubbing, locking)
     if the_plan.clearance:
         from dyade.linkage import joint_clearance
@@ -301,7 +356,7 @@ def _check_assembly(mechanism: Mechanism, kin: kinematics.Kinematics, allow_part
         fails = upstream & ~kin.closes[:, col]
         if fails.any():
             problems.append(f"{dyad.label} {dyad.kind.cannot_close} for crank angles "
-                            f"{format_ranges(ranges(kin.crank_angle, fails))}")
+                            f"{format_ranges(ranges(kin.crank_angle, fails), digits=decimals(kin.crank_angle))}")
         upstream = upstream & kin.closes[:, col]
     if not problems:
         return np.ones(kin.crank_angle.shape[0], dtype=bool)
@@ -322,6 +377,7 @@ def _check_assembly(mechanism: Mechanism, kin: kinematics.Kinematics, allow_part
 def _dead_centres(mechanism: Mechanism, kin: kinematics.Kinematics, rows: FloatArray,
                   notes: list[Note]) -> None:
     band = np.sin(mechanism.dead_centre_angle)
+    digits = decimals(kin.crank_angle)
     for col, dyad in enumerate(mechanism.dyads):
         near = rows & (kin.conditioning[:, col] <= band)
         if near.any():
@@ -330,27 +386,28 @@ def _dead_centres(mechanism: Mechanism, kin: kinematics.Kinematics, rows: FloatA
                               f"{dyad.label} is within "
                               f"{np.rad2deg(mechanism.dead_centre_angle):g}° of a "
                               f"{dyad.kind.singular} (transmission angle near 0° or 180°) at "
-                              f"crank angles {format_ranges(spans)}."))
+                              f"crank angles {format_ranges(spans, digits=digits)}."))
 
 
 def _friction_notes(mechanism: Mechanism, kin: kinematics.Kinematics,
                     rubbing: "friction.FrictionResult", rows: FloatArray, notes: list[Note]
                     ) -> None:
     angle = kin.crank_angle
+    digits = decimals(angle)
     failed = rows & kin.valid & ~rubbing.converged
     if failed.any():
         spans = ranges(angle, failed)
         notes.append(Note("friction_not_converged", "", tuple(spans),
                           f"the friction iteration did not converge to "
                           f"{mechanism.friction_tol:g} in {mechanism.friction_max_iter} steps at "
-                          f"{int(failed.sum())} positions: crank angles {format_ranges(spans)} "
+                          f"{int(failed.sum())} positions: crank angles {format_ranges(spans, digits=digits)} "
                           f"(worst relative change {np.max(rubbing.residual[failed]):.3g})."))
     for name, mask in rubbing.at_rest.items():
         if (mask & rows).any():
             spans = ranges(angle, mask & rows)
             notes.append(Note("at_rest", f"joint ({name[0]},{name[1]})", tuple(spans),
                               f"joint ({name[0]},{name[1]}) is at rest relative to its partner at "
-                              f"crank angles {format_ranges(spans)}: the friction direction is "
+                              f"crank angles {format_ranges(spans, digits=digits)}: the friction direction is "
                               f"undefined there and no friction is applied."))
     for name in rubbing.never_moves:
         notes.append(Note("never_moves", f"joint ({name[0]},{name[1]})", (),

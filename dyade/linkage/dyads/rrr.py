@@ -18,6 +18,8 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     joint_a, joint_b, joint_c = dyad.joints
     (ax, ay), a_i = dyads.pin_xy(joint_a, i, motion)
     (cx, cy), c_j = dyads.pin_xy(joint_c, j, motion)
+    if np.ndim(ax) == 0 and np.ndim(cx) == 0:  # both on the frame: a fixed group
+        ax, ay = np.full(motion.angle.shape[0], ax), np.full(motion.angle.shape[0], ay)
     b_i, b_j = dyads.ends(joint_b, i)
     arm_i = np.subtract(b_i, a_i)
     arm_j = np.subtract(b_j, c_j)
