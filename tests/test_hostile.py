@@ -233,3 +233,24 @@ def test_sigterm_leaves_no_partial_file(tmp_path):
     _, err = process.communicate(timeout=60)
     assert process.returncode == 143, err
     assert "Traceback" not in err and list(tmp_path.iterdir()) == []
+
+
+# -- continuous angles -------------------------------------------------------------------------------
+@pytest.mark.parametrize("path", sorted(shipped("").glob("*.toml")), ids=lambda p: p.stem)
+def test_angle_columns_are_continuous_from_a_first_value_in_the_half_open_circle(path):
+    """dyade-16's phi_5_deg used to jump from −179.96° to 180°, so its min and max meant
+    nothing; every angle column now runs on across ±180°."""
+    import numpy as np
+
+    import dyade
+
+    result = dyade.analyse(dyade.read_mechanism(path), start=np.deg2rad(-725.0),
+                           allow_partial=True)
+    cols = result.columns()
+    for name, values in cols.items():
+        if name.startswith("phi_") and name != "phi_2_deg":
+            finite = values[np.isfinite(values)]
+            assert -180.0 < finite[0] <= 180.0, name
+            assert np.max(np.abs(np.diff(finite)), initial=0.0) < 90.0, name
+    crank = cols["phi_2_deg"]
+    assert crank[0] == pytest.approx(-5.0) and np.all(np.diff(crank) > 0)

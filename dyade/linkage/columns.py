@@ -31,7 +31,7 @@ def kinematic_columns(result: Result) -> Columns:
     motion = kin.motion
     out: Columns = {"angle_deg": np.rad2deg(kin.crank_angle)}
     for link in mech.moving_links:
-        out[f"phi_{link}_deg"] = np.rad2deg(motion.angle[:, link])
+        out[f"phi_{link}_deg"] = np.rad2deg(continuous(motion.angle[rows, link], rows))
         out[f"omega_{link}"] = motion.omega[:, link]
         out[f"alpha_{link}"] = motion.alpha[:, link]
     for joint in mech.joints:
@@ -53,7 +53,24 @@ def kinematic_columns(result: Result) -> Columns:
             out[f"{prefix}_{name}"] = value
     for col, dyad in enumerate(mech.dyads):
         out[f"mu_{dyad.number}_deg"] = np.rad2deg(kin.transmission[:, col])
-    return {key: value[rows] for key, value in out.items()}
+    return {key: value if key.startswith("phi_") else value[rows] for key, value in out.items()}
+
+
+def continuous(angle: FloatArray, rows: FloatArray) -> FloatArray:
+    """A link angle [rad] over the reported positions, continuous: unwrapped across ±π
+    from its first value, which is brought into (−π, π]; positions without a value
+    (NaN) stay empty and are bridged."""
+    finite = np.isfinite(angle)
+    if not finite.any():
+        return angle
+    values = np.unwrap(angle[finite])
+    first = values[0]
+    turns = np.ceil((first - np.pi) / (2.0 * np.pi))  # first − 2π·turns in (−π, π]
+    if turns:
+        values = values - 2.0 * np.pi * turns
+    out = np.full(angle.shape, np.nan)
+    out[finite] = values
+    return out
 
 
 def force_columns(result: Result) -> Columns:

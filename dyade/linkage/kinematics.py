@@ -133,7 +133,8 @@ def inverse3(c0: Screw, c1: Screw, c2: Screw, usable: FloatArray) -> FloatArray:
     det = x0 * rows[0, 0] + y0 * rows[0, 1]
     if w0 != 0.0:
         det += w0 * rows[0, 2]
-    with np.errstate(divide="ignore", invalid="ignore"):  # singular rows become NaN
+    # singular rows become NaN below; a determinant below 1e-308 overflows to inf
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         scale = 1.0 / det
     if not usable.all():
         scale[~usable] = np.nan
