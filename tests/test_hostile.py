@@ -253,4 +253,5 @@ def test_angle_columns_are_continuous_from_a_first_value_in_the_half_open_circle
             assert -180.0 < finite[0] <= 180.0, name
             assert np.max(np.abs(np.diff(finite)), initial=0.0) < 90.0, name
     crank = cols["phi_2_deg"]
-    assert crank[0] == pytest.approx(-5.0) and np.all(np.diff(crank) > 0)
+    given = crank[np.isfinite(crank)]  # rows in the dead-centre band are empty
+    assert crank[0] == pytest.approx(-5.0) and np.all(np.diff(given) > 0)

@@ -239,8 +239,10 @@ def test_dead_centre_forces_are_flagged_not_printed(tmp_path):
     assert near.any()
     assert np.all(np.isnan(cols["M_drive"][near])) and np.all(cols["forces_valid"][near] == 0)
     assert np.all(np.isfinite(cols["M_drive"][~near]))
-    assert "forces are not given at crank angles" in out.stderr
-    assert "dead centre" in out.stderr
+    # the validity policy: nothing of such a row is given, not even its kinematics
+    assert np.all(np.isnan(cols["omega_3"][near])) and np.all(cols["kinematics_valid"][near] == 0)
+    assert np.all(np.isfinite(cols["omega_3"][~near])) and np.all(cols["kinematics_valid"][~near] == 1)
+    assert "within 2° of a dead centre" in out.stderr and "nothing is given" in out.stderr
 
 
 @pytest.mark.parametrize("link, point", [(3, "K"), (4, "R")], ids=["coupler", "rocker"])

@@ -41,7 +41,7 @@ from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS, rpm_to_rad_per_s
 TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
             "gravity", "load", "spring", "friction"}
 UNIT_KEYS = {"length", "angle"}
-SWEEP_KEYS = {"start", "stop", "step", "dead_centre"}
+SWEEP_KEYS = {"start", "stop", "step", "dead_centre", "transmission_warning"}
 FRAME_KEYS = {"points"}
 CRANK_KEYS = {"link", "pivot", "length", "speed_rpm", "direction", "points", "pin_radius",
               "friction", "clearance"}
@@ -162,7 +162,7 @@ class Reader(TableReader):
                         if self.source else "mechanism")
         if not isinstance(name, str):
             raise self.fail("name", f"must be a string, got {_show(name)}.")
-        sweep, dead_centre = self.sweep(data.get("sweep", {}))
+        sweep, dead_centre, warning = self.sweep(data.get("sweep", {}))
         friction = data.get("friction", {})
         self.keys(friction, "friction", FRICTION_KEYS)
         self.friction_defaults = {
@@ -205,7 +205,7 @@ class Reader(TableReader):
         springs = tuple(self.spring(t, f"spring.{k}", links)
                         for k, t in enumerate(_list(data.get("spring", []), "spring", self), 1))
         return Mechanism(name, self.source, crank, dyads, links, sweep, gravity, loads, springs,
-                         dead_centre, friction_tol, friction_max_iter,
+                         dead_centre, friction_tol, friction_max_iter, warning,
                          (self.length_unit, self.angle_unit))
 
     def units(self, table: Any) -> None:
@@ -221,7 +221,7 @@ class Reader(TableReader):
         self.length, self.length_unit = LENGTH_FACTORS[length], length
         self.angle, self.angle_unit = ANGLE_FACTORS[angle], angle
 
-    def sweep(self, table: Any) -> tuple[Sweep, float]:
+    def sweep(self, table: Any) -> tuple[Sweep, float, float]:
         self.keys(table, "sweep", SWEEP_KEYS)
         full = 2.0 * math.pi / self.angle
         start = self.number(table.get("start", 0.0), "sweep.start", self.angle_unit)
@@ -233,10 +233,17 @@ class Reader(TableReader):
                                           f"got {_fmt(stop)}.")
         dead = self.number(table.get("dead_centre", 2.0 * math.pi / 180.0 / self.angle),
                            "sweep.dead_centre", self.angle_unit, non_negative=True)
+        warn = self.number(table.get("transmission_warning", 40.0 * math.pi / 180.0 / self.angle),
+                           "sweep.transmission_warning", self.angle_unit, non_negative=True)
+        if not dead * self.angle < warn * self.angle <= math.pi / 2:
+            raise self.fail("sweep.transmission_warning", f"must lie above sweep.dead_centre "
+                                                          f"({_fmt(dead)}) and at most 90°, got "
+                                                          f"{_fmt(warn)}.", warn)
         problem = sweep_problem(start * self.angle, stop * self.angle, step * self.angle)
         if problem:
             raise self.fail("sweep", f"{problem}.")
-        return Sweep(start * self.angle, stop * self.angle, step * self.angle), dead * self.angle
+        return (Sweep(start * self.angle, stop * self.angle, step * self.angle), dead * self.angle,
+                warn * self.angle)
 
     def named_points(self, table: Any, key: str) -> dict[str, Vec]:
         if not isinstance(table, dict):

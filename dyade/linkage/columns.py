@@ -15,7 +15,7 @@ from dyade.linkage.model import FloatArray, Prismatic, Revolute
 
 Columns = dict[str, FloatArray]
 
-UNITS = {"angle_deg": "°", "phi": "°", "omega": "rad/s", "alpha": "rad/s²", "x": "m", "y": "m",
+UNITS = {"kinematics": "1/0", "angle_deg": "°", "phi": "°", "omega": "rad/s", "alpha": "rad/s²", "x": "m", "y": "m",
          "vx": "m/s", "vy": "m/s", "ax": "m/s²", "ay": "m/s²", "s": "m", "v": "m/s",
          "a": "m/s²", "mu": "°", "Fx": "N", "Fy": "N", "F": "N", "FN": "N", "M": "N·m",
          "P": "W", "forces": "1/0", "MR": "N·m", "FR": "N", "lock": "N", "friction": "-"}
@@ -53,7 +53,13 @@ def kinematic_columns(result: Result) -> Columns:
             out[f"{prefix}_{name}"] = value
     for col, dyad in enumerate(mech.dyads):
         out[f"mu_{dyad.number}_deg"] = np.rad2deg(kin.transmission[:, col])
-    return {key: value if key.startswith("phi_") else value[rows] for key, value in out.items()}
+    out = {key: value if key.startswith("phi_") else value[rows] for key, value in out.items()}
+    valid = result.valid[rows]
+    if not valid.all():  # nothing of an invalid row but its crank and transmission angles
+        out = {key: value if key == "angle_deg" or key.startswith("mu_")
+               else np.where(valid, value, np.nan) for key, value in out.items()}
+    out["kinematics_valid"] = valid.astype(np.float64)
+    return out
 
 
 def continuous(angle: FloatArray, rows: FloatArray) -> FloatArray:
@@ -102,17 +108,33 @@ def force_columns(result: Result) -> Columns:
         out["P_friction"] = rubbing.power
     for name, lock in (result.locking or {}).items():
         out[f"lock_margin_{_tag(name)}"] = lock.margin
-    invalid = ~forces.valid
+    invalid = ~(forces.valid & result.valid)
     out = {key: np.where(invalid, np.nan, value) for key, value in out.items()}
     if rubbing is not None:
         out["friction_iterations"] = rubbing.iterations
-    out["forces_valid"] = forces.valid.astype(np.float64)
+    out["forces_valid"] = (forces.valid & result.valid).astype(np.float64)
     return {key: value[result.rows] for key, value in out.items()}
 
 
 def columns(result: Result) -> Columns:
     """All columns of a result, in contract order."""
     return kinematic_columns(result) | force_columns(result)
+
+
+PLAUSIBLE = 1e12  # [SI] no machine has a value beyond this: a row with one is not given
+FORCE_PREFIXES = ("Fx_", "Fy_", "F_", "FN_", "M_", "P_", "MR_", "FR_", "lock_margin_",
+                  "friction_iterations", "forces_valid")
+"""names of the force block; the rest (and ``KINEMATIC_EXEMPT``) are kinematic"""
+KINEMATIC_EXEMPT = ("kinematics_valid",)
+
+
+def implausible(cols: Columns, names) -> FloatArray:
+    """(rows,) bool: a value of the named columns beyond ``PLAUSIBLE`` in magnitude."""
+    out = None
+    for name in names:
+        big = np.abs(cols[name]) > PLAUSIBLE  # NaN compares False
+        out = big if out is None else out | big
+    return out
 
 
 def unit_of(column: str) -> str:

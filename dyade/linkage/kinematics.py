@@ -180,6 +180,9 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinema
         ok = closure.closes & upstream_ok
         closes[:, col] = closure.closes
         transmission[:, col] = closure.transmission
+        if closure.lever is not None:  # a length scale the angle alone does not see
+            closure.conditioning = closure.conditioning * np.minimum(
+                1.0, closure.lever / mechanism.crank.length)
         conditioning[:, col] = closure.conditioning
         if not ok.all():
             transmission[~ok, col] = np.nan

@@ -266,9 +266,13 @@ class Mechanism:
     loads: tuple[Load, ...] = ()
     springs: tuple[Spring, ...] = ()
     dead_centre_angle: float = np.deg2rad(2.0)
-    """Band around transmission angles 0° and 180° treated as dead centre [rad]."""
+    """The hard band: transmission angles within this of 0° or 180° are a dead centre,
+    where nothing is given [rad]."""
     friction_tol: float = 1e-9
     friction_max_iter: int = 50
+    transmission_warning: float = np.deg2rad(40.0)
+    """The soft band: transmission angles below this (and above 180° minus it) are
+    reported with a warning [rad]; 40° is the designers' rule since H. Alt (1932)."""
     units: tuple[str, str] = ("m", "deg")
     """The file's length and angle units (for showing results as the file has them)."""
 

@@ -113,6 +113,11 @@ class Result:
     """slider -> self_locking.Locking; None without sliders with friction"""
     clearance: list | None = None
     """joint_clearance.JointCheck per joint with clearance data; None without such data"""
+    valid: FloatArray | None = None
+    """(n,) bool: the kinematics is given (closes, outside the dead-centre band,
+    plausible); forces additionally need ``forces.valid``"""
+    cached: dict | None = None
+    """the columns, computed once by ``run``"""
 
     @property
     def crank_angle(self) -> FloatArray:
@@ -122,9 +127,11 @@ class Result:
     def columns(self) -> dict[str, FloatArray]:
         """The reported positions as named columns, in the CSV's order and units (SI,
         angles in degrees: names ending in ``_deg``); NaN where a value is not given."""
-        from dyade.linkage import columns
+        if self.cached is None:
+            from dyade.linkage import columns
 
-        return columns.columns(self)
+            self.cached = columns.columns(self)
+        return self.cached
 
     def summary(self, cols: dict[str, FloatArray] | None = None) -> dict[str, Any]:
         """Extremes of every column and where, drive torque and power, joint peaks,
@@ -238,7 +245,8 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
             step: float | None = None, crank_angle: FloatArray | None = None,
             allow_partial: bool = False, friction_tol: float | None = None,
             friction_max_iter: int | None = None, plan: Plan | None = None,
-            max_memory: float | None = None) -> Result:
+            max_memory: float | None = None, dead_centre: float | None = None,
+            transmission_warning: float | None = None) -> Result:
     """Sweep the crank: kinematics, and what the mechanism calls for (``plan``).
 
     Parameters
@@ -262,6 +270,10 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
     max_memory : float, optional
         Refuse, before allocating anything, a sweep estimated to take more memory [B]
         (default ``MAX_MEMORY``, 4 GiB).
+    dead_centre, transmission_warning : float, optional
+        The validity policy's hard and soft bands [rad] (defaults: the mechanism's,
+        2° and 40°): within ``dead_centre`` of a dead centre nothing is given; below
+        ``transmission_warning`` results come with a note.
 
     Returns
     -------
@@ -292,6 +304,14 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
                                                             f"{friction_max_iter}.",
                                        value=friction_max_iter)
         mechanism = replace(mechanism, friction_max_iter=friction_max_iter)
+    if dead_centre is not None or transmission_warning is not None:
+        hard = mechanism.dead_centre_angle if dead_centre is None else dead_centre
+        soft = mechanism.transmission_warning if transmission_warning is None else transmission_warning
+        if not (math.isfinite(hard) and math.isfinite(soft) and 0.0 <= hard < soft <= np.pi / 2):
+            raise InputError.parameter(("dead_centre", "transmission_warning"),
+                                       f"must satisfy 0 ≤ dead_centre < transmission_warning ≤ "
+                                       f"90°, got {np.rad2deg(hard):g}° and {np.rad2deg(soft):g}°.")
+        mechanism = replace(mechanism, dead_centre_angle=hard, transmission_warning=soft)
     positions = mechanism.sweep.count if crank_angle is None else np.size(crank_angle)
     check_size(mechanism, positions, max_memory)
     return run(mechanism, plan, allow_partial, crank_angle)
@@ -304,7 +324,7 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
     kin = kinematics.sweep(mechanism, crank_angle)
     notes: list[Note] = []
     rows = _check_assembly(mechanism, kin, allow_partial, notes)
-    _dead_centres(mechanism, kin, rows, notes)
+    well = _bands(mechanism, kin, rows, notes)
     forces = rubbing = locking = None
     angle = kin.crank_angle
     digits = decimals(angle)
@@ -324,16 +344,17 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
                                       f"angles {format_ranges(spans, digits=digits)}."))
     elif the_plan.kinetostatics:
         forces = kinetostatics.solve(mechanism, kin)
+    result = Result(mechanism, the_plan, kin, forces, rows, notes, rubbing, locking, valid=well)
+    result.cached = _plausible(result, digits)
     if forces is not None:
-        invalid = rows & ~forces.valid
+        invalid = result.valid & ~forces.valid
         if invalid.any():
             spans = ranges(angle, invalid)
             notes.append(Note("forces_invalid", "", tuple(spans),
                               f"forces are not given at crank angles "
-                              f"{format_ranges(spans, digits=digits)}: a dyad is at or near a "
-                              f"dead centre or blocked position, where the rigid model is "
-                              f"invalid (forces_valid = 0, force fields empty)."))
-    result = Result(mechanism, the_plan, kin, forces, rows, notes, rubbing, locking)
+                              f"{format_ranges(spans, digits=digits)}, where the kinematics is: "
+                              f"the rigid model's forces are not valid there (forces_valid = 0, "
+                              f"force fields empty)."))
     if the_plan.clearance:
         from dyade.linkage import joint_clearance
 
@@ -374,19 +395,79 @@ def _check_assembly(mechanism: Mechanism, kin: kinematics.Kinematics, allow_part
     return upstream
 
 
-def _dead_centres(mechanism: Mechanism, kin: kinematics.Kinematics, rows: FloatArray,
-                  notes: list[Note]) -> None:
-    band = np.sin(mechanism.dead_centre_angle)
+def _bands(mechanism: Mechanism, kin: kinematics.Kinematics, rows: FloatArray,
+           notes: list[Note]) -> FloatArray:
+    """The validity policy: (n,) bool, the positions whose kinematics is given.
+
+    Each dyad's quality at each position comes from its own geometry (the sine of its
+    transmission angle; an RPR dyad's also from its pivot distance): within the hard
+    band (``dead_centre_angle`` of 0° or 180°) the rigid model is invalid and nothing is
+    given; in the soft band (transmission angle below ``transmission_warning``, the
+    designers' rule) results are given with a note naming the dyad, the ranges and the
+    smallest transmission angle."""
+    hard = np.sin(mechanism.dead_centre_angle)
+    soft = np.sin(mechanism.transmission_warning)
     digits = decimals(kin.crank_angle)
+    well = rows & kin.valid
     for col, dyad in enumerate(mechanism.dyads):
-        near = rows & (kin.conditioning[:, col] <= band)
+        quality = kin.conditioning[:, col]
+        near = rows & (quality <= hard)
         if near.any():
             spans = ranges(kin.crank_angle, near)
             notes.append(Note("dead_centre", f"dyad {dyad.number}", tuple(spans),
                               f"{dyad.label} is within "
                               f"{np.rad2deg(mechanism.dead_centre_angle):g}° of a "
                               f"{dyad.kind.singular} (transmission angle near 0° or 180°) at "
-                              f"crank angles {format_ranges(spans, digits=digits)}."))
+                              f"crank angles {format_ranges(spans, digits=digits)}: the rigid "
+                              f"model is invalid there, and nothing is given (empty in CSV, "
+                              f"null in JSON)."))
+            well &= ~near
+        poor = rows & (quality > hard) & (quality < soft)
+        if poor.any():
+            mu = np.rad2deg(kin.transmission[:, col])
+            off = np.where(poor, np.minimum(mu, 180.0 - mu), np.inf)
+            k = int(np.argmin(off))
+            spans = ranges(kin.crank_angle, poor)
+            notes.append(Note("poor_transmission", f"dyad {dyad.number}", tuple(spans),
+                              f"{dyad.label} has a transmission angle below "
+                              f"{np.rad2deg(mechanism.transmission_warning):g}° (the designers' "
+                              f"rule) at crank angles {format_ranges(spans, digits=digits)}, "
+                              f"{off[k]:.{digits}f}° at the least (crank angle "
+                              f"{np.rad2deg(kin.crank_angle[k]):.{digits}f}°): results are "
+                              f"given, but the drive is sensitive to friction, clearance and "
+                              f"elasticity there."))
+    return well
+
+
+def _plausible(result: Result, digits: int) -> dict[str, FloatArray]:
+    """The columns, with the rows that hold a value beyond ``PLAUSIBLE`` taken out
+    (``result.valid``, ``forces.valid`` updated) and a note; returns the columns."""
+    from dyade.linkage import columns
+
+    cols = columns.columns(result)
+    kinematic = [name for name in cols if name in columns.KINEMATIC_EXEMPT
+                 or not name.startswith(columns.FORCE_PREFIXES)]
+    for block, names in (("kinematics", [n for n in kinematic if n != "angle_deg"]),
+                         ("forces", [n for n in cols if n not in kinematic])):
+        if not names:
+            continue
+        bad = columns.implausible(cols, names)
+        if not bad.any():
+            continue
+        where = np.flatnonzero(result.rows)[bad]
+        mask = np.zeros_like(result.rows)
+        mask[where] = True
+        if block == "kinematics":
+            result.valid &= ~mask
+        if result.forces is not None:
+            result.forces.valid &= ~mask
+        spans = ranges(result.crank_angle, mask)
+        result.notes.append(Note("implausible", "", tuple(spans),
+                                 f"{block} beyond {columns.PLAUSIBLE:.0e} (SI units) at crank "
+                                 f"angles {format_ranges(spans, digits=digits)}: no machine moves "
+                                 f"or loads so; those rows are not given."))
+        cols = columns.columns(result)
+    return cols
 
 
 def _friction_notes(mechanism: Mechanism, kin: kinematics.Kinematics,

@@ -101,6 +101,10 @@ class Closure:
     pins: dict = field(default_factory=dict)
     """joint index (0 A, 1 B, 2 C) -> world position (x, y) of a revolute joint the
     closure found on the way (saves recomputing it for the joint's twist)"""
+    lever: FloatArray | None = None
+    """(n,) [m] a distance whose vanishing also makes the closure singular although the
+    transmission angle stays away from 0° and 180° (RPR: the pivot distance ρ); it
+    scales the conditioning by min(1, lever/ℓ), ℓ the crank length"""
 
     def __post_init__(self) -> None:
         if self.conditioning is None:

@@ -28,13 +28,14 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     c0 = float(n_local @ np.subtract(joint_b.guide_point, p_c) - n_local @ slider_arm)
     d = o_s - o_c
     rho = np.hypot(d[:, 0], d[:, 1])
-    size = max(float(np.nanmax(rho, initial=0.0)), abs(c0))  # [m] the dyad's scale
     with np.errstate(divide="ignore", invalid="ignore"):  # pivots on top of each other
         ratio = c0 / rho
-    # lever arm: distance along the guide between the two pivots; 0 at the singular
-    # position where the slider point passes the guide link's pivot foot point
+    # lever arm: distance along the guide between the two pivots; 0 at the dead centre
+    # where the slider point passes the guide link's pivot foot point (|ratio| = 1: the
+    # dyad closes there, singular); where the pivots coincide (ρ = 0) the guide has no
+    # direction and the dyad does not close
     arm = np.sqrt(np.maximum(rho ** 2 - c0 ** 2, 0.0))
-    closes = (np.abs(ratio) <= 1.0 + 1e-12) & (arm > 1e-9 * size)
+    closes = np.abs(ratio) <= 1.0 + 1e-12
     tilt = np.arcsin(np.clip(np.where(closes, ratio, np.nan), -1.0, 1.0))
     beta0 = dyads.polar_angle(d)
     psi = beta0 - tilt if dyad.variant > 0 else beta0 - np.pi + tilt
@@ -43,10 +44,13 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     motion.turn_with(s, c, kappa)
     motion.origin[:, s] = o_s - motion.rotated(s, p_s)
     # μ: angle between the guide normal and the pivot line, cos μ = c0/ρ, sin μ = arm/ρ.
-    # The closure Jacobian scales with the lever arm itself: with zero offset μ stays 90°
-    # while the arm (= ρ) goes to 0 as the slider point passes the guide link's pivot, so
-    # the conditioning is the arm relative to the dyad's size.
-    return dyads.Closure(closes, np.arctan2(arm, c0), arm / size)
+    # The closure's determinant is the lever arm itself: with zero offset μ stays 90°
+    # while the arm (= ρ) goes to 0 as the pivots approach each other, so the quality is
+    # sin μ times the pivot distance ρ against a length of the mechanism (``lever``,
+    # combined in ``dyade.linkage.kinematics``), at each position on its own.
+    with np.errstate(invalid="ignore"):  # ρ = 0: no closure, NaN
+        sin_mu = arm / rho
+    return dyads.Closure(closes, np.arctan2(arm, c0), np.abs(sin_mu), lever=rho)
 
 
 def middle(reader, table, key: str, i: int, j: int, dyad_table, dyad_key: str) -> Prismatic:
