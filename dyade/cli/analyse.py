@@ -18,7 +18,8 @@ MECHANISM_FILE = click.Path(exists=True, dir_okay=False, allow_dash=True)
 SUFFIX = {"csv": ".csv", "json": ".json", "table": ".txt"}
 FLAGS = {"friction_tol": "--friction-tol", "friction_max_iter": "--friction-max-iter",
          "start": "--start", "stop": "--stop", "step": "--step",
-         "sweep": "the sweep (--start, --stop, --step)", "max_memory": "--max-memory"}
+         "sweep": "the sweep (--start, --stop, --step)", "max_memory": "--max-memory",
+         "dead_centre": "--dead-centre", "transmission_warning": "--transmission-warning"}
 """API parameter -> the flag it comes from"""
 
 set_option = click.option(
@@ -145,6 +146,13 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
 @click.option("--units", type=click.Choice(["si", "file"]), default="si", show_default=True,
               help="Table lengths in SI (m) or in the file's length unit ([units] length); "
                    "CSV and JSON stay SI.")
+@click.option("--dead-centre", type=FINITE, metavar="DEG",
+              help="Hard band [°]: within this of a dead centre (transmission angle 0° or "
+                   "180°) nothing is given  [default: file's [sweep] dead_centre, 2].")
+@click.option("--transmission-warning", type=FINITE, metavar="DEG",
+              help="Soft band [°]: transmission angles below this are reported with a "
+                   "warning  [default: file's [sweep] transmission_warning, 40 (H. Alt's "
+                   "rule)].")
 @click.option("--max-memory", type=POSITIVE, default=4096, show_default=True, metavar="MB",
               help="Refuse, before computing, a sweep estimated to need more memory [MB] "
                    "(positions × columns × 90 B).")
@@ -155,8 +163,8 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
             start: float | None, stop: float | None, step: float | None,
             assignments: tuple[str, ...], save_as: str | None, allow_partial: bool,
             friction_tol: float | None, friction_max_iter: int | None,
-            show_all: bool, patterns: str | None, units: str, max_memory: float,
-            fail_on_lock: bool) -> None:
+            show_all: bool, patterns: str | None, units: str, dead_centre: float | None,
+            transmission_warning: float | None, max_memory: float, fail_on_lock: bool) -> None:
     """Sweep the crank of MECHANISM_FILES: positions, velocities and accelerations of every
     link, joint and named point.
 
@@ -177,7 +185,9 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
     fmt = fmt or infer_format(output)
     chosen = tuple(p.strip() for p in patterns.split(",") if p.strip()) if patterns else ()
     job = Job(fmt, SweepOptions(start, stop, step), assignments, allow_partial, friction_tol,
-              friction_max_iter, fail_on_lock, show_all, chosen, units, max_memory * 2 ** 20)
+              friction_max_iter, fail_on_lock, show_all, chosen, units, max_memory * 2 ** 20,
+              None if dead_centre is None else math.radians(dead_centre),
+              None if transmission_warning is None else math.radians(transmission_warning))
     if len(mechanism_files) == 1 and not (output and os.path.isdir(output)):
         job.run(mechanism_files[0], output, save_as)
         return
@@ -275,6 +285,10 @@ class Job(NamedTuple):
     units: str = "si"
     max_memory: float | None = None
     """[B]"""
+    dead_centre: float | None = None
+    """[rad]"""
+    transmission_warning: float | None = None
+    """[rad]"""
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
         output = None if output == "-" else output  # -o -: standard output
@@ -290,7 +304,8 @@ class Job(NamedTuple):
                 result = analyse(mechanism, allow_partial=self.allow_partial,
                                  friction_tol=self.friction_tol,
                                  friction_max_iter=self.friction_max_iter,
-                                 max_memory=self.max_memory)
+                                 max_memory=self.max_memory, dead_centre=self.dead_centre,
+                                 transmission_warning=self.transmission_warning)
         except AssemblyError as err:
             if not err.partial:
                 raise

@@ -309,7 +309,7 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
         soft = mechanism.transmission_warning if transmission_warning is None else transmission_warning
         if not (math.isfinite(hard) and math.isfinite(soft) and 0.0 <= hard < soft <= np.pi / 2):
             raise InputError.parameter(("dead_centre", "transmission_warning"),
-                                       f"must satisfy 0 ≤ dead_centre < transmission_warning ≤ "
+                                       f"must satisfy 0 ≤ the dead-centre band < the warning angle ≤ "
                                        f"90°, got {np.rad2deg(hard):g}° and {np.rad2deg(soft):g}°.")
         mechanism = replace(mechanism, dead_centre_angle=hard, transmission_warning=soft)
     positions = mechanism.sweep.count if crank_angle is None else np.size(crank_angle)

@@ -81,7 +81,9 @@ def describe(mechanism: Mechanism, the_plan: Plan, skipped: list[str]) -> Tree:
     sweep = mechanism.sweep
     tree.add(f"sweep: crank angle {np.rad2deg(sweep.start):g}° to {np.rad2deg(sweep.stop):g}° "
              f"in steps of {np.rad2deg(sweep.step):g}° ({sweep.angles().size} positions); "
-             f"dead-centre band {np.rad2deg(mechanism.dead_centre_angle):g}°")
+             f"nothing given within {np.rad2deg(mechanism.dead_centre_angle):g}° of a dead "
+             f"centre, a warning below a transmission angle of "
+             f"{np.rad2deg(mechanism.transmission_warning):g}°")
     return tree
 
 
