@@ -16,7 +16,7 @@ from dyade.cli.output import atomic, console, flags, show, write_json
 MECHANISM_FILE = click.Path(exists=True, dir_okay=False)
 SUFFIX = {"csv": ".csv", "json": ".json", "table": ".txt"}
 FLAGS = {"friction_tol": "--friction-tol", "friction_max_iter": "--friction-max-iter",
-         "start": "--start", "stop": "--stop", "step": "--step"}
+         "start": "--start", "stop": "--stop", "step": "--step", "run_up": "--run-up"}
 """API parameter -> the flag it comes from"""
 
 set_option = click.option(
@@ -110,17 +110,26 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
 @click.option("--fail-on-lock", is_flag=True,
               help="Exit with status 1 when a slider self-locks (otherwise a locking slider is "
                    "a finding: reported, exit status 0).")
+@click.option("--run-up", is_flag=True,
+              help="With a [drive] table: the run-up from rest at the start angle, revolution "
+                   "after revolution until the speed repeats, instead of the periodic steady "
+                   "state; the rows are the whole run-up at the sweep's step (column t: time).")
+@click.option("--constant-speed", is_flag=True,
+              help="Ignore the [drive] table: the crank at its constant speed_rpm (to compare "
+                   "with the real speed).")
 def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
             start: float | None, stop: float | None, step: float | None,
             assignments: tuple[str, ...], save_as: str | None, allow_partial: bool,
             friction_tol: float | None, friction_max_iter: int | None,
-            fail_on_lock: bool) -> None:
+            fail_on_lock: bool, run_up: bool, constant_speed: bool) -> None:
     """Sweep the crank of MECHANISM_FILES: positions, velocities and accelerations of every
     link, joint and named point.
 
     With masses, loads or springs in the file: joint forces, driving torque and shaking
-    force; with friction coefficients: Coulomb friction and the self-locking test of
-    every slider with friction; with clearance data: the clearance peak check.
+    force, reduced inertia and load torque; with friction coefficients: Coulomb friction
+    and the self-locking test of every slider with friction; with clearance data: the
+    clearance peak check; with a [drive] table: the crank's real speed from the equation
+    of motion (steady state, or --run-up), and everything at that speed.
 
     Several files in one call (a batch) need -o DIR; a file that fails does not stop the
     others, and the failures are listed at the end (exit status 1).
@@ -133,8 +142,10 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
     from dyade.errors import DyadeError
 
     fmt = fmt or infer_format(output)
+    if run_up and constant_speed:
+        raise click.UsageError("--run-up and --constant-speed exclude each other.")
     job = Job(fmt, SweepOptions(start, stop, step), assignments, allow_partial, friction_tol,
-              friction_max_iter, fail_on_lock)
+              friction_max_iter, fail_on_lock, run_up, constant_speed)
     if len(mechanism_files) == 1 and not (output and os.path.isdir(output)):
         job.run(mechanism_files[0], output, save_as)
         return
@@ -211,6 +222,8 @@ class Job(NamedTuple):
     friction_tol: float | None
     friction_max_iter: int | None
     fail_on_lock: bool
+    run_up: bool = False
+    constant_speed: bool = False
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
         from dyade.errors import AssemblyError, DyadeError
@@ -223,7 +236,8 @@ class Job(NamedTuple):
             with flags(FLAGS):
                 result = analyse(mechanism, allow_partial=self.allow_partial,
                                  friction_tol=self.friction_tol,
-                                 friction_max_iter=self.friction_max_iter)
+                                 friction_max_iter=self.friction_max_iter, run_up=self.run_up,
+                                 constant_speed=self.constant_speed)
         except AssemblyError as err:
             if not err.partial:
                 raise
@@ -245,8 +259,10 @@ class Job(NamedTuple):
         else:
             from dyade.report import tables
 
+            motion = (tables.motion_table(result, result.summary(cols))
+                      if result.drive is not None else None)
             show([tables.sweep_summary(result, cols), tables.force_summary(result, cols),
-                  tables.clearance_summary(result)], output)
+                  motion, tables.clearance_summary(result)], output)
         if result.notes:  # rich is only loaded when there is something to say
             err = console(stderr=True)
             prefix = f"{os.path.basename(path)}: " if output else ""

@@ -76,6 +76,37 @@ class Balance:
     after: Any
     """``Result`` of the balanced mechanism"""
 
+    def changes(self) -> dict[str, Any]:
+        """Before and after, SI: the shaking force (the inertia forces' resultant: largest
+        magnitude and RMS over the sweep), the shaking moment M_shake and the drive torque
+        M_drive (largest magnitude and RMS), and each joint's largest force."""
+        shaking = {}
+        for when, force in (("before", self.shaking_before), ("after", self.shaking_after)):
+            size = np.hypot(force[:, 0], force[:, 1])[self.before.kinematics.valid]
+            shaking[f"{when}_max"] = float(np.max(size))
+            shaking[f"{when}_rms"] = float(np.sqrt(np.mean(size ** 2)))
+        shaking["residual"] = (shaking["after_rms"] / shaking["before_rms"]
+                               if shaking["before_rms"] > 0.0 else 0.0)
+        out: dict[str, Any] = {"shaking_force": shaking}
+        columns = {"before": self.before.columns(), "after": self.after.columns()}
+        for key, name in (("shaking_moment", "M_shake"), ("drive_torque", "M_drive")):
+            entry = {}
+            for when, cols in columns.items():
+                values = cols[name][np.isfinite(cols[name])]
+                entry[f"{when}_max"] = float(np.max(np.abs(values))) if values.size else None
+                entry[f"{when}_rms"] = (float(np.sqrt(np.mean(values ** 2))) if values.size
+                                        else None)
+            out[key] = entry
+        joints = {}
+        for joint in self.mechanism.joints:
+            a, b = joint.name
+            name = f"F_{a}_{b}" if isinstance(joint, Revolute) else f"FN_{a}_{b}"
+            joints[name] = {when: (float(np.nanmax(np.abs(cols[name])))
+                                   if np.isfinite(cols[name]).any() else None)
+                            for when, cols in columns.items()}
+        out["joint_forces"] = joints
+        return out
+
     def file_data(self, data: dict[str, Any]) -> dict[str, Any]:
         """The mechanism file's data (parsed TOML) with the counterweighted links' mass
         data replaced (mass, centre, inertia), in the file's units: for ``--save-as``."""

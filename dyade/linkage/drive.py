@@ -31,6 +31,8 @@ from dyade.machine import equation
 from dyade.machine.motor import Asynchronous, ConstantTorque, Motor, TorqueSpeedTable
 
 MIN_STEPS = 720  # integration steps per revolution unless the file says otherwise
+FINE_STEP = math.radians(0.1)  # [rad] largest default step of a torque curve
+AT_REST_NUDGE = 1e-6  # [-] share of the top speed at which friction is taken at rest
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
@@ -90,7 +92,7 @@ def solve(mechanism: Mechanism, crank_angle: FloatArray | None = None, *, run_up
     start = mechanism.sweep.start
     grid = start + sense * 0.5 * h * np.arange(2 * steps)
     machine = _machine(mechanism, grid)
-    tables = equation.Tables(machine.inertia, machine.load, np.zeros(2 * steps))
+    tables = equation.Tables(machine.inertia, machine.load, np.zeros(2 * steps), machine.slope)
     nominal = abs(mechanism.crank.speed)
     motor = drive.motor
     passes = 0
@@ -212,6 +214,8 @@ def _friction_torque(mechanism: Mechanism, path: equation.Path, tables: equation
     jslope = machine.slope[j % machine.slope.size]
     load = tables.load[j % tables.load.size]
     acceleration = (slope - 0.5 * jslope * speed ** 2) / inertia
+    if run_up:  # at rest the friction's sense is undefined: take its limit as it moves off
+        speed[0] = path.sense * AT_REST_NUDGE * max(float(np.max(np.abs(speed))), 1.0)
     angle = start + path.sense * 0.5 * path.step * j
     kin = kinematics.sweep(mechanism, angle, crank_speed=speed, crank_acceleration=acceleration)
     rubbing = friction.iterate(mechanism, kin)
@@ -250,9 +254,8 @@ def _at(mechanism: Mechanism, path: equation.Path, tables: equation.Tables, moto
     else:
         turns = np.floor(along / period + 1e-12)
         u = np.clip(along - turns * period, 0.0, period)
-    energy = path.energy_at(u)
     machine = reduced(mechanism, kinematics.sweep(mechanism, crank_angle, crank_speed=1.0))
-    speed = sense * np.sqrt(2.0 * np.maximum(energy, 0.0) / machine.inertia)
+    speed = sense * path.speed_at(u, machine.inertia)
     torque = sense * motor.torques(np.abs(speed))
     # M_F on the half-step grid, linear in between (exact on the grid)
     half = 0.5 * h
@@ -264,15 +267,7 @@ def _at(mechanism: Mechanism, path: equation.Path, tables: equation.Tables, moto
     friction_torque = np.interp(u, grid_u, values)
     slope = torque + machine.load - friction_torque
     acceleration = (slope - 0.5 * machine.slope * speed ** 2) / machine.inertia
-    node_speed = np.sqrt(2.0 * np.maximum(path.energy, 0.0)
-                         / tables.inertia[(2 * np.arange(path.energy.size)) % tables.inertia.size])
-    with np.errstate(divide="ignore"):  # at rest (a run-up's start): the first step below
-        slow = 1.0 / node_speed
-    slow[~np.isfinite(slow)] = 0.0
-    time = equation._hermite(u, h, path.time, slow) + turns * path.time[-1]
-    if run_up and path.time.size > 1:  # the first step from rest: uniform acceleration
-        first = u < h
-        time[first] = path.time[1] * np.sqrt(u[first] / h)
+    time = path.time_at(u) + turns * path.time[-1]
     return CrankMotion("run-up" if run_up else "steady", crank_angle, speed, acceleration, time,
                        torque, friction_torque, {})
 
@@ -302,18 +297,23 @@ def _figures(path: equation.Path, tables: equation.Tables, motor: Motor, start: 
     if run_up:
         dphi = path.step * sense
         index = np.arange(points + 1)
+        begin = path.start
+        later = index >= 2 * begin.steps  # the first steps were integrated in time
 
-        def work(values):  # ∫ values dφ along the path (Simpson on nodes and midpoints)
+        def work(values):  # ∫ values dφ along the rest of the path (Simpson)
             weights = np.where(index % 2 == 1, 4.0, 2.0)
-            weights[0] = weights[-1] = 1.0
-            return float(dphi / 6.0 * np.sum(weights * values))
+            weights[2 * begin.steps] = weights[-1] = 1.0
+            return float(dphi / 6.0 * np.sum((weights * values)[later]))
 
         load = tables.load[index % tables.load.size]
         rub = equation.along(tables.friction, points + 1, tables.inertia.size)
+        motor_work, load_work, friction_work = begin.works
         out.update({"revolutions": path.iterations, "settled": path.settled,
                     "duration": float(path.time[-1]),
-                    "work_motor": work(torque), "work_load": -work(load),
-                    "work_friction": work(rub), "kinetic_energy": float(path.energy[-1])})
+                    "work_motor": motor_work + work(torque),
+                    "work_load": load_work - work(load),
+                    "work_friction": friction_work + work(rub),
+                    "kinetic_energy": float(path.energy[-1])})
     else:
         out["iterations"] = path.iterations
     return out
@@ -330,8 +330,10 @@ def _mean_over_time(torque: FloatArray, speed: FloatArray) -> float:
 def torque_curve(mechanism: Mechanism, *, step: float | None = None):
     """The machine's torque curve at constant speed, for the flywheel
     (``dyade.machine.flywheel``): the drive torque M_drive over one revolution from the
-    sweep's start at ``step`` [rad] (default: the sweep's), against a motor of constant
-    torque, with the machine's mean reduced inertia. A ``[drive]`` table is ignored.
+    sweep's start at ``step`` [rad] (default: the sweep's, at most 0.1°, since load
+    tables put kinks in the curve that only a fine step integrates well), against a
+    motor of constant torque, with the machine's mean reduced inertia. A ``[drive]``
+    table is ignored.
 
     >>> import dyade
     >>> curve = dyade.mechanism_torque_curve(dyade.read_mechanism("mechanisms/fourbar.toml"))
@@ -342,7 +344,7 @@ def torque_curve(mechanism: Mechanism, *, step: float | None = None):
     from dyade.linkage.sweep import analyse
     from dyade.machine.flywheel import cycle_mean, machine_curve
 
-    step = mechanism.sweep.step if step is None else step
+    step = min(mechanism.sweep.step, FINE_STEP) if step is None else step
     if not (math.isfinite(step) and 0.0 < step < math.pi / 2):
         raise InputError.parameter("step", f"must be a crank-angle step below 90° [rad], got "
                                            f"{step}.", value=step, unit="rad")

@@ -47,6 +47,8 @@ class Tables:
     """M_L [N·m], crank-angle convention (positive counter-clockwise)"""
     friction: FloatArray
     """M_F [N·m], crank-angle convention (it opposes the motion: s·M_F ≥ 0)"""
+    inertia_slope: FloatArray
+    """J′ = dJ/dφ [kg·m²/rad] (not needed by the integration, only for the time)"""
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
@@ -66,6 +68,10 @@ class Path:
     """(K,) E at the midpoints of the steps (cubic Hermite) [J]"""
     time: FloatArray
     """(K+1,) time since φ0 [s]"""
+    speed: FloatArray | None = None
+    """(K+1,) |φ̇| at the nodes [rad/s]"""
+    start: Start | None = None
+    """a run-up's first steps from rest, integrated in time"""
     motor_torque: float | None = None
     """the constant motor torque found for a ConstantTorque motor without a torque"""
     iterations: int = 0
@@ -77,6 +83,26 @@ class Path:
         """E at path coordinates u ∈ [0, K·h] [rad] (cubic Hermite on the nodes, with
         their slopes dE/du = s·dE/dφ): fourth-order accurate."""
         return _hermite(u, self.step, self.energy, self.sense * self.slope)
+
+    def speed_at(self, u: FloatArray, inertia: FloatArray) -> FloatArray:
+        """|φ̇| = √(2E/J) at path coordinates u with the reduced inertia J there; over a
+        run-up's first steps from its integration in time."""
+        speed = np.sqrt(2.0 * np.maximum(self.energy_at(u), 0.0) / inertia)
+        if self.start is not None:
+            near = u < self.start.steps * self.step
+            speed[near] = self.start.at(u[near])[0]
+        return speed
+
+    def time_at(self, u: FloatArray) -> FloatArray:
+        """t at path coordinates u [s] (cubic Hermite with the slopes dt/du = 1/|φ̇|;
+        over a run-up's first steps from its integration in time)."""
+        with np.errstate(divide="ignore"):  # at rest: not used (the first steps below)
+            slow = np.where(self.speed > 0.0, 1.0 / self.speed, 0.0)
+        out = _hermite(u, self.step, self.time, slow)
+        if self.start is not None:
+            near = u < self.start.steps * self.step
+            out[near] = self.start.at(u[near])[1]
+        return out
 
 
 def along(table: FloatArray, count: int, period: int) -> FloatArray:
@@ -147,22 +173,180 @@ def _march(energy: float, first: int, steps: int, h: float, s: float, tables: Ta
     return out_e, out_g, sens
 
 
-def _path(energy: list, slope: list, h: float, s: float, tables: Tables, start_at_rest: bool,
+START_STEPS = 16  # steps of a run-up integrated in time, where |φ̇| ∝ √u is not smooth in u
+
+
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class Start:
+    """A run-up's first steps from rest, integrated in time."""
+
+    steps: int
+    """M: the nodes 0 … M are covered"""
+    energy: FloatArray
+    """(2M+1,) E at the half steps [J]"""
+    time: FloatArray
+    """(2M+1,) t at the half steps [s]"""
+    works: tuple[float, float, float]
+    """motor work, work on the loads (−∫M_L dφ) and friction work (∫M_F dφ) up to node M [J]"""
+    times: FloatArray
+    """(m,) the instants of the integration in time [s]"""
+    states: FloatArray
+    """(m, 5) u, w and the three works there"""
+    rates: FloatArray
+    """(m, 5) their time derivatives"""
+
+    def at(self, u: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """|φ̇| [rad/s] and t [s] at path coordinates u within the start: the instant
+        where u(t) = u on the cubic Hermite of u (u̇ = w), w on that of w (ẇ known)."""
+        k = np.clip(np.searchsorted(self.states[:, 0], u) - 1, 0, self.times.size - 2)
+        span = self.times[k + 1] - self.times[k]
+        y0, y1 = self.states[k], self.states[k + 1]
+        d0, d1 = span[:, None] * self.rates[k], span[:, None] * self.rates[k + 1]
+        x = np.clip((u - y0[:, 0]) / (y1[:, 0] - y0[:, 0]), 0.0, 1.0)
+        for _ in range(50):  # Newton on the cubic of u
+            value, change = _cubic(x, y0[:, 0], y1[:, 0], d0[:, 0], d1[:, 0])
+            miss = value - u
+            done = np.abs(miss) <= 1e-15 * (1.0 + np.abs(u))
+            if done.all():
+                break
+            with np.errstate(divide="ignore", invalid="ignore"):  # only where not done
+                x = np.where(done, x, x - miss / change)
+        speed = _cubic(x, y0[:, 1], y1[:, 1], d0[:, 1], d1[:, 1])[0]
+        return speed, self.times[k] + x * span
+
+
+def _cubic(x: float, y0, y1, d0, d1):
+    """The cubic Hermite on [0, 1] (slopes scaled to it) and its derivative at x."""
+    x2, x3 = x * x, x * x * x
+    value = (2 * x3 - 3 * x2 + 1) * y0 + (x3 - 2 * x2 + x) * d0 + (3 * x2 - 2 * x3) * y1 \
+        + (x3 - x2) * d1
+    change = (6 * x2 - 6 * x) * y0 + (3 * x2 - 4 * x + 1) * d0 + (6 * x - 6 * x2) * y1 \
+        + (3 * x2 - 2 * x) * d1
+    return value, change
+
+
+def _start(h: float, s: float, tables: Tables, motor: Motor, steps: int) -> Start:
+    """The first ``steps`` steps of a run-up from rest, where |φ̇| ∝ √u is not smooth in
+    the angle but everything is in time: RK4 in time on u̇ = w, ẇ = s·(dE/dφ − ½·J′·w²)/J
+    from u = w = 0, with the works as integrals over time (motor m·w, loads −s·M_L·w,
+    friction s·M_F·w); each half step u = j·h/2 is located on the cubic Hermite of u(t)
+    (u̇ = w known), w and the works there on theirs. Between the grid values J, J′ and
+    M_L are quadratic in u over each step, M_F quadratic in σ = √u (it follows the
+    acceleration, which has a √u term; its value at rest is the limit as the machine
+    moves off, ``dyade.linkage.drive``)."""
+    period = tables.inertia.size
+    points = 2 * steps + 1
+    j = np.arange(points)
+    inertia, slope = tables.inertia[j % period], tables.inertia_slope[j % period]
+    load, friction = tables.load[j % period], along(tables.friction, points, period)
+    sigma = np.sqrt(0.5 * h * j)
+
+    def quadratic(values, u):  # over the step that holds u, through its three points
+        k = min(int(u / h), steps - 1)
+        a, b, c = values[2 * k], values[2 * k + 1], values[2 * k + 2]
+        x = u / h - k
+        return a * (1 - x) * (1 - 2 * x) + 4 * b * x * (1 - x) + c * x * (2 * x - 1)
+
+    def in_sigma(values, u):  # the same in σ = √u (M_F follows φ̈, which has a √u term)
+        k = min(int(u / h), steps - 1)
+        x0, x1, x2 = sigma[2 * k], sigma[2 * k + 1], sigma[2 * k + 2]
+        x = math.sqrt(u)
+        return (values[2 * k] * (x - x1) * (x - x2) / ((x0 - x1) * (x0 - x2))
+                + values[2 * k + 1] * (x - x0) * (x - x2) / ((x1 - x0) * (x1 - x2))
+                + values[2 * k + 2] * (x - x0) * (x - x1) / ((x2 - x0) * (x2 - x1)))
+
+    def rates(u: float, w: float) -> tuple[float, float, float, float]:
+        """ẇ and the powers of motor, loads and friction."""
+        m = motor.at(w)[0]
+        torque_load, torque_rub = quadratic(load, u), in_sigma(friction, u)
+        g = s * m + torque_load - torque_rub
+        accel = s * (g - 0.5 * quadratic(slope, u) * w * w) / quadratic(inertia, u)
+        return accel, m * w, -s * torque_load * w, s * torque_rub * w
+
+    end = steps * h
+    first_dt = math.sqrt(2.0 * h / rates(0.0, 0.0)[0]) / 16.0
+    state = np.zeros(5)  # u, w, motor work, load work, friction work
+    t = 0.0
+    history = [(t, state.copy(), np.array([0.0, *rates(0.0, 0.0)]))]
+
+    def derivative(y):
+        accel, *powers = rates(y[0], y[1])
+        return np.array([y[1], accel, *powers])
+
+    while state[0] < end:
+        dt = min(first_dt, h / (8.0 * state[1])) if state[1] > 0.0 else first_dt
+        k1 = history[-1][2]
+        k2 = derivative(state + 0.5 * dt * k1)
+        k3 = derivative(state + 0.5 * dt * k2)
+        k4 = derivative(state + dt * k3)
+        state = state + dt * (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0
+        t += dt
+        if state[1] <= 0.0:
+            raise Stall("", int(state[0] / h))
+        history.append((t, state.copy(), derivative(state)))
+    times = np.array([entry[0] for entry in history])
+    states = np.array([entry[1] for entry in history])
+    slopes = np.array([entry[2] for entry in history])
+    energy, time = np.zeros(points), np.zeros(points)
+    works = (0.0, 0.0, 0.0)
+    for index in range(1, points):
+        target = 0.5 * h * index
+        k = int(np.searchsorted(states[:, 0], target)) - 1
+        span = times[k + 1] - times[k]
+        ends = (states[k], states[k + 1], span * slopes[k], span * slopes[k + 1])
+        x = (target - states[k, 0]) / (states[k + 1, 0] - states[k, 0])
+        for _ in range(50):  # Newton on the Hermite cubic of u over the time step
+            value, change = _cubic(x, *(end[0] for end in ends))
+            x -= (value - target) / change
+            if abs(value - target) <= 1e-15 * (steps * h):
+                break
+        here = _cubic(x, *ends)[0]
+        energy[index] = 0.5 * inertia[index] * here[1] * here[1]
+        time[index] = times[k] + x * span
+        works = (float(here[2]), float(here[3]), float(here[4]))
+    return Start(steps, energy, time, works, times, states, slopes)
+
+
+def _path(energy: list, slope: list, h: float, s: float, tables: Tables, motor: Motor,
           **extra) -> Path:
-    """Midpoint energies and the time along the path from the node values."""
+    """Midpoint energies and the time along the path from the node values.
+
+    The time t = ∫ dφ/|φ̇| comes per step from Simpson's rule in the angle, except
+    where the speed changes by more than 1 % within the step at an acceleration of one
+    sign that varies by less than a factor 2 (a run-up): there t = ∫ d|φ̇|/(s·φ̈) by the
+    three-point rule in the speed, φ̈ = (dE/dφ − ½·J′·φ̇²)/J. A run-up's first steps
+    come from their integration in time (``start``)."""
     e, g = np.asarray(energy), np.asarray(slope)
     middle = 0.5 * (e[:-1] + e[1:]) + s * h * (g[:-1] - g[1:]) / 8.0
-    k = np.arange(e.size)
-    j_nodes = (2 * k) % tables.inertia.size
-    j_mid = (2 * k[:-1] + 1) % tables.inertia.size
-    with np.errstate(divide="ignore"):  # at rest (a run-up's first node) 1/w is infinite
-        slow_nodes = 1.0 / np.sqrt(2.0 * np.maximum(e, 0.0) / tables.inertia[j_nodes])
-        slow_mid = 1.0 / np.sqrt(2.0 * np.maximum(middle, 0.0) / tables.inertia[j_mid])
-    dt = h / 6.0 * (slow_nodes[:-1] + 4.0 * slow_mid + slow_nodes[1:])
-    if start_at_rest and e.size > 1:  # from rest: uniform acceleration over the first step
-        dt[0] = 2.0 * h * math.sqrt(tables.inertia[2 % tables.inertia.size] / (2.0 * e[1]))
+    count = e.size - 1
+    period = tables.inertia.size
+    j_node, j_mid = (2 * np.arange(count + 1)) % period, (2 * np.arange(count) + 1) % period
+    friction = along(tables.friction, 2 * count + 1, period)
+    inertia_mid = tables.inertia[j_mid]
+    speed = np.sqrt(2.0 * np.maximum(e, 0.0) / tables.inertia[j_node])
+    speed_mid = np.sqrt(2.0 * np.maximum(middle, 0.0) / inertia_mid)
+    g_mid = (s * motor.torques(speed_mid) + tables.load[j_mid] - friction[1::2])
+    accel = s * (g - 0.5 * tables.inertia_slope[j_node] * speed ** 2) / tables.inertia[j_node]
+    accel_mid = s * (g_mid - 0.5 * tables.inertia_slope[j_mid] * speed_mid ** 2) / inertia_mid
+    w0, w1, a0, a1 = speed[:-1], speed[1:], accel[:-1], accel[1:]
+    with np.errstate(divide="ignore", invalid="ignore"):  # each rule only where it holds
+        by_angle = h / 6.0 * (1.0 / w0 + 4.0 / speed_mid + 1.0 / w1)
+        low, high = np.minimum(np.minimum(a0, a1), accel_mid), np.maximum(
+            np.maximum(a0, a1), accel_mid)
+        steady_sign = (low > 0.0) | (high < 0.0)
+        gentle = np.abs(high) < 2.0 * np.abs(low)
+        fast = np.abs(w1 - w0) > 0.01 * np.maximum(w0, w1)
+        a, b = speed_mid - w0, w1 - speed_mid
+        span = a + b
+        by_speed = span / 6.0 * ((2.0 - b / a) / a0 + span * span / (a * b) / accel_mid
+                                 + (2.0 - a / b) / a1)
+    dt = np.where(steady_sign & gentle & fast, by_speed, by_angle)
+    start = extra.get("start")
+    if start is not None:  # a run-up's first steps, integrated in time
+        middle[:start.steps] = start.energy[1::2]
+        dt[:start.steps] = np.diff(start.time[0::2])
     time = np.concatenate(([0.0], np.cumsum(dt)))
-    return Path(h, s, e, g, middle, time, **extra)
+    return Path(h, s, e, g, middle, time, speed, **extra)
 
 
 def periodic(tables: Tables, motor: Motor, sense: float, steps: int, guess: float,
@@ -203,8 +387,10 @@ def periodic(tables: Tables, motor: Motor, sense: float, steps: int, guess: floa
             energy0 *= 4.0  # too slow to get round: start faster
             continue
         miss = energy[-1] - energy0
+        if constant:  # its periodic states form a family: the mean speed picks one
+            return _neutral(tables, motor, sense, steps, energy, slope, miss, tol, mean_speed)
         if abs(miss) <= tol * energy0:
-            return _path(energy, slope, h, sense, tables, False, iterations=iteration,
+            return _path(energy, slope, h, sense, tables, motor, iterations=iteration,
                          motor_torque=motor.torque if constant else None)
         if abs(sens - 1.0) < NEUTRAL:
             return _neutral(tables, motor, sense, steps, energy, slope, miss, tol, mean_speed)
@@ -243,7 +429,7 @@ def _neutral(tables, motor, sense, steps, energy, slope, miss, tol, mean_speed) 
     gain_mid = 0.5 * (gain[:-1] + gain[1:]) + sense * h * (g[:-1] - g[1:]) / 8.0
     weights = np.concatenate((inertia_nodes, inertia_mid))
     offsets = np.concatenate((gain[:-1], gain_mid))
-    factors = np.concatenate((np.ones(steps), 4.0 * np.ones(steps)))
+    factors = np.concatenate((2.0 * np.ones(steps), 4.0 * np.ones(steps)))  # periodic Simpson
     floor = -float(np.min(offsets))  # E0 above this keeps E > 0 everywhere
 
     def period(e0: float) -> float:  # T = ∫ dφ/|φ̇| (Simpson)
@@ -263,7 +449,7 @@ def _neutral(tables, motor, sense, steps, energy, slope, miss, tol, mean_speed) 
             break
     energy0 = 0.5 * (low + high)
     energy, slope, _ = _march(energy0, 0, steps, h, sense, tables, motor)
-    return _path(energy, slope, h, sense, tables, False, iterations=1, motor_torque=motor.torque)
+    return _path(energy, slope, h, sense, tables, motor, iterations=1, motor_torque=motor.torque)
 
 
 def run_up(tables: Tables, motor: Motor, sense: float, steps: int, tol: float,
@@ -282,24 +468,40 @@ def run_up(tables: Tables, motor: Motor, sense: float, steps: int, tol: float,
         raise DyadeError(f"the motor cannot start the machine from rest: its starting torque "
                          f"{motor.at(0.0)[0]:.6g} N·m does not exceed the load torque "
                          f"{-sense * tables.load[0]:.6g} N·m at the start angle.")
-    energy, slope = [0.0], []
+    try:
+        begin = _start(h, sense, tables, motor, min(START_STEPS, steps))
+    except Stall as stall:
+        raise DyadeError(f"the machine stops during the run-up after {stall.node / steps:.3g} "
+                         f"revolutions: the motor cannot carry it over the load there.") from None
+    energy = begin.energy[0::2].tolist()
+    slope = [start]
+    for node in range(1, begin.steps):  # dE/dφ at the nodes of the start
+        inertia = tables.inertia[(2 * node) % tables.inertia.size]
+        w = math.sqrt(2.0 * energy[node] / inertia)
+        slope.append(sense * motor.at(w)[0] + tables.load[(2 * node) % tables.inertia.size]
+                     - along(tables.friction, 2 * node + 1, tables.inertia.size)[-1])
     count = 0
     settled = False
     limit = revolutions or max_revolutions
     while count < limit and not (settled and revolutions is None):
         try:
-            more, more_slope, _ = _march(energy[-1], count * steps, steps, h, sense, tables,
-                                         motor)
+            if count == 0:
+                more, more_slope, _ = _march(energy[-1], begin.steps, steps - begin.steps, h,
+                                             sense, tables, motor)
+            else:
+                more, more_slope, _ = _march(energy[-1], count * steps, steps, h, sense,
+                                             tables, motor)
         except Stall as stall:
             turns = stall.node / steps
             raise DyadeError(f"the machine stops during the run-up after {turns:.3g} "
                              f"revolutions: the motor cannot carry it over the load there."
                              ) from None
-        before = energy[-1]
+        before = energy[0] if count == 0 else energy[-1]
         energy.extend(more[1:])
         slope.extend(more_slope[:-1])
         last_slope = more_slope[-1]
         count += 1
         settled = count > 1 and abs(energy[-1] - before) <= tol * energy[-1]
     slope.append(last_slope)
-    return _path(energy, slope, h, sense, tables, True, iterations=count, settled=settled)
+    return _path(energy, slope, h, sense, tables, motor, iterations=count, settled=settled,
+                 start=begin)
