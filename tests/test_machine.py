@@ -17,11 +17,11 @@ from dyade.cli import main
 from dyade.errors import DyadeError, InputError
 from dyade.files import mechanism as toml_input
 from dyade.linkage import kinematics, kinetostatics
-from dyade.linkage.model import Link
+from dyade.linkage.model import Load
 from tests.conftest import SHIPPED
 from tests.global_solve import global_forces
 from tests.helpers import mechanism_from, read_csv, shipped
-from tests.test_kinetostatics import applied_power, kinetic_energy_rate, with_masses
+from tests.test_kinetostatics import applied_power, with_masses
 
 RPM = math.pi / 30.0
 
@@ -55,6 +55,11 @@ def test_drive_torque_is_half_the_inertia_slope_times_speed_squared_less_the_loa
     # M_drive = ½·dJ_red·Ω² − M_load without friction: the power balance of the machine
     # reduced to its crank, at every position of every shipped mechanism
     mechanism = _frictionless(_massive(path))
+    # loads that turn with the links and push across them too: gravity with an x part,
+    # a force and a moment on the last link (besides the file's own loads and springs)
+    last = mechanism.moving_links[-1]
+    mechanism = replace(mechanism, gravity=(3.0, -9.81), loads=mechanism.loads + (
+        Load(last, (0.01, 0.02), None, np.array([30.0]), np.array([-40.0]), np.array([0.7])),))
     cols = dyade.analyse(mechanism, allow_partial=True).columns()
     omega = mechanism.crank.speed
     expected = 0.5 * cols["dJ_red"] * omega ** 2 - cols["M_load"]
@@ -411,14 +416,16 @@ def test_analyse_with_a_drive_from_the_command_line(tmp_path):
 
 
 # -- 2. the flywheel --------------------------------------------------------------------
-def test_flywheel_of_the_textbook_engine(tmp_path):
+def test_flywheel_of_the_textbook_engine():
     # T = 10000 + 2000·sin 2θ − 1800·cos 2θ N·m against a constant load at 250 rpm,
     # δ = 0.005: P = 261.799 kW, ΔE = 2690.725 J, J_F = 785.17 kg·m² (the issue's
-    # numbers, to their printed digits), from the integration of the sampled curve
-    theta = np.arange(0.0, 361.0, 1.0)
-    torque = 10000 + 2000 * np.sin(np.deg2rad(2 * theta)) - 1800 * np.cos(np.deg2rad(2 * theta))
-    path = tmp_path / "engine.csv"
-    path.write_text("angle_deg,M_drive\n" + "".join(f"{a:g},{t:.17g}\n" for a, t in zip(theta, torque)))
+    # numbers, to their printed digits), from the integration of the curve sampled every
+    # degree (the shipped mechanisms/torque/engine.csv of the README)
+    path = shipped("torque/engine.csv")
+    cols = read_csv(path.read_text())
+    theta = np.deg2rad(cols["angle_deg"])
+    assert np.allclose(cols["M_drive"], 10000 + 2000 * np.sin(2 * theta)
+                       - 1800 * np.cos(2 * theta), rtol=0, atol=1e-9)
     out = _invoke("flywheel", path, "--fluctuation", 0.005, "--speed-rpm", 250, "--format", "json")
     assert out.exit_code == 0, out.stderr
     result = json.loads(out.stdout)

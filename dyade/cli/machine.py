@@ -101,7 +101,7 @@ def flywheel(source: str, fluctuation: float | None, inertia: float | None,
                    "pivot. [default: every such link]")
 @click.option("--radius", type=float, metavar="M",
               help="Radius [m] of each counterweight's mass from its pivot. [default: the "
-                   "link's reach, its largest pivot-to-joint distance]")
+                   "link's reach: its farthest joint, named point or centre of mass]")
 @set_option
 @click.option("--save-as", "save_path", type=click.Path(dir_okay=False, writable=True),
               help="Write the balanced mechanism (counterweights merged into the links' mass "

@@ -137,15 +137,17 @@ def pivoted_links(mechanism: Mechanism) -> dict[int, Vec]:
 
 
 def _reach(mechanism: Mechanism, link: int, pivot: Vec) -> float:
-    """The largest distance from the pivot to a joint of the link [m]: the default
-    radius of its counterweight."""
-    reach = 0.0
+    """The largest distance from the pivot to the link's joints, named points and
+    centre of mass [m]: the default radius of its counterweight."""
+    points = [mechanism.links[link].centre, *mechanism.links[link].points.values()]
     for joint in mechanism.joints:
-        if link not in joint.links or not isinstance(joint, Revolute):
+        if link not in joint.links:
             continue
-        point = joint.points[joint.links.index(link)]
-        reach = max(reach, math.hypot(point[0] - pivot[0], point[1] - pivot[1]))
-    return reach
+        if isinstance(joint, Revolute):
+            points.append(joint.points[joint.links.index(link)])
+        else:
+            points.append(joint.guide_point if link == joint.carrier else joint.slider_point)
+    return max(math.hypot(x - pivot[0], y - pivot[1]) for x, y in points)
 
 
 def inertia_shaking(mechanism: Mechanism, kin: kinematics.Kinematics) -> FloatArray:
@@ -170,7 +172,8 @@ def balance(mechanism: Mechanism, *, links=None, radius: float | None = None) ->
         every such link.
     radius : float, optional
         Radius [m] of every counterweight's point mass from its pivot; default: each
-        link's reach (the largest distance from its pivot to its other joints).
+        link's reach (the largest distance from its pivot to its joints, named points
+        and centre of mass).
 
     Returns
     -------
@@ -235,7 +238,7 @@ def balance(mechanism: Mechanism, *, links=None, radius: float | None = None) ->
         reach = radius if radius is not None else _reach(mechanism, link, pivots[link])
         if reach <= 0.0:
             raise InputError.parameter("radius", f"is needed for link {link}: it has no joint "
-                                                 f"away from its pivot.", unit="m")
+                                                 f"or point away from its pivot.", unit="m")
         weights.append(Counterweight(link, pivots[link], float(math.hypot(b_xi, b_eta)),
                                      float(math.atan2(b_eta, b_xi)), float(reach)))
     balanced = with_counterweights(mechanism, weights)

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade.errors import DyadeError, InputError
-from dyade.linkage import kinematics, kinetostatics
+from dyade.linkage import kinematics
 from dyade.linkage.model import FloatArray, Mechanism
 from dyade.linkage.reduced import Reduced, reduced
 from dyade.machine import equation

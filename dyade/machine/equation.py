@@ -196,23 +196,29 @@ class Start:
     """(m, 5) their time derivatives"""
 
     def at(self, u: FloatArray) -> tuple[FloatArray, FloatArray]:
-        """|φ̇| [rad/s] and t [s] at path coordinates u within the start: the instant
-        where u(t) = u on the cubic Hermite of u (u̇ = w), w on that of w (ẇ known)."""
-        k = np.clip(np.searchsorted(self.states[:, 0], u) - 1, 0, self.times.size - 2)
-        span = self.times[k + 1] - self.times[k]
-        y0, y1 = self.states[k], self.states[k + 1]
-        d0, d1 = span[:, None] * self.rates[k], span[:, None] * self.rates[k + 1]
-        x = np.clip((u - y0[:, 0]) / (y1[:, 0] - y0[:, 0]), 0.0, 1.0)
-        for _ in range(50):  # Newton on the cubic of u
-            value, change = _cubic(x, y0[:, 0], y1[:, 0], d0[:, 0], d1[:, 0])
-            miss = value - u
-            done = np.abs(miss) <= 1e-15 * (1.0 + np.abs(u))
-            if done.all():
-                break
-            with np.errstate(divide="ignore", invalid="ignore"):  # only where not done
-                x = np.where(done, x, x - miss / change)
-        speed = _cubic(x, y0[:, 1], y1[:, 1], d0[:, 1], d1[:, 1])[0]
-        return speed, self.times[k] + x * span
+        """|φ̇| [rad/s] and t [s] at path coordinates u within the start."""
+        state, time = _locate(self.times, self.states, self.rates, u)
+        return state[:, 1], time
+
+
+def _locate(times: FloatArray, states: FloatArray, rates: FloatArray, u: FloatArray
+            ) -> tuple[FloatArray, FloatArray]:
+    """The states (n, 5) and instants where u(t) = u, from a time history: Newton on
+    the cubic Hermite of u over its time step (u̇ = w), the state on its cubic Hermite
+    (its rates known), for all u at once."""
+    k = np.clip(np.searchsorted(states[:, 0], u) - 1, 0, times.size - 2)
+    span = (times[k + 1] - times[k])[:, None]
+    y0, y1, d0, d1 = states[k], states[k + 1], span * rates[k], span * rates[k + 1]
+    x = np.clip((u - y0[:, 0]) / (y1[:, 0] - y0[:, 0]), 0.0, 1.0)
+    for _ in range(50):  # Newton on the cubic of u
+        value, change = _cubic(x, y0[:, 0], y1[:, 0], d0[:, 0], d1[:, 0])
+        miss = value - u
+        done = np.abs(miss) <= 1e-15 * (1.0 + np.abs(u))
+        if done.all():
+            break
+        with np.errstate(divide="ignore", invalid="ignore"):  # only where not done
+            x = np.where(done, x, x - miss / change)
+    return _cubic(x[:, None], y0, y1, d0, d1)[0], times[k] + x * span[:, 0]
 
 
 def _cubic(x: float, y0, y1, d0, d1):
@@ -287,23 +293,10 @@ def _start(h: float, s: float, tables: Tables, motor: Motor, steps: int) -> Star
     times = np.array([entry[0] for entry in history])
     states = np.array([entry[1] for entry in history])
     slopes = np.array([entry[2] for entry in history])
-    energy, time = np.zeros(points), np.zeros(points)
-    works = (0.0, 0.0, 0.0)
-    for index in range(1, points):
-        target = 0.5 * h * index
-        k = int(np.searchsorted(states[:, 0], target)) - 1
-        span = times[k + 1] - times[k]
-        ends = (states[k], states[k + 1], span * slopes[k], span * slopes[k + 1])
-        x = (target - states[k, 0]) / (states[k + 1, 0] - states[k, 0])
-        for _ in range(50):  # Newton on the Hermite cubic of u over the time step
-            value, change = _cubic(x, *(end[0] for end in ends))
-            x -= (value - target) / change
-            if abs(value - target) <= 1e-15 * (steps * h):
-                break
-        here = _cubic(x, *ends)[0]
-        energy[index] = 0.5 * inertia[index] * here[1] * here[1]
-        time[index] = times[k] + x * span
-        works = (float(here[2]), float(here[3]), float(here[4]))
+    here, time = _locate(times, states, slopes, 0.5 * h * j[1:])
+    energy = np.concatenate(([0.0], 0.5 * inertia[1:] * here[:, 1] ** 2))
+    time = np.concatenate(([0.0], time))
+    works = (float(here[-1, 2]), float(here[-1, 3]), float(here[-1, 4]))
     return Start(steps, energy, time, works, times, states, slopes)
 
 
@@ -474,12 +467,11 @@ def run_up(tables: Tables, motor: Motor, sense: float, steps: int, tol: float,
         raise DyadeError(f"the machine stops during the run-up after {stall.node / steps:.3g} "
                          f"revolutions: the motor cannot carry it over the load there.") from None
     energy = begin.energy[0::2].tolist()
-    slope = [start]
-    for node in range(1, begin.steps):  # dE/dφ at the nodes of the start
-        inertia = tables.inertia[(2 * node) % tables.inertia.size]
-        w = math.sqrt(2.0 * energy[node] / inertia)
-        slope.append(sense * motor.at(w)[0] + tables.load[(2 * node) % tables.inertia.size]
-                     - along(tables.friction, 2 * node + 1, tables.inertia.size)[-1])
+    period = tables.inertia.size
+    nodes = 2 * np.arange(1, begin.steps)  # dE/dφ at the nodes of the start
+    speed = np.sqrt(2.0 * begin.energy[nodes] / tables.inertia[nodes % period])
+    slope = [start] + (sense * motor.torques(speed) + tables.load[nodes % period]
+                       - along(tables.friction, 2 * begin.steps, period)[nodes]).tolist()
     count = 0
     settled = False
     limit = revolutions or max_revolutions

@@ -186,8 +186,9 @@ def motion_table(result: Result, summary: dict) -> Table | None:
     rpm = 30.0 / np.pi
     state = "steady state" if motion["state"] == "steady" else "run-up from rest"
     scope = "; speeds over the last revolution" if motion["state"] != "steady" else ""
-    table = Table(title=f"Crank speed from the equation of motion ({state}{scope})\nmotor: "
-                        f"{motion['motor']}", title_justify="left")
+    title = f"Crank speed from the equation of motion ({state}{scope})\nmotor: {motion['motor']}"
+    table = Table(title=title, title_justify="left",
+                  min_width=max(len(line) for line in title.splitlines()))
     for head, justify in (("quantity", "left"), ("unit", "left"), ("value", "right"),
                           ("at φ21 [°]", "right")):
         table.add_column(head, justify=justify)
