@@ -191,21 +191,29 @@ tol = 1e-12
 """
 
 
-def test_constant_inertia_and_linear_motor_reach_the_analytic_speed(tmp_path):
+@pytest.mark.parametrize("sense", [1, -1], ids=["ccw", "cw"])
+def test_constant_inertia_and_linear_motor_reach_the_analytic_speed(sense):
     # J = 0.5 kg·m² (massless linkage), load 5 N·m: k·(ω_s − ω) = 5 with
-    # k = M_N/(ω_s − ω_N) gives ω = 1470 rpm, constant
-    mechanism = mechanism_from(tomllib.loads(FLYWHEEL_ONLY))
+    # k = M_N/(ω_s − ω_N) gives ω = 1470 rpm, constant (clockwise: all signs turn)
+    data = tomllib.loads(FLYWHEEL_ONLY)
+    data["crank"]["direction"] = "ccw" if sense > 0 else "cw"
+    data["load"][0]["moment"] *= sense
+    mechanism = mechanism_from(data)
     cols = dyade.analyse(mechanism).columns()
-    assert np.allclose(cols["omega_2"], 1470 * RPM, rtol=1e-12)
+    assert np.allclose(cols["omega_2"], sense * 1470 * RPM, rtol=1e-12)
     assert np.allclose(cols["alpha_2"], 0.0, atol=1e-9)
-    assert np.allclose(cols["M_motor"], 5.0, rtol=1e-10)
+    assert np.allclose(cols["M_motor"], sense * 5.0, rtol=1e-10)
     # the run-up from rest: J·ω̇ = k·(ω_s − ω) − 5, so ω = ω∞·(1 − exp(−t/τ)), τ = J/k
     result = dyade.analyse(mechanism, run_up=True)
     cols = result.columns()
+    assert np.all(np.diff(cols["angle_deg"]) * sense > 0)
     k = 10.0 / (60 * RPM)
-    expected = 1470 * RPM * (1.0 - np.exp(-cols["t"] * k / 0.5))
-    assert np.allclose(cols["omega_2"], expected, rtol=0, atol=1e-7 * 1470 * RPM)
-    assert result.summary()["motion"]["settled"]
+    expected = sense * 1470 * RPM * (1.0 - np.exp(-cols["t"] * k / 0.5))
+    assert np.allclose(cols["omega_2"], expected, rtol=0, atol=1e-9 * 1470 * RPM)
+    motion = result.summary()["motion"]
+    assert motion["settled"]
+    assert motion["work_motor"] == pytest.approx(motion["kinetic_energy"]
+                                                 + motion["work_load"], rel=1e-10)
 
 
 @pytest.mark.parametrize("flywheel", [20.0, 200.0])

@@ -275,7 +275,13 @@ def size_flywheel(curve: TorqueCurve, fluctuation: float) -> Flywheel:
 
 def speed_fluctuation(curve: TorqueCurve, inertia: float) -> Flywheel:
     """The speed fluctuation δ ≈ ΔE/((J_F + J_machine)·Ω²) with a flywheel of ``inertia``
-    J_F [kg·m²] on the crank shaft."""
+    J_F [kg·m²] on the crank shaft.
+
+    >>> import dyade
+    >>> curve = dyade.read_torque_curve("mechanisms/torque/engine.csv", speed=250 * math.pi / 30)
+    >>> round(dyade.speed_fluctuation(curve, 1000.0).fluctuation, 6)
+    0.003926
+    """
     if not (math.isfinite(inertia) and inertia >= 0.0):
         raise InputError.parameter("inertia", f"must not be negative [kg·m²], got {inertia}.",
                                    value=inertia, unit="kg·m²")
@@ -300,6 +306,13 @@ def read_torque_curve(path: str | os.PathLike, *, speed: float | None = None) ->
     ----------
     speed : float, optional
         The mean crank speed Ω [rad/s]; required unless the file is dyade's.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> curve = dyade.read_torque_curve("mechanisms/torque/engine.csv", speed=250 * math.pi / 30)
+    >>> curve.angle.size, round(curve.mean_torque, 6)     # 0°…359°: 360° repeats 0°
+    (360, 10000.0)
     """
     from dyade.files.torque_curve import load_columns
 
