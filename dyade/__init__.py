@@ -7,7 +7,7 @@ joint with clearance (Dresig & Thümmel) and the torsional resonance of a stiff 
 (Strümpfel).
 
 The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``,
-``dyade.vibration``), with the everyday functions re-exported here:
+``dyade.vibration``, ``dyade.machine``), with the everyday functions re-exported here:
 
 - ``read_mechanism(path, overrides=None)``, ``build_mechanism(data)`` -> ``Mechanism``
 - ``plan(mechanism)`` -> ``Plan``; ``analyse(mechanism, ...)`` -> ``Result`` with
@@ -17,6 +17,10 @@ The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``
 - ``Coupling``, ``read_coupling(path)``, ``coupling_response(coupling, eta)``,
   ``operating_points(coupling, speeds_rpm, *, order=1)``
 - ``accuracy_studies(mechanism)``
+- ``mechanism_torque_curve(mechanism)``, ``torque_curve(angle, drive, load, *, speed)``,
+  ``read_torque_curve(path, *, speed)``, ``size_flywheel(curve, fluctuation)``,
+  ``speed_fluctuation(curve, inertia)``: the flywheel (``dyade.machine``)
+- ``balance(mechanism, *, links, radius)``: counterweights against the shaking force
 - ``DyadeError``, ``InputError``, ``AssemblyError``
 
 Everything is in SI units (m, rad, s, kg, N); mechanism files may use mm and degrees.
@@ -53,12 +57,18 @@ _EXPORTS = {
     "coupling_response": ("dyade.vibration.coupling", "response"),
     "operating_points": "dyade.vibration.coupling",
     "accuracy_studies": ("dyade.linkage.accuracy", "studies"),
+    "torque_curve": "dyade.machine.flywheel",
+    "read_torque_curve": "dyade.machine.flywheel",
+    "mechanism_torque_curve": ("dyade.linkage.drive", "torque_curve"),
+    "size_flywheel": "dyade.machine.flywheel",
+    "speed_fluctuation": "dyade.machine.flywheel",
+    "balance": ("dyade.linkage.balance", "balance"),
     "DyadeError": "dyade.errors",
     "InputError": "dyade.errors",
     "AssemblyError": "dyade.errors",
 }
 
-_SUBMODULES = {"clearance", "errors", "files", "linkage", "units", "vibration"}
+_SUBMODULES = {"clearance", "errors", "files", "linkage", "machine", "units", "vibration"}
 """packages of the API, loaded on first attribute access (``dyade.clearance``)"""
 
 __all__ = sorted(_EXPORTS) + ["__version__"]

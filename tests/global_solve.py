@@ -41,10 +41,42 @@ def _residual(mechanism: Mechanism, q: np.ndarray, index: dict[int, int]) -> np.
     return np.array(out)
 
 
-def global_forces(mechanism: Mechanism, kin, constant_loads=()) -> dict:
+def _jacobian(mechanism: Mechanism, q: np.ndarray, index: dict[int, int]) -> np.ndarray:
+    """∂Φ/∂q by the complex step (exact to round-off)."""
+    h = 1e-30
+    jac = np.empty((q.size, q.size))
+    for col in range(q.size):
+        dq = q.astype(complex)
+        dq[col] += 1j * h
+        jac[:, col] = _residual(mechanism, dq, index).imag / h
+    return jac
+
+
+def _own_motion(mechanism, q, index, jac, speed, acceleration):
+    """q̇ and q̈ of the whole mechanism from its constraints: Φ_q·q̇ = (0, …, φ̇) and
+    Φ_q·q̈ = (0, …, φ̈) − (Φ_q·q̇)_q·q̇, the last term by a central difference of the
+    complex-step directional derivative along q̇."""
+    rhs = np.zeros(q.size)
+    rhs[-1] = speed
+    qdot = np.linalg.solve(jac, rhs)
+    h, step = 1e-30, 1e-5 / max(np.max(np.abs(qdot)), 1e-300)
+
+    def directional(shift):  # Φ_q(q + shift·q̇)·q̇
+        return _residual(mechanism, q + shift * qdot + 1j * h * qdot, index).imag / h
+
+    bias = (directional(step) - directional(-step)) / (2.0 * step)
+    rhs = -bias
+    rhs[-1] += acceleration
+    return qdot, np.linalg.solve(jac, rhs)
+
+
+def global_forces(mechanism: Mechanism, kin, constant_loads=(), crank_speed=None,
+                  crank_acceleration=None) -> dict:
     """Per position: joint forces on the higher link (revolute: Fx, Fy; prismatic: FN, M)
     and the drive torque, from one global solve. ``constant_loads``: (link, local point,
-    (Fx, Fy)) world forces."""
+    (Fx, Fy)) world forces. With ``crank_speed`` and ``crank_acceleration`` (one value per
+    position) the velocities and accelerations are found here too, from the constraints
+    (only the positions of ``kin`` are used); else those of ``kin`` are."""
     links = mechanism.moving_links
     index = {link: k for k, link in enumerate(links)}
     motion = kin.motion
@@ -56,25 +88,29 @@ def global_forces(mechanism: Mechanism, kin, constant_loads=()) -> dict:
     for row in range(n):
         q = np.concatenate([np.r_[motion.origin[row, link], motion.angle[row, link]]
                             for link in links])
-        h = 1e-30
-        jac = np.empty((3 * len(links), q.size))
-        for col in range(q.size):
-            dq = q.astype(complex)
-            dq[col] += 1j * h
-            jac[:, col] = _residual(mechanism, dq, index).imag / h
+        jac = _jacobian(mechanism, q, index)
+        if crank_speed is None:
+            omega = {link: motion.omega[row, link] for link in links}
+            alpha = {link: motion.alpha[row, link] for link in links}
+            origin_acc = {link: motion.acceleration[row, link] for link in links}
+        else:
+            qdot, qddot = _own_motion(mechanism, q, index, jac, crank_speed[row],
+                                      crank_acceleration[row])
+            omega = {link: qdot[3 * index[link] + 2] for link in links}
+            alpha = {link: qddot[3 * index[link] + 2] for link in links}
+            origin_acc = {link: qddot[3 * index[link]:3 * index[link] + 2] for link in links}
         load = np.zeros(q.size)
         for link in links:
             data = mechanism.links[link]
             k = index[link]
             if data.mass or data.inertia:
                 arm = _rot(motion.angle[row, link], data.centre)
-                acc = (motion.acceleration[row, link]
-                       + motion.alpha[row, link] * np.array([-arm[1], arm[0]])
-                       - motion.omega[row, link] ** 2 * arm)
+                acc = (origin_acc[link] + alpha[link] * np.array([-arm[1], arm[0]])
+                       - omega[link] ** 2 * arm)
                 force = data.mass * (g - acc)
                 load[3 * k:3 * k + 2] += force
                 load[3 * k + 2] += arm[0] * force[1] - arm[1] * force[0]
-                load[3 * k + 2] -= data.inertia * motion.alpha[row, link]
+                load[3 * k + 2] -= data.inertia * alpha[link]
         for link, local, force in constant_loads:
             k = index[link]
             arm = _rot(motion.angle[row, link], local)

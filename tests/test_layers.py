@@ -117,7 +117,8 @@ def within(name: str, *packages: str) -> bool:
 CLI = ("dyade.cli",)
 REPORT = ("dyade.report",)
 BASE = ("dyade.files", "dyade.units", "dyade.errors", "dyade.arrays")
-ABOVE_BASE = ("dyade.linkage", "dyade.clearance", "dyade.vibration", "dyade.report", "dyade.cli")
+ABOVE_BASE = ("dyade.linkage", "dyade.clearance", "dyade.vibration", "dyade.machine",
+              "dyade.report", "dyade.cli")
 PLOTTING = ("matplotlib",)
 
 ENTRY_POINT = "dyade.__main__"
@@ -130,6 +131,8 @@ BASE_EXCEPTIONS = {
     # (dyade.linkage.dyads); it imports nothing that computes
     ("dyade.files.mechanism", "dyade.linkage.model"): "anywhere",
     ("dyade.files.mechanism", "dyade.linkage.dyads"): "anywhere",
+    # ... and the drive of its [drive] table (dyade.machine.motor: dataclasses only)
+    ("dyade.files.mechanism", "dyade.machine.motor"): "anywhere",
     # the coupling reader returns the Coupling model; it imports it in read_coupling only,
     # so that reading the file's keys (load_data) does not load the model's numpy
     ("dyade.files.coupling", "dyade.vibration.coupling"): "in a function",

@@ -19,7 +19,8 @@ SUFFIX = {"csv": ".csv", "json": ".json", "table": ".txt"}
 FLAGS = {"friction_tol": "--friction-tol", "friction_max_iter": "--friction-max-iter",
          "start": "--start", "stop": "--stop", "step": "--step",
          "sweep": "the sweep (--start, --stop, --step)", "max_memory": "--max-memory",
-         "dead_centre": "--dead-centre", "transmission_warning": "--transmission-warning"}
+         "dead_centre": "--dead-centre", "transmission_warning": "--transmission-warning",
+         "run_up": "--run-up"}
 """API parameter -> the flag it comes from"""
 
 set_option = click.option(
@@ -159,18 +160,28 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
 @click.option("--fail-on-lock", is_flag=True,
               help="Exit with status 1 when a slider self-locks (otherwise a locking slider is "
                    "a finding: reported, exit status 0).")
+@click.option("--run-up", is_flag=True,
+              help="With a [drive] table: the run-up from rest at the start angle, revolution "
+                   "after revolution until the speed repeats, instead of the periodic steady "
+                   "state; the rows are the whole run-up at the sweep's step (column t: time).")
+@click.option("--constant-speed", is_flag=True,
+              help="Ignore the [drive] table: the crank at its constant speed_rpm (to compare "
+                   "with the real speed).")
 def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
             start: float | None, stop: float | None, step: float | None,
             assignments: tuple[str, ...], save_as: str | None, allow_partial: bool,
             friction_tol: float | None, friction_max_iter: int | None,
             show_all: bool, patterns: str | None, units: str, dead_centre: float | None,
-            transmission_warning: float | None, max_memory: float, fail_on_lock: bool) -> None:
+            transmission_warning: float | None, max_memory: float, fail_on_lock: bool,
+            run_up: bool, constant_speed: bool) -> None:
     """Sweep the crank of MECHANISM_FILES: positions, velocities and accelerations of every
     link, joint and named point.
 
     With masses, loads or springs in the file: joint forces, driving torque and shaking
-    force; with friction coefficients: Coulomb friction and the self-locking test of
-    every slider with friction; with clearance data: the clearance peak check.
+    force, reduced inertia and load torque; with friction coefficients: Coulomb friction
+    and the self-locking test of every slider with friction; with clearance data: the
+    clearance peak check; with a [drive] table: the crank's real speed from the equation
+    of motion (steady state, or --run-up), and everything at that speed.
 
     Several files in one call (a batch) need -o DIR; a file that fails does not stop the
     others, and the failures are listed at the end (exit status 1).
@@ -183,11 +194,14 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
     from dyade.errors import DyadeError
 
     fmt = fmt or infer_format(output)
+    if run_up and constant_speed:
+        raise click.UsageError("--run-up and --constant-speed exclude each other.")
     chosen = tuple(p.strip() for p in patterns.split(",") if p.strip()) if patterns else ()
     job = Job(fmt, SweepOptions(start, stop, step), assignments, allow_partial, friction_tol,
               friction_max_iter, fail_on_lock, show_all, chosen, units, max_memory * 2 ** 20,
               None if dead_centre is None else math.radians(dead_centre),
-              None if transmission_warning is None else math.radians(transmission_warning))
+              None if transmission_warning is None else math.radians(transmission_warning),
+              run_up, constant_speed)
     if len(mechanism_files) == 1 and not (output and os.path.isdir(output)):
         job.run(mechanism_files[0], output, save_as)
         return
@@ -289,6 +303,8 @@ class Job(NamedTuple):
     """[rad]"""
     transmission_warning: float | None = None
     """[rad]"""
+    run_up: bool = False
+    constant_speed: bool = False
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
         output = None if output == "-" else output  # -o -: standard output
@@ -305,7 +321,8 @@ class Job(NamedTuple):
                                  friction_tol=self.friction_tol,
                                  friction_max_iter=self.friction_max_iter,
                                  max_memory=self.max_memory, dead_centre=self.dead_centre,
-                                 transmission_warning=self.transmission_warning)
+                                 transmission_warning=self.transmission_warning,
+                                 run_up=self.run_up, constant_speed=self.constant_speed)
         except AssemblyError as err:
             if not err.partial:
                 raise
@@ -343,13 +360,18 @@ class Job(NamedTuple):
             from dyade.report import tables
 
             unit = mechanism.units[0] if self.units == "file" else "m"
+            summary = result.summary(cols) if result.drive is not None or not (
+                self.columns or self.show_all) else None
+            motion = (tables.motion_table(result, summary) if result.drive is not None
+                      else None)
             if self.columns:
                 parts = [tables.sweep_summary(result, cols, unit)]
             elif self.show_all:
                 parts = [tables.sweep_summary(result, cols, unit),
-                         tables.force_summary(result, cols), tables.clearance_summary(result)]
+                         tables.force_summary(result, cols), motion,
+                         tables.clearance_summary(result)]
             else:
-                parts = [tables.key_results(result, cols, result.summary(cols), unit)]
+                parts = [tables.key_results(result, cols, summary, unit), motion]
             show(parts, output)
         if result.notes:  # rich is only loaded when there is something to say
             err = console(stderr=True)

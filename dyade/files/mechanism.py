@@ -36,10 +36,11 @@ from dyade.linkage.model import (
     Vec,
     sweep_problem,
 )
+from dyade.machine.motor import Asynchronous, ConstantTorque, Drive, Motor, TorqueSpeedTable
 from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS, rpm_to_rad_per_s
 
 TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
-            "gravity", "load", "spring", "friction"}
+            "gravity", "load", "spring", "friction", "drive"}
 UNIT_KEYS = {"length", "angle"}
 SWEEP_KEYS = {"start", "stop", "step", "dead_centre", "transmission_warning"}
 FRAME_KEYS = {"points"}
@@ -55,6 +56,12 @@ MIDDLE_P_KEYS = {"guide", "offset", "angle", "point", "slider_length", "slider_h
                  "friction"}
 DYAD_KEYS_COMMON = {"kind", "links", "A", "B", "C", "variant", "name"}
 GRAVITY_KEYS = {"x", "y"}
+MOTOR_KEYS = {"constant": {"torque"},
+              "asynchronous": {"rated_torque", "rated_speed_rpm", "synchronous_speed_rpm"},
+              "table": {"table"}}
+"""[drive] motor kind -> the keys of its characteristic"""
+DRIVE_KEYS = {"motor", "flywheel_inertia", "steps", "tol", "max_revolutions"}.union(
+    *MOTOR_KEYS.values())
 STANDARD_GRAVITY = 9.80665  # [m/s²]
 NUMBERING = {"dyad": (2, "dyads are numbered as in DYADE: the crank is dyad 1, the first "
                          "[[dyad]] table dyad 2")}
@@ -98,13 +105,19 @@ def load_data(path: str | os.PathLike, overrides: dict[str, Any] | None = None,
 
 
 def edited(text: str, overrides: dict[str, Any], label: str = "mechanism",
-           what: str = "override") -> str:
-    """The file's text with ``overrides`` applied and everything else kept: comments,
-    key order, inline tables, short arrays on one line (``--save-as``; tomlkit edits the
-    parsed document in place)."""
+           what: str = "override", removals: tuple[str, ...] | list[str] = ()) -> str:
+    """The file's text with ``overrides`` applied (and the dotted keys of ``removals``
+    removed), everything else kept: comments, key order, inline tables, short arrays on
+    one line (``--save-as``; tomlkit edits the parsed document in place)."""
     import tomlkit
 
     document = tomlkit.parse(text)
+    for key in removals:
+        *path, last = key.split(".")
+        table = document
+        for part in path:
+            table = table[part]
+        del table[last]
     for key, value in overrides.items():
         set_dotted(document, key, value, label, what, NUMBERING)
     return tomlkit.dumps(document)
@@ -204,9 +217,18 @@ class Reader(TableReader):
                       for k, t in enumerate(_list(data.get("load", []), "load", self), 1))
         springs = tuple(self.spring(t, f"spring.{k}", links)
                         for k, t in enumerate(_list(data.get("spring", []), "spring", self), 1))
+        drive = self.drive(data["drive"]) if "drive" in data else None
+        if drive is not None and drive.flywheel_inertia:
+            crank_link = links[CRANK]  # the flywheel turns with the crank, about its pivot
+            links[CRANK] = Link(CRANK, crank_link.points, crank_link.mass, crank_link.centre,
+                                crank_link.inertia + drive.flywheel_inertia)
+        if drive is not None and not any(link.has_mass for link in links.values()):
+            raise self.fail("drive", "needs the machine's inertia for its equation of motion: "
+                                     "give the links masses (`links.N.mass`) or a flywheel "
+                                     "(`drive.flywheel_inertia`).")
         return Mechanism(name, self.source, crank, dyads, links, sweep, gravity, loads, springs,
                          dead_centre, friction_tol, friction_max_iter, warning,
-                         (self.length_unit, self.angle_unit))
+                         (self.length_unit, self.angle_unit), drive)
 
     def units(self, table: Any) -> None:
         self.keys(table, "units", UNIT_KEYS)
@@ -469,6 +491,69 @@ class Reader(TableReader):
         self.keys(value, "gravity", GRAVITY_KEYS)
         return (self.number(value.get("x", 0.0), "gravity.x", "m/s²"),
                 self.number(value.get("y", 0.0), "gravity.y", "m/s²"))
+
+    def drive(self, table: Any) -> Drive:
+        """The [drive] table: motor characteristic, flywheel and integration settings."""
+        self.keys(table, "drive", DRIVE_KEYS)
+        kind = self.required(table, "motor", "drive")
+        if not isinstance(kind, str) or kind not in MOTOR_KEYS:
+            raise self.fail("drive.motor", f"must be one of {', '.join(map(_show, MOTOR_KEYS))}"
+                                           f", got {_show(kind)}.", kind)
+        for key in table:
+            if key in DRIVE_KEYS - {"motor", "flywheel_inertia", "steps", "tol",
+                                    "max_revolutions"} - MOTOR_KEYS[kind]:
+                raise self.fail(f"drive.{key}", f"does not belong to a {_show(kind)} motor "
+                                                f"(its keys: {', '.join(sorted(MOTOR_KEYS[kind]))}"
+                                                f").")
+        motor: Motor
+        if kind == "constant":
+            torque = (self.number(table["torque"], "drive.torque", "N·m", positive=True)
+                      if "torque" in table else None)
+            motor = ConstantTorque(torque)
+        elif kind == "asynchronous":
+            rated = self.number(self.required(table, "rated_torque", "drive"),
+                                "drive.rated_torque", "N·m", positive=True)
+            speed = self.number(self.required(table, "rated_speed_rpm", "drive"),
+                                "drive.rated_speed_rpm", "rpm", positive=True)
+            synchronous = self.number(self.required(table, "synchronous_speed_rpm", "drive"),
+                                      "drive.synchronous_speed_rpm", "rpm", positive=True)
+            if synchronous <= speed:
+                raise self.fail("drive.synchronous_speed_rpm", f"must be above the rated speed "
+                                                               f"({_fmt(speed)} rpm: an "
+                                                               f"asynchronous motor slips), got "
+                                                               f"{_fmt(synchronous)}.",
+                                synchronous, "rpm")
+            motor = Asynchronous(rated, rpm_to_rad_per_s(speed), rpm_to_rad_per_s(synchronous))
+        else:
+            rows = self.required(table, "table", "drive")
+            if not isinstance(rows, list) or len(rows) < 2:
+                raise self.fail("drive.table", f"must list at least two rows [speed [rpm], "
+                                               f"torque [N·m]], got {_show(rows)}.")
+            parsed = []
+            for r, row in enumerate(rows, 1):
+                if (not isinstance(row, list) or len(row) != 2
+                        or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in row)
+                        or not all(math.isfinite(v) for v in row)):
+                    raise self.fail(f"drive.table.{r}", f"must be [speed [rpm], torque [N·m]], "
+                                                        f"got {_show(row)}.")
+                parsed.append([float(v) for v in row])
+            arr = np.array(parsed)
+            if arr[0, 0] < 0 or np.any(np.diff(arr[:, 0]) <= 0):
+                raise self.fail("drive.table", "speeds must rise strictly from 0 rpm or more.")
+            motor = TorqueSpeedTable(rpm_to_rad_per_s(arr[:, 0]), arr[:, 1])
+        flywheel = self.number(table.get("flywheel_inertia", 0.0), "drive.flywheel_inertia",
+                               "kg·m²", non_negative=True)
+        steps = None
+        if "steps" in table:
+            steps = self.integer(table["steps"], "drive.steps")
+            if steps < 36:
+                raise self.fail("drive.steps", f"must be at least 36 steps per revolution, got "
+                                               f"{steps}.", steps)
+        tol = self.number(table.get("tol", 1e-10), "drive.tol", "-", positive=True)
+        revolutions = self.integer(table.get("max_revolutions", 500), "drive.max_revolutions")
+        if revolutions < 2:
+            raise self.fail("drive.max_revolutions", f"must be at least 2, got {revolutions}.")
+        return Drive(motor, flywheel, steps, tol, revolutions)
 
     def link_ref(self, value: Any, key: str, links: dict[int, Link]) -> int:
         link = self.integer(value, key)

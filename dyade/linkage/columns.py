@@ -11,14 +11,17 @@ import numpy as np
 from dyade.linkage.sweep import Result
 from dyade.linkage.motion import travel
 from dyade.linkage.kinematics import joint_point
-from dyade.linkage.model import FloatArray, Prismatic, Revolute
+from dyade.linkage.reduced import reduced
+from dyade.linkage.model import CRANK, FloatArray, Prismatic, Revolute
 
 Columns = dict[str, FloatArray]
 
-UNITS = {"kinematics": "1/0", "angle_deg": "°", "phi": "°", "omega": "rad/s", "alpha": "rad/s²", "x": "m", "y": "m",
+UNITS = {"kinematics": "1/0", "angle_deg": "°", "phi": "°", "omega": "rad/s",
+         "alpha": "rad/s²", "x": "m", "y": "m",
          "vx": "m/s", "vy": "m/s", "ax": "m/s²", "ay": "m/s²", "s": "m", "v": "m/s",
          "a": "m/s²", "mu": "°", "Fx": "N", "Fy": "N", "F": "N", "FN": "N", "M": "N·m",
-         "P": "W", "forces": "1/0", "MR": "N·m", "FR": "N", "lock": "N", "friction": "-"}
+         "P": "W", "forces": "1/0", "MR": "N·m", "FR": "N", "lock": "N", "friction": "-",
+         "J": "kg·m²", "dJ": "kg·m²/rad", "t": "s"}
 
 
 def _tag(name: tuple[int, int]) -> str:
@@ -95,7 +98,7 @@ def force_columns(result: Result) -> Columns:
             out[f"FN_{tag}"] = forces.normal[joint.name]
             out[f"M_{tag}"] = forces.moment[joint.name]
     out["M_drive"] = forces.drive_torque
-    out["P_drive"] = forces.drive_torque * mech.crank.speed
+    out["P_drive"] = forces.drive_torque * result.kinematics.motion.omega[:, CRANK]
     out["Fx_shake"], out["Fy_shake"], out["M_shake"] = (forces.shaking[:, 0],
                                                         forces.shaking[:, 1],
                                                         forces.shaking[:, 2])
@@ -113,6 +116,14 @@ def force_columns(result: Result) -> Columns:
     if rubbing is not None:
         out["friction_iterations"] = rubbing.iterations
     out["forces_valid"] = (forces.valid & result.valid).astype(np.float64)
+    machine = reduced(mech, result.kinematics)
+    given = result.valid  # from the kinematics: not given where it is not
+    out["J_red"], out["dJ_red"], out["M_load"] = (np.where(given, machine.inertia, np.nan),
+                                                  np.where(given, machine.slope, np.nan),
+                                                  np.where(given, machine.load, np.nan))
+    if result.drive is not None:
+        out["t"], out["M_motor"] = (result.drive.time,
+                                    np.where(given, result.drive.motor_torque, np.nan))
     return {key: value[result.rows] for key, value in out.items()}
 
 

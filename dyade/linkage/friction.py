@@ -78,7 +78,8 @@ class _Rub:
         self.taus: dict[tuple[int, int], tuple[int, FloatArray, FloatArray]] = {}
         """joint -> (link it acts on, τ, relative rate), chain orientation"""
         self.signs: dict[tuple[int, int], FloatArray] = {}
-        omega = abs(mechanism.crank.speed)
+        self.crank_rate = kin.motion.omega[:, CRANK]
+        omega = float(np.nanmax(np.abs(self.crank_rate), initial=0.0)) or abs(mechanism.crank.speed)
         self.typical = {"R": omega, "P": omega * mechanism.crank.length}
 
     def _sign(self, joint: Joint, rate: FloatArray) -> FloatArray:
@@ -143,7 +144,7 @@ class _Rub:
         joint = self.mechanism.crank.joint
         if not has_friction(joint):
             return 0.0
-        rate = np.full(q_crank.shape[1], self.mechanism.crank.speed)
+        rate = self.crank_rate
         tau = -self._law(joint, rate) * np.sqrt(q_crank[0] ** 2 + q_crank[1] ** 2)
         self.iterations = np.maximum(self.iterations, 1.0)
         self.taus[joint.name] = (CRANK, tau, rate)

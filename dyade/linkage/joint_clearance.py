@@ -9,6 +9,7 @@ slope F0/t0 = |dF/dφ21|·Ω, the peak force and its amplification over the rigi
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -150,6 +151,9 @@ def check_mechanism(mechanism, result, joints, override=None, mass_override=None
     by_name = {j.name: j for j in mechanism.joints}
     phi = result.crank_angle[result.rows]
     full = (phi[-1] - phi[0]) >= 2 * np.pi - 1.5 * mechanism.sweep.step
+    speed = mechanism.crank.speed  # with a drive: its mean speed 2π/T
+    if getattr(result, "drive", None) is not None:
+        speed = math.copysign(result.drive.figures["speed_mean"], speed)
     checks = []
     for name in joints:
         joint = by_name.get(name)
@@ -172,8 +176,8 @@ def check_mechanism(mechanism, result, joints, override=None, mass_override=None
             continue
         force = forces.revolute[name][result.rows]
         force = np.where(forces.valid[result.rows][:, None], force, np.nan)
-        checks.append(check_joint(name, phi, force, mechanism.crank.speed, data, mass, source,
-                                  bool(full), max_wander))
+        checks.append(check_joint(name, phi, force, speed, data, mass, source, bool(full),
+                                  max_wander))
     return checks
 
 

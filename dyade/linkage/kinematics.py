@@ -81,17 +81,20 @@ class Kinematics:
 
 
 def crank_motion(mechanism: Mechanism, crank_angle: FloatArray,
-                 placed: tuple[int, ...] = ()) -> Motion:
-    """Motion with the frame at rest and the crank turning at constant speed; the
-    ``placed`` links are left for the caller to fill (``Motion.at_rest``)."""
+                 placed: tuple[int, ...] = (), crank_speed: FloatArray | float | None = None,
+                 crank_acceleration: FloatArray | float | None = None) -> Motion:
+    """Motion with the frame at rest and the crank turning about its pivot, at the
+    mechanism's constant speed unless ``crank_speed`` [rad/s] and ``crank_acceleration``
+    [rad/s²] (scalars or one value per position) are given; the ``placed`` links are left
+    for the caller to fill (``Motion.at_rest``)."""
     n = crank_angle.shape[0]
     motion = Motion.at_rest(n, mechanism.max_link + 1, placed)
     motion.origin[:, CRANK] = mechanism.crank.pivot
     motion.set_angle(CRANK, crank_angle)
     motion.velocity[:, CRANK] = 0.0
-    motion.omega[:, CRANK] = mechanism.crank.speed
-    motion.acceleration[:, CRANK] = 0.0
-    motion.alpha[:, CRANK] = 0.0
+    motion.omega[:, CRANK] = mechanism.crank.speed if crank_speed is None else crank_speed
+    motion.acceleration[:, CRANK] = 0.0  # the pivot (the crank frame's origin) stays put
+    motion.alpha[:, CRANK] = 0.0 if crank_acceleration is None else crank_acceleration
     return motion
 
 
@@ -157,22 +160,36 @@ def solve_rows(inverse: FloatArray, rhs, rows=(0, 1, 2)) -> list[FloatArray]:
     return out
 
 
-def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None) -> Kinematics:
-    """Positions, velocities and accelerations of every link over the crank sweep."""
+def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
+          crank_speed: FloatArray | float | None = None,
+          crank_acceleration: FloatArray | float | None = None) -> Kinematics:
+    """Positions, velocities and accelerations of every link over the crank sweep.
+
+    The crank turns at the mechanism's constant speed Ω unless ``crank_speed`` φ̇21
+    [rad/s] and ``crank_acceleration`` φ̈21 [rad/s²] are given (scalars, or one value
+    per crank angle): the crank's twist is then φ̇21·S₁₂ and its rate of change
+    φ̈21·S₁₂ (S₁₂ is fixed in the frame), and every dyad takes them as its known motion.
+    """
     if crank_angle is None:
         crank_angle = mechanism.sweep.angles()
     crank_angle = np.asarray(crank_angle, dtype=np.float64)
     n = crank_angle.shape[0]
-    motion = crank_motion(mechanism, crank_angle, tuple(mechanism.moving_links))
+    motion = crank_motion(mechanism, crank_angle, tuple(mechanism.moving_links), crank_speed,
+                          crank_acceleration)
     count = len(mechanism.dyads)
     closes = np.ones((n, count), dtype=bool)
     transmission = np.full((n, count), np.nan)
     singular = np.zeros((n, count), dtype=bool)
     conditioning = np.full((n, count), np.nan)
     # twists of the moving links and their time derivatives; the frame's are zero
-    twists = {CRANK: np.repeat(np.multiply(mechanism.crank.speed,
-                                           crank_screw(mechanism))[:, None], n, axis=1)}
+    unit = np.array(crank_screw(mechanism))[:, None]
+    if crank_speed is None:
+        twists = {CRANK: np.repeat(mechanism.crank.speed * unit, n, axis=1)}
+    else:
+        twists = {CRANK: unit * np.broadcast_to(crank_speed, (n,))}
     changes = {CRANK: None}  # constant speed about a fixed pivot: zero
+    if crank_acceleration is not None and np.any(crank_acceleration):
+        changes[CRANK] = unit * np.broadcast_to(crank_acceleration, (n,))
     groups = []
     upstream_ok = np.ones(n, dtype=bool)
     for col, dyad in enumerate(mechanism.dyads):

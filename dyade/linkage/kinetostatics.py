@@ -87,6 +87,13 @@ def applied_loads(mechanism: Mechanism, kin: Kinematics) -> FloatArray:
         moment -= (motion.origin[:, number, 1] + ry) * fx
         if link.inertia:
             moment -= link.inertia * alpha
+    add_loads_and_springs(q, mechanism, kin)
+    return q
+
+
+def add_loads_and_springs(q: FloatArray, mechanism: Mechanism, kin: Kinematics) -> None:
+    """Add the applied loads and the springs' forces to the wrenches ``q`` (links, 3, n)."""
+    motion = kin.motion
     for load in mechanism.loads:
         fx, fy, moment = load_values(load, kin.crank_angle)
         if load.local:
@@ -98,7 +105,6 @@ def applied_loads(mechanism: Mechanism, kin: Kinematics) -> FloatArray:
         for link, point, force in spring_forces(spring, motion):
             if link != FRAME:
                 add_force(q[link], point, force)
-    return q
 
 
 def load_values(load, crank_angle: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:

@@ -21,6 +21,7 @@ from dyade.arrays import FloatArray, Vec
 
 if TYPE_CHECKING:
     from dyade.linkage.dyads import DyadKind
+    from dyade.machine.motor import Drive
 
 FRAME = 1  # link number of the frame
 CRANK = 2  # link number of the crank
@@ -199,7 +200,8 @@ class Dyad:
 
 @dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Crank:
-    """Link 2, turning about a frame point at constant speed."""
+    """Link 2, turning about a frame point at constant speed (or, with a drive, at the
+    speed the equation of motion gives; ``speed`` is then its nominal speed)."""
 
     pivot: Vec
     """Frame point of joint (1,2) [m]."""
@@ -275,6 +277,9 @@ class Mechanism:
     reported with a warning [rad]; 40° is the designers' rule since H. Alt (1932)."""
     units: tuple[str, str] = ("m", "deg")
     """The file's length and angle units (for showing results as the file has them)."""
+    drive: Drive | None = None
+    """The motor and flywheel of a ``[drive]`` table (the flywheel is already counted in
+    link 2's inertia); None: the crank turns at its constant speed."""
 
     @property
     def joints(self) -> list[Joint]:

@@ -136,6 +136,8 @@ def summary(result: Result, cols: Columns) -> dict[str, Any]:
                                             "locking_angles_deg": np.rad2deg(
                                                 result.crank_angle[lock.locks & result.rows])}
                                for (a, b), lock in result.locking.items()}
+    if result.drive is not None:
+        out["motion"] = motion_summary(result)
     if result.clearance:
         out["clearance"] = [{"joint": f"{c.joint[0]}_{c.joint[1]}", "applies": c.applies,
                              "reason": c.reason,
@@ -145,4 +147,32 @@ def summary(result: Result, cols: Columns) -> dict[str, Any]:
                                             "amplification": r.amplification}
                                            for r in c.reversals]}
                             for c in result.clearance]
+    return out
+
+
+def motion_summary(result: Result) -> dict[str, Any]:
+    """The crank's speed from the equation of motion (over the last revolution of a
+    run-up), SI units; angles in degrees."""
+    motion = result.drive
+    figures = motion.figures
+    drive = result.mechanism.drive
+    out: dict[str, Any] = {
+        "state": motion.state, "motor": drive.motor.describe(),
+        "flywheel_inertia": drive.flywheel_inertia,
+        "speed_mean": figures["speed_mean"], "speed_mean_rpm": figures["speed_mean"] * 30 / np.pi,
+        "speed_min": figures["speed_min"], "speed_min_at_deg": np.rad2deg(figures["angle_min"]),
+        "speed_max": figures["speed_max"], "speed_max_at_deg": np.rad2deg(figures["angle_max"]),
+        "fluctuation": figures["fluctuation"], "period": figures["period"],
+        "motor_torque_mean": figures["motor_torque_mean"],
+        "inertia_mean": figures["inertia_mean"],
+        "steps_per_revolution": figures["steps_per_revolution"],
+        "friction_passes": figures["passes"]}
+    if "motor_torque" in figures:
+        out["motor_torque"] = figures["motor_torque"]
+    if motion.state == "run-up":
+        for key in ("revolutions", "settled", "duration", "work_motor", "work_load",
+                    "work_friction", "kinetic_energy"):
+            out[key] = figures[key]
+    else:
+        out["shooting_iterations"] = figures["iterations"]
     return out

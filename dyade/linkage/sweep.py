@@ -19,7 +19,7 @@ from dyade.linkage import kinematics, kinetostatics
 from dyade.linkage.model import FloatArray, Mechanism, Revolute, Sweep, sweep_problem
 
 if TYPE_CHECKING:  # imported where used: a kinematics-only run never loads them
-    from dyade.linkage import friction
+    from dyade.linkage import drive, friction
 
 
 @dataclass(frozen=True, slots=True)
@@ -36,6 +36,9 @@ class Plan:
     """sliders with μ > 0"""
     clearance: tuple[tuple[int, int], ...] = ()
     """revolute joints with clearance data in the file (peak-force check)"""
+    equation_of_motion: str = ""
+    """the motor of a [drive] table ('' without one): the crank's speed comes from the
+    equation of motion"""
 
     def effects(self) -> list[str]:
         """One line per simulated effect."""
@@ -52,6 +55,11 @@ class Plan:
         if self.clearance:
             out.append("clearance peak check (Dresig–Thümmel) in joints "
                        + ", ".join(f"({a},{b})" for a, b in self.clearance))
+        if self.equation_of_motion:
+            out.append(f"equation of motion J(φ)·φ̈ + ½·J′(φ)·φ̇² = M_M(φ̇) + M_L(φ) − M_F with "
+                       f"the motor: {self.equation_of_motion}; its periodic steady state "
+                       f"(shooting over one revolution), or the run-up from rest when asked; "
+                       f"then kinematics and forces at the real crank speed and acceleration")
         return out
 
 
@@ -67,8 +75,16 @@ def plan(mechanism: Mechanism) -> Plan:
     locking = tuple(j.name for j in mechanism.friction_sliders) if dynamics else ()
     gaps = tuple(j.name for j in mechanism.joints
                  if getattr(j, "clearance", None) is not None) if dynamics else ()
+    motion = ""
+    if mechanism.drive is not None:
+        motion = mechanism.drive.motor.describe()
+        if mechanism.drive.flywheel_inertia:
+            motion += f", flywheel {mechanism.drive.flywheel_inertia:g} kg·m²"
     return Plan(kinematics=True, kinetostatics=dynamics, friction=rubbing, self_locking=locking,
-                clearance=gaps)
+                clearance=gaps, equation_of_motion=motion)
+
+
+_infer_plan = plan  # ``analyse`` has a parameter named plan
 
 
 class Note(NamedTuple):
@@ -118,6 +134,8 @@ class Result:
     plausible); forces additionally need ``forces.valid``"""
     cached: dict | None = None
     """the columns, computed once by ``run``"""
+    drive: drive.CrankMotion | None = None
+    """the crank's motion from the equation of motion; None at constant speed"""
 
     @property
     def crank_angle(self) -> FloatArray:
@@ -246,7 +264,10 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
             allow_partial: bool = False, friction_tol: float | None = None,
             friction_max_iter: int | None = None, plan: Plan | None = None,
             max_memory: float | None = None, dead_centre: float | None = None,
-            transmission_warning: float | None = None) -> Result:
+            transmission_warning: float | None = None,
+            crank_speed: FloatArray | float | None = None,
+            crank_acceleration: FloatArray | float | None = None,
+            constant_speed: bool = False, run_up: bool = False) -> Result:
     """Sweep the crank: kinematics, and what the mechanism calls for (``plan``).
 
     Parameters
@@ -274,6 +295,15 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
         The validity policy's hard and soft bands [rad] (defaults: the mechanism's,
         2° and 40°): within ``dead_centre`` of a dead centre nothing is given; below
         ``transmission_warning`` results come with a note.
+    crank_speed, crank_acceleration : float or array_like, optional
+        The crank's speed φ̇21 [rad/s] and angular acceleration φ̈21 [rad/s²], one value
+        or one per position, instead of the constant speed of the file: the kinematics
+        and forces of a crank that speeds up or slows down.
+    constant_speed : bool
+        Ignore the ``[drive]`` table: the crank at its constant ``speed_rpm``.
+    run_up : bool
+        With a ``[drive]`` table: the run-up from rest at the start angle instead of the
+        periodic steady state; the positions are the whole run-up at the sweep's step.
 
     Returns
     -------
@@ -291,6 +321,13 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
     >>> cols = result.columns()
     >>> cols["angle_deg"].size, round(float(cols["M_drive"].max()), 3)
     (361, 1.466)
+
+    One position of a crank that speeds up (φ̇21 = 20 rad/s, φ̈21 = 150 rad/s²):
+
+    >>> torque = dyade.analyse(result.mechanism, crank_angle=[0.5], crank_speed=20.0,
+    ...                        crank_acceleration=150.0).columns()["M_drive"]
+    >>> round(float(torque[0]), 4)
+    0.0378
     """
     mechanism = with_sweep(mechanism, start, stop, step)
     if friction_tol is not None:
@@ -314,14 +351,39 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
         mechanism = replace(mechanism, dead_centre_angle=hard, transmission_warning=soft)
     positions = mechanism.sweep.count if crank_angle is None else np.size(crank_angle)
     check_size(mechanism, positions, max_memory)
-    return run(mechanism, plan, allow_partial, crank_angle)
+    the_plan = plan if plan is not None else _infer_plan(mechanism)
+    if constant_speed and the_plan.equation_of_motion:
+        the_plan = replace(the_plan, equation_of_motion="")
+    if run_up and not the_plan.equation_of_motion:
+        raise InputError.parameter("run_up", "needs a [drive] table in the mechanism (a motor "
+                                             "to run it up with).", value=run_up)
+    if the_plan.equation_of_motion and (crank_speed is not None
+                                        or crank_acceleration is not None):
+        raise InputError.parameter(("crank_speed", "crank_acceleration"),
+                                   "cannot be given with a [drive] table: its equation of "
+                                   "motion sets the crank's speed (analyse at constant speed "
+                                   "to give them).")
+    for name, value in (("crank_speed", crank_speed), ("crank_acceleration", crank_acceleration)):
+        if value is not None and not np.all(np.isfinite(value)):
+            raise InputError.parameter(name, "must be finite.", value=value)
+    return run(mechanism, the_plan, allow_partial, crank_angle, crank_speed, crank_acceleration,
+               run_up)
 
 
 def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool = False,
-        crank_angle: FloatArray | None = None) -> Result:
+        crank_angle: FloatArray | None = None, crank_speed: FloatArray | float | None = None,
+        crank_acceleration: FloatArray | float | None = None, run_up: bool = False) -> Result:
     """Run the planned stages over the crank sweep (``analyse`` without the overrides)."""
     the_plan = the_plan or plan(mechanism)
-    kin = kinematics.sweep(mechanism, crank_angle)
+    motion = None
+    if the_plan.equation_of_motion:
+        from dyade.linkage import drive
+
+        motion = drive.solve(mechanism, crank_angle, run_up=run_up,
+                             friction=bool(the_plan.friction))
+        crank_angle, crank_speed = motion.crank_angle, motion.speed
+        crank_acceleration = motion.acceleration
+    kin = kinematics.sweep(mechanism, crank_angle, crank_speed, crank_acceleration)
     notes: list[Note] = []
     rows = _check_assembly(mechanism, kin, allow_partial, notes)
     well = _bands(mechanism, kin, rows, notes)
@@ -344,7 +406,8 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
                                       f"angles {format_ranges(spans, digits=digits)}."))
     elif the_plan.kinetostatics:
         forces = kinetostatics.solve(mechanism, kin)
-    result = Result(mechanism, the_plan, kin, forces, rows, notes, rubbing, locking, valid=well)
+    result = Result(mechanism, the_plan, kin, forces, rows, notes, rubbing, locking, valid=well,
+                    drive=motion)
     result.cached = _plausible(result, digits)
     if forces is not None:
         invalid = result.valid & ~forces.valid
@@ -355,7 +418,13 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
                               f"{format_ranges(spans, digits=digits)}, where the kinematics is: "
                               f"the rigid model's forces are not valid there (forces_valid = 0, "
                               f"force fields empty)."))
-    if the_plan.clearance:
+    if motion is not None:
+        _motion_notes(motion, notes)
+    if the_plan.clearance and run_up:
+        notes.append(Note("clearance_not_applicable", "", (),
+                          "the clearance check is not made on a run-up: it needs the periodic "
+                          "cycle."))
+    elif the_plan.clearance:
         from dyade.linkage import joint_clearance
 
         result.clearance = joint_clearance.check_mechanism(mechanism, result, the_plan.clearance)
@@ -494,3 +563,16 @@ def _friction_notes(mechanism: Mechanism, kin: kinematics.Kinematics,
         notes.append(Note("never_moves", f"joint ({name[0]},{name[1]})", (),
                           f"joint ({name[0]},{name[1]}) never moves relative to its partner over "
                           f"the sweep: it has no friction loss."))
+
+
+def _motion_notes(motion: "drive.CrankMotion", notes: list[Note]) -> None:
+    figures = motion.figures
+    if motion.state == "run-up" and not figures["settled"]:
+        notes.append(Note("run_up_not_settled", "", (),
+                          f"the run-up did not become periodic within {figures['revolutions']} "
+                          f"revolutions (raise [drive] max_revolutions)."))
+    if not figures["friction_converged"]:
+        notes.append(Note("friction_not_converged", "", (),
+                          f"the friction torque of the equation of motion did not settle in "
+                          f"{figures['passes']} passes (largest change "
+                          f"{figures['friction_change']:.3g} N·m)."))

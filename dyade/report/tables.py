@@ -231,3 +231,39 @@ def clearance_summary(result: Result) -> Table | None:
                           f"{rev.peak.force:.5g}", f"{rev.rigid_force:.5g}",
                           f"{rev.amplification:.3g}")
     return table
+
+
+def motion_table(result: Result, summary: dict) -> Table | None:
+    """The crank's speed from the equation of motion: mean, extremes, fluctuation; for a
+    run-up its duration and work balance."""
+    motion = summary.get("motion")
+    if motion is None:
+        return None
+    rpm = 30.0 / np.pi
+    state = "steady state" if motion["state"] == "steady" else "run-up from rest"
+    scope = "; speeds over the last revolution" if motion["state"] != "steady" else ""
+    title = f"Crank speed from the equation of motion ({state}{scope})\nmotor: {motion['motor']}"
+    table = Table(title=title, title_justify="left",
+                  min_width=max(len(line) for line in title.splitlines()))
+    for head, justify in (("quantity", "left"), ("unit", "left"), ("value", "right"),
+                          ("at φ21 [°]", "right")):
+        table.add_column(head, justify=justify)
+    table.add_row("flywheel J_F", "kg·m²", f"{motion['flywheel_inertia']:.6g}", "")
+    table.add_row("mean reduced inertia", "kg·m²", f"{motion['inertia_mean']:.6g}", "")
+    table.add_row("mean speed 2π/T", "rpm", f"{motion['speed_mean'] * rpm:.6g}", "")
+    table.add_row("lowest speed", "rpm", f"{motion['speed_min'] * rpm:.6g}",
+                  f"{motion['speed_min_at_deg']:.1f}")
+    table.add_row("highest speed", "rpm", f"{motion['speed_max'] * rpm:.6g}",
+                  f"{motion['speed_max_at_deg']:.1f}")
+    table.add_row("speed fluctuation δ", "%", f"{100 * motion['fluctuation']:.4g}", "")
+    table.add_row("period T", "s", f"{motion['period']:.6g}", "")
+    table.add_row("mean motor torque", "N·m", f"{motion['motor_torque_mean']:.6g}", "")
+    if motion["state"] != "steady":
+        table.add_row("revolutions to repeat" if motion["settled"] else
+                      "revolutions (not yet periodic)", "-", f"{motion['revolutions']}", "")
+        table.add_row("run-up time", "s", f"{motion['duration']:.6g}", "")
+        table.add_row("motor work", "J", f"{motion['work_motor']:.6g}", "")
+        table.add_row("= kinetic energy", "J", f"{motion['kinetic_energy']:.6g}", "")
+        table.add_row("+ work on the loads", "J", f"{motion['work_load']:.6g}", "")
+        table.add_row("+ friction work", "J", f"{motion['work_friction']:.6g}", "")
+    return table

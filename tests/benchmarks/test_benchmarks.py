@@ -96,6 +96,45 @@ def test_coupling_100000_eta(benchmark):
     benchmark(coupling.response, model, eta)
 
 
+ASYNCHRONOUS = {"drive": {"motor": "asynchronous", "rated_torque": 1.0, "rated_speed_rpm": 298,
+                          "synchronous_speed_rpm": 310, "flywheel_inertia": 0.34}}
+FRICTION = {"friction.coefficient": 0.1, "friction.pin_radius": 5,
+            "friction.slider_length": 40, "friction.slider_height": 20}
+
+
+@pytest.mark.parametrize("rubbing", [False, True], ids=["frictionless", "friction"])
+@pytest.mark.parametrize("speed", ["constant", "motor"])
+def test_dyade16_drive(benchmark, speed, rubbing):
+    """The equation of motion (720 steps, shooting; friction by passes) and the analysis
+    at the real speed, against the constant-speed analysis of the same file (361
+    positions) as the yardstick."""
+    overrides = ASYNCHRONOUS | (FRICTION if rubbing else {})
+    mechanism = toml_input.read_mechanism(shipped("dyade-16.toml"), overrides)
+    result = benchmark(analysis.analyse, mechanism, constant_speed=speed == "constant")
+    assert (result.drive is None) == (speed == "constant")
+
+
+def test_dyade16_run_up(benchmark):
+    mechanism = toml_input.read_mechanism(shipped("dyade-16.toml"), ASYNCHRONOUS)
+    result = benchmark.pedantic(analysis.analyse, (mechanism,), {"run_up": True}, rounds=3)
+    assert result.drive.figures["settled"]
+
+
+def test_dyade16_flywheel(benchmark):
+    import dyade
+
+    mechanism = toml_input.read_mechanism(shipped("dyade-16.toml"))
+    benchmark(lambda: dyade.size_flywheel(dyade.mechanism_torque_curve(mechanism), 0.02))
+
+
+@pytest.mark.parametrize("name", ["fourbar.toml", "dyade-16.toml"])
+def test_balance(benchmark, name):
+    import dyade
+
+    mechanism = toml_input.read_mechanism(shipped(name))
+    benchmark(dyade.balance, mechanism)
+
+
 @pytest.mark.parametrize("command", [
     [sys.executable, "-c", "import numpy"],
     [DYADE, "analyse", "mechanisms/fourbar.toml", "--format", "csv"],
