@@ -292,10 +292,17 @@ def test_undamped_resonance_is_a_gap_not_a_spike():
         assert np.nanmax(y) <= top.get_ylim()[1]
         kept = np.isfinite(y)
         assert same(y[kept], values[kept])                       # the rest is the data
+    # η_res = sqrt(1/2) falls between grid points: α jumps 0° -> 180° between two finite
+    # values there, and the line must break instead of drawing a vertical stroke
+    model = dyade.Coupling(1.0, 1.0, 1.0, 0.0, 0.0)
+    _, bottom = coupling.figure(model, dyade.coupling_response(model, eta)).axes
     for name in ("alpha", "beta", "gamma", "delta"):
         y = line(bottom, name).get_ydata()
         steps = np.abs(np.diff(y))
         assert np.all(steps[np.isfinite(steps)] <= coupling.JUMP)  # jumps are breaks
+    x, y = line(bottom, "alpha").get_xdata(), line(bottom, "alpha").get_ydata()
+    gap = np.flatnonzero(np.isnan(y))
+    assert gap.size == 1 and (x[gap - 1], x[gap + 1]) == pytest.approx((0.70, 0.71))
 
 
 def test_damped_coupling_draws_its_peak_and_operating_points():
@@ -396,6 +403,9 @@ def test_same_data_same_bytes(tmp_path):
                               fmt, dpi=50)
         assert first == again, fmt
     assert b"Date" not in canvas.render(curves.figure(result), "svg")
+    assert b"Software" not in canvas.render(curves.figure(result), "png", dpi=20)
+    pdf = canvas.render(curves.figure(result), "pdf")
+    assert b"CreationDate" not in pdf and b"Producer" not in pdf
     paths = [tmp_path / "a.gif", tmp_path / "b.gif"]
     for path in paths:
         animate.save(animate.animation(dyade.analyse(result.mechanism, step=np.deg2rad(45))),
