@@ -132,7 +132,8 @@ def test_polar_of_a_mechanism_without_forces_says_why():
 def test_polar_joint_not_revolute_names_the_flag(tmp_path):
     out = run("plot", "polar", shipped("slider-crank.toml"), "--joint", "1,4", "-o",
               tmp_path / "p.png")
-    assert out.exit_code == 2 and "--joint" in out.output and "no revolute joint (1,4)" in out.output
+    assert out.exit_code == 2
+    assert "--joint" in out.output and "no revolute joint (1,4)" in out.output
 
 
 # -- curves -----------------------------------------------------------------------------

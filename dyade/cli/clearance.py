@@ -18,7 +18,7 @@ FLAGS = {"mass": "--mass", "stiffness": "--stiffness", "clearance": "--clearance
 """API parameter -> the flag it comes from"""
 
 
-def _joint(text: str) -> tuple[int, int]:
+def parse_joint(text: str) -> tuple[int, int]:
     try:
         a, b = (int(part) for part in text.split(","))
     except ValueError:
@@ -113,7 +113,7 @@ def inputs(joints, masses, stiffness, gap, slope, speed_rpm, speed_range, simula
     mass = engine.reduced_mass(*masses) if len(masses) == 2 else (masses[0] if masses else None)
     speeds = (value_range(speed_range, "--speed-range", " in rpm", positive_start=True)
               if speed_range else None)
-    return Inputs([_joint(j) for j in joints], mass, stiffness, gap, slope, speed_rpm, speeds,
+    return Inputs([parse_joint(j) for j in joints], mass, stiffness, gap, slope, speed_rpm, speeds,
                   simulate, sim_steps, math.radians(max_wander))
 
 

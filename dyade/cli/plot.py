@@ -70,7 +70,8 @@ def linkage_options(command):
     """The mechanism files and the sweep options of `dyade analyse`."""
     options = [
         click.argument("mechanism_files", type=MECHANISM_FILE, nargs=-1, required=True),
-        click.option("--start", type=float, help="First crank angle [°] (overrides [sweep] start)."),
+        click.option("--start", type=float,
+                     help="First crank angle [°] (overrides [sweep] start)."),
         click.option("--stop", type=float, help="Last crank angle [°] (default: start + 360)."),
         click.option("--step", type=float, help="Crank angle step [°] (overrides [sweep] step)."),
         set_option,
@@ -112,7 +113,7 @@ def _suffix_format(path: str, allowed: tuple[str, ...]) -> str:
 
 
 def _emit(fig, target: Target, announce: bool) -> None:
-    """Write the figure (its format from the suffix) and/or keep its window open."""
+    """Write the figure when it has a file (its format from the suffix)."""
     from dyade.plot import canvas
 
     if target.path:
@@ -176,9 +177,9 @@ def _static(build: Callable) -> Callable:
 
 
 def _joints(texts: tuple[str, ...]) -> list[tuple[int, int]] | None:
-    from dyade.cli.clearance import _joint
+    from dyade.cli.clearance import parse_joint
 
-    return [_joint(text) for text in texts] or None
+    return [parse_joint(text) for text in texts] or None
 
 
 @plot.command()

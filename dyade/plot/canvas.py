@@ -94,8 +94,8 @@ def new(width: float, height: float, fig: Figure | None = None) -> Figure:
 
 def grid(count: int, most: int = 3) -> tuple[int, int]:
     """Rows and columns for ``count`` panels, at most ``most`` side by side."""
-    columns = min(count, most)
-    return math.ceil(count / columns), columns
+    rows = math.ceil(count / most)
+    return rows, math.ceil(count / rows)  # 4 panels: 2 × 2, not 3 + 1
 
 
 # -- crank-angle axes ----------------------------------------------------------------

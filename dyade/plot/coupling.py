@@ -16,8 +16,10 @@ from matplotlib.figure import Figure
 
 from dyade.plot import canvas
 
-CURVES = (("V_phi", "V_φ (coupling)", "alpha", "α"), ("V_psi", "V_ψ (exciting side)", "beta", "β"),
-          ("V_q", "V_q (counter-moment)", "gamma", "γ"), ("V_r", "V_r (relative)", "delta", "δ"))
+CURVES = (("V_phi", "V_φ (coupling)", "alpha", "α"),
+          ("V_psi", "V_ψ (exciting side)", "beta", "β"),
+          ("V_q", "V_q (counter-moment)", "gamma", "γ"),
+          ("V_r", "V_r (relative)", "delta", "δ"))
 """transfer function, its label, its phase and the phase's symbol"""
 FLANK = 4.0  # [-] an unbounded curve is cut above this multiple of its far-off maximum
 NEAR = 0.2  # [-] "near the resonance": within this share of η_res

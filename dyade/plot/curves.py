@@ -4,10 +4,10 @@ Any column of ``Result.columns()`` (the CSV's names) can be drawn; columns of on
 share a panel, whose axis carries the unit (``dyade.linkage.columns.unit_of``). Ranges
 the result warns about (dead centres, forces not given, positions that do not close,
 self-locking, friction) are shaded with a hatch per kind and named in the legend, and
-values that are not given leave a gap in the line. By default: the drive torque with
-its cycle mean and the energy surplus between them shaded (what a flywheel must store,
-ΔE = max − min of ∫(M_drive − M_mean)dφ), and each dyad's transmission angle with the
-dead-centre band.
+values that are not given leave a gap in the line. The drive torque comes with its
+cycle mean and the energy surplus between them shaded (what a flywheel must store,
+ΔE = max − min of ∫(M_drive − M_mean)dφ), a panel of transmission angles with the
+dead-centre band; by default, both.
 """
 
 from __future__ import annotations
@@ -79,9 +79,9 @@ def figure(result, quantities=None, *, fig: Figure | None = None) -> Figure:
         for ax, (unit, group) in zip(axes, panels.items()):
             for k, name in enumerate(group):
                 values = canvas.on_grid(result, cols[name])
-                if quantities is None and name == "M_drive":
-                    _torque(ax, result, values)
-                elif quantities is None and name.startswith("mu_"):
+                if name == "M_drive":
+                    _torque(ax, result, values, k)
+                elif name.startswith("mu_"):
                     ax.plot(np.rad2deg(result.crank_angle), values, gid=name,
                             label=f"μ dyad {name.split('_')[1]}", **canvas.line(k, True))
                 else:
@@ -114,16 +114,17 @@ def _check(names: list[str], cols: dict) -> None:
                                                      f"result.{hint}", value=name)
 
 
-def _torque(ax, result, torque: np.ndarray) -> None:
-    """The drive torque, its cycle mean, and the energy surplus and deficit shaded."""
+def _torque(ax, result, torque: np.ndarray, k: int = 0) -> None:
+    """The drive torque (style k), its cycle mean, and the energy surplus and deficit
+    shaded."""
     angle = np.rad2deg(result.crank_angle)
-    ax.plot(angle, torque, gid="M_drive", label="M_drive", **canvas.line(0))
+    ax.plot(angle, torque, gid="M_drive", label="M_drive", **canvas.line(k))
     given = np.isfinite(torque)
     if not given.all():
         ax.set_title("no cycle mean or ΔE: the torque is not given everywhere", fontsize=7.5)
         return
     mean, _, delta = energy_surplus(result.crank_angle, torque)
-    ax.axhline(mean, gid="M_mean", label=f"mean {mean:.4g} N·m", **canvas.line(2))
+    ax.axhline(mean, gid="M_mean", label=f"mean {mean:.4g} N·m", **canvas.line(k + 2))
     ax.fill_between(angle, torque, mean, where=torque >= mean, interpolate=True,
                     facecolor="0.85", edgecolor=canvas.GREY, hatch="////", linewidth=0.0,
                     label="above the mean: the flywheel gives", gid="surplus")

@@ -62,10 +62,13 @@ def figure(result, joints=None, *, max_wander: float = MAX_WANDER,
 
     Examples
     --------
+    Two joints of the 16-link drive, one with two reversals, one whose force turns
+    around its bearing:
+
     >>> import dyade
     >>> from dyade.plot import polar
-    >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/dyade-16.toml"))
-    >>> fig = polar.figure(result, [(5, 6), (1, 2)])
+    >>> drive = dyade.read_mechanism("mechanisms/dyade-16.toml")
+    >>> fig = polar.figure(dyade.analyse(drive), [(5, 6), (1, 2)])
     >>> for ax in fig.axes[:2]:
     ...     print(ax.get_title())
     joint (5,6): force on link 6
