@@ -49,15 +49,15 @@ def animation(result, *, fig: Figure | None = None) -> Animation:
     (13, ['link-2', None])
     """
     geo = geometry(result)
-    with canvas.style():
-        fig = canvas.new(PANEL + 0.4, panel_height(geo) + 0.6, fig)
-        ax = fig.subplots()
-        scene = Scene(ax, geo)
+    width, height = PANEL + 0.4, panel_height(geo) + 0.9
+    with canvas.style():  # margins by hand: no layout engine to rerun for every frame
+        fig = canvas.new(width, height, fig, layout=None)
+        fig.subplots_adjust(left=0.75 / width, right=1 - 0.15 / width, bottom=0.5 / height,
+                            top=1 - 0.6 / height)
+        scene = Scene(fig.subplots(), geo)
         fig.suptitle(result.mechanism.name)
         motion = Animation(fig, scene, int(geo.crank_angle.size))
         motion.update(0)
-        fig.draw_without_rendering()  # lay out once: the frames must not shift
-        fig.set_layout_engine("none")
     return motion
 
 

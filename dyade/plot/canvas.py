@@ -82,13 +82,14 @@ def style() -> Iterator[None]:
         yield
 
 
-def new(width: float, height: float, fig: Figure | None = None) -> Figure:
-    """A figure of ``width`` × ``height`` [in], laid out by the constrained engine; ``fig``
-    (a window's figure) is reused when given."""
+def new(width: float, height: float, fig: Figure | None = None,
+        layout: str | None = "constrained") -> Figure:
+    """A figure of ``width`` × ``height`` [in], laid out by the constrained engine (or
+    by hand: ``layout=None``); ``fig`` (a window's figure) is reused when given."""
     if fig is None:
-        return Figure(figsize=(width, height), layout="constrained")
+        return Figure(figsize=(width, height), layout=layout)
     fig.set_size_inches(width, height)
-    fig.set_layout_engine("constrained")
+    fig.set_layout_engine(layout or "none")
     return fig
 
 
