@@ -134,6 +134,38 @@ def peak_force(mass: float, stiffness: float, *, clearance: float, slope: float)
                 stiffness * s * f, float(t1 + peak_angle(tau) / omega))
 
 
+def contact_force(peak: Peak, time: FloatArray | float) -> FloatArray:
+    """The joint force of the closed form over time from the reversal [N], eq. (26):
+    zero in free flight (t < t1), then
+
+        F12 = (12·c·s/τ²)·[1 + ω·t̃/τ + (τ/2 − 1/τ)·sin ω·t̃ − cos ω·t̃],  t̃ = t − t1,
+
+    valid while the masses stay in contact (the closed form's assumption; see
+    ``simulate`` for when they separate). Its first maximum is ``peak.force``.
+
+    Parameters
+    ----------
+    peak : Peak
+        From ``peak_force``.
+    time : array_like
+        Times from the reversal [s].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> peak = peak_force(3.6, 1e7, clearance=1e-4, slope=3.6e5)
+    >>> round(float(contact_force(peak, peak.time_to_peak)))    # the peak, eq. (27)
+    2182
+    """
+    time = np.asarray(time, dtype=np.float64)
+    omega = peak.tau / peak.t1
+    s, tau = peak.clearance / 2.0, peak.tau
+    theta = omega * np.maximum(time - peak.t1, 0.0)
+    force = (12.0 * peak.stiffness * s / tau ** 2) * (
+        1.0 + theta / tau + (tau / 2.0 - 1.0 / tau) * np.sin(theta) - np.cos(theta))
+    return np.where(time < peak.t1, 0.0, force)
+
+
 # -- direct simulation of the two-stage model -----------------------------------------
 @dataclass(frozen=True, slots=True)
 class Simulation:
@@ -156,14 +188,28 @@ class Simulation:
     contact_to_peak: bool
     """contact held without interruption from impact to the peak (the closed form's
     assumption)"""
+    time: FloatArray | None = None
+    """(k,) with ``history=True``: every step's time from the reversal [s]"""
+    contact_force: FloatArray | None = None
+    """(k,) with ``history=True``: the contact force c·max(z − 2s, 0) at those times [N]"""
 
 
 def simulate(mass: float, stiffness: float, *, clearance: float, slope: float,
-             steps_per_period: int = 400) -> Simulation:
+             steps_per_period: int = 400, history: bool = False) -> Simulation:
     """Integrate m·z'' = k·t − c·max(z − 2s, 0) from rest at z = 0 (pin against the far
     side of the bearing at the reversal, t = 0). Free flight to z = 2s, then contact;
     the joint force is c·(z − 2s). The impact instant is located by bisection on the
-    cubic Hermite interpolant, so the kink of the contact law does not cost order."""
+    cubic Hermite interpolant, so the kink of the contact law does not cost order.
+    With ``history`` the result keeps the time and contact force of every step (an
+    RK4 step depends on the one before: the integration itself is sequential).
+
+    >>> sim = simulate(3.6, 1e7, clearance=1e-4, slope=3.6e5, history=True)
+    >>> round(sim.force), sim.time.size == sim.steps + 1           # 2182 N, eq. (36)
+    (2182, True)
+    >>> closed = contact_force(peak_force(3.6, 1e7, clearance=1e-4, slope=3.6e5), sim.time)
+    >>> bool(abs(sim.contact_force - closed).max() < 1e-3)         # [N], eq. (26)
+    True
+    """
     check_positive(mass=mass, stiffness=stiffness, clearance=clearance, slope=slope)
     gap, k, c, m = clearance, slope, stiffness, mass
     omega = np.sqrt(c / m)
@@ -186,6 +232,7 @@ def simulate(mass: float, stiffness: float, *, clearance: float, slope: float,
                 v + dt / 6.0 * (a1 + 2 * a2 + 2 * a3 + a4))
 
     t, z, v, steps = 0.0, 0.0, 0.0, 0
+    times, positions = ([0.0], [0.0]) if history else (None, None)
     # stage 1: free flight (z < gap), step until the crossing, then locate it
     while True:
         z_new, v_new = rk4(t, z, v, h)
@@ -203,7 +250,13 @@ def simulate(mass: float, stiffness: float, *, clearance: float, slope: float,
             t += hi
             break
         t, z, v = t + h, z_new, v_new
+        if history:
+            times.append(t)
+            positions.append(z)
     t_impact = t
+    if history:
+        times.append(t)
+        positions.append(z)
     # stage 2: contact; a fresh step grid from the impact on
     h = min(period / steps_per_period, h * 4)
     peak_force = peak_time = np.nan
@@ -218,6 +271,9 @@ def simulate(mass: float, stiffness: float, *, clearance: float, slope: float,
             # peak of z (and of the force) inside this step: cubic Hermite maximum
             peak_z, peak_dt = _hermite_peak(z, v, z_new, v_new, accel(t, z), h)
             peak_force, peak_time = c * (peak_z - gap), t + peak_dt
+        if history:
+            times.append(t + h)
+            positions.append(z_new)
         if z_new < gap:
             if np.isnan(peak_force):
                 contact_ok = False
@@ -228,8 +284,12 @@ def simulate(mass: float, stiffness: float, *, clearance: float, slope: float,
         if not np.isnan(peak_force) and t > peak_time + period:
             break
     separates = not np.isnan(separation_time)
+    time = force = None
+    if history:
+        time = np.array(times)
+        force = c * np.maximum(np.array(positions) - gap, 0.0)
     return Simulation(float(peak_force), float(peak_time), float(t_impact), steps, separates,
-                      float(separation_time), float(rebound), contact_ok)
+                      float(separation_time), float(rebound), contact_ok, time, force)
 
 
 def _hermite_peak(z0: float, v0: float, z1: float, v1: float, a0: float, h: float

@@ -269,3 +269,65 @@ def test_max_wander_reaches_the_check():
     assert "joint (13,14): not checked" in strict.stderr and "wanders up to 33°" in strict.stderr
     relaxed = CliRunner().invoke(main, args + ["--max-wander", "40"], catch_exceptions=False)
     assert "\n13-14," in relaxed.stdout
+
+
+def test_force_lines_are_the_reversals_of_the_check():
+    # the polar diagram's reversals and the clearance check's come from one computation
+    result = analysis.run(toml_input.read_mechanism(shipped("dyade-16.toml")))
+    lines = joint_clearance.force_lines(result)
+    checks = joint_clearance.check(result.mechanism, stiffness=1e8, clearance=1e-4,
+                                   result=result)
+    assert [line.joint for line in lines] == [check.joint for check in checks]
+    assert sum(len(line.reversal_angles) for line in lines) > 2
+    for line, check in zip(lines, checks):
+        assert line.applies == check.applies
+        found = np.mod(line.reversal_angles, 2 * np.pi)
+        assert found.tolist() == [rev.crank_angle for rev in check.reversals]
+        if line.applies:  # at a reversal the force is across its line of action
+            u = np.array([np.cos(line.line_angle), np.sin(line.line_angle)])
+            size = np.linalg.norm(line.reversal_forces, axis=1)
+            assert np.all(np.abs(line.reversal_forces @ u) <= 1e-9 * (1 + size))
+
+
+def test_force_lines_need_forces_and_a_revolute_joint():
+    result = analysis.run(toml_input.read_mechanism(shipped("scotch-yoke.toml")))
+    with pytest.raises(analysis.InputError, match="needs joint forces"):
+        joint_clearance.force_lines(result)
+    result = analysis.run(toml_input.read_mechanism(shipped("slider-crank.toml")))
+    with pytest.raises(analysis.InputError, match="no revolute joint \\(1,4\\)"):
+        joint_clearance.force_lines(result, [(4, 1)])
+
+
+@pytest.mark.parametrize("mass, stiffness, gap, slope", [
+    (3.6, 1e7, 1e-4, 3.6e5), (0.2, 1e8, 5e-5, 1e4), (10.0, 1e6, 2e-4, 5e6)])
+def test_contact_force_solves_the_contact_equation(mass, stiffness, gap, slope):
+    # eq. (26) is the solution of m·u'' + c·u = k·t with u(t1) = 0, u'(t1) = v1 and
+    # F = c·u: check the ODE by central differences, the initial values and the peak
+    peak = clearance.peak_force(mass, stiffness, clearance=gap, slope=slope)
+    omega = np.sqrt(stiffness / mass)
+    h = 1e-3 / omega
+    t = peak.t1 + np.linspace(0.1, 6.0, 50) / omega
+    force = clearance.contact_force(peak, t)
+    second = (clearance.contact_force(peak, t + h) - 2 * force
+              + clearance.contact_force(peak, t - h)) / h ** 2
+    residual = mass * second / stiffness + force - slope * t
+    assert np.max(np.abs(residual)) < 1e-5 * np.max(np.abs(slope * t))
+    assert clearance.contact_force(peak, [0.0, 0.5 * peak.t1, peak.t1]).tolist() == [0, 0, 0]
+    small = 1e-6 / omega
+    start = clearance.contact_force(peak, peak.t1 + small) / small / stiffness
+    assert start == pytest.approx(peak.v1, rel=1e-5)       # forward difference: O(ω·small)
+    fine = peak.t1 + np.linspace(0.0, peak.time_to_peak - peak.t1, 20001)
+    assert clearance.contact_force(peak, fine).max() == pytest.approx(peak.force, rel=1e-9)
+
+
+def test_simulated_history_follows_the_closed_form_to_the_peak():
+    peak = clearance.peak_force(3.6, 1e7, clearance=1e-4, slope=3.6e5)
+    sim = clearance.simulate(3.6, 1e7, clearance=1e-4, slope=3.6e5, history=True)
+    assert sim.time.size == sim.contact_force.size == sim.steps + 1
+    assert np.all(np.diff(sim.time) > 0)
+    assert np.all(sim.contact_force[sim.time < sim.t1 * (1 - 1e-12)] == 0.0)
+    until = sim.time <= sim.time_to_peak
+    closed = clearance.contact_force(peak, sim.time[until])
+    assert np.max(np.abs(sim.contact_force[until] - closed)) < 1e-6 * peak.force
+    plain = clearance.simulate(3.6, 1e7, clearance=1e-4, slope=3.6e5)
+    assert plain.time is None and plain.force == sim.force

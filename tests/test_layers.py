@@ -1,6 +1,8 @@
 """Layers (STYLE §2): imports point one way only.
 
-    cli  ->  report  ->  API (linkage, clearance, vibration)  ->  files, units, errors, arrays
+    cli  ->  report, plot  ->  API (linkage, clearance, vibration)  ->  files, units, errors, arrays
+
+matplotlib only in dyade/plot/ (the optional extra): the API never imports it.
 
 Every module under dyade/ is read with ``ast`` (not imported): every ``import`` and
 ``from … import`` (relative ones resolved, those inside functions and ``if TYPE_CHECKING``
@@ -116,9 +118,10 @@ def within(name: str, *packages: str) -> bool:
 
 CLI = ("dyade.cli",)
 REPORT = ("dyade.report",)
+PLOT = ("dyade.plot",)
 BASE = ("dyade.files", "dyade.units", "dyade.errors", "dyade.arrays")
 ABOVE_BASE = ("dyade.linkage", "dyade.clearance", "dyade.vibration", "dyade.machine",
-              "dyade.report", "dyade.cli")
+              "dyade.report", "dyade.plot", "dyade.cli")
 PLOTTING = ("matplotlib",)
 
 ENTRY_POINT = "dyade.__main__"
@@ -158,10 +161,19 @@ RULES = {
         lambda name: not within(name, *CLI) and name != ENTRY_POINT,
         lambda name, imp: within(imp.target, *CLI),
         "imports the command line (dyade.cli), which points the arrow upwards"),
+    "matplotlib only in plot": (
+        lambda name: not within(name, *PLOT),
+        lambda name, imp: within(imp.target, *PLOTTING),
+        "imports matplotlib, which only dyade/plot/ may (the optional plot extra)"),
     "the API plots nothing and reports nothing": (
-        lambda name: not within(name, *CLI, *REPORT) and name != ENTRY_POINT,
-        lambda name, imp: within(imp.target, *PLOTTING, *REPORT),
-        "is API and imports a plotting library or dyade.report"),
+        lambda name: not within(name, *CLI, *REPORT, *PLOT) and name != ENTRY_POINT,
+        lambda name, imp: within(imp.target, *PLOTTING, *REPORT, *PLOT),
+        "is API and imports a plotting library, dyade.plot or dyade.report"),
+    "figures and tables side by side": (
+        lambda name: within(name, *REPORT, *PLOT),
+        lambda name, imp: (within(imp.target, *PLOT) and within(name, *REPORT)
+                           or within(imp.target, *REPORT) and within(name, *PLOT)),
+        "is in report or plot and imports the other (both read the API's results)"),
     "files, units, errors, arrays import no layer above": (
         lambda name: within(name, *BASE),
         lambda name, imp: within(imp.target, *ABOVE_BASE) and not _allowed_in_base(name, imp),
@@ -194,6 +206,7 @@ def test_the_reader_sees_every_kind_of_import():
     assert "click" in found["dyade.cli"]                                   # import x
     assert "dyade.linkage.dyads" in found["dyade.files.mechanism"]        # from pkg import module
     assert "rich.progress" in found["dyade.cli.analyse"]                   # inside a function
+    assert "matplotlib.figure" in found["dyade.plot.polar"]                # a plot module
     assert "dyade.cli" in found["dyade.cli"]                               # importlib f-string
     assert "dyade.linkage.sweep" in found["dyade"]                         # lazy export by name
     coupling = [imp for imp in MODULES["dyade.files.coupling"].imports

@@ -34,7 +34,15 @@ def _imported(args: list[str]) -> set[str]:
 def test_help_imports_no_numpy():
     modules = _imported(["--help"])
     assert "numpy" not in modules
-    assert not any(name.startswith("rich") for name in modules)
+    assert not any(name.startswith(("rich", "matplotlib")) for name in modules)
+    assert "dyade.cli.plot" in modules  # listed, so its module was read: lazily enough
+
+
+def test_plot_help_imports_no_matplotlib():
+    for args in (["plot", "--help"], ["plot", "polar", "--help"]):
+        modules = _imported(args)
+        assert "numpy" not in modules
+        assert not any(name.startswith(("matplotlib", "dyade.plot")) for name in modules)
 
 
 def test_csv_run_imports_only_what_it_uses():
@@ -44,4 +52,5 @@ def test_csv_run_imports_only_what_it_uses():
                 "dyade.cli.coupling", "dyade.cli.accuracy", "dyade.linkage.friction",
                 "dyade.linkage.self_locking", "dyade.clearance", "dyade.report.tables"}
     assert not (modules & unwanted)
-    assert not any(name.startswith("rich") for name in modules)
+    assert not any(name.startswith(("rich", "matplotlib", "dyade.plot", "dyade.cli.plot"))
+                   for name in modules)

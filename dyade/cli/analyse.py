@@ -308,27 +308,16 @@ class Job(NamedTuple):
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
         output = None if output == "-" else output  # -o -: standard output
-        from dyade.errors import AssemblyError, DyadeError
-        from dyade.linkage.sweep import analyse
+        from dyade.errors import DyadeError
 
         loaded = load(path, self.assignments, self.sweep)
         mechanism = loaded.mechanism
         if save_as_path:
             save_as(loaded, save_as_path)
-        try:
-            with flags(FLAGS):
-                result = analyse(mechanism, allow_partial=self.allow_partial,
-                                 friction_tol=self.friction_tol,
-                                 friction_max_iter=self.friction_max_iter,
-                                 max_memory=self.max_memory, dead_centre=self.dead_centre,
-                                 transmission_warning=self.transmission_warning,
-                                 run_up=self.run_up, constant_speed=self.constant_speed)
-        except AssemblyError as err:
-            if not err.partial:
-                raise
-            raise AssemblyError("; ".join(err.problems) + ". Change the dimensions or the sweep, "
-                                "or use --allow-partial to analyse only where it closes.",
-                                err.problems, err.partial) from None
+        result = sweep(mechanism, self.allow_partial, self.friction_tol, self.friction_max_iter,
+                       max_memory=self.max_memory, dead_centre=self.dead_centre,
+                       transmission_warning=self.transmission_warning, run_up=self.run_up,
+                       constant_speed=self.constant_speed)
         cols = result.columns()
         every = cols
         if self.columns:
@@ -373,15 +362,38 @@ class Job(NamedTuple):
             else:
                 parts = [tables.key_results(result, cols, summary, unit), motion]
             show(parts, output)
-        if result.notes:  # rich is only loaded when there is something to say
-            err = console(stderr=True)
-            prefix = f"{os.path.basename(path)}: " if output else ""
-            for note in result.notes:
-                err.print(f"warning: {prefix}{note}", markup=False)
+        warn(result.notes, f"{os.path.basename(path)}: " if output else "")
         locks = any(lock.locks[result.rows].any() for lock in (result.locking or {}).values())
         if self.fail_on_lock and locks:
             raise DyadeError("a slider self-locks (see the warning above); --fail-on-lock was "
                              "given.")
+
+
+def sweep(mechanism, allow_partial: bool, friction_tol: float | None = None,
+          friction_max_iter: int | None = None, **options):
+    """``dyade.analyse`` with the options' names in its errors (a partial closure
+    suggests --allow-partial); ``options``: its other keywords."""
+    from dyade.errors import AssemblyError
+    from dyade.linkage.sweep import analyse
+
+    try:
+        with flags(FLAGS):
+            return analyse(mechanism, allow_partial=allow_partial, friction_tol=friction_tol,
+                           friction_max_iter=friction_max_iter, **options)
+    except AssemblyError as err:
+        if not err.partial:
+            raise
+        raise AssemblyError("; ".join(err.problems) + ". Change the dimensions or the sweep, "
+                            "or use --allow-partial to analyse only where it closes.",
+                            err.problems, err.partial) from None
+
+
+def warn(notes, prefix: str = "") -> None:
+    """The result's notes on stderr, each a warning."""
+    if notes:  # rich is only loaded when there is something to say
+        err = console(stderr=True)
+        for note in notes:
+            err.print(f"warning: {prefix}{note}", markup=False)
 
 
 TEMPLATES = {"fourbar": "RRR", "slider-crank": "RRP", "slotted-lever": "RPR",

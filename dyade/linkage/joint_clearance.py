@@ -81,47 +81,90 @@ def line_of_action(force: FloatArray) -> tuple[float, float]:
     return angle, float(off.max(initial=0.0))
 
 
-def check_joint(name: tuple[int, int], crank_angle: FloatArray, force: FloatArray,
-                speed: float, data, mass: float, mass_source: str,
-                full_cycle: bool, max_wander: float = MAX_WANDER) -> JointCheck:
-    """Find the reversals of one joint's force and their peak forces (eqs. (27), (36))."""
+@dataclass(frozen=True, slots=True)
+class ForceLine:
+    """A revolute joint's force over the cycle seen along its dominant line of action:
+    where it reverses its sense (what the clearance check and the polar diagram show)."""
+
+    joint: tuple[int, int]
+    line_angle: float
+    """direction of the dominant line of action [rad], in [0, π); NaN without force"""
+    wander: float
+    """largest angle between the force and that line [rad] (forces ≥ 25 % of the peak)"""
+    applies: bool
+    """the force keeps to one line within ``max_wander`` (else no reversals are given)"""
+    reason: str
+    """why it does not ('' when it does)"""
+    reversal_angles: FloatArray
+    """(k,) crank angles of the sense reversals [rad], in the order found, within the
+    sweep's range (a full cycle's last one may pass its end: take it modulo 2π)"""
+    slopes: FloatArray
+    """(k,) |dF/dφ21| along the line at each reversal [N/rad]"""
+    reversal_forces: FloatArray
+    """(k, 2) the force vector at each reversal, interpolated as the angle is [N]"""
+    cycle_angles: FloatArray
+    """(m,) the finite positions of one cycle [rad] (a repeated 360° left out)"""
+    cycle_magnitudes: FloatArray
+    """(m,) |F| at those positions [N]"""
+
+
+def force_line(name: tuple[int, int], crank_angle: FloatArray, force: FloatArray,
+               full_cycle: bool, max_wander: float = MAX_WANDER) -> ForceLine:
+    """The dominant line of action of one joint's force (n, 2) [N] over the crank angles
+    (n,) [rad] (NaN rows: not given) and the sense reversals along it; on a full cycle
+    the last position is compared with the first."""
     keep = np.all(np.isfinite(force), axis=1)
     phi, force = crank_angle[keep], force[keep]
+    nothing, pair = np.empty(0), np.empty((0, 2))
     if phi.size < 3 or not np.any(np.hypot(force[:, 0], force[:, 1]) > 0):
-        return JointCheck(name, np.nan, np.nan, False, "the joint carries no force", (),
-                          mass_source)
+        return ForceLine(name, np.nan, np.nan, False, "the joint carries no force", nothing,
+                         nothing, pair, nothing, nothing)
     angle, wander = line_of_action(force)
     if wander > max_wander:
-        return JointCheck(name, angle, wander, False,
-                          f"the force direction wanders up to {np.rad2deg(wander):.0f}° off its "
-                          f"dominant line of action (the model needs one line, within "
-                          f"{np.rad2deg(max_wander):.0f}°): the pin travels around the bearing "
-                          f"instead of crossing it", (), mass_source)
+        return ForceLine(name, angle, wander, False,
+                         f"the force direction wanders up to {np.rad2deg(wander):.0f}° off its "
+                         f"dominant line of action (the model needs one line, within "
+                         f"{np.rad2deg(max_wander):.0f}°): the pin travels around the bearing "
+                         f"instead of crossing it", nothing, nothing, pair, nothing, nothing)
     u = np.array([np.cos(angle), np.sin(angle)])
     magnitude = np.hypot(force[:, 0], force[:, 1])
     if full_cycle and np.isclose(phi[-1] - phi[0], 2 * np.pi):
         phi, force, magnitude = phi[:-1], force[:-1], magnitude[:-1]  # 360° repeats 0°
     along = force @ u
-    phi_all, magnitude_all = phi.copy(), magnitude
+    phi_all = phi.copy()
     if full_cycle:  # the cycle closes: compare the last position with the first
-        along_next = np.roll(along, -1)
+        along_next, force_next = np.roll(along, -1), np.roll(force, -1, axis=0)
         phi_next = np.append(phi[1:], phi[0] + 2 * np.pi)
     else:
         along, along_next, phi_next, phi = along[:-1], along[1:], phi[1:], phi[:-1]
-    positive = along >= 0.0
-    crossing = np.flatnonzero(positive != (along_next >= 0.0))
+        force, force_next = force[:-1], force[1:]
+    crossing = np.flatnonzero((along >= 0.0) != (along_next >= 0.0))
+    a, b = along[crossing], along_next[crossing]
+    dphi = phi_next[crossing] - phi[crossing]
+    share = a / (a - b)
+    at = phi[crossing] + share * dphi
+    slope = np.abs(b - a) / dphi
+    vector = force[crossing] + share[:, None] * (force_next[crossing] - force[crossing])
+    return ForceLine(name, angle, wander, True, "", at, slope, vector, phi_all, magnitude)
+
+
+def check_joint(name: tuple[int, int], crank_angle: FloatArray, force: FloatArray,
+                speed: float, data, mass: float, mass_source: str,
+                full_cycle: bool, max_wander: float = MAX_WANDER) -> JointCheck:
+    """Find the reversals of one joint's force and their peak forces (eqs. (27), (36))."""
+    line = force_line(name, crank_angle, force, full_cycle, max_wander)
+    if not line.applies:
+        return JointCheck(name, line.line_angle, line.wander, False, line.reason, (),
+                          mass_source)
     period = 2 * np.pi if full_cycle else None
     reversals = []
-    for k in crossing:
-        a, b = along[k], along_next[k]
-        dphi = phi_next[k] - phi[k]
-        at = phi[k] + a / (a - b) * dphi
-        slope = abs(b - a) / dphi
+    for at, slope in zip(line.reversal_angles, line.slopes):
         peak = peak_force(mass, data.stiffness, clearance=data.clearance, slope=slope * abs(speed))
         later = at + speed * peak.time_to_peak  # crank angle when the peak occurs
-        rigid = float(np.interp(later, phi_all, magnitude_all, period=period))
+        rigid = float(np.interp(later, line.cycle_angles, line.cycle_magnitudes, period=period))
         reversals.append(Reversal(float(at % (2 * np.pi)), float(slope), peak, rigid))
-    return JointCheck(name, angle, wander, True, "", tuple(reversals), mass_source)
+    return JointCheck(name, line.line_angle, line.wander, True, "", tuple(reversals),
+                      mass_source)
 
 
 def joint_mass(mechanism, joint) -> tuple[float | None, str]:
@@ -138,30 +181,87 @@ def joint_mass(mechanism, joint) -> tuple[float | None, str]:
     return reduced_mass(*masses), f"reduced mass of links {a} and {b} (eq. 17)"
 
 
+def _needs_forces(result, what: str) -> None:
+    if result.forces is None:
+        raise InputError(f"{what} needs joint forces: the file has no masses, loads or "
+                         f"springs (add mass data, see mechanisms/README.md).")
+
+
+def _revolute(mechanism, name: tuple[int, int]) -> Revolute:
+    """The revolute joint ``name``, or an error listing the mechanism's revolute joints."""
+    by_name = {j.name: j for j in mechanism.joints}
+    joint = by_name.get(name)
+    if joint is None or not isinstance(joint, Revolute):
+        kinds = ", ".join(f"({a},{b})" for a, b in by_name if isinstance(by_name[(a, b)], Revolute))
+        raise InputError.parameter("joints", f"{name[0]},{name[1]}: the mechanism has no "
+                                             f"revolute joint ({name[0]},{name[1]}); its "
+                                             f"revolute joints are {kinds}.", value=name)
+    return joint
+
+
+def _cycle(mechanism, result) -> tuple[FloatArray, bool]:
+    """The reported crank angles [rad] and whether they make a full cycle."""
+    phi = result.crank_angle[result.rows]
+    return phi, bool((phi[-1] - phi[0]) >= 2 * np.pi - 1.5 * mechanism.sweep.step)
+
+
+def _joint_force(result, name: tuple[int, int]) -> FloatArray:
+    """(n, 2) a joint's reported force [N], NaN where the forces are not valid."""
+    forces = result.forces
+    force = forces.revolute[name][result.rows]
+    return np.where(forces.valid[result.rows][:, None], force, np.nan)
+
+
+def force_lines(result, joints=None, *, max_wander: float = MAX_WANDER) -> list[ForceLine]:
+    """The dominant line of action and the sense reversals of revolute joints' forces,
+    exactly as the clearance check finds them (without peak forces: no clearance data
+    needed).
+
+    Parameters
+    ----------
+    result : Result
+        An analysis with joint forces (``dyade.analyse``).
+    joints : iterable of (int, int), optional
+        Revolute joints (default: every revolute joint).
+    max_wander : float
+        How far [rad] the force may leave its line for reversals to be given.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> from dyade.linkage.joint_clearance import force_lines
+    >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/dyade-16.toml"))
+    >>> line, = force_lines(result, [(5, 6)])
+    >>> [round(float(a), 1) for a in line.reversal_angles * 180 / 3.141592653589793]
+    [104.4, 329.2]
+    """
+    mechanism = result.mechanism
+    _needs_forces(result, "a line of action")
+    if joints is None:
+        joints = [j.name for j in mechanism.joints if isinstance(j, Revolute)]
+    phi, full = _cycle(mechanism, result)
+    out = []
+    for a, b in joints:
+        name = (a, b) if a < b else (b, a)
+        _revolute(mechanism, name)
+        out.append(force_line(name, phi, _joint_force(result, name), full, max_wander))
+    return out
+
+
 def check_mechanism(mechanism, result, joints, override=None, mass_override=None,
                     max_wander: float = MAX_WANDER) -> list:
     """Clearance check of the given revolute joints from an analysis result.
 
     ``override``: ClearanceData applied to every joint (CLI), ``mass_override`` [kg],
     ``max_wander`` [rad]: how far the force may leave its line of action."""
-    forces = result.forces
-    if forces is None:
-        raise InputError("the clearance check needs joint forces: the file has no masses, "
-                         "loads or springs (add mass data, see mechanisms/README.md).")
-    by_name = {j.name: j for j in mechanism.joints}
-    phi = result.crank_angle[result.rows]
-    full = (phi[-1] - phi[0]) >= 2 * np.pi - 1.5 * mechanism.sweep.step
+    _needs_forces(result, "the clearance check")
+    phi, full = _cycle(mechanism, result)
     speed = mechanism.crank.speed  # with a drive: its mean speed 2π/T
     if getattr(result, "drive", None) is not None:
         speed = math.copysign(result.drive.figures["speed_mean"], speed)
     checks = []
     for name in joints:
-        joint = by_name.get(name)
-        if joint is None or not isinstance(joint, Revolute):
-            kinds = ", ".join(f"({a},{b})" for a, b in by_name if isinstance(by_name[(a, b)], Revolute))
-            raise InputError.parameter("joints", f"{name[0]},{name[1]}: the mechanism has no "
-                                                 f"revolute joint ({name[0]},{name[1]}); its "
-                                                 f"revolute joints are {kinds}.", value=name)
+        joint = _revolute(mechanism, name)
         data = override or joint.clearance
         mass, source = (mass_override, "given") if mass_override else joint_mass(mechanism, joint)
         missing = None
@@ -174,10 +274,8 @@ def check_mechanism(mechanism, result, joints, override=None, mass_override=None
                                              clearance="the clearance", mass="the mass")
             checks.append(JointCheck(name, np.nan, np.nan, False, reason, (), "", missing))
             continue
-        force = forces.revolute[name][result.rows]
-        force = np.where(forces.valid[result.rows][:, None], force, np.nan)
-        checks.append(check_joint(name, phi, force, speed, data, mass, source, bool(full),
-                                  max_wander))
+        checks.append(check_joint(name, phi, _joint_force(result, name), speed, data, mass,
+                                  source, full, max_wander))
     return checks
 
 

@@ -1,0 +1,91 @@
+"""Make the figures of the README's gallery (docs/*.png, docs/*.gif) with `dyade.plot`.
+
+Run from the repository (needs the plot extra: pip install -e ".[plot]"):
+
+    python docs/make_figures.py
+
+Each figure is written from the shipped examples; the output is deterministic (the same
+data and matplotlib give the same bytes), so rerunning changes nothing unless dyade or
+matplotlib changed. Prints each figure's size and the time to compute and draw it.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+import dyade  # noqa: E402
+from dyade import clearance  # noqa: E402
+from dyade.plot import animate, canvas, clearance as clearance_plot  # noqa: E402
+from dyade.plot import coupling, curves, polar  # noqa: E402
+
+DOCS = ROOT / "docs"
+MECHANISMS = ROOT / "mechanisms"
+
+
+def fourbar_polar(path: Path) -> None:
+    result = dyade.analyse(dyade.read_mechanism(MECHANISMS / "fourbar.toml"))
+    canvas.save(polar.figure(result), str(path), dpi=80)
+
+
+def dyade16_polar_reversals(path: Path) -> None:
+    result = dyade.analyse(dyade.read_mechanism(MECHANISMS / "dyade-16.toml"))
+    canvas.save(polar.figure(result, [(5, 6), (2, 7), (4, 15)]), str(path), dpi=80)
+
+
+def dyade16_torque(path: Path) -> None:
+    result = dyade.analyse(dyade.read_mechanism(MECHANISMS / "dyade-16.toml"))
+    canvas.save(curves.figure(result), str(path), dpi=80)
+
+
+def slotted_lever_motion(path: Path) -> None:
+    mechanism = dyade.read_mechanism(MECHANISMS / "slotted-lever.toml")
+    motion = animate.animation(dyade.analyse(mechanism, step=np.deg2rad(5.0)))
+    animate.save(motion, str(path), fps=20, dpi=84)
+
+
+def coupling_resonance(path: Path) -> None:
+    model = dyade.read_coupling(MECHANISMS / "coupling" / "stiff-coupling.toml")
+    response = dyade.coupling_response(model, np.arange(0.0, 3.0 + 1e-9, 0.01))
+    points = dyade.operating_points(model, [1450, 2900], order=2)
+    canvas.save(coupling.figure(model, response, points), str(path), dpi=80)
+
+
+def clearance_paper(path: Path) -> None:
+    args = {"mass": 3.6, "stiffness": 1e7, "clearance": 1e-4, "slope": 3.6e5}
+    case = clearance_plot.Case("paper, section 4", clearance.peak_force(**args))
+    speeds = clearance_plot.standalone_speeds(clearance.peaks_over_speed(
+        **args, speed_rpm=300, speeds_rpm=np.arange(100, 601, 50)))
+    history = clearance_plot.History(case, clearance.simulate(**args, history=True))
+    canvas.save(clearance_plot.figure([case], speeds=speeds, history=history), str(path), dpi=80)
+
+
+FIGURES = {
+    "fourbar-polar.png": fourbar_polar,
+    "dyade-16-reversals.png": dyade16_polar_reversals,
+    "dyade-16-torque.png": dyade16_torque,
+    "slotted-lever-motion.gif": slotted_lever_motion,
+    "coupling-resonance.png": coupling_resonance,
+    "clearance-paper.png": clearance_paper,
+}
+
+
+def main() -> None:
+    os.chdir(ROOT)
+    for name, make in FIGURES.items():
+        path = DOCS / name
+        started = time.perf_counter()
+        make(path)
+        elapsed = time.perf_counter() - started
+        print(f"{name:28s} {path.stat().st_size / 1024:7.1f} KiB  {elapsed:6.2f} s")
+
+
+if __name__ == "__main__":
+    main()
