@@ -147,3 +147,27 @@ def test_command(benchmark, command):
         subprocess.run(command, stdout=subprocess.DEVNULL, check=True, cwd=ROOT)
 
     benchmark.pedantic(run, rounds=15, iterations=1, warmup_rounds=1)
+
+
+def _dyade16_columns():
+    mechanism = toml_input.read_mechanism(shipped("dyade-16.toml"))
+    return analysis.analyse(mechanism, step=np.deg2rad(0.1)).columns()
+
+
+@pytest.mark.parametrize("writer", ["row by row (before issue 17)", "blocks"])
+def test_csv_writer_dyade16_3600(benchmark, writer, tmp_path):
+    """CSV throughput: the block writer against the one it replaced, same columns,
+    same file; divide by the values written (3 601 rows × the columns)."""
+    import os
+
+    from dyade.report import csv_rows
+    from tests.benchmarks import old_csv
+
+    cols = _dyade16_columns()
+    write = old_csv.write if writer.startswith("row") else csv_rows.write
+
+    def run():
+        with open(os.devnull, "w", encoding="utf-8", newline="") as handle:
+            write(cols, handle)
+
+    benchmark(run)
