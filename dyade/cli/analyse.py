@@ -20,7 +20,7 @@ FLAGS = {"friction_tol": "--friction-tol", "friction_max_iter": "--friction-max-
          "start": "--start", "stop": "--stop", "step": "--step",
          "sweep": "the sweep (--start, --stop, --step)", "max_memory": "--max-memory",
          "dead_centre": "--dead-centre", "transmission_warning": "--transmission-warning",
-         "run_up": "--run-up"}
+         "run_up": "--run-up", "block_size": "--block-size"}
 """API parameter -> the flag it comes from"""
 
 set_option = click.option(
@@ -156,7 +156,12 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
                    "rule)].")
 @click.option("--max-memory", type=POSITIVE, default=4096, show_default=True, metavar="MB",
               help="Refuse, before computing, a sweep estimated to need more memory [MB] "
-                   "(positions × columns × 90 B).")
+                   "(in memory: positions × columns × 90 B; streamed CSV: a block's, and "
+                   "about 100 B per position).")
+@click.option("--block-size", type=click.IntRange(min=0), default=None, metavar="N",
+              help="CSV: compute and write the sweep N positions at a time, in memory that "
+                   "does not grow with the sweep (0: all at once)  [default: 2048]. Sweeps "
+                   "with friction are computed whole.")
 @click.option("--fail-on-lock", is_flag=True,
               help="Exit with status 1 when a slider self-locks (otherwise a locking slider is "
                    "a finding: reported, exit status 0).")
@@ -172,8 +177,8 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
             assignments: tuple[str, ...], save_as: str | None, allow_partial: bool,
             friction_tol: float | None, friction_max_iter: int | None,
             show_all: bool, patterns: str | None, units: str, dead_centre: float | None,
-            transmission_warning: float | None, max_memory: float, fail_on_lock: bool,
-            run_up: bool, constant_speed: bool) -> None:
+            transmission_warning: float | None, max_memory: float, block_size: int | None,
+            fail_on_lock: bool, run_up: bool, constant_speed: bool) -> None:
     """Sweep the crank of MECHANISM_FILES: positions, velocities and accelerations of every
     link, joint and named point.
 
@@ -201,7 +206,7 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
               friction_max_iter, fail_on_lock, show_all, chosen, units, max_memory * 2 ** 20,
               None if dead_centre is None else math.radians(dead_centre),
               None if transmission_warning is None else math.radians(transmission_warning),
-              run_up, constant_speed)
+              run_up, constant_speed, block_size)
     if len(mechanism_files) == 1 and not (output and os.path.isdir(output)):
         job.run(mechanism_files[0], output, save_as)
         return
@@ -305,6 +310,8 @@ class Job(NamedTuple):
     """[rad]"""
     run_up: bool = False
     constant_speed: bool = False
+    block_size: int | None = None
+    """positions per block of a streamed CSV (None: the default, 0: the whole sweep)"""
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
         output = None if output == "-" else output  # -o -: standard output
@@ -314,6 +321,13 @@ class Job(NamedTuple):
         mechanism = loaded.mechanism
         if save_as_path:
             save_as(loaded, save_as_path)
+        if self.fmt == "csv" and self.block_size != 0:
+            from dyade.linkage.stream import streams
+            from dyade.linkage.sweep import plan
+
+            if streams(plan(mechanism)):
+                self.stream_csv(mechanism, path, output)
+                return
         result = sweep(mechanism, self.allow_partial, self.friction_tol, self.friction_max_iter,
                        max_memory=self.max_memory, dead_centre=self.dead_centre,
                        transmission_warning=self.transmission_warning, run_up=self.run_up,
@@ -369,23 +383,75 @@ class Job(NamedTuple):
                              "given.")
 
 
+    def stream_csv(self, mechanism, path: str, output: str | None) -> None:
+        """The sweep as CSV, block by block (``dyade.linkage.stream``): each block's rows
+        written as soon as they are computed."""
+        from dyade.linkage.stream import stream
+        from dyade.report import csv_rows
+
+        with options_named():
+            sweep_ = stream(mechanism, block_size=self.block_size,
+                            allow_partial=self.allow_partial, max_memory=self.max_memory,
+                            dead_centre=self.dead_centre,
+                            transmission_warning=self.transmission_warning,
+                            constant_speed=self.constant_speed, run_up=self.run_up)
+            blocks = sweep_.blocks()
+            first = next(blocks)  # the assembly check fails here, before any output
+        names = list(first)
+        if self.columns:
+            from dyade.report.tables import select
+
+            names = list(select(first, list(self.columns)))
+            if len(names) == 1:
+                raise click.BadParameter(f"no column matches {', '.join(self.columns)}; the "
+                                         f"columns are {', '.join(list(first)[:12])}, … "
+                                         f"(mechanisms/README.md lists them).",
+                                         param_hint="--columns")
+
+        def emit(handle) -> None:
+            writer = csv_rows.Writer(names, handle)
+            writer.header()
+            writer.rows(first)
+            for cols in blocks:
+                writer.rows(cols)
+            writer.close()
+
+        if output:
+            with atomic(output) as handle:
+                emit(handle)
+        else:
+            emit(sys.stdout)
+        warn(sweep_.notes, f"{os.path.basename(path)}: " if output else "")
+
+
+class options_named:
+    """Errors of the API named as the options give them: flags for parameters, and a
+    partial closure suggests --allow-partial."""
+
+    def __enter__(self) -> None:
+        pass
+
+    def __exit__(self, exc_type, exc, tb) -> bool:
+        from dyade.errors import AssemblyError, InputError
+
+        if isinstance(exc, InputError):
+            raise exc.naming(FLAGS) from None
+        if isinstance(exc, AssemblyError) and exc.partial:
+            raise AssemblyError("; ".join(exc.problems) + ". Change the dimensions or the "
+                                "sweep, or use --allow-partial to analyse only where it "
+                                "closes.", exc.problems, exc.partial) from None
+        return False
+
+
 def sweep(mechanism, allow_partial: bool, friction_tol: float | None = None,
           friction_max_iter: int | None = None, **options):
     """``dyade.analyse`` with the options' names in its errors (a partial closure
     suggests --allow-partial); ``options``: its other keywords."""
-    from dyade.errors import AssemblyError
     from dyade.linkage.sweep import analyse
 
-    try:
-        with flags(FLAGS):
-            return analyse(mechanism, allow_partial=allow_partial, friction_tol=friction_tol,
-                           friction_max_iter=friction_max_iter, **options)
-    except AssemblyError as err:
-        if not err.partial:
-            raise
-        raise AssemblyError("; ".join(err.problems) + ". Change the dimensions or the sweep, "
-                            "or use --allow-partial to analyse only where it closes.",
-                            err.problems, err.partial) from None
+    with options_named():
+        return analyse(mechanism, allow_partial=allow_partial, friction_tol=friction_tol,
+                       friction_max_iter=friction_max_iter, **options)
 
 
 def warn(notes, prefix: str = "") -> None:
