@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import os
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -36,8 +36,10 @@ from dyade.linkage.model import (
     Vec,
     sweep_problem,
 )
-from dyade.machine.motor import Asynchronous, ConstantTorque, Drive, Motor, TorqueSpeedTable
 from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS, rpm_to_rad_per_s
+
+if TYPE_CHECKING:  # the motor models load only with a [drive] table
+    from dyade.machine.motor import Drive
 
 TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
             "gravity", "load", "spring", "friction", "drive"}
@@ -494,6 +496,9 @@ class Reader(TableReader):
 
     def drive(self, table: Any) -> Drive:
         """The [drive] table: motor characteristic, flywheel and integration settings."""
+        from dyade.machine.motor import (Asynchronous, ConstantTorque, Drive, Motor,
+                                         TorqueSpeedTable)
+
         self.keys(table, "drive", DRIVE_KEYS)
         kind = self.required(table, "motor", "drive")
         if not isinstance(kind, str) or kind not in MOTOR_KEYS:
