@@ -18,7 +18,7 @@ Columns = dict[str, FloatArray]
 UNITS = {"angle_deg": "°", "phi": "°", "omega": "rad/s", "alpha": "rad/s²", "x": "m", "y": "m",
          "vx": "m/s", "vy": "m/s", "ax": "m/s²", "ay": "m/s²", "s": "m", "v": "m/s",
          "a": "m/s²", "mu": "°", "Fx": "N", "Fy": "N", "F": "N", "FN": "N", "M": "N·m",
-         "P": "W", "forces": "1/0", "MR": "N·m", "FR": "N", "lock": "N", "friction": "-"}
+         "P": "W", "forces": "1/0", "MR": "N·m", "FR": "N", "lock": "-", "friction": "-"}
 
 
 def _tag(name: tuple[int, int]) -> str:
@@ -83,13 +83,19 @@ def force_columns(result: Result) -> Columns:
         for name, value in rubbing.friction_forces.items():
             out[f"FR_{_tag(name)}"] = value
         out["P_friction"] = rubbing.power
-    for name, lock in (result.locking or {}).items():
-        out[f"lock_margin_{_tag(name)}"] = lock.margin
     invalid = ~forces.valid
     out = {key: np.where(invalid, np.nan, value) for key, value in out.items()}
+    # the self-locking figures stay where friction is what makes the forces invalid
+    dead = invalid & ~rubbing.blocked if rubbing is not None else invalid
+    for name, lock in (result.locking or {}).items():
+        if lock.margin is not None:
+            out[f"lock_margin_{_tag(name)}"] = np.where(dead, np.nan, lock.margin)
     if rubbing is not None:
         out["friction_iterations"] = rubbing.iterations
     out["forces_valid"] = forces.valid.astype(np.float64)
+    if rubbing is not None:
+        for number, det in sorted(rubbing.determinant.items()):
+            out[f"friction_det_{number}"] = np.where(dead, np.nan, det)
     return {key: value[result.rows] for key, value in out.items()}
 
 
