@@ -59,7 +59,7 @@ from dyade.linkage.model import (CRANK, FloatArray, Joint, Mechanism, Prismatic,
 AT_REST_RTOL = 1e-9  # [-] relative velocity below this share of the typical one counts as zero
 FORCE_FLOOR = 1e-12  # [-] share of a typical force below which changes are not relative
 EDGE = 3.0  # [-] sum of the edge pressures of a linear distribution over L: 3·|M'|/L
-COMPACT = 0.5  # [-] pass only the unsolved positions on once they are below this share
+COMPACT = 0.1  # [-] pass only the unsolved positions on once they are below this share
 RENEW_BELOW = 0.5  # [-] det below this: (I + K)⁻¹ renewed at every pass
 RESTART_PASSES = 8  # most Newton passes from each forced pattern (suspect positions)
 
@@ -191,21 +191,25 @@ class _Law:
             return [(1.0,), (-1.0,)]
         return [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)]
 
-    def gradient(self, parts: tuple, forced: tuple | None = None) -> tuple:
-        """a with g = a·W_k at the pattern of ``parts``, or at the ``forced`` one
-        (``choices``): three (n,) arrays (or 0.0)."""
+    def gradient(self, parts: tuple, forced: tuple | None = None, factor=1.0) -> tuple:
+        """``factor``·a, with g = a·W_k at the pattern of ``parts``, or at the ``forced``
+        one (``choices``): three (n,) arrays (or 0.0)."""
         if self.revolute:
             wx, wy, size = parts
-            scale = self.arm / np.maximum(size, 1e-300)  # |F| = 0: f = 0, no direction
+            scale = factor * self.arm / np.maximum(size, 1e-300)  # |F| = 0: f = 0
             if forced is not None:
-                scale = forced[0] * scale
+                scale *= forced[0]
             return wx * scale, wy * scale, 0.0
         normal, tilt, _ = parts
-        sn = np.sign(normal) if forced is None else forced[0]
+        sn = (np.sign(normal) if forced is None else forced[0]) * factor
         if tilt is None:
             return -self.ay * sn, self.ax * sn, 0.0
-        st = self.edge * (np.sign(tilt) if forced is None else forced[1])
-        return st * self.tx - self.ay * sn, st * self.ty + self.ax * sn, st * self.zeta
+        st = (np.sign(tilt) if forced is None else forced[1]) * (self.edge * factor)
+        gx = st * self.tx
+        gx -= self.ay * sn
+        gy = st * self.ty
+        gy += self.ax * sn
+        return gx, gy, st * self.zeta
 
 
 class _Rub:
@@ -246,17 +250,14 @@ class _Rub:
                      self.kin.motion)
                 for k, joint in enumerate(group.joints) if has_friction(joint)]
 
-    def record(self, group: Group, laws: list[_Law], taus: list[FloatArray], w_b: FloatArray
+    def record(self, group: Group, laws: list[_Law], taus: list[FloatArray], parts: list
                ) -> None:
-        """Keep each joint's τ, and a slider's friction at the guide surface."""
-        for law, tau in zip(laws, taus):
+        """Keep each joint's τ, and a slider's friction at the guide surface (from the
+        ``parts`` the laws measured at the final reactions)."""
+        for law, tau, part in zip(laws, taus, parts):
             self.taus[law.name] = (group.on[law.k], tau, group.rate(law.k))
-            if not law.revolute:
-                if law.edge:
-                    surface = -law.c * law.measure(w_b)[1][2]
-                else:
-                    surface = tau
-                self.surface[law.name] = surface  # on the slider along d, as τ itself
+            if not law.revolute:  # on the slider along d, as τ itself: its μ·|FN| part
+                self.surface[law.name] = -law.c * part[2] if law.edge else tau
 
     def crank(self, q_crank: FloatArray) -> FloatArray | float:
         """τ₁₂, the friction moment of joint (1,2) on the crank: its force −Q₂ does not
@@ -276,15 +277,16 @@ def _scale(w_b: FloatArray, q_i: FloatArray, q_j: FloatArray, floor: bool = True
            ) -> FloatArray:
     """(n,) the size of a group's joint forces: the largest force component of its three
     joints (W_A = W_B − Q_i, W_B, W_C = −Q_j − W_B); against the frictionless one
-    changes are relative (``floor``: not below a small share of its largest value)."""
-    f_b, f_i, f_j = w_b[:2], q_i[:2], q_j[:2]
-    scale = np.maximum(np.maximum(np.abs(f_b - f_i).max(axis=0), np.abs(f_b).max(axis=0)),
-                       np.abs(f_j + f_b).max(axis=0))
+    changes are relative (``floor``: not below a small share of a typical value)."""
+    scale = np.abs(w_b[0])
+    for part in (w_b[1], w_b[0] - q_i[0], w_b[1] - q_i[1], w_b[0] + q_j[0], w_b[1] + q_j[1]):
+        np.maximum(scale, np.abs(part), out=scale)
     if not floor:
         return scale
-    # a typical size, not the largest: near a dead centre forces reach 1e30
-    usable = scale[np.isfinite(scale) & (scale > 0.0)]
-    least = FORCE_FLOOR * (float(np.median(usable)) if usable.size else 1.0)
+    # a typical size, not the largest (near a dead centre forces reach 1e30); a sample
+    sample = scale[::max(1, scale.size // 256)]
+    sample = sample[np.isfinite(sample) & (sample > 0.0)]
+    least = FORCE_FLOOR * (float(np.median(sample)) if sample.size else 1.0)
     return np.maximum(scale, max(least, 1e-300))
 
 
@@ -397,18 +399,20 @@ def _apply(inverse: FloatArray, vector: list[FloatArray]) -> list[FloatArray]:
 def _matrix(laws: list[_Law], rows: list[FloatArray], parts: list, forced=None
             ) -> tuple[FloatArray, list]:
     """K (m, m, n), K_kl = c_k·s_k·a_k·R_l, at the pattern of ``parts``
-    (``_Law.measure``) or at the ``forced`` patterns; also the gradients a_k."""
+    (``_Law.measure``) or at the ``forced`` patterns; also the gradients c_k·s_k·a_k."""
     m = len(laws)
     out = np.empty((m, m, rows[0].shape[1]))
+    term = np.empty(rows[0].shape[1])
     gradients = []
     for k, (law, part) in enumerate(zip(laws, parts)):
-        a = law.gradient(part, None if forced is None else forced[k])
+        a = law.gradient(part, None if forced is None else forced[k],
+                         law.c if law.side > 0 else -law.c)
         gradients.append(a)
-        factor = law.c if law.side > 0 else -law.c
-        scaled = (a[0] * factor, a[1] * factor,
-                  a[2] if isinstance(a[2], float) and a[2] == 0.0 else a[2] * factor)
         for l, row in enumerate(rows):
-            _dot(scaled, row, out=out[k, l])
+            entry = np.multiply(a[0], row[0], out=out[k, l])
+            entry += np.multiply(a[1], row[1], out=term)
+            if not (isinstance(a[2], float) and a[2] == 0.0):
+                entry += np.multiply(a[2], row[2], out=term)
     return out, gradients
 
 
@@ -495,16 +499,6 @@ class _Newton:
         self.det[at] = det
         self.note_lowest(at, det, matrix)
 
-    def exact(self, view: _View, where: FloatArray, measured: list) -> None:
-        """det(I + K) where ``where``, at the pattern of the reactions ``measured``."""
-        parts = [part for _, part in measured]
-        if not where.all():
-            index = np.flatnonzero(where)
-            view = view.take(index)
-            parts = [tuple(None if p is None else p[index] for p in part) for part in parts]
-        matrix, _ = _matrix(view.laws, view.rows, parts)
-        self.det[where] = determinant(matrix)
-
     def note_lowest(self, at, det: FloatArray, matrix: FloatArray) -> None:
         """Keep the lowest det ≤ 0 met at the positions ``at`` and the own factors
         1 + K_kk there (the diagonal of ``matrix``, I + K)."""
@@ -545,7 +539,7 @@ class _Direct(_Rub):
     def _solve(self, group: Group, laws: list[_Law], w0: FloatArray, q_i: FloatArray,
                q_j: FloatArray) -> FloatArray:
         n, m = w0.shape[1], len(laws)
-        start = self.usable & np.isfinite(w0).all(axis=0)
+        start = self.usable & np.isfinite(w0[0])  # NaN: a dyad solved earlier failed there
         width = 2 if all(law.revolute for law in laws) else 3  # pins need no moments
         rows = [group.inverse[law.k][:width] for law in laws]
         scale = _scale(w0, q_i, q_j)
@@ -557,7 +551,7 @@ class _Direct(_Rub):
             view, taus = view.take(index), [tau[index] for tau in taus]
         out = _Newton(view.size, m)
         self.newton(view, taus, out, 0, chord=True)
-        suspect = np.flatnonzero(~out.done | ~(out.det > 0.0))
+        suspect = np.flatnonzero(~out.done | (out.det <= 0.0))
         if suspect.size:
             self.restart(view, taus, out, suspect)
         if index is not None:
@@ -566,16 +560,24 @@ class _Direct(_Rub):
             for tau, sub in zip(full, taus):
                 tau[index] = sub
             out, taus = whole, full
+        rows = [group.inverse[law.k] for law in laws]
+        w_b = _combine(w0, rows, taus)
+        parts = [law.measure(w_b)[1] for law in laws]
+        # det at the pattern of the reported solution (the chord's may be a pass old)
+        if out.done.any():
+            matrix, _ = _matrix(laws, rows, parts)
+            out.det = np.where(out.done, determinant(matrix), out.det)
         bad = ~(out.done & (out.det > 0.0))
-        for tau in taus:
-            tau[bad] = np.nan
-        w_b = _combine(w0, [group.inverse[law.k] for law in laws], taus)
+        if bad.any():
+            for tau in taus:
+                tau[bad] = np.nan
+            w_b[:, bad] = np.nan
         # the plausibility bound: friction multiplies no joint force of the dyad by more
         # than 1/sin(dead_centre) (the largest force component of its three joints)
         band = np.sin(self.mechanism.dead_centre_angle)
         amplified = _scale(w_b, q_i, q_j, floor=False) * band > scale
         self._verdict(group, laws, out, start, band, amplified)
-        self.record(group, laws, taus, w_b)
+        self.record(group, laws, taus, parts)
         return w_b
 
     def newton(self, view: _View, taus: list[FloatArray], out: _Newton, count: int,
@@ -587,43 +589,56 @@ class _Direct(_Rub):
         limit = self.max_iter if limit is None else limit
         n = view.size
         pending = ~out.done
+        every = bool(pending.all())  # the common case, without masks
         w = view.wrench(taus)
         while True:
             measured = [law.measure(w) for law in view.laws]
             change = [-law.c * g - tau for law, (g, _), tau in zip(view.laws, measured, taus)]
             now = _step(view.laws, change, view.scale)
             np.copyto(out.step, now, where=pending)
-            renew = pending.copy()
             if chord and count > 0:
-                renew &= out.det < RENEW_BELOW
+                renew = ~(out.det >= RENEW_BELOW)  # (NaN: never renewed)
                 for law, (_, parts), old in zip(view.laws, measured, out.patterns):
                     for new, was in zip(law.pattern(parts), old):
-                        renew |= pending & (new != was)
+                        renew |= new != was
+                renew &= pending
+            else:
+                renew = pending
             if renew.any():
                 out.renew(view, renew, measured)
-            done = pending & (now <= self.tol)
-            stale = done & ~renew  # the det of the consistent pattern, not a stale one
-            if stale.any():
-                out.exact(view, stale, measured)
-            for tau, move in zip(taus, change):  # done: one last fixed-point step
-                np.add(tau, move, out=tau, where=done)
-            out.done |= done
-            pending &= ~done
-            if not pending.any() or count >= limit:
+            done = now <= self.tol
+            if not every:
+                done &= pending
+            if done.any():
+                for tau, move in zip(taus, change):  # one last fixed-point step
+                    np.add(tau, move, out=tau, where=done)
+                out.done |= done
+                pending = pending & ~done
+                every = False
+            if count >= limit or not pending.any():
                 return
-            for tau, move in zip(taus, _apply(out.inverse, change)):
-                np.add(tau, move, out=tau, where=pending)
-            out.passes += pending
+            delta = _apply(out.inverse, change)
             count += 1
-            if n > 1 and np.count_nonzero(pending) < COMPACT * n:
-                sub = np.flatnonzero(pending)
-                inner, sub_taus = out.take(sub), [tau[sub] for tau in taus]
-                self.newton(view.take(sub), sub_taus, inner, count, chord, limit)
-                out.put(sub, inner)
-                for tau, part in zip(taus, sub_taus):
-                    tau[sub] = part
-                return
-            w = view.wrench(taus)
+            if every:
+                for tau, move in zip(taus, delta):
+                    tau += move
+                out.passes += 1.0
+            else:
+                for tau, move in zip(taus, delta):
+                    np.add(tau, move, out=tau, where=pending)
+                out.passes += pending
+                if n > 1 and np.count_nonzero(pending) < COMPACT * n:
+                    sub = np.flatnonzero(pending)
+                    inner, sub_taus = out.take(sub), [tau[sub] for tau in taus]
+                    self.newton(view.take(sub), sub_taus, inner, count, chord, limit)
+                    out.put(sub, inner)
+                    for tau, part in zip(taus, sub_taus):
+                        tau[sub] = part
+                    return
+            term = np.empty_like(w)  # W_B moves with τ (the settled positions too: unused)
+            for move, row in zip(delta, view.rows):
+                np.multiply(row, move, out=term)
+                w += term
 
     def restart(self, view: _View, taus: list[FloatArray], out: _Newton,
                 suspect: FloatArray) -> None:
@@ -637,7 +652,9 @@ class _Direct(_Rub):
                                         [law.measure(w0)[1] for law in part.laws], forced)
             inverse, det = invert_small(matrix)
             # the forced pattern's own solution: (I + K)·τ = −c·a·W⁰
-            trial_taus = _apply(inverse, [-law.c * _dot(a, [law.component(w0, i) for i in range(3)])
+            # (gradients carry c_k·s_k: t_k = −c_k·a_k·W_k⁰ = −s_k·(c_k·s_k·a_k)·W_k⁰)
+            trial_taus = _apply(inverse, [-law.side * _dot(a, [law.component(w0, i)
+                                                               for i in range(3)])
                                           for law, a in zip(part.laws, gradients)])
             trial = _Newton(left.size, len(view.laws))
             trial.note_lowest(slice(None), det, matrix)
@@ -661,26 +678,33 @@ class _Direct(_Rub):
                  band: float, amplified: FloatArray) -> None:
         """Self-locking, unsolved and near self-locking positions of the group's dyad:
         det below ``band`` or forces ``amplified`` beyond the plausibility bound."""
-        solved = start & out.done & (out.det > 0.0)
-        fresh = start & ~self.locked & ~self.unsolved
-        locked = fresh & ~solved & (out.lowest <= 0.0)
-        unsolved = fresh & ~solved & ~locked
         number = self.dyads[group.links]
-        if locked.any():  # the joint whose friction alone brings det lowest
-            cause = np.argmin(np.where(np.isnan(out.own), np.inf, out.own), axis=0)
-            for k, law in enumerate(laws):
-                mask = locked & (cause == k)
-                if mask.any():
-                    self.locks[law.name] = mask
-                    self.lock_dyad[law.name] = number
-        self.locked |= locked
-        self.unsolved |= unsolved
-        self.converged &= ~(locked | unsolved)
-        self.near[number] = fresh & solved & ((out.det < band) | amplified)
-        self.determinant[number] = np.where(solved, out.det,
-                                            np.where(start & locked, out.lowest, np.nan))
-        self.iterations = np.maximum(self.iterations, np.where(start, out.passes, 0.0))
-        self.residual = np.maximum(self.residual, np.where(start, out.step, 0.0))
+        solved = out.done & (out.det > 0.0)  # (out is all False outside ``start``)
+        determinant = np.where(solved, out.det, np.nan)
+        failed = start & ~solved
+        if failed.any():
+            fresh = failed & ~self.locked & ~self.unsolved
+            locked = fresh & (out.lowest <= 0.0)
+            unsolved = fresh & ~locked
+            if locked.any():  # the joint whose friction alone brings det lowest
+                cause = np.argmin(np.where(np.isnan(out.own), np.inf, out.own), axis=0)
+                for k, law in enumerate(laws):
+                    mask = locked & (cause == k)
+                    if mask.any():
+                        self.locks[law.name] = mask
+                        self.lock_dyad[law.name] = number
+                determinant[locked] = out.lowest[locked]
+            self.locked |= locked
+            self.unsolved |= unsolved
+            self.converged &= ~(locked | unsolved)
+        near = (out.det < band) | amplified
+        near &= solved
+        if self.locked.any() or self.unsolved.any():
+            near &= ~self.locked & ~self.unsolved
+        self.near[number] = near
+        self.determinant[number] = determinant
+        np.maximum(self.iterations, out.passes, out=self.iterations)
+        np.maximum(self.residual, np.where(start, out.step, 0.0), out=self.residual)
 
 
 class _FixedPoint(_Rub):
@@ -713,7 +737,7 @@ class _FixedPoint(_Rub):
         self.iterations = np.maximum(self.iterations, its)
         self.residual = np.maximum(self.residual, np.where(self.usable, step, 0.0))
         self.converged &= ~pending
-        self.record(group, laws, taus, w_b)
+        self.record(group, laws, taus, [law.measure(w_b)[1] for law in laws])
         return w_b
 
 
