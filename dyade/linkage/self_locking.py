@@ -88,13 +88,11 @@ def push_margin(mechanism: Mechanism, kin: Kinematics, joint: Prismatic, group, 
     typical = abs(mechanism.crank.speed) * mechanism.crank.length
     velocity = travel(joint, motion)[1]
     sign = np.where(np.abs(velocity) <= AT_REST_RTOL * typical, 0.0, np.sign(velocity))
-    # W_k = ±R_k carries a unit load along the joint's freedom S_k = ±d; on the slider
-    # that is +1 along d. The reaction to a push along the motion is −sign(ṡ) times it
-    # (either sense at rest).
-    side = -1.0 if k == 2 else 1.0
-    zeta = 1.0 if group.on[k] == joint.slider else -1.0
-    sense = np.where(sign == 0.0, 1.0, -sign) * (side * zeta)
-    fx, fy, moment = (sense * part for part in group.inverse[k])
+    # W_k = ±R_k carries a unit load along the joint's freedom: the joint's reaction to a
+    # unit push along the guide. Its sense does not matter: reversed, FN and M both
+    # reverse, and with them M + ½·FN·H·μ·sign ṡ (the motion fixes sign ṡ, the face
+    # carrying FN carries the friction's part μ·|FN|).
+    fx, fy, moment = group.inverse[k]
     dx, dy = guide_direction(joint, motion)
     sx, sy = motion.point_xy(joint.slider, joint.slider_point)
     normal = dx * fy - dy * fx
