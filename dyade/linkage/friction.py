@@ -26,19 +26,26 @@ joints with friction (one to three unknowns per crank position):
     (I + K)·τ = t,   K_kl = c_k·s_k·a_k·R_l,   t_k = −c_k·a_k·W_k⁰.
 
 Solve, take the pattern of the new reactions, repeat until the laws hold (the change a
-fixed-point step would make is below ``tol``). A slider's law is piecewise linear, so a
-consistent pattern is exact after one or two passes; a pin's direction update is
-Newton's method on |F|, quadratically convergent. All positions at once.
+fixed-point step would make to a friction load is below ``tol`` times μ·r_z or μ times
+the dyad's largest joint force). A slider's law is piecewise linear, so a consistent
+pattern is exact after one or two passes; a pin's direction update is Newton's method
+on |F|, quadratically convergent. All positions at once.
 
 **Self-locking.** det(I + K) = det(Mᵀ + C·A)/det(Mᵀ) is the friction-augmented
-determinant of the dyad relative to the frictionless one (1 without friction). Where it
-is ≤ 0 at the consistent pattern, or where no consistent pattern exists and a pass met
-det ≤ 0, the dyad self-locks — a friction dead centre: towards it the forces grow like
-1/det, beyond it no motion in the prescribed direction is possible, and the fixed-point
-iteration, whose step has an eigenvalue −1 there, diverges. Where no consistent pattern
-is found otherwise, the position is not solved. Neither gets forces (NaN), nor do the
-dyads solved after it at that position. The joint named is the one whose friction alone
-would bring the determinant lowest (its own factor 1 + K_kk).
+determinant of the dyad relative to the frictionless one (1 without friction); towards 0
+the forces grow like 1/det. A consistent solution with det > 0 is the one dyade reports;
+where the passes end at det ≤ 0 or cycle, they start again from every forced pattern
+(``_Direct``), since a slider that a load drives while its linkage brakes it also has a
+jammed solution (det < 0) beside the braked one. Where no start finds a consistent
+solution with det > 0 and some pass met det ≤ 0, the dyad self-locks — a friction dead
+centre, beyond which no motion in the prescribed direction is possible (the fixed-point
+iteration diverges there too); where none is found otherwise, the position is not
+solved. Neither gets forces (NaN), nor do the dyads solved after it at that position.
+The joint named is the one whose friction alone would bring the determinant lowest (its
+own factor 1 + K_kk). Solved positions with det below sin(dead_centre), or where
+friction multiplies the dyad's largest joint force component by more than
+1/sin(dead_centre) (the plausibility bound), are near self-locking: their forces are
+computed but not valid (``near``).
 
 Where a relative velocity is zero the friction direction is undefined: sign(0) = 0 is
 used and the positions are returned in ``at_rest`` so that the caller reports them.
@@ -53,8 +60,7 @@ import numpy as np
 
 from dyade.linkage import kinetostatics
 from dyade.linkage.kinematics import Group, Kinematics
-from dyade.linkage.model import (CRANK, FloatArray, Joint, Mechanism, Prismatic, Revolute,
-                                 toward_higher)
+from dyade.linkage.model import CRANK, FloatArray, Joint, Mechanism, Revolute, toward_higher
 
 AT_REST_RTOL = 1e-9  # [-] relative velocity below this share of the typical one counts as zero
 FORCE_FLOOR = 1e-12  # [-] share of a typical force below which changes are not relative
@@ -801,15 +807,3 @@ def _run(kind, mechanism: Mechanism, kin: Kinematics, tol: float | None,
     return FrictionResult(forces, moments, friction_forces, power, rub.iterations,
                           rub.residual, rub.converged, at_rest, never, rub.determinant,
                           rub.locks, rub.lock_dyad, rub.locked, rub.unsolved, rub.near)
-
-
-def joint_forces_on(link: int, mechanism: Mechanism, result: FrictionResult
-                    ) -> dict[tuple[int, int], FloatArray]:
-    """World force (n, 2) of every joint of ``link`` on that link (reactions + friction)."""
-    return {joint.name: result.forces.on(joint.name, link)[:2].T.copy()
-            for joint in mechanism.joints if link in joint.links}
-
-
-def slider_joints(mechanism: Mechanism) -> list[Prismatic]:
-    """Prismatic joints with friction."""
-    return mechanism.friction_sliders
