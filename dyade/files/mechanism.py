@@ -51,11 +51,12 @@ CRANK_KEYS = {"link", "pivot", "length", "speed_rpm", "direction", "points", "pi
 LINK_KEYS = {"points", "mass", "centre", "inertia", "radius_of_gyration"}
 REVOLUTE_KEYS = {"link", "point", "pin_radius", "friction", "clearance"}
 PRISMATIC_KEYS = {"link", "point", "angle", "offset", "guide", "slider_point", "slider_length",
-                  "slider_height", "friction"}
-FRICTION_KEYS = {"coefficient", "tol", "max_iter", "pin_radius", "slider_length", "slider_height"}
+                  "slider_height", "friction", "edge_friction"}
+FRICTION_KEYS = {"coefficient", "tol", "max_iter", "pin_radius", "slider_length", "slider_height",
+                 "edge_friction"}
 MIDDLE_R_KEYS = {"pin_radius", "friction", "clearance"}
 MIDDLE_P_KEYS = {"guide", "offset", "angle", "point", "slider_length", "slider_height",
-                 "friction"}
+                 "friction", "edge_friction"}
 DYAD_KEYS_COMMON = {"kind", "links", "A", "B", "C", "variant", "name"}
 GRAVITY_KEYS = {"x", "y"}
 MOTOR_KEYS = {"constant": {"torque"},
@@ -185,6 +186,8 @@ class Reader(TableReader):
             for name in ("pin_radius", "slider_length", "slider_height") if name in friction}
         self.default_mu = self.number(friction.get("coefficient", 0.0), "friction.coefficient",
                                       "-", non_negative=True)
+        self.default_edges = self.boolean(friction.get("edge_friction", True),
+                                          "friction.edge_friction")
         friction_tol = self.number(friction.get("tol", 1e-9), "friction.tol", "-", positive=True)
         friction_max_iter = self.integer(friction.get("max_iter", 50), "friction.max_iter")
         if friction_max_iter < 1:
@@ -365,7 +368,15 @@ class Reader(TableReader):
         return out
 
     def prismatic_friction(self, table: dict[str, Any], key: str) -> dict[str, Any]:
-        return self.friction_data(table, key, ("slider_length", "slider_height"))
+        out = self.friction_data(table, key, ("slider_length", "slider_height"))
+        out["edge_friction"] = self.boolean(table.get("edge_friction", self.default_edges),
+                                            f"{key}.edge_friction")
+        return out
+
+    def boolean(self, value: Any, key: str) -> bool:
+        if not isinstance(value, bool):
+            raise self.fail(key, f"must be true or false, got {_show(value)}.", value)
+        return value
 
     def friction_data(self, table: dict[str, Any], key: str, needs: tuple[str, ...]
                       ) -> dict[str, Any]:
