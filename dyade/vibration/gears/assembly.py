@@ -82,6 +82,10 @@ class System:
     """(n, meshes) w of every mesh: w·q = n·(u_p − u_r) at the pitch point [m]"""
     normals: FloatArray
     """(meshes, 3) plane-of-action normals (global, unit)"""
+    senses: FloatArray
+    """(meshes,) +1 or −1: the load on the driven gear acts along senses·n (the driving
+    gear's sense of rotation, +1 when unknown), so that a mesh force
+    senses·(−λ) or senses·k·w·q is positive in compression"""
     elements: tuple[Element, ...]
     """every spring-damper element, the shafts' pieces included"""
     element_dofs: tuple[np.ndarray, ...]
@@ -141,7 +145,8 @@ def assemble(drive: GearDrive) -> System:
                            else np.array([b.mass] * 3 + list(b.inertia)) for b in bodies])
     system = System(drive, tuple(bodies), tuple(owners), per_body, mass, np.zeros((n, n)),
                     np.zeros((n, n)), np.zeros((n, 0)), (), np.zeros((n, 0)), np.zeros((0, 3)),
-                    system_elements, (), (), np.zeros((0, 6)), np.zeros((0, 6)))
+                    np.ones(len(drive.meshes)), system_elements, (), (), np.zeros((0, 6)),
+                    np.zeros((0, 6)))
     _elements(system)
     _meshes(system)
     return system
@@ -255,6 +260,7 @@ def _meshes(system: System) -> None:
     system.mesh_rows = np.array(rows).T.reshape(n, -1)
     system.normals = np.array(normals).reshape(-1, 3)
     system.ideal = tuple(ideal)
+    system.senses = np.array([float(m.rotation or 1) for m in drive.meshes])
     system.constraints = system.mesh_rows[:, ideal]
     # gᵀM⁻¹g must be invertible: each mesh must constrain a motion the earlier ones do not
     scaled = system.constraints / np.sqrt(system.mass)[:, None]

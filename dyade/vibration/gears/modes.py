@@ -224,7 +224,7 @@ class Modes:
     mesh_forces: FloatArray
     """(meshes, k) modal mesh force along n, compression positive, per unit modal
     coordinate [N/(m·√kg)]: −λ of the paper's multiplier formula (ideal meshes) or the
-    spring force (elastic meshes)"""
+    spring force (elastic meshes), signed by ``System.senses``"""
     unresolved: np.ndarray
     """(k,) bool: eigenvalue within round-off of zero (frequency NaN)"""
     resolution: float
@@ -356,12 +356,11 @@ def multipliers(system: System, residual: np.ndarray) -> np.ndarray:
 
 def modal_mesh_forces(system: System, shapes: FloatArray) -> FloatArray:
     """(meshes, k): the mesh force of every mode, compression positive (−λ for ideal
-    meshes, k·w·φ for elastic ones)."""
+    meshes, k·w·φ for elastic ones, times the mesh's sense: ``System.senses``)."""
     out = np.zeros((len(system.drive.meshes), shapes.shape[1]))
     if system.ideal:
         out[list(system.ideal)] = -multipliers(system, system.stiffness @ shapes)
     for k, mesh in enumerate(system.drive.meshes):
         if mesh.stiffness is not None:
             out[k] = mesh.stiffness * (system.mesh_rows[:, k] @ shapes)
-    return out
-
+    return system.senses[:, None] * out
