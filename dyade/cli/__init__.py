@@ -14,7 +14,8 @@ import click
 from dyade import __version__
 
 SUBCOMMANDS = {"describe": "analyse", "analyse": "analyse", "init": "analyse",
-               "clearance": "clearance", "coupling": "coupling", "accuracy": "accuracy"}
+               "clearance": "clearance", "coupling": "coupling", "accuracy": "accuracy",
+               "gears": "gears"}
 """command -> module of dyade.cli that defines it, imported when the command is used
 (or listed by --help), so that a run pays only for its own command"""
 

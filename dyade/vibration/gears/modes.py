@@ -240,11 +240,14 @@ class Modes:
             return self.mesh_forces ** 2 / self.eigenvalues[None, :]
 
     def totals(self, energy: str = "strain") -> dict[str, FloatArray]:
-        """Shares by motion ("torsion", "lateral", "axial"; strain energy adds "mesh")."""
+        """Shares by motion ("torsion", "lateral", "axial"; strain energy adds "mesh");
+        NaN for the motions the torsional model does not have."""
         table = self.strain if energy == "strain" else self.kinetic
         out = {m: np.zeros(self.frequencies.size) for m in MOTIONS + ("mesh",) * (energy == "strain")}
         for (_, motion), share in table.items():
             out[motion] = out[motion] + share
+        if self.system.per_body == 1:  # the torsional model has no lateral or axial motion
+            out["lateral"] = out["axial"] = np.full(self.frequencies.size, np.nan)
         return out
 
     def by_owner(self) -> dict[str, FloatArray]:

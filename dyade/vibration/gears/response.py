@@ -52,6 +52,7 @@ class Response:
     """(F, c) complex amplitudes [m or rad]"""
     mesh_forces: np.ndarray
     """(F, meshes) complex dynamic mesh forces along n, compression positive [N]"""
+    mesh_names: tuple[str, ...]
     supports: tuple[str, ...]
     """the bearings and frame-connected elements of ``support_forces``"""
     support_forces: np.ndarray
@@ -179,7 +180,9 @@ def gear_response(drive: GearDrive | System, frequencies, *, coordinates=None,
     forces *= system.senses[None, :]
     supports, support_forces = _support_forces(system, q, omega)
     columns = [system.coordinate(body, dof) for body, dof in picked]
-    return Response(freq, picked, q[:, columns], forces, supports, support_forces, unbounded, q)
+    return Response(freq, picked, q[:, columns], forces,
+                    tuple(m.name for m in system.drive.meshes), supports, support_forces,
+                    unbounded, q)
 
 
 def _support_forces(system: System, q: np.ndarray, omega: FloatArray
