@@ -47,6 +47,7 @@ from dyade.vibration.gears.model import (
     add,
     disk,
     frame,
+    mesh_step,
     plane_of_action,
 )
 
@@ -243,11 +244,13 @@ def _meshes(system: System) -> None:
         length = math.sqrt(sum(c * c for c in normal))
         if abs(length - 1.0) > UNIT_TOL:
             raise AssertionError(f"mesh {mesh.name}: |n| = {length!r} is not 1")  # a bug, not input
-        point = add(bp.position, pitch)
+        # the pitch point from each body's reference point, by the gears' geometry (the
+        # torsional model places no bodies): driving d_p, driven d_p − (r_p + r_r)·Z2 + …
+        driven = add(pitch, mesh_step(p, r, mesh, bp.axis, br.axis), -1.0)
         row = np.zeros(system.size)
-        for sign, body in ((1.0, bp), (-1.0, br)):
+        for sign, body, arm in ((1.0, bp, pitch), (-1.0, br, driven)):
             i = system.index(body.name)
-            at_point = transfer(point, body.position) @ system.to_global(i)
+            at_point = transfer(arm, (0.0, 0.0, 0.0)) @ system.to_global(i)
             row[system.dofs_of(body.name)] += sign * (np.asarray(normal) @ at_point[:3])
         rows.append(row)
         normals.append(normal)
