@@ -151,9 +151,8 @@ def mode_tables(modes, shapes: int = 0):
 
     meshes = modes.system.drive.meshes
     elastic = any(m.stiffness is not None for m in meshes)
-    table = Table(title=title(modes) + "\nNatural frequencies (no gyroscopic terms: the same "
-                                       "at every speed); energy shares [%]",
-                  title_justify="left")
+    table = Table(title="Natural frequencies (no gyroscopic terms: the same at every speed); "
+                        "energy shares [%]", title_justify="left")
     heads = ["mode", "f [Hz]", "T tors", "T lat", "T ax", "U tors", "U lat", "U ax"]
     heads += ["U mesh"] if elastic else []
     heads += ["dominant (strain)"] + [f"F {m.name}" for m in meshes]
@@ -170,7 +169,7 @@ def mode_tables(modes, shapes: int = 0):
         row += [f"{owner} {motion} {percent(share)}" if owner else "—"]
         row += [fmt(forces[j, k], 4) for j in range(len(meshes))]
         table.add_row(*row)
-    parts: list[Any] = [table]
+    parts: list[Any] = [title(modes), table]
     if meshes:
         parts.append("F: modal mesh force along the plane-of-action normal, compression "
                      "positive, per unit modal coordinate of the M-orthonormal mode [N/(m·√kg)]")
@@ -225,9 +224,8 @@ def campbell_tables(diagram):
     from rich.table import Table
 
     speeds = diagram.speeds_rpm
-    lines = Table(title=title(diagram.modes) + f"\nCampbell diagram, input speed "
-                        f"{fmt(speeds[0])}–{fmt(speeds[-1])} rpm ({speeds.size} speeds): "
-                        f"excitation lines", title_justify="left")
+    lines = Table(title=f"Campbell diagram, input speed {fmt(speeds[0])}–{fmt(speeds[-1])} rpm "
+                        f"({speeds.size} speeds): excitation lines", title_justify="left")
     for head in ("line", "kind", "Hz per rpm", f"at {fmt(speeds[-1])} rpm [Hz]"):
         lines.add_column(head, justify="left" if head in ("line", "kind") else "right")
     for k, order in enumerate(diagram.orders):
@@ -242,7 +240,7 @@ def campbell_tables(diagram):
     for c in crossing_rows(diagram):
         table.add_row(fmt(c["speed_rpm"], 6), str(c["mode"]), fmt(c["f_Hz"], 6), c["order"],
                       percent(c["mesh_share"]), fmt(c["kappa_N_per_m"], 3), c["dominant"])
-    return [lines, table]
+    return [title(diagram.modes), lines, table]
 
 
 def campbell_notes(diagram) -> list[str]:
@@ -287,7 +285,7 @@ def response_tables(response, cols, names, label: str):
     freq = response.frequencies
     stride = max(1, int(np.ceil(freq.size / 40)))
     note = f" (every {stride}. of {freq.size} rows; --format csv for all)" if stride > 1 else ""
-    summary = Table(title=f"{label}\nForced response to the file's excitations, "
+    summary = Table(title=f"Forced response to the file's excitations, "
                           f"{fmt(freq[0])}–{fmt(freq[-1])} Hz: peaks", title_justify="left")
     for head in ("quantity", "peak", "at [Hz]"):
         summary.add_column(head, justify="left" if head == "quantity" else "right")
@@ -305,7 +303,7 @@ def response_tables(response, cols, names, label: str):
         table.add_column(name.replace("_", "\n", 1), justify="right")
     for k in range(0, freq.size, stride):
         table.add_row(*[fmt(cols[name][k], 4) for name in shown])
-    return [summary, table]
+    return [label, summary, table]
 
 
 def response_notes(response) -> list[str]:
@@ -336,8 +334,8 @@ def check_summary(result) -> dict:
 def check_tables(result, label: str):
     from rich.table import Table
 
-    table = Table(title=f"{label}\nThe paper's elimination (eqs. (27)–(33)) against the "
-                        f"null-space solution", title_justify="left")
+    table = Table(title="The paper's elimination (eqs. (27)–(33)) against the null-space "
+                        "solution", title_justify="left")
     for head in ("mode", "null space [Hz]", "eliminated [Hz]", "rel. diff"):
         table.add_column(head, justify="right")
     for row in check_rows(result):
@@ -352,7 +350,7 @@ def check_tables(result, label: str):
     summary.add_row("their values [1/s²] (round-off)",
                     ", ".join(f"{z:.2g}" for z in result.zeros) or "—")
     summary.add_row("largest relative frequency difference", f"{result.difference:.2e}")
-    return [table, summary]
+    return [label, table, summary]
 
 
 def check_notes(result) -> list[str]:

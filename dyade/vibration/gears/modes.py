@@ -362,7 +362,9 @@ def modal_mesh_forces(system: System, shapes: FloatArray) -> FloatArray:
     meshes, k·w·φ for elastic ones, times the mesh's sense: ``System.senses``)."""
     out = np.zeros((len(system.drive.meshes), shapes.shape[1]))
     if system.ideal:
-        out[list(system.ideal)] = -multipliers(system, system.stiffness @ shapes)
+        # (gᵀM⁻¹g)⁻¹·gᵀM⁻¹·K first: l rows, so that no n×n×k product is formed
+        rows = multipliers(system, system.stiffness)
+        out[list(system.ideal)] = -(rows @ shapes)
     for k, mesh in enumerate(system.drive.meshes):
         if mesh.stiffness is not None:
             out[k] = mesh.stiffness * (system.mesh_rows[:, k] @ shapes)
