@@ -65,6 +65,7 @@ def test_support_reactions_balance_the_applied_torques(name):
     else:
         torques = _balanced(drive)
     statics = dyade.gear_statics(drive, torques)
+    assert np.all(statics.mesh_forces > 0)  # the driving torque loads every mesh in compression
     applied = sum(t * np.asarray(drive.body(b).axis) for b, t in torques.items())
     forces = statics.forces.sum(axis=0)
     moments = (np.cross(statics.points, statics.forces) + statics.moments).sum(axis=0)
