@@ -32,15 +32,16 @@ def test_shipped_drives(name, meshes, rigid):
 
 @given(data=random_drives())
 def test_generated_drives(data):
-    """1e-9 wherever double precision allows it: both solutions carry a round-off of about
-    eps·ω²_max/ω² in ω² (the symmetric eigh and the paper's non-symmetric form alike), so
-    on drives whose eigenvalues spread over more than 10⁶ (tiny pinions in stiff
-    bearings) the agreement is held to that bound instead."""
+    """1e-9 wherever double precision allows it. Both solutions carry a round-off of about
+    eps·ω²_max/ω² in ω² (the symmetric eigh and the paper's non-symmetric form alike; the
+    measured differences stay below 5·eps·ω²_max/ω²_min): so 1e-9 on drives whose
+    eigenvalues spread over up to 10⁵, and 50·eps·spread on stiffer ones (tiny pinions in
+    stiff bearings, finely divided short shafts)."""
     drive = build(data)
     modes = gear_modes(drive)
     result = check(drive, modes)
     spread = modes.eigenvalues.max() / modes.eigenvalues.min()
-    tolerance = max(1e-9, 100 * np.finfo(float).eps * spread) if spread > 1e6 else 1e-9
+    tolerance = 1e-9 if spread <= 1e5 else 50 * np.finfo(float).eps * spread
     assert result.difference < tolerance, (result.difference, spread)
     assert result.extra_zeros == result.meshes == len(assemble(drive).ideal)
 

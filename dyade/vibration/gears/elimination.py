@@ -93,9 +93,9 @@ def check(drive: GearDrive | System, modes: Modes | None = None) -> Elimination:
     k_f, _, _ = eliminated(system)
     scale = 1.0 / np.sqrt(system.mass)
     # M⁻¹(K + K_f) is similar to M^-½·(K + K_f)·M^-½, which is better scaled
-    values, vectors = np.linalg.eig(scale[:, None] * (system.stiffness + k_f) * scale[None, :])
-    order = np.argsort(np.abs(values))
-    values, vectors = values[order], vectors[:, order]
+    a = scale[:, None] * (system.stiffness + k_f) * scale[None, :]
+    values = np.linalg.eigvals(a)
+    values = values[np.argsort(np.abs(values))]
     zero_count = len(system.ideal) + modes.rigid.shape[1]
     elastic = values[zero_count:]
     zeros = values[:zero_count]
@@ -105,10 +105,19 @@ def check(drive: GearDrive | System, modes: Modes | None = None) -> Elimination:
                          f"from its elastic ones (|ω²| {biggest_zero:.3g} against "
                          f"{np.min(np.abs(elastic)):.3g} 1/s²): the drive is too stiff for "
                          f"this check in double precision.")
-    violating = system.constraints.T @ (scale[:, None] * vectors[:, :zero_count])
-    sigma = np.linalg.svd(violating, compute_uv=False) if violating.size else np.zeros(0)
+    # the zero eigenvalues' eigenvectors: the null space of the eliminated matrix (by SVD;
+    # eig's vectors for a repeated eigenvalue may come out parallel), and how many
+    # independent directions of it violate the constraints
+    _, sigma, vt = np.linalg.svd(a)
+    if zero_count and sigma[a.shape[0] - zero_count] > 1e-6 * sigma[0]:
+        raise DyadeError("the eliminated form's zero eigenvalues have fewer independent "
+                         "eigenvectors than their count: their split into extra and rigid-body "
+                         "zeros is not defined.")
+    kernel = scale[:, None] * vt[a.shape[0] - zero_count:].T
+    violating = system.constraints.T @ (kernel / np.linalg.norm(kernel, axis=0))
+    sigma_g = np.linalg.svd(violating, compute_uv=False) if violating.size else np.zeros(0)
     norm = np.linalg.norm(system.constraints, axis=0).max(initial=1.0)
-    extra = int(np.sum(sigma > RANK_RTOL * norm * np.max(np.abs(scale))))
+    extra = int(np.sum(sigma_g > RANK_RTOL * norm))
     elastic = elastic[np.argsort(elastic.real)]
     frequencies = np.sqrt(np.abs(elastic.real)) / (2.0 * np.pi)
     reference = modes.frequencies
