@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 import pytest
+from scipy.optimize import brentq
 
 from dyade.vibration.gears.modes import gear_modes
 from tests.gears.drives import build, single_stage, two_stage_data, with_pressure_angle
@@ -38,15 +39,17 @@ def test_stiff_bearings_and_shafts_converge_to_the_torsional_model():
     limit = gear_modes(build(torsional)).frequencies
     assert limit.size == 6  # 6 bodies + 3 shaft segments - 2 meshes - 1 rigid-body mode
     errors = []
-    for scale in (1e3, 1e4, 1e5):
+    for scale in (1e2, 1e3, 1e4):
         modes = gear_modes(build(_stiffened(data, scale)))
         torsion = modes.totals("kinetic")["torsion"] > 0.5
         f = modes.frequencies[torsion][:limit.size]
         errors.append(np.abs(f - limit) / limit)
-    # per mode, e.g. mode 1: 7.6e-5, 7.6e-6, 7.3e-7; mode 6: 8.3e-4, 6.7e-5, 6.5e-6
+    # per mode, e.g. mode 1: 7.6e-4, 7.6e-5, 7.6e-6; mode 6 (still reaching it): 1.1e-2,
+    # 8.3e-4, 6.7e-5. (Beyond s = 1e4 the round-off eps·ω²_max/ω², which grows with s,
+    # reaches these errors.)
     rate = np.log10(errors[1] / errors[2])
-    assert np.all((rate > 0.97) & (rate < 1.05)), (errors, rate)  # error ∝ 1/s
-    assert np.all(errors[1] < 1e-4) and np.all(errors[0] < 1e-3)
+    assert np.all((rate > 0.97) & (rate < 1.12)), (errors, rate)  # error ∝ 1/s
+    assert np.all(errors[2] < 1e-4) and np.all(errors[1] < 1e-3)
 
 
 def test_one_mesh_on_isotropic_bearings_is_independent_of_the_pressure_angle():
@@ -86,38 +89,44 @@ STEEL = {"E": 2.1e11, "G": 8.1e10, "density": 7850.0}
 
 
 def _shaft(segments, length=1.0, diameter=0.05):
-    """A shaft clamped to the frame at one end, a tiny disk at the other (fixed-free)."""
+    """A shaft clamped to the frame at one end, a disk of its own section and 1/100 of its
+    length at the other (fixed end, end inertia 1 % of the shaft's)."""
     return {
-        "body": [{"name": "tip", "diameter": diameter, "width": 1e-9}],
+        "body": [{"name": "tip", "diameter": diameter, "width": length / 100}],
         "shaft": [{"name": "s", "bodies": ["tip", "frame"], "length": length,
                    "diameter": diameter, "segments": segments}],
     }
 
 
 def _pinned_shaft(segments, length=1.0, diameter=0.05):
-    """A shaft between two thin disks held by very stiff radial bearings (simply
-    supported), free to turn and axially held at one end."""
+    """A shaft between two thin disks in stiff radial bearings (simply supported), free to
+    turn, axially held at one end."""
     return {
-        "body": [{"name": "a", "diameter": diameter, "width": 1e-4},
-                 {"name": "b", "diameter": diameter, "width": 1e-4}],
+        "body": [{"name": "a", "diameter": diameter, "width": 0.01},
+                 {"name": "b", "diameter": diameter, "width": 0.01}],
         "shaft": [{"name": "s", "bodies": ["a", "b"], "length": length, "diameter": diameter,
                    "segments": segments}],
-        "bearing": [{"body": "a", "radial": 1e13, "axial": 1e13}, {"body": "b", "radial": 1e13}],
+        "bearing": [{"body": "a", "radial": 1e11, "axial": 1e11}, {"body": "b", "radial": 1e11}],
     }
 
 
-def _converges(values, exact, low, high):
-    """Relative errors against ``exact`` and the observed order of each halving of the
-    segment length, which must lie in [low, high]."""
-    errors = np.abs(np.array(values) - exact) / exact
-    rates = np.log2(errors[:-1] / errors[1:])
-    assert np.all((rates > low) & (rates < high)), (errors, rates)
-    return errors
+def _rates(values):
+    """Observed orders of each halving of the segment length, from successive differences
+    (constant offsets, such as the supports' own compliance, cancel)."""
+    steps = np.abs(np.diff(values))
+    return np.log2(steps[:-1] / steps[1:])
+
+
+def _rod(wave_speed):
+    """First frequency [Hz] of a fixed-free rod with an end inertia 1/100 of its own:
+    x·tan x = 100, f = x·c/(2π·L)."""
+    x = brentq(lambda x: x * math.tan(x) - 100.0, 1e-9, math.pi / 2 - 1e-12)
+    return x * wave_speed / (2 * math.pi)
 
 
 def test_shaft_torsion_and_axial_converge_to_the_rod_at_second_order():
-    """Fixed-free shaft: f_1 = c/(4L) with c = √(G/ρ) (torsion) or √(E/ρ) (axial); the
-    RFE division converges as 1/n² (midpoint lumping)."""
+    """The RFE division of a fixed-free shaft with an end disk against the exact rod
+    (c = √(G/ρ) in torsion, √(E/ρ) axially): second order, 9.5e-5 at 32 segments."""
     counts = [4, 8, 16, 32]
     torsion, axial = [], []
     for n in counts:
@@ -125,11 +134,11 @@ def test_shaft_torsion_and_axial_converge_to_the_rod_at_second_order():
         kinetic = modes.totals("kinetic")
         torsion.append(modes.frequencies[kinetic["torsion"] > 0.99][0])
         axial.append(modes.frequencies[kinetic["axial"] > 0.99][0])
-    # error = (kl)²/12·λ: second order, 1.0e-4 at 32 segments
-    errors = _converges(torsion, math.sqrt(STEEL["G"] / STEEL["density"]) / 4.0, 1.98, 2.02)
-    assert errors[-1] < 1.1e-4
-    errors = _converges(axial, math.sqrt(STEEL["E"] / STEEL["density"]) / 4.0, 1.98, 2.02)
-    assert errors[-1] < 1.1e-4
+    for values, modulus in ((torsion, STEEL["G"]), (axial, STEEL["E"])):
+        exact = _rod(math.sqrt(modulus / STEEL["density"]))
+        errors = np.abs(np.array(values) - exact) / exact
+        assert np.allclose(np.log2(errors[:-1] / errors[1:]), 2.0, atol=0.01), errors
+        assert errors[-1] < 1e-4
 
 
 def _timoshenko_pinned(length, diameter, mode=1):
@@ -147,15 +156,18 @@ def _timoshenko_pinned(length, diameter, mode=1):
     return math.sqrt(omega2) / (2 * math.pi)
 
 
-def test_shaft_bending_converges_to_the_timoshenko_beam():
-    """Simply supported shaft, L/d = 20: the first bending frequency converges to the
-    Timoshenko beam's at about third order at practical divisions (2e-5 at 32 segments;
-    the h² term is small and takes over only beyond, e.g. 7.6e-7 at 128 segments)."""
-    counts = [4, 8, 16, 32]
+def test_shaft_bending_converges_to_the_timoshenko_beam_at_third_order():
+    """Simply supported shaft, L/d = 20: the first bending frequency converges at third
+    order (observed 2.98–3.00 from 4 to 64 segments, 2.92 by 256); extrapolated, it is the
+    Timoshenko beam's within the supports' own effect (bearings of 1e11 N/m and the end
+    disks' inertia: 4.5e-5)."""
     values = []
-    for n in counts:
+    for n in (4, 8, 16, 32, 64):
         modes = gear_modes(build(_pinned_shaft(n)))
         lateral = modes.totals("kinetic")["lateral"] > 0.99
         values.append(modes.frequencies[lateral][0])
-    errors = _converges(values, _timoshenko_pinned(1.0, 0.05), 2.8, 3.1)
-    assert errors[-1] < 2.5e-5
+    assert np.allclose(_rates(values), 3.0, atol=0.05), _rates(values)
+    limit = values[-1] + (values[-1] - values[-2]) / 7  # Richardson, third order
+    exact = _timoshenko_pinned(1.0, 0.05)
+    assert abs(limit - exact) / exact < 1e-4
+    assert abs(values[3] - exact) / exact < 1e-4  # 32 segments
