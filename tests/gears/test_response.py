@@ -17,10 +17,18 @@ from tests.helpers import shipped
 
 def _direct(system, f, p, e):
     """[[K + iωL − ω²M, −g], [gᵀ, 0]]·[q; λ] = [P; e] for the ideal meshes, with the
-    transmission error of an elastic mesh as a force (k + iωc)·w·e."""
+    transmission error of an elastic mesh as a force (k + iωc)·w·e; K and L summed here
+    from the elements' maps and the elastic meshes' rows, not taken from the assembly."""
     n, l = system.constraints.shape
     w = 2 * np.pi * f
-    z = system.stiffness + 1j * w * system.damping - w ** 2 * np.diag(system.mass)
+    z = -w ** 2 * np.diag(system.mass).astype(complex)
+    for e_map, dofs, k, c in zip(system.element_maps, system.element_dofs,
+                                 system.element_stiffness, system.element_damping):
+        z[np.ix_(dofs, dofs)] += e_map.T @ ((k + 1j * w * c)[:, None] * e_map)
+    for j, mesh in enumerate(system.drive.meshes):
+        if mesh.stiffness is not None:
+            row = system.mesh_rows[:, j]
+            z += (mesh.stiffness + 1j * w * mesh.damping) * np.outer(row, row)
     a = np.zeros((n + l, n + l), dtype=complex)
     a[:n, :n], a[:n, n:], a[n:, :n] = z, -system.constraints, system.constraints.T
     rhs = np.concatenate([p.astype(complex), e[list(system.ideal)]])
