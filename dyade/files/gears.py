@@ -19,10 +19,9 @@ import math
 import os
 from typing import Any
 
-from dyade.files.schema import TableReader, is_number, read_toml, set_dotted, suggest
+from dyade.files.schema import UnitReader, is_number, load_data, suggest
 from dyade.files.schema import fmt as _fmt
 from dyade.files.schema import show as _show
-from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS
 from dyade.vibration.gears.model import (
     FRAME,
     PARALLEL_TOL,
@@ -98,17 +97,6 @@ def read_gears(path: str | os.PathLike, overrides: dict[str, Any] | None = None)
     return build_gears(load_data(path, overrides), path)
 
 
-def load_data(path: str | os.PathLike, overrides: dict[str, Any] | None = None,
-              what: str = "override") -> dict[str, Any]:
-    """The file's TOML data with ``overrides`` (dotted key -> value) applied; ``what``
-    names them in messages."""
-    path = os.fspath(path)
-    data = read_toml(path)
-    for key, value in (overrides or {}).items():
-        set_dotted(data, key, value, os.path.basename(path), what)
-    return data
-
-
 def build_gears(data: dict[str, Any], path: str | os.PathLike | None = None) -> GearDrive:
     """Validate gear-drive data (the parsed TOML of a gear-drive file, or the same
     structure written in Python) and build the drive; errors name ``path``.
@@ -123,24 +111,12 @@ def build_gears(data: dict[str, Any], path: str | os.PathLike | None = None) -> 
     return Reader(os.path.basename(path) if path else "gear drive", path).drive(data)
 
 
-class Reader(TableReader):
+class Reader(UnitReader):
     """Walks the parsed TOML of a gear-drive file with key paths for the error messages."""
 
     top_keys = TOP_KEYS
 
-    def __init__(self, label: str, source: str | None = None) -> None:
-        super().__init__(label, source)
-        self.length, self.length_unit = 1.0, "m"
-        self.angle, self.angle_unit = math.pi / 180.0, "deg"
-
     # -- primitives --------------------------------------------------------------------
-    def length_of(self, value: Any, key: str, positive: bool = False,
-                  non_negative: bool = False) -> float:
-        return self.number(value, key, self.length_unit, positive, non_negative) * self.length
-
-    def angle_of(self, value: Any, key: str) -> float:
-        return self.number(value, key, self.angle_unit) * self.angle
-
     def vector(self, value: Any, key: str, unit_name: str, scale: float = 1.0) -> Vector:
         if (not isinstance(value, list) or len(value) != 3
                 or not all(is_number(v) and math.isfinite(v) for v in value)):
@@ -260,19 +236,6 @@ class Reader(TableReader):
                             for k, t in enumerate(self.array(data, "excitation"), 1))
         return GearDrive(name, bodies, shafts, elements, tuple(self.gears.values()),
                          tuple(meshes), excitations, speed, model, self.source)
-
-    def units(self, table: Any) -> None:
-        self.keys(table, "units", {"length", "angle"})
-        length = table.get("length", "m")
-        if length not in LENGTH_FACTORS:
-            raise self.fail("units.length", f"must be one of {', '.join(LENGTH_FACTORS)}, "
-                                            f"got {_show(length)}.")
-        angle = table.get("angle", "deg")
-        if angle not in ANGLE_FACTORS:
-            raise self.fail("units.angle", f"must be one of {', '.join(ANGLE_FACTORS)}, "
-                                           f"got {_show(angle)}.")
-        self.length, self.length_unit = LENGTH_FACTORS[length], length
-        self.angle, self.angle_unit = ANGLE_FACTORS[angle], angle
 
     # -- bodies ------------------------------------------------------------------------
     def body(self, table: Any, key: str, taken: dict[str, str]) -> None:

@@ -71,6 +71,9 @@ class Crossing:
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class Campbell:
+    """A Campbell diagram: the excitation lines over the speeds and their crossings with
+    the natural frequencies (which do not depend on speed in this model)."""
+
     speeds_rpm: FloatArray
     """(s,) input speeds [rpm]"""
     modes: Modes

@@ -269,16 +269,12 @@ def gear_statics(drive: GearDrive | System, torques: dict[str, float], *,
         if mesh.stiffness is not None:
             forces[j] = mesh.stiffness * system.mesh_rows[:, j] @ q
     forces *= system.senses
-    names, f, mo, at = [], [], [], []
-    for e, element in enumerate(system.elements):
-        if element.ends[1] != FRAME:
-            continue
-        deform = system.element_maps[e] @ q[system.element_dofs[e]]
-        local = system.element_stiffness[e] * deform  # on the body: k·Δ, Δ = −(its motion)
-        axes = np.array(frame(element.axis)).T
-        names.append(element.name)
-        f.append(axes @ local[:3])
-        mo.append(axes @ local[3:])
-        at.append(element.point)
+    names, on_frame = _support_forces(system, q[None, :], np.zeros(1))
+    supports = [e for e in system.elements if e.ends[1] == FRAME]
+    axes = [np.array(frame(e.axis)).T for e in supports]  # element axes -> global
+    reactions = -on_frame[0].real  # the frame on the drive, in each element's axes
+    f = [a @ r[:3] for a, r in zip(axes, reactions)]
+    mo = [a @ r[3:] for a, r in zip(axes, reactions)]
+    at = [e.point for e in supports]
     return Statics(q, forces, tuple(names), np.array(f).reshape(-1, 3),
                    np.array(mo).reshape(-1, 3), np.array(at, dtype=float).reshape(-1, 3))
