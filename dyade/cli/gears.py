@@ -52,10 +52,9 @@ def gears(gear_file: Path, shapes: int | None, speed_range: str | None, harmonic
     and bearing; elastic meshes), the dominant part and the modal mesh forces. Rigid-body
     modes are reported as such, never as 0 Hz resonances.
 
+    \b
         dyade gears mechanisms/gears/two-stage.toml
-
         dyade gears mechanisms/gears/two-stage.toml --campbell 0:3000:10
-
         dyade gears mechanisms/gears/two-stage.toml --response 10:1000:1 --format csv
 
     mechanisms/gears/README.md documents every key of a gear-drive file.
