@@ -15,7 +15,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from dyade.errors import InputError
-from dyade.files.schema import TableReader, read_toml, set_dotted, suggest
+from dyade.files.schema import UnitReader, set_dotted, suggest
+from dyade.files.schema import load_data as schema_load_data
 from dyade.files.schema import fmt as _fmt
 from dyade.files.schema import show as _show
 from dyade.linkage import dyads as dyad_kinds
@@ -36,14 +37,13 @@ from dyade.linkage.model import (
     Vec,
     sweep_problem,
 )
-from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS, rpm_to_rad_per_s
+from dyade.units import rpm_to_rad_per_s
 
 if TYPE_CHECKING:  # the motor models load only with a [drive] table
     from dyade.machine.motor import Drive
 
 TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
             "gravity", "load", "spring", "friction", "drive"}
-UNIT_KEYS = {"length", "angle"}
 SWEEP_KEYS = {"start", "stop", "step", "dead_centre", "transmission_warning"}
 FRAME_KEYS = {"points"}
 CRANK_KEYS = {"link", "pivot", "length", "speed_rpm", "direction", "points", "pin_radius",
@@ -98,13 +98,10 @@ def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = N
 
 def load_data(path: str | os.PathLike, overrides: dict[str, Any] | None = None,
               what: str = "override", text: str | None = None) -> dict[str, Any]:
-    """The file's TOML data with ``overrides`` (dotted key -> value) applied; ``what``
-    names them in messages; ``text``: the file's content when already read (stdin)."""
-    path = os.fspath(path)
-    data = read_toml(path, text)
-    for key, value in (overrides or {}).items():
-        set_dotted(data, key, value, os.path.basename(path), what, NUMBERING)
-    return data
+    """The file's TOML data with ``overrides`` (dotted key -> value, dyads numbered as in
+    DYADE) applied; ``what`` names them in messages; ``text``: the file's content when
+    already read (stdin)."""
+    return schema_load_data(path, overrides, what, text, NUMBERING)
 
 
 def edited(text: str, overrides: dict[str, Any], label: str = "mechanism",
@@ -140,24 +137,10 @@ def dumps(data: dict[str, Any]) -> str:
     return tomlkit.dumps(data)
 
 
-class Reader(TableReader):
+class Reader(UnitReader):
     """Walks the parsed TOML of a mechanism file with key paths for the error messages."""
 
     top_keys = TOP_KEYS
-
-    def __init__(self, label: str, source: str | None = None) -> None:
-        super().__init__(label, source)
-        self.length = 1.0
-        self.angle = math.pi / 180.0
-        self.length_unit = "m"
-        self.angle_unit = "deg"
-
-    def length_of(self, value: Any, key: str, positive: bool = False,
-                  non_negative: bool = False) -> float:
-        return self.number(value, key, self.length_unit, positive, non_negative) * self.length
-
-    def angle_of(self, value: Any, key: str) -> float:
-        return self.number(value, key, self.angle_unit) * self.angle
 
     def pair(self, value: Any, key: str) -> Vec:
         if (not isinstance(value, list) or len(value) != 2
@@ -234,19 +217,6 @@ class Reader(TableReader):
         return Mechanism(name, self.source, crank, dyads, links, sweep, gravity, loads, springs,
                          dead_centre, friction_tol, friction_max_iter, warning,
                          (self.length_unit, self.angle_unit), drive)
-
-    def units(self, table: Any) -> None:
-        self.keys(table, "units", UNIT_KEYS)
-        length = table.get("length", "m")
-        if length not in LENGTH_FACTORS:
-            raise self.fail("units.length", f"must be one of {', '.join(LENGTH_FACTORS)}, "
-                                            f"got {_show(length)}.")
-        angle = table.get("angle", "deg")
-        if angle not in ANGLE_FACTORS:
-            raise self.fail("units.angle", f"must be one of {', '.join(ANGLE_FACTORS)}, "
-                                           f"got {_show(angle)}.")
-        self.length, self.length_unit = LENGTH_FACTORS[length], length
-        self.angle, self.angle_unit = ANGLE_FACTORS[angle], angle
 
     def sweep(self, table: Any) -> tuple[Sweep, float, float]:
         self.keys(table, "sweep", SWEEP_KEYS)
