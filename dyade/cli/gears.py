@@ -10,6 +10,7 @@ import click
 from dyade.cli import main
 from dyade.cli.options import value_range
 from dyade.cli.output import console, flags, show, write_json, write_rows
+from dyade.report.document import document
 
 FLAGS = {"coordinates": "--dof", "speeds_rpm": "--campbell", "frequencies": "--response",
          "harmonics": "--harmonics"}
@@ -85,7 +86,10 @@ def gears(gear_file: Path, shapes: int | None, speed_range: str | None, harmonic
         if fmt == "csv":
             write_rows(rows, report.CROSSING_COLUMNS, output)
         elif fmt == "json":
-            write_json(report.campbell_json(diagram) | {"warnings": warnings}, output)
+            summary = report.campbell_json(diagram)
+            resonances = summary.pop("resonances")
+            write_json(document("gears", resonances, report.units_of(resonances), summary,
+                                warnings, analysis="campbell", drive=drive.name), output)
         else:
             show(report.campbell_tables(diagram), output)
     elif frequency_range:
@@ -101,7 +105,8 @@ def gears(gear_file: Path, shapes: int | None, speed_range: str | None, harmonic
                                                                   for c in columns))],
                        columns, output)
         elif fmt == "json":
-            write_json(cols | {"warnings": warnings}, output)
+            write_json(document("gears", cols, report.units_of(cols), {}, warnings,
+                                analysis="response", drive=drive.name), output)
         else:
             show(report.response_tables(response, cols, columns, label), output)
     elif check:
@@ -113,8 +118,10 @@ def gears(gear_file: Path, shapes: int | None, speed_range: str | None, harmonic
             write_rows(report.check_rows(result), report.CHECK_COLUMNS, output)
         elif fmt == "json":
             rows = report.check_rows(result)
-            write_json({name: [row[name] for row in rows] for name in report.CHECK_COLUMNS}
-                       | {"summary": report.check_summary(result), "warnings": warnings}, output)
+            cols = {name: [row[name] for row in rows] for name in report.CHECK_COLUMNS}
+            write_json(document("gears", cols, report.units_of(cols),
+                                report.check_summary(result), warnings, analysis="check",
+                                drive=drive.name), output)
         else:
             show(report.check_tables(result, label), output)
     else:
@@ -127,13 +134,14 @@ def gears(gear_file: Path, shapes: int | None, speed_range: str | None, harmonic
                 write_rows(rows, columns, output)
         elif fmt == "json":
             rows, columns = report.mode_rows(modes)
-            obj = {name: [row[name] for row in rows] for name in columns}
-            obj["rigid_modes"] = report.rigid_description(modes)
+            cols = {name: [row[name] for row in rows] for name in columns}
+            summary = {"rigid_modes": report.rigid_description(modes)}
             if shapes:
-                obj["shapes"] = report.shape_rows(modes, shapes)
-            write_json(obj | {"warnings": warnings}, output)
+                summary["shapes"] = report.shape_rows(modes, shapes)
+            write_json(document("gears", cols, report.units_of(cols), summary, warnings,
+                                analysis="modes", drive=drive.name), output)
         else:
             show(report.mode_tables(modes, shapes or 0), output)
     err = console(stderr=True)
     for line in warnings:
-        err.print(line)
+        err.print(line, markup=False)

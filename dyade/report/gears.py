@@ -358,3 +358,18 @@ def check_notes(result) -> list[str]:
         return [f"warning: the eliminated form has {result.extra_zeros} extra zero eigenvalues "
                 f"for {result.meshes} ideal meshes (expected one per mesh)."]
     return []
+
+
+def units_of(cols) -> dict[str, str]:
+    """The unit of each column, from its name: ``_Hz``, ``_rpm``, ``_N``, ``_m``, ``_rad``
+    suffixes; energy shares (T_…, U_…) and the mode number are dimensionless."""
+    suffixes = {"_Hz": "Hz", "_rpm": "rpm", "_N": "N", "_m": "m", "_rad": "rad",
+                "_deg": "°", "_N_per_m": "N/m"}
+    out = {}
+    for name in cols:
+        unit = next((u for s, u in sorted(suffixes.items(), key=lambda kv: -len(kv[0]))
+                     if name.endswith(s)), "")
+        if not unit and name.startswith(("T_", "U_", "rel_", "mode")):
+            unit = "-"
+        out[name] = unit
+    return out

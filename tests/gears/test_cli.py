@@ -66,9 +66,10 @@ def test_campbell_resonances_lie_on_their_lines():
     _run(TWO_STAGE, "--campbell", "0:3000:10")
     text = _run(TWO_STAGE, "--campbell", "0:3000:10", "--format", "json").stdout
     data = json.loads(text)
-    lines = {name: np.array(v) for name, v in data["lines_Hz"].items()}
-    speeds = np.array(data["speeds_rpm"])
-    resonances = data["resonances"]
+    assert list(data) == ["columns", "units", "summary", "warnings", "meta"]  # one shape
+    lines = {name: np.array(v) for name, v in data["summary"]["lines_Hz"].items()}
+    speeds = np.array(data["summary"]["speeds_rpm"])
+    resonances = data["columns"]
     assert len(resonances["speed_rpm"]) > 10
     for speed, f, order in zip(resonances["speed_rpm"], resonances["f_Hz"], resonances["order"]):
         assert 0 <= speed <= 3000
