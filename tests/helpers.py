@@ -13,6 +13,8 @@ from dyade.files.mechanism import Reader
 
 ROOT = Path(__file__).resolve().parent.parent
 """the repository: mechanisms/, and the directory to run ``python -m dyade`` from"""
+TEMPLATES = ROOT / "dyade" / "templates"
+"""the files `dyade init` writes"""
 
 
 def mechanism_from(data: dict[str, Any]) -> Mechanism:

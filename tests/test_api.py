@@ -86,8 +86,8 @@ def test_notes_are_structured():
     lock, = [note for note in result.notes if note.kind == "self_locking"]
     assert lock.subject == "slider (1,4)"
     (first, last), = lock.ranges
-    assert np.rad2deg([first, last]) == pytest.approx([271.0, 319.0])
-    assert str(lock) == lock.text and "271.0°–319.0°" in lock.text
+    assert np.rad2deg([first, last]) == pytest.approx([270.0, 332.0])
+    assert str(lock) == lock.text and "270.0°–332.0°" in lock.text
 
 
 def test_to_pandas_without_pandas_says_how_to_get_it(monkeypatch):

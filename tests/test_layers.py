@@ -139,6 +139,9 @@ BASE_EXCEPTIONS = {
     # the coupling reader returns the Coupling model; it imports it in read_coupling only,
     # so that reading the file's keys (load_data) does not load the model's numpy
     ("dyade.files.coupling", "dyade.vibration.coupling"): "in a function",
+    # the gear-drive reader builds the drive it reads (dyade.vibration.gears.model: plain
+    # dataclasses and the gear geometry, no numpy) and places bodies with that geometry
+    ("dyade.files.gears", "dyade.vibration.gears.model"): "anywhere",
 }
 
 

@@ -163,7 +163,7 @@ def _driven(drive, name="dyade-16.toml", **overrides):
     data = tomllib.loads(shipped(name).read_text())
     data["drive"] = drive
     for key, value in overrides.items():
-        toml_input.set_dotted(data, key, value)
+        toml_input.set_dotted(data, key, value, first=toml_input.NUMBERING)
     return mechanism_from(data)
 
 
@@ -315,7 +315,7 @@ def test_run_up_energy_balance():
                          "tol": 1e-9},
                         name="fourbar.toml",
                         **{"crank.friction": 0.1, "crank.pin_radius": 5,
-                           "dyad.1.A.friction": 0.1, "dyad.1.A.pin_radius": 5,
+                           "dyad.2.A.friction": 0.1, "dyad.2.A.pin_radius": 5,
                            "gravity": True, "load": [{"link": 2, "moment": -1.0}]})
     motor, kinetic, load, rub, result = _run_up_balance(mechanism)
     summary = result.summary()["motion"]

@@ -54,3 +54,9 @@ def test_csv_run_imports_only_what_it_uses():
     assert not (modules & unwanted)
     assert not any(name.startswith(("rich", "matplotlib", "dyade.plot", "dyade.cli.plot"))
                    for name in modules)
+
+
+def test_gears_help_imports_no_numpy():
+    modules = _imported(["gears", "--help"])
+    assert "dyade.cli.gears" in modules  # it did load the command
+    assert "numpy" not in modules

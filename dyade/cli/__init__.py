@@ -16,7 +16,7 @@ from dyade import __version__
 SUBCOMMANDS = {"describe": "analyse", "analyse": "analyse", "init": "analyse",
                "clearance": "clearance", "coupling": "coupling", "accuracy": "accuracy",
                "flywheel": "machine", "balance": "machine",
-               "plot": "plot"}
+               "plot": "plot", "gears": "gears"}
 """command -> module of dyade.cli that defines it, imported when the command is used
 (or listed by --help), so that a run pays only for its own command"""
 

@@ -26,7 +26,8 @@ def accuracy(mechanism_file: Path, assignments, repeats: int, fmt: str, output) 
     Crank step (5° … 0.05°): engine time and the error of the peak drive torque, the
     peak force of every joint and the clearance peaks against the finest step — where
     the peaks stop moving, and how coarse steps miss narrow peaks near dead centres.
-    With friction: iterations, time and change of the peaks per friction tolerance.
+    With friction: passes of the friction solution, time and change of the peaks per
+    friction tolerance.
     With clearance data: the closed form against the direct simulation.
     """
     import dyade

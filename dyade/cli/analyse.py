@@ -133,11 +133,12 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
               help="Analyse only the crank angles where every dyad closes; the others are "
                    "left out of the output (and named on stderr) instead of failing.")
 @click.option("--friction-tol", type=POSITIVE,
-              help="Stop the friction iteration at a position when the relative change of "
-                   "its joint forces is below this [-]  [default: file's [friction] tol, 1e-9].")
+              help="Accept a position's friction solution when a fixed-point step would "
+                   "change its joint forces or friction loads by less than this [-]  "
+                   "[default: file's [friction] tol, 1e-9].")
 @click.option("--friction-max-iter", type=click.IntRange(min=1),
-              help="Most friction iterations per dyad and position  [default: file's "
-                   "[friction] max_iter, 50]; positions not converged are named on stderr.")
+              help="Most passes of the friction solution per dyad and position  [default: "
+                   "file's [friction] max_iter, 50]; positions not solved are named on stderr.")
 @click.option("--all", "show_all", is_flag=True,
               help="Table: min and max of every column and where, the force summary and the "
                    "clearance peaks (default: the key results only).")
@@ -163,8 +164,8 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
                    "does not grow with the sweep (0: all at once)  [default: 2048]. Sweeps "
                    "with friction are computed whole.")
 @click.option("--fail-on-lock", is_flag=True,
-              help="Exit with status 1 when a slider self-locks (otherwise a locking slider is "
-                   "a finding: reported, exit status 0).")
+              help="Exit with status 1 when the mechanism self-locks (otherwise self-locking "
+                   "is a finding: reported, exit status 0).")
 @click.option("--run-up", is_flag=True,
               help="With a [drive] table: the run-up from rest at the start angle, revolution "
                    "after revolution until the speed repeats, instead of the periodic steady "
@@ -183,17 +184,18 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
     link, joint and named point.
 
     With masses, loads or springs in the file: joint forces, driving torque and shaking
-    force, reduced inertia and load torque; with friction coefficients: Coulomb friction
-    and the self-locking test of every slider with friction; with clearance data: the
-    clearance peak check; with a [drive] table: the crank's real speed from the equation
-    of motion (steady state, or --run-up), and everything at that speed.
+    force, reduced inertia and load torque; with friction coefficients: Coulomb friction,
+    solved dyad by dyad, with self-locking (friction dead centres) and the margin of every
+    slider with friction; with clearance data: the clearance peak check; with a [drive]
+    table: the crank's real speed from the equation of motion (steady state, or --run-up),
+    and everything at that speed.
 
     Several files in one call (a batch) need -o DIR; a file that fails does not stop the
     others, and the failures are listed at the end (exit status 1).
 
     Units: SI (m, m/s, m/s², rad/s, rad/s², N, N·m, W) except angles in degrees. Exit
     status 1 when a dyad cannot close over part of the sweep (the message names the dyad
-    and the crank-angle ranges) or, with --fail-on-lock, when a slider locks; 2 for a bad
+    and the crank-angle ranges) or, with --fail-on-lock, when it self-locks; 2 for a bad
     file or option.
     """
     from dyade.errors import DyadeError
@@ -379,8 +381,8 @@ class Job(NamedTuple):
         warn(result.notes, f"{os.path.basename(path)}: " if output else "")
         locks = any(lock.locks[result.rows].any() for lock in (result.locking or {}).values())
         if self.fail_on_lock and locks:
-            raise DyadeError("a slider self-locks (see the warning above); --fail-on-lock was "
-                             "given.")
+            raise DyadeError("the mechanism self-locks (see the warning above); --fail-on-lock "
+                             "was given.")
 
 
     def stream_csv(self, mechanism, path: str, output: str | None) -> None:

@@ -10,12 +10,13 @@ from __future__ import annotations
 
 import math
 import os
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from dyade.errors import InputError
-from dyade.files.schema import TableReader, read_toml, set_dotted, suggest
+from dyade.files.schema import UnitReader, set_dotted, suggest
+from dyade.files.schema import load_data as schema_load_data
 from dyade.files.schema import fmt as _fmt
 from dyade.files.schema import show as _show
 from dyade.linkage import dyads as dyad_kinds
@@ -36,12 +37,13 @@ from dyade.linkage.model import (
     Vec,
     sweep_problem,
 )
-from dyade.machine.motor import Asynchronous, ConstantTorque, Drive, Motor, TorqueSpeedTable
-from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS, rpm_to_rad_per_s
+from dyade.units import rpm_to_rad_per_s
+
+if TYPE_CHECKING:  # the motor models load only with a [drive] table
+    from dyade.machine.motor import Drive
 
 TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
             "gravity", "load", "spring", "friction", "drive"}
-UNIT_KEYS = {"length", "angle"}
 SWEEP_KEYS = {"start", "stop", "step", "dead_centre", "transmission_warning"}
 FRAME_KEYS = {"points"}
 CRANK_KEYS = {"link", "pivot", "length", "speed_rpm", "direction", "points", "pin_radius",
@@ -49,11 +51,12 @@ CRANK_KEYS = {"link", "pivot", "length", "speed_rpm", "direction", "points", "pi
 LINK_KEYS = {"points", "mass", "centre", "inertia", "radius_of_gyration"}
 REVOLUTE_KEYS = {"link", "point", "pin_radius", "friction", "clearance"}
 PRISMATIC_KEYS = {"link", "point", "angle", "offset", "guide", "slider_point", "slider_length",
-                  "slider_height", "friction"}
-FRICTION_KEYS = {"coefficient", "tol", "max_iter", "pin_radius", "slider_length", "slider_height"}
+                  "slider_height", "friction", "edge_friction"}
+FRICTION_KEYS = {"coefficient", "tol", "max_iter", "pin_radius", "slider_length", "slider_height",
+                 "edge_friction"}
 MIDDLE_R_KEYS = {"pin_radius", "friction", "clearance"}
 MIDDLE_P_KEYS = {"guide", "offset", "angle", "point", "slider_length", "slider_height",
-                 "friction"}
+                 "friction", "edge_friction"}
 DYAD_KEYS_COMMON = {"kind", "links", "A", "B", "C", "variant", "name"}
 GRAVITY_KEYS = {"x", "y"}
 MOTOR_KEYS = {"constant": {"torque"},
@@ -95,13 +98,10 @@ def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = N
 
 def load_data(path: str | os.PathLike, overrides: dict[str, Any] | None = None,
               what: str = "override", text: str | None = None) -> dict[str, Any]:
-    """The file's TOML data with ``overrides`` (dotted key -> value) applied; ``what``
-    names them in messages; ``text``: the file's content when already read (stdin)."""
-    path = os.fspath(path)
-    data = read_toml(path, text)
-    for key, value in (overrides or {}).items():
-        set_dotted(data, key, value, os.path.basename(path), what, NUMBERING)
-    return data
+    """The file's TOML data with ``overrides`` (dotted key -> value, dyads numbered as in
+    DYADE) applied; ``what`` names them in messages; ``text``: the file's content when
+    already read (stdin)."""
+    return schema_load_data(path, overrides, what, text, NUMBERING)
 
 
 def edited(text: str, overrides: dict[str, Any], label: str = "mechanism",
@@ -137,24 +137,10 @@ def dumps(data: dict[str, Any]) -> str:
     return tomlkit.dumps(data)
 
 
-class Reader(TableReader):
+class Reader(UnitReader):
     """Walks the parsed TOML of a mechanism file with key paths for the error messages."""
 
     top_keys = TOP_KEYS
-
-    def __init__(self, label: str, source: str | None = None) -> None:
-        super().__init__(label, source)
-        self.length = 1.0
-        self.angle = math.pi / 180.0
-        self.length_unit = "m"
-        self.angle_unit = "deg"
-
-    def length_of(self, value: Any, key: str, positive: bool = False,
-                  non_negative: bool = False) -> float:
-        return self.number(value, key, self.length_unit, positive, non_negative) * self.length
-
-    def angle_of(self, value: Any, key: str) -> float:
-        return self.number(value, key, self.angle_unit) * self.angle
 
     def pair(self, value: Any, key: str) -> Vec:
         if (not isinstance(value, list) or len(value) != 2
@@ -183,6 +169,8 @@ class Reader(TableReader):
             for name in ("pin_radius", "slider_length", "slider_height") if name in friction}
         self.default_mu = self.number(friction.get("coefficient", 0.0), "friction.coefficient",
                                       "-", non_negative=True)
+        self.default_edges = self.boolean(friction.get("edge_friction", True),
+                                          "friction.edge_friction")
         friction_tol = self.number(friction.get("tol", 1e-9), "friction.tol", "-", positive=True)
         friction_max_iter = self.integer(friction.get("max_iter", 50), "friction.max_iter")
         if friction_max_iter < 1:
@@ -229,19 +217,6 @@ class Reader(TableReader):
         return Mechanism(name, self.source, crank, dyads, links, sweep, gravity, loads, springs,
                          dead_centre, friction_tol, friction_max_iter, warning,
                          (self.length_unit, self.angle_unit), drive)
-
-    def units(self, table: Any) -> None:
-        self.keys(table, "units", UNIT_KEYS)
-        length = table.get("length", "m")
-        if length not in LENGTH_FACTORS:
-            raise self.fail("units.length", f"must be one of {', '.join(LENGTH_FACTORS)}, "
-                                            f"got {_show(length)}.")
-        angle = table.get("angle", "deg")
-        if angle not in ANGLE_FACTORS:
-            raise self.fail("units.angle", f"must be one of {', '.join(ANGLE_FACTORS)}, "
-                                           f"got {_show(angle)}.")
-        self.length, self.length_unit = LENGTH_FACTORS[length], length
-        self.angle, self.angle_unit = ANGLE_FACTORS[angle], angle
 
     def sweep(self, table: Any) -> tuple[Sweep, float, float]:
         self.keys(table, "sweep", SWEEP_KEYS)
@@ -363,7 +338,15 @@ class Reader(TableReader):
         return out
 
     def prismatic_friction(self, table: dict[str, Any], key: str) -> dict[str, Any]:
-        return self.friction_data(table, key, ("slider_length", "slider_height"))
+        out = self.friction_data(table, key, ("slider_length", "slider_height"))
+        out["edge_friction"] = self.boolean(table.get("edge_friction", self.default_edges),
+                                            f"{key}.edge_friction")
+        return out
+
+    def boolean(self, value: Any, key: str) -> bool:
+        if not isinstance(value, bool):
+            raise self.fail(key, f"must be true or false, got {_show(value)}.", value)
+        return value
 
     def friction_data(self, table: dict[str, Any], key: str, needs: tuple[str, ...]
                       ) -> dict[str, Any]:
@@ -494,6 +477,9 @@ class Reader(TableReader):
 
     def drive(self, table: Any) -> Drive:
         """The [drive] table: motor characteristic, flywheel and integration settings."""
+        from dyade.machine.motor import (Asynchronous, ConstantTorque, Drive, Motor,
+                                         TorqueSpeedTable)
+
         self.keys(table, "drive", DRIVE_KEYS)
         kind = self.required(table, "motor", "drive")
         if not isinstance(kind, str) or kind not in MOTOR_KEYS:

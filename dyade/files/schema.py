@@ -15,6 +15,7 @@ import tomllib
 from typing import Any, NamedTuple
 
 from dyade.errors import InputError
+from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS
 
 CHECKS = {"": None, "positive": "must be positive", "non_negative": "must not be negative"}
 
@@ -63,6 +64,19 @@ def _parse(text: str, path: str) -> dict[str, Any]:
     except RecursionError:
         raise InputError(f"{path}: arrays or tables nested too deeply to read; no dyade file "
                          f"needs more than three levels.", source=path) from None
+
+
+def load_data(path: str | os.PathLike, overrides: dict[str, Any] | None = None,
+              what: str = "override", text: str | None = None,
+              first: dict[str, tuple[int, str]] | None = None) -> dict[str, Any]:
+    """A file's TOML data with ``overrides`` (dotted key -> value) applied; ``what``
+    names them in messages; ``text``: the file's content when already read (stdin);
+    ``first``: arrays of tables not numbered from 1 (``set_dotted``)."""
+    path = os.fspath(path)
+    data = read_toml(path, text)
+    for key, value in (overrides or {}).items():
+        set_dotted(data, key, value, os.path.basename(path), what, first)
+    return data
 
 
 def parse_assignment(text: str) -> tuple[str, Any]:
@@ -223,3 +237,36 @@ class TableReader:
                                    non_negative=field.check == "non_negative") for v in values]
             out[name] = checked if many else checked[0]
         return out
+
+
+class UnitReader(TableReader):
+    """A reader of a file with a ``[units]`` table: lengths in ``units.length``, angles in
+    ``units.angle`` (default m and degrees), converted to SI by ``length_of``,
+    ``angle_of``."""
+
+    def __init__(self, label: str, source: str | None = None) -> None:
+        super().__init__(label, source)
+        self.length = 1.0
+        self.angle = math.pi / 180.0
+        self.length_unit = "m"
+        self.angle_unit = "deg"
+
+    def length_of(self, value: Any, key: str, positive: bool = False,
+                  non_negative: bool = False) -> float:
+        return self.number(value, key, self.length_unit, positive, non_negative) * self.length
+
+    def angle_of(self, value: Any, key: str) -> float:
+        return self.number(value, key, self.angle_unit) * self.angle
+
+    def units(self, table: Any) -> None:
+        self.keys(table, "units", {"length", "angle"})
+        length = table.get("length", "m")
+        if length not in LENGTH_FACTORS:
+            raise self.fail("units.length", f"must be one of {', '.join(LENGTH_FACTORS)}, "
+                                            f"got {show(length)}.")
+        angle = table.get("angle", "deg")
+        if angle not in ANGLE_FACTORS:
+            raise self.fail("units.angle", f"must be one of {', '.join(ANGLE_FACTORS)}, "
+                                           f"got {show(angle)}.")
+        self.length, self.length_unit = LENGTH_FACTORS[length], length
+        self.angle, self.angle_unit = ANGLE_FACTORS[angle], angle

@@ -103,18 +103,18 @@ def _kinematic_peaks(result: analysis.Result) -> dict[str, float]:
 
 
 def friction_tol(mechanism: Mechanism, tols=FRICTION_TOLS, repeats: int = 3) -> list[Row]:
-    """Iterations, time and peaks against the friction tolerance."""
+    """Passes of the friction solution, time and peaks against the friction tolerance."""
     from dyade.linkage import friction, kinematics
 
     kin = kinematics.sweep(mechanism)
     runs = []
     for tol in tols:
-        seconds, rubbing = _timed(lambda: friction.iterate(mechanism, kin, tol=tol), repeats)
+        seconds, rubbing = _timed(lambda: friction.solve(mechanism, kin, tol=tol), repeats)
         result = analysis.Result(mechanism, analysis.plan(mechanism), kin, rubbing.forces,
                                  kin.valid.copy())
         its = rubbing.iterations[kin.valid]
         runs.append((f"{tol:g}", seconds, _peaks(result),
-                     f"iterations {its.min():.0f}–{its.max():.0f} (mean {its.mean():.2f})"))
+                     f"passes {its.min():.0f}–{its.max():.0f} (mean {its.mean():.2f})"))
     return _compare("friction tol", runs)
 
 

@@ -20,7 +20,7 @@ UNITS = {"kinematics": "1/0", "angle_deg": "°", "phi": "°", "omega": "rad/s",
          "alpha": "rad/s²", "x": "m", "y": "m",
          "vx": "m/s", "vy": "m/s", "ax": "m/s²", "ay": "m/s²", "s": "m", "v": "m/s",
          "a": "m/s²", "mu": "°", "Fx": "N", "Fy": "N", "F": "N", "FN": "N", "M": "N·m",
-         "P": "W", "forces": "1/0", "MR": "N·m", "FR": "N", "lock": "N", "friction": "-",
+         "P": "W", "forces": "1/0", "MR": "N·m", "FR": "N", "lock": "-", "friction": "-",
          "J": "kg·m²", "dJ": "kg·m²/rad", "t": "s"}
 
 
@@ -157,13 +157,19 @@ def force_columns(result: Result) -> Columns:
         for name, value in rubbing.friction_forces.items():
             out[f"FR_{_tag(name)}"] = value
         out["P_friction"] = rubbing.power
-    for name, lock in (result.locking or {}).items():
-        out[f"lock_margin_{_tag(name)}"] = lock.margin
     invalid = ~(forces.valid & result.valid)
     out = {key: np.where(invalid, np.nan, value) for key, value in out.items()}
+    # the self-locking figures stay where friction is what makes the forces invalid
+    dead = invalid & ~rubbing.blocked if rubbing is not None else invalid
+    for name, lock in (result.locking or {}).items():
+        if lock.margin is not None:
+            out[f"lock_margin_{_tag(name)}"] = np.where(dead, np.nan, lock.margin)
     if rubbing is not None:
         out["friction_iterations"] = rubbing.iterations
     out["forces_valid"] = (forces.valid & result.valid).astype(np.float64)
+    if rubbing is not None:
+        for number, det in sorted(rubbing.determinant.items()):
+            out[f"friction_det_{number}"] = np.where(dead, np.nan, det)
     machine = reduced(mech, result.kinematics)
     given = result.valid  # from the kinematics: not given where it is not
     out["J_red"], out["dJ_red"], out["M_load"] = (np.where(given, machine.inertia, np.nan),
@@ -182,7 +188,7 @@ def columns(result: Result) -> Columns:
 
 PLAUSIBLE = 1e12  # [SI] no machine has a value beyond this: a row with one is not given
 FORCE_PREFIXES = ("Fx_", "Fy_", "F_", "FN_", "M_", "P_", "MR_", "FR_", "lock_margin_",
-                  "friction_iterations", "forces_valid")
+                  "friction_iterations", "forces_valid", "friction_det_")
 """names of the force block; the rest (and ``KINEMATIC_EXEMPT``) are kinematic"""
 KINEMATIC_EXEMPT = ("kinematics_valid",)
 

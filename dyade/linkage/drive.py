@@ -218,11 +218,12 @@ def _friction_torque(mechanism: Mechanism, path: equation.Path, tables: equation
         speed[0] = path.sense * AT_REST_NUDGE * max(float(np.max(np.abs(speed))), 1.0)
     angle = start + path.sense * 0.5 * path.step * j
     kin = kinematics.sweep(mechanism, angle, crank_speed=speed, crank_acceleration=acceleration)
-    rubbing = friction.iterate(mechanism, kin)
+    rubbing = friction.solve(mechanism, kin)
     drive = rubbing.forces.drive_torque
     if not np.all(np.isfinite(drive)):
         raise DyadeError("the equation of motion with friction cannot be solved: the forces "
-                         "are undefined at a dead centre of the cycle.")
+                         "are undefined at a dead centre or a self-locking position of the "
+                         "cycle.")
     return drive - (inertia * acceleration + 0.5 * jslope * speed ** 2 - load)
 
 

@@ -190,13 +190,16 @@ def backward(mechanism: Mechanism, kin: Kinematics, q: FloatArray, rub=None) -> 
     w_12[2] -= drive
     wrenches[joint.name] = (CRANK, w_12)
     frame -= w_12
-    return assemble_forces(mechanism, kin, wrenches, drive, frame)
+    return assemble_forces(mechanism, kin, wrenches, drive, frame,
+                           None if rub is None else rub.surface)
 
 
 def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
-                    drive: FloatArray, frame: FloatArray) -> Forces:
+                    drive: FloatArray, frame: FloatArray, surface: dict | None = None) -> Forces:
     """Physical joint forces (the paper's sign rule) from the joint wrenches; the shaking
-    load gets the frame-anchored springs and the drive's reaction."""
+    load gets the frame-anchored springs and the drive's reaction. ``surface``: slider
+    -> the part of its friction force (on the slider, along the guide) that acts at the
+    guide surface (``dyade.linkage.friction``); without it, the whole along-guide force."""
     motion = kin.motion
     for spring in mechanism.springs:
         for link, point, force in spring_forces(spring, motion):
@@ -218,8 +221,11 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
         sx, sy = motion.point_xy(joint.slider, joint.slider_point)
         normal = dx * slider[1] - dy * slider[0]
         moment = slider[2] - (sx * slider[1] - sy * slider[0])
-        if joint.friction > 0.0:  # the friction force acts H/2 off, at the guide surface
-            along = dx * slider[0] + dy * slider[1]
+        if joint.friction > 0.0:  # friction acting H/2 off, at the guide surface
+            if surface is not None and joint.name in surface:
+                along = surface[joint.name]
+            else:
+                along = dx * slider[0] + dy * slider[1]
             moment = moment - np.sign(normal) * 0.5 * joint.slider_height * along
         sign = toward_higher(joint.name, joint.slider)
         forces.normal[joint.name] = sign * normal

@@ -99,13 +99,16 @@ class Prismatic:
     """Slider height H [m] for friction (None: not given)."""
     friction: float = 0.0
     """Coulomb friction coefficient μ [-]."""
+    edge_friction: bool = True
+    """Friction of the edge pressures 3·|M'|/L that the tilting moment causes (with μ > 0)."""
 
     @classmethod
     def through(cls, carrier: int, point: Vec, theta: float, offset: float, slider: int,
                 slider_point: Vec, relative_angle: float, **extra) -> Prismatic:
         """A prismatic joint whose guide passes ``point`` of the carrier in direction
         ``theta`` [rad], shifted so that the slider point lies ``offset`` [m] to its left;
-        ``extra``: friction data (``friction``, ``slider_length``, ``slider_height``)."""
+        ``extra``: friction data (``friction``, ``slider_length``, ``slider_height``,
+        ``edge_friction``)."""
         shifted = (point[0] - offset * math.sin(theta), point[1] + offset * math.cos(theta))
         return cls(carrier, slider, shifted, theta, slider_point, relative_angle, **extra)
 

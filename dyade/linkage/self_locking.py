@@ -1,21 +1,36 @@
-"""Self-locking test for sliders with friction (Thümmel & Bartke 1987, after Gumpert 1984).
+"""Self-locking of sliders: the test of Thümmel & Bartke (1987, after Gumpert), read so
+that it is the exact jam condition of a pushed block, and the verdict of the friction
+solution (``dyade.linkage.friction``).
 
-The slider does not lock while
+The paper's test: a slider does not lock while
 
-    |F_η| > μ·(|FN| + 3·|M + 0.5·FN·H·μ·sign ṡ| / L)
+    |F_η| > μ·(|FN| + 3·|M + ½·FN·H·μ·sign ṡ| / L)
 
-with FN, M the prismatic joint's normal force and moment on the slider, L and H the
-slider's length and height. The margin |F_η| − μ(…) [N] is reported at every position.
+with F_η the force along the guide that drives it, FN and M the prismatic joint's normal
+force and moment (about the slider point) that balance that drive, L and H the slider's
+length and height. Evaluated on the converged reactions it degenerates (the slider's own
+equilibrium makes |F_η| equal to the friction it already carries), so dyade evaluates it
+on **the push**: a force F_η along the guide, in the direction of motion, applied to the
+slider through its frictionless dyad (row k of M⁻¹, the kinematics' inverse) with no
+other load. FN and M are then the joint's reactions to that push alone. For a block
+pushed by a two-force member (a rod pinned at both ends) the push runs along the rod, at
+the angle β to the guide and with its line of action at the lever e about the block, and
+the inequality is exactly the condition under which any push, however large, moves the
+block (README, "Friction and self-locking"). Everything is proportional to F_η, so
 
-F_η is read as the *driving* force: the component along the guide of the reactions of
-the slider's other joints (the force the linkage pushes it with). With inertia and
-applied loads included as well, the slider's along-guide equilibrium would make F_η
-equal to the joint's own friction force and the test would degenerate; read this way
-the margin is homogeneous in the pushing force, so it tests the geometry of the push
-(its angle to the guide and its lever about the slider against μ and L), which is what
-self-locking is. Only positions where friction opposes F_η count (F_η·ṡ ≥ 0: the drive
-pushes along the motion, or the slider is at rest); a linkage braking a moving slider
-is not self-locking.
+    lock_margin = 1 − μ·(|FN| + 3·|M + ½·FN·H·μ·sign ṡ|/L) / |F_η|      [-]
+
+depends on the geometry alone and its sign is never decided by round-off: 1 for a push
+straight along the guide through the block's centre, 0 at the jam angle, negative where a
+push along the motion through the linkage would jam the block. Without edge friction
+(``edge_friction = false``) the 3·|…|/L term is left out here as in the friction model.
+
+Whether the slider *does* lock is the friction solution's verdict: its dyad's
+friction-augmented equilibrium has no solution (a friction dead centre) and this joint's
+friction is the cause. For a slider pushed by a two-force member with friction in its
+guide only, that happens exactly where the margin crosses zero on a stroke on which the
+linkage pushes it; a negative margin elsewhere (the linkage brakes the slider, or other
+joints carry the motion) is no self-locking.
 """
 
 from __future__ import annotations
@@ -24,44 +39,67 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.linkage.friction import FrictionResult, joint_forces_on
-from dyade.linkage.motion import Motion, travel
-from dyade.linkage.model import FloatArray, Mechanism, toward_higher
+from dyade.linkage.friction import AT_REST_RTOL, EDGE, FrictionResult
+from dyade.linkage.kinematics import Kinematics
+from dyade.linkage.motion import guide_direction, travel
+from dyade.linkage.model import FloatArray, Mechanism, Prismatic
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class Locking:
-    """The test for one slider."""
+    """The self-locking verdict for one joint, and a slider's margin."""
 
-    margin: FloatArray
-    """(n,) |F_η| − μ(|FN| + 3|M + 0.5·FN·H·μ·sign ṡ|/L) [N]"""
-    driving_force: FloatArray
-    """(n,) F_η along the guide direction [N]"""
     locks: FloatArray
-    """(n,) bool: margin < 0 where the test applies"""
+    """(n,) bool: the joint's dyad self-locks here and this joint's friction is the cause"""
+    dyad: int
+    """the number of the joint's dyad"""
+    determinant: FloatArray
+    """(n,) friction-augmented determinant of that dyad relative to the frictionless one
+    [-] (1 without friction, ≤ 0 self-locking; NaN where not computed)"""
+    margin: FloatArray | None = None
+    """slider: (n,) 1 − μ·(|FN| + 3·|M + ½·FN·H·μ·sign ṡ|/L)/|F_η| for a push F_η along
+    the motion through the frictionless dyad [-]; None for a revolute joint"""
 
 
-def test(mechanism: Mechanism, motion: Motion, result: FrictionResult,
-         valid: FloatArray) -> dict[tuple[int, int], Locking]:
-    """Self-locking margin of every slider with friction at every crank position."""
+def test(mechanism: Mechanism, kin: Kinematics, result: FrictionResult
+         ) -> dict[tuple[int, int], Locking]:
+    """Every slider with friction (its margin) and every joint that self-locks."""
+    where = {joint.name: (group, k, number) for group, number in
+             zip(kin.groups, (dyad.number for dyad in mechanism.dyads))
+             for k, joint in enumerate(group.joints)}
     out = {}
-    typical = abs(mechanism.crank.speed) * mechanism.crank.length
-    for joint in mechanism.friction_sliders:
-        s = joint.slider
-        d = motion.direction(joint.carrier, joint.guide_angle)
-        others = joint_forces_on(s, mechanism, result)
-        others.pop(joint.name)
-        pushing = sum(others.values()) if others else np.zeros_like(d)
-        f_eta = np.sum(pushing * d, axis=1)
-        towards = toward_higher(joint.name, joint.slider)  # reported -> on the slider
-        normal = towards * result.forces.normal[joint.name]
-        moment = towards * result.forces.moment[joint.name]
-        velocity = travel(joint, motion)[1]
-        sign = np.where(np.abs(velocity) <= 1e-9 * typical, 0.0, np.sign(velocity))
-        mu, height, length = joint.friction, joint.slider_height, joint.slider_length
-        resistance = mu * (np.abs(normal)
-                           + 3.0 * np.abs(moment + 0.5 * normal * height * mu * sign) / length)
-        margin = np.abs(f_eta) - resistance
-        applies = f_eta * sign >= 0.0
-        out[joint.name] = Locking(margin, f_eta, valid & applies & (margin < 0.0))
+    for joint in mechanism.joints:
+        name = joint.name
+        sliding = isinstance(joint, Prismatic) and joint.friction > 0.0
+        if not sliding and name not in result.locks:
+            continue
+        group, k, number = where[name]
+        n = kin.crank_angle.shape[0]
+        locks = result.locks.get(name, np.zeros(n, dtype=bool))
+        margin = push_margin(mechanism, kin, joint, group, k) if sliding else None
+        out[name] = Locking(locks, number, result.determinant[number], margin)
     return out
+
+
+def push_margin(mechanism: Mechanism, kin: Kinematics, joint: Prismatic, group, k: int
+                ) -> FloatArray:
+    """(n,) the margin of the module docstring for slider ``joint``, joint k of ``group``."""
+    motion = kin.motion
+    typical = abs(mechanism.crank.speed) * mechanism.crank.length
+    velocity = travel(joint, motion)[1]
+    sign = np.where(np.abs(velocity) <= AT_REST_RTOL * typical, 0.0, np.sign(velocity))
+    # W_k = ±R_k carries a unit load along the joint's freedom: the joint's reaction to a
+    # unit push along the guide. Its sense does not matter: reversed, FN and M both
+    # reverse, and with them M + ½·FN·H·μ·sign ṡ (the motion fixes sign ṡ, the face
+    # carrying FN carries the friction's part μ·|FN|).
+    fx, fy, moment = group.inverse[k]
+    dx, dy = guide_direction(joint, motion)
+    sx, sy = motion.point_xy(joint.slider, joint.slider_point)
+    normal = dx * fy - dy * fx
+    about = moment - (sx * fy - sy * fx)
+    mu = joint.friction
+    resistance = np.abs(normal)
+    if joint.edge_friction:
+        tilt = about + 0.5 * normal * joint.slider_height * mu * sign
+        resistance = resistance + EDGE * np.abs(tilt) / joint.slider_length
+    return 1.0 - mu * resistance

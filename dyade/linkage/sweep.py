@@ -2,7 +2,7 @@
 
 The plan is decided from the data before anything runs, and shown by ``describe``:
 masses, loads or springs → kinetostatics; a friction coefficient → friction
-iteration; a slider with friction → self-locking test; clearance data → the clearance
+solution and self-locking verdict; a slider with friction → its self-locking margin; clearance data → the clearance
 check. Stages the scene does not call for are not run.
 """
 
@@ -31,7 +31,7 @@ class Plan:
     kinetostatics: bool = False
     """masses, loads or springs present"""
     friction: tuple[tuple[int, int], ...] = ()
-    """joints with μ > 0 (friction iteration runs only with kinetostatics)"""
+    """joints with μ > 0 (friction runs only with kinetostatics)"""
     self_locking: tuple[tuple[int, int], ...] = ()
     """sliders with μ > 0"""
     clearance: tuple[tuple[int, int], ...] = ()
@@ -47,10 +47,11 @@ class Plan:
             out.append("kinetostatics: joint forces, driving torque, shaking force (d'Alembert, "
                        "backward dyad by dyad)")
         if self.friction:
-            out.append("Coulomb friction (iterated per dyad) in joints "
-                       + ", ".join(f"({a},{b})" for a, b in self.friction))
+            out.append("Coulomb friction (solved per dyad) in joints "
+                       + ", ".join(f"({a},{b})" for a, b in self.friction)
+                       + "; self-locking (friction dead centres) of their dyads")
         if self.self_locking:
-            out.append("self-locking test for sliders "
+            out.append("self-locking margin of sliders "
                        + ", ".join(f"({a},{b})" for a, b in self.self_locking))
         if self.clearance:
             out.append("clearance peak check (Dresig–Thümmel) in joints "
@@ -92,7 +93,7 @@ class Note(NamedTuple):
 
     kind: str
     """"partial", "dead_centre", "forces_invalid", "friction_not_converged", "at_rest",
-    "never_moves", "self_locking" or "clearance_not_applicable" """
+    "never_moves", "self_locking", "near_self_locking" or "clearance_not_applicable" """
     subject: str
     """what it concerns: "dyad 3", "joint (3,4)", "slider (1,4)", or "" """
     ranges: tuple[tuple[float, float], ...]
@@ -124,9 +125,10 @@ class Result:
     notes: list[Note] = field(default_factory=list)
     """findings: dead centres, partial sweeps, friction, self-locking, clearance"""
     friction: friction.FrictionResult | None = None
-    """friction loads and iteration record; None without friction"""
+    """friction loads, determinants and verdicts; None without friction"""
     locking: dict | None = None
-    """slider -> self_locking.Locking; None without sliders with friction"""
+    """joint -> self_locking.Locking for every slider with friction and every joint that
+    self-locks; None without friction"""
     clearance: list | None = None
     """joint_clearance.JointCheck per joint with clearance data; None without such data"""
     valid: FloatArray | None = None
@@ -288,9 +290,10 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
         Report only the positions where every dyad closes, with a note, instead of
         raising ``AssemblyError``.
     friction_tol : float, optional
-        Relative change of the joint forces [-] at which the friction iteration stops.
+        A position's friction solution is accepted when a fixed-point step would change
+        its joint forces or friction loads by less than this share [-].
     friction_max_iter : int, optional
-        Most friction iterations per dyad and position.
+        Most passes of the friction solution per dyad and position.
     plan : Plan, optional
         The stages to run (default: ``plan(mechanism)``).
     max_memory : float, optional
@@ -418,17 +421,12 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
     if the_plan.friction:
         from dyade.linkage import friction, self_locking
 
-        rubbing = friction.iterate(mechanism, kin)
+        rubbing = friction.solve(mechanism, kin)
         forces = rubbing.forces
         _friction_notes(mechanism, kin, rubbing, rows, notes)
-        if the_plan.self_locking:
-            locking = self_locking.test(mechanism, kin.motion, rubbing, forces.valid)
-            for name, lock in locking.items():
-                if (lock.locks & rows).any():
-                    spans = ranges(angle, lock.locks & rows)
-                    notes.append(Note("self_locking", f"slider ({name[0]},{name[1]})", tuple(spans),
-                                      f"slider ({name[0]},{name[1]}) locks (self-locking) at crank "
-                                      f"angles {format_ranges(spans, digits=digits)}."))
+        if the_plan.self_locking or rubbing.locks:  # slider margins, or a lock to name
+            locking = self_locking.test(mechanism, kin, rubbing)
+            _locking_notes(mechanism, kin, locking, rows, notes)
     elif the_plan.kinetostatics:
         forces = kinetostatics.solve(mechanism, kin)
     result = Result(mechanism, the_plan, kin, forces, rows, notes, rubbing, locking, valid=well,
@@ -436,6 +434,10 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
     result.cached = _plausible(result, digits)
     if forces is not None:
         invalid = result.valid & ~forces.valid
+        if rubbing is not None:  # those get their own notes
+            invalid &= ~(rubbing.locked | rubbing.unsolved)
+            for mask in rubbing.near.values():
+                invalid &= ~mask
         if invalid.any():
             notes.append(_forces_invalid_note(angle, invalid, digits))
     if motion is not None:
@@ -590,14 +592,28 @@ def _friction_notes(mechanism: Mechanism, kin: kinematics.Kinematics,
                     ) -> None:
     angle = kin.crank_angle
     digits = decimals(angle)
-    failed = rows & kin.valid & ~rubbing.converged
+    band = np.sin(mechanism.dead_centre_angle)
+    for dyad in mechanism.dyads:
+        near = rows & rubbing.near.get(dyad.number, np.zeros_like(rows))
+        if near.any():
+            spans = ranges(angle, near)
+            notes.append(Note("near_self_locking", f"dyad {dyad.number}", tuple(spans),
+                              f"{dyad.label} is near self-locking at crank angles "
+                              f"{format_ranges(spans, digits=digits)}: its friction-augmented determinant is "
+                              f"below {band:.3g} or friction multiplies its joint forces more "
+                              f"than {1 / band:.0f}-fold (the sin of, and one over, the "
+                              f"{np.rad2deg(mechanism.dead_centre_angle):g}° dead-centre band); "
+                              f"the rigid model is invalid there (forces_valid = 0, force "
+                              f"fields empty)."))
+    failed = rows & rubbing.unsolved
     if failed.any():
         spans = ranges(angle, failed)
         notes.append(Note("friction_not_converged", "", tuple(spans),
-                          f"the friction iteration did not converge to "
-                          f"{mechanism.friction_tol:g} in {mechanism.friction_max_iter} steps at "
-                          f"{int(failed.sum())} positions: crank angles {format_ranges(spans, digits=digits)} "
-                          f"(worst relative change {np.max(rubbing.residual[failed]):.3g})."))
+                          f"no consistent friction solution was found in "
+                          f"{mechanism.friction_max_iter} passes (tolerance "
+                          f"{mechanism.friction_tol:g}) at {int(failed.sum())} positions: crank "
+                          f"angles {format_ranges(spans, digits=digits)}; forces are not given there "
+                          f"(forces_valid = 0)."))
     for name, mask in rubbing.at_rest.items():
         if (mask & rows).any():
             spans = ranges(angle, mask & rows)
@@ -622,3 +638,21 @@ def _motion_notes(motion: "drive.CrankMotion", notes: list[Note]) -> None:
                           f"the friction torque of the equation of motion did not settle in "
                           f"{figures['passes']} passes (largest change "
                           f"{figures['friction_change']:.3g} N·m)."))
+
+
+def _locking_notes(mechanism: Mechanism, kin: kinematics.Kinematics, locking: dict,
+                   rows: FloatArray, notes: list[Note]) -> None:
+    labels = {dyad.number: dyad.label for dyad in mechanism.dyads}
+    for joint in mechanism.joints:
+        lock = locking.get(joint.name)
+        if lock is None or not (lock.locks & rows).any():
+            continue
+        a, b = joint.name
+        what = "slider" if joint.kind == "P" else "joint"
+        spans = ranges(kin.crank_angle, lock.locks & rows)
+        notes.append(Note("self_locking", f"{what} ({a},{b})", tuple(spans),
+                          f"{what} ({a},{b}) locks (self-locking) at crank angles "
+                          f"{format_ranges(spans, digits=decimals(kin.crank_angle))}: {labels[lock.dyad]} has no friction "
+                          f"equilibrium there (its friction-augmented determinant changes "
+                          f"sign: a friction dead centre, caused by the friction in ({a},{b})); "
+                          f"forces are not given there (forces_valid = 0)."))

@@ -196,16 +196,19 @@ def force_summary(result: Result, cols: Columns) -> Table | None:
         its = cols["friction_iterations"]
         rows = result.rows & result.forces.valid
         worst = float(np.max(rubbing.residual[rows], initial=0.0))
-        table.add_row("friction iterations", "-", f"{its.min():.0f}–{its.max():.0f}", "")
+        table.add_row("friction passes", "-", f"{its.min():.0f}–{its.max():.0f}", "")
         table.add_row("worst final residual", "-", f"{worst:.2g}", "")
     for name, lock in (result.locking or {}).items():
         a, b = name
+        locks = lock.locks[result.rows]
+        verdict = f"locks over {int(locks.sum())} positions" if locks.any() else "no lock"
+        if lock.margin is None:
+            table.add_row(f"joint ({a},{b}) ({verdict})", "", "", "")
+            continue
         margin = cols[f"lock_margin_{a}_{b}"]
         if np.isfinite(margin).any():
             k = int(np.nanargmin(margin))
-            locks = lock.locks[result.rows]
-            verdict = f"locks over {int(locks.sum())} positions" if locks.any() else "no lock"
-            table.add_row(f"lock_margin_{a}_{b} min ({verdict})", "N", f"{margin[k]:.6g}",
+            table.add_row(f"lock_margin_{a}_{b} min ({verdict})", "-", f"{margin[k]:.6g}",
                           f"{angle[k]:.1f}")
     return table
 

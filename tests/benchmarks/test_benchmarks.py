@@ -30,10 +30,11 @@ def _angles(count: int) -> np.ndarray:
     return np.linspace(0.0, 2 * np.pi, count, endpoint=False)
 
 
-def _with_friction(mechanism, mu=0.1):
+def _with_friction(mechanism, mu=0.1, edges=True):
     def rub(joint):
         if isinstance(joint, Prismatic):
-            return replace(joint, friction=mu, slider_length=0.04, slider_height=0.02)
+            return replace(joint, friction=mu, slider_length=0.04, slider_height=0.02,
+                           edge_friction=edges)
         return replace(joint, friction=mu, pin_radius=0.005)
 
     crank = replace(mechanism.crank, joint=rub(mechanism.crank.joint))
@@ -69,13 +70,18 @@ def test_fourbar_yardstick(benchmark, count):
     benchmark(fourbar, angles, 300 * 2 * np.pi / 60)
 
 
-def test_dyade16_with_friction_3600(benchmark):
-    mechanism = _with_friction(toml_input.read_mechanism(shipped("dyade-16.toml")))
+@pytest.mark.parametrize("edges", [True, False], ids=["edge-friction", "no-edge-friction"])
+@pytest.mark.parametrize("method", ["solve", "iterate"])
+def test_dyade16_with_friction_3600(benchmark, method, edges):
+    """The direct solution (with the self-locking verdict) and the fixed-point iteration
+    in one run, on the same friction model, at tolerance 1e-9."""
+    mechanism = _with_friction(toml_input.read_mechanism(shipped("dyade-16.toml")), edges=edges)
     angles = _angles(3600)
+    run = getattr(friction, method)
 
     def engine():
         kin = kinematics.sweep(mechanism, angles)
-        return friction.iterate(mechanism, kin)
+        return run(mechanism, kin)
 
     result = benchmark(engine)
     assert result.converged.all()
