@@ -11,7 +11,7 @@ import click
 
 from dyade.cli import main
 from dyade.cli.options import FINITE, POSITIVE
-from dyade.cli.output import atomic, console, flags, show, write_json
+from dyade.cli.output import atomic, console, flags, progress, show, write_json
 
 # paths stay strings on the way of `dyade analyse`: pathlib alone costs 5 ms of start-up
 MECHANISM_FILE = click.Path(exists=True, dir_okay=False, allow_dash=True)
@@ -256,25 +256,14 @@ def batch(paths, directory: str, run_one, suffix: str) -> list[tuple[str, str]]:
 
     targets = _targets(paths, directory, suffix)
     failures = []
-    progress = None
-    if sys.stderr.isatty():
-        from rich.progress import Progress
-
-        progress = Progress(console=console(stderr=True), transient=True)
-        task = progress.add_task("analysing", total=len(paths))
-        progress.start()
-    try:
-        for path, target in zip(paths, targets):
+    with progress("analysing", total=len(paths)) as tick:
+        for done, (path, target) in enumerate(zip(paths, targets), start=1):
             try:
                 run_one(path, target, None)
             except (DyadeError, click.ClickException) as err:
                 message = err.format_message() if isinstance(err, click.ClickException) else str(err)
                 failures.append((path, message))
-            if progress is not None:
-                progress.advance(task)
-    finally:
-        if progress is not None:
-            progress.stop()
+            tick(done)
     return failures
 
 
@@ -398,7 +387,10 @@ class Job(NamedTuple):
                             transmission_warning=self.transmission_warning,
                             constant_speed=self.constant_speed, run_up=self.run_up)
             blocks = sweep_.blocks()
-            first = next(blocks)  # the assembly check fails here, before any output
+            with progress(f"{os.path.basename(path)}: checking the sweep",
+                          show=long_run(sweep_)) as tick:
+                sweep_.progress = tick
+                first = next(blocks)  # the assembly check fails here, before any output
         names = list(first)
         if self.columns:
             from dyade.report.tables import select
@@ -413,9 +405,12 @@ class Job(NamedTuple):
         def emit(handle) -> None:
             writer = csv_rows.Writer(names, handle)
             writer.header()
-            writer.rows(first)
-            for cols in blocks:
-                writer.rows(cols)
+            with progress(f"{os.path.basename(path)}: analysing",
+                          show=long_run(sweep_)) as tick:
+                sweep_.progress = tick
+                writer.rows(first)
+                for cols in blocks:
+                    writer.rows(cols)
             writer.close()
 
         if output:
@@ -424,6 +419,19 @@ class Job(NamedTuple):
         else:
             emit(sys.stdout)
         warn(sweep_.notes, f"{os.path.basename(path)}: " if output else "")
+
+
+SECOND = 8e6
+"""values (positions × columns) a streamed CSV computes and writes in about a second"""
+
+
+def long_run(sweep_) -> bool:
+    """A streamed sweep expected to take more than about a second."""
+    from dyade.linkage.sweep import BYTES_PER_VALUE, memory_estimate
+
+    values = (memory_estimate(sweep_.mechanism, sweep_.crank_angle.size) - (50 << 20)) \
+        / BYTES_PER_VALUE
+    return values > SECOND
 
 
 class options_named:

@@ -11,7 +11,7 @@ import click
 from dyade.cli import main
 from dyade.cli.analyse import MECHANISM_FILE, SUFFIX, batch
 from dyade.cli.options import FINITE, Number, value_range
-from dyade.cli.output import console, flags, show, write_json, write_rows
+from dyade.cli.output import console, flags, progress, show, write_json, write_rows
 
 FLAGS = {"mass": "--mass", "stiffness": "--stiffness", "clearance": "--clearance",
          "slope": "--slope", "joints": "--joint", "speeds_rpm": "--speed-range"}
@@ -231,7 +231,10 @@ def _over_mechanism(path, given: Inputs, fmt, output):
     mechanism = load(path).mechanism
     with flags(FLAGS):
         if given.speeds:
-            study = dyade.clearance_speed_study(mechanism, given.speeds, **mechanism_options(given))
+            with progress(f"{mechanism.name}: clearance at {len(given.speeds)} speeds",
+                          show=len(given.speeds) > 5) as tick:
+                study = dyade.clearance_speed_study(mechanism, given.speeds, progress=tick,
+                                                    **mechanism_options(given))
         else:
             study = [(None, dyade.check_clearance(mechanism, **mechanism_options(given)))]
     rows, skipped = report.mechanism_rows(study, given.simulate, given.sim_steps)

@@ -330,13 +330,16 @@ def check(mechanism: Mechanism, *, joints=None, stiffness: float | None = None,
     return check_mechanism(mechanism, result, joints, override, mass, max_wander)
 
 
-def speed_study(mechanism: Mechanism, speeds_rpm, **options) -> list[tuple[float, list]]:
+def speed_study(mechanism: Mechanism, speeds_rpm, progress=None, **options
+                ) -> list[tuple[float, list]]:
     """The clearance check at each crank speed of ``speeds_rpm`` [rpm] (the crank keeps
-    its sense of rotation); ``options`` as for ``check``.
+    its sense of rotation); ``options`` as for ``check``; ``progress(done, total)`` is
+    called after each speed.
 
     Returns (speed [rpm], list of JointCheck) per speed.
     """
     sign = 1.0 if mechanism.crank.speed > 0 else -1.0
+    speeds_rpm = list(speeds_rpm)
     out = []
     for rpm in speeds_rpm:
         if not np.isfinite(rpm) or rpm <= 0:
@@ -345,4 +348,6 @@ def speed_study(mechanism: Mechanism, speeds_rpm, **options) -> list[tuple[float
         faster = replace(mechanism, crank=replace(mechanism.crank,
                                                   speed=sign * rpm * RPM))
         out.append((float(rpm), check(faster, **options)))
+        if progress is not None:
+            progress(len(out), len(speeds_rpm))
     return out

@@ -80,6 +80,9 @@ class Stream:
     """the clearance check (``joint_clearance.JointCheck`` per joint), once streamed"""
     positions: int = 0
     """rows given"""
+    progress: Any = None
+    """called with (done, total) as the blocks are computed: the first pass (the
+    validity policy) counts the first half"""
 
     def _slice(self, value, first: int, last: int):
         return value[first:last] if isinstance(value, np.ndarray) else value
@@ -88,6 +91,10 @@ class Stream:
         return kinematics.sweep(self.mechanism, self.crank_angle[first:last],
                                 self._slice(self.speed, first, last),
                                 self._slice(self.acceleration, first, last))
+
+    def _tick(self, done: int, total: int) -> None:
+        if self.progress is not None:
+            self.progress(done, total)
 
     def _spans(self) -> Iterator[tuple[int, int]]:
         n = self.crank_angle.shape[0]
@@ -107,6 +114,7 @@ class Stream:
             kin = self._kinematics(first, last)
             for name in ("closes", "transmission", "conditioning", "valid"):
                 getattr(policy, name)[first:last] = getattr(kin, name)
+            self._tick(last, 2 * n)
         notes = self.notes
         rows = _check_assembly(mechanism, policy, self.allow_partial, notes)
         well = _bands(mechanism, policy, rows, notes)
@@ -146,6 +154,7 @@ class Stream:
                     kept[name][first:last] = forces.revolute[name]
             self.positions += int(cols["angle_deg"].size)
             yield cols
+            self._tick(n + last, 2 * n)
         for block in ("kinematics", "forces"):
             if implausible[block].any():
                 notes.append(_implausible_note(block, self.crank_angle, implausible[block],
