@@ -30,6 +30,12 @@ set_option = click.option(
          "like the file.")
 
 
+jobs_option = click.option(
+    "-j", "--jobs", type=click.IntRange(min=0), default=1, show_default=True, metavar="N",
+    help="Analyse several files (or speeds) on N processes at once (0: all cores); the "
+         "output is that of a serial run, in the same order.")
+
+
 class SweepOptions(NamedTuple):
     """--start/--stop/--step [°], None where not given. (Option bundles are NamedTuples:
     each is 0.4 ms cheaper to create at start-up than a frozen dataclass.)"""
@@ -173,13 +179,14 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
 @click.option("--constant-speed", is_flag=True,
               help="Ignore the [drive] table: the crank at its constant speed_rpm (to compare "
                    "with the real speed).")
+@jobs_option
 def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
             start: float | None, stop: float | None, step: float | None,
             assignments: tuple[str, ...], save_as: str | None, allow_partial: bool,
             friction_tol: float | None, friction_max_iter: int | None,
             show_all: bool, patterns: str | None, units: str, dead_centre: float | None,
             transmission_warning: float | None, max_memory: float, block_size: int | None,
-            fail_on_lock: bool, run_up: bool, constant_speed: bool) -> None:
+            fail_on_lock: bool, run_up: bool, constant_speed: bool, jobs: int) -> None:
     """Sweep the crank of MECHANISM_FILES: positions, velocities and accelerations of every
     link, joint and named point.
 
@@ -223,7 +230,7 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
         raise click.UsageError(f"-o {output}: not a directory (several input files write one "
                                f"result each into a directory).")
     os.makedirs(output, exist_ok=True)
-    failures = batch(mechanism_files, output, job.run, SUFFIX[fmt])
+    failures = batch(mechanism_files, output, job.run, SUFFIX[fmt], jobs)
     if failures:
         lines = "\n".join(f"  {path}: {reason}" for path, reason in failures)
         raise DyadeError(f"{len(failures)} of {len(mechanism_files)} files failed:\n{lines}")
@@ -249,22 +256,59 @@ def infer_format(output: str | None) -> str:
     return FORMATS[suffix]
 
 
-def batch(paths, directory: str, run_one, suffix: str) -> list[tuple[str, str]]:
-    """Run ``run_one(path, target)`` for every path; a progress bar on stderr when it is
-    a terminal; returns the failures (path, reason) instead of stopping."""
-    from dyade.errors import DyadeError
-
+def batch(paths, directory: str, run_one, suffix: str, jobs: int = 1) -> list[tuple[str, str]]:
+    """Run ``run_one(path, target, None)`` for every path, on ``jobs`` processes (0: all
+    cores); a progress bar on stderr when it is a terminal; returns the failures (path,
+    reason) instead of stopping. With several processes each file's warnings are kept and
+    printed in the order of the files, as in a serial run."""
     targets = _targets(paths, directory, suffix)
     failures = []
+    workers = min(workers_for(jobs), len(paths))
     with progress("analysing", total=len(paths)) as tick:
-        for done, (path, target) in enumerate(zip(paths, targets), start=1):
-            try:
-                run_one(path, target, None)
-            except (DyadeError, click.ClickException) as err:
-                message = err.format_message() if isinstance(err, click.ClickException) else str(err)
-                failures.append((path, message))
-            tick(done)
+        if workers <= 1:
+            outcomes = (attempt(run_one, path, target, False)
+                        for path, target in zip(paths, targets))
+        else:
+            from concurrent.futures import ProcessPoolExecutor
+
+            pool = ProcessPoolExecutor(workers)
+            futures = [pool.submit(attempt, run_one, path, target, True)
+                       for path, target in zip(paths, targets)]
+            outcomes = (future.result() for future in futures)
+        try:
+            for done, (path, (failure, said)) in enumerate(zip(paths, outcomes), start=1):
+                if said:
+                    sys.stderr.write(said)
+                if failure is not None:
+                    failures.append((path, failure))
+                tick(done)
+        finally:
+            if workers > 1:
+                pool.shutdown(cancel_futures=True)
     return failures
+
+
+def workers_for(jobs: int) -> int:
+    """Processes for -j N: N, or every core for 0."""
+    return jobs if jobs > 0 else (os.cpu_count() or 1)
+
+
+def attempt(run_one, path, target, capture: bool) -> tuple[str | None, str]:
+    """``run_one(path, target, None)``: (None or the reason it failed, what it wrote on
+    stderr when ``capture``)."""
+    import contextlib
+    import io
+
+    from dyade.errors import DyadeError
+
+    said = io.StringIO()
+    with contextlib.redirect_stderr(said) if capture else contextlib.nullcontext():
+        try:
+            run_one(path, target, None)
+        except (DyadeError, click.ClickException) as err:
+            return (err.format_message() if isinstance(err, click.ClickException)
+                    else str(err)), said.getvalue()
+    return None, said.getvalue()
 
 
 def _targets(paths, directory: str, suffix: str) -> list[str]:
