@@ -271,6 +271,7 @@ def batch(paths, directory: str, run_one, suffix: str, jobs: int = 1) -> list[tu
         else:
             from concurrent.futures import ProcessPoolExecutor
 
+            warm()
             pool = ProcessPoolExecutor(workers)
             futures = [pool.submit(attempt, run_one, path, target, True)
                        for path, target in zip(paths, targets)]
@@ -286,6 +287,24 @@ def batch(paths, directory: str, run_one, suffix: str, jobs: int = 1) -> list[tu
             if workers > 1:
                 pool.shutdown(cancel_futures=True)
     return failures
+
+
+WARM = ("numpy", "numpy.ma", "rich.console", "dyade.cli.memory", "dyade.files.mechanism",
+        "dyade.linkage.dyads.rrr", "dyade.linkage.dyads.rrp", "dyade.linkage.dyads.rpr",
+        "dyade.linkage.dyads.prp", "dyade.linkage.dyads.ppr", "dyade.linkage.stream",
+        "dyade.linkage.summary", "dyade.linkage.columns", "dyade.linkage.friction",
+        "dyade.linkage.self_locking", "dyade.linkage.joint_clearance",
+        "dyade.report.csv_rows", "dyade.report.document", "dyade.report.tables",
+        "dyade.report.clearance")
+"""modules the workers of -j need: imported once before they are forked"""
+
+
+def warm() -> None:
+    """Import ``WARM`` here, so that forked workers do not each import them again."""
+    import importlib
+
+    for name in WARM:
+        importlib.import_module(name)
 
 
 def workers_for(jobs: int) -> int:

@@ -348,6 +348,8 @@ def speed_study(mechanism: Mechanism, speeds_rpm, progress=None, workers: int = 
     if workers > 1:
         from concurrent.futures import ProcessPoolExecutor
 
+        from dyade.linkage import columns, summary  # noqa: F401 (imported once, not per worker)
+
         with ProcessPoolExecutor(workers) as pool:
             checks = pool.map(_at_speed, [(mechanism, rpm, options) for rpm in speeds_rpm])
             return _collect(speeds_rpm, checks, progress)

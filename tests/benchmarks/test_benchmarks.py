@@ -19,7 +19,7 @@ from dyade import clearance
 from dyade.vibration import coupling
 from dyade.files import mechanism as toml_input
 from dyade.linkage.model import Prismatic
-from tests.benchmarks.yardstick import fourbar
+from tests.benchmarks.yardstick import fourbar, slider_crank
 from tests.helpers import shipped
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -68,6 +68,41 @@ def test_fourbar_engine_kinematics_and_forces(benchmark, count):
 def test_fourbar_yardstick(benchmark, count):
     angles = _angles(count)
     benchmark(fourbar, angles, 300 * 2 * np.pi / 60)
+
+
+@pytest.mark.parametrize("count", [3600])
+def test_slider_crank_engine_kinematics_and_forces(benchmark, count):
+    """The general engine on the slider-crank: compare with its yardstick."""
+    mechanism = toml_input.read_mechanism(shipped("slider-crank.toml"))
+    angles = _angles(count)
+
+    def engine():
+        kin = kinematics.sweep(mechanism, angles)
+        return kinetostatics.solve(mechanism, kin)
+
+    benchmark(engine)
+
+
+@pytest.mark.parametrize("count", [3600])
+def test_slider_crank_yardstick(benchmark, count):
+    benchmark(slider_crank, _angles(count), 1500 * 2 * np.pi / 60)
+
+
+@pytest.mark.parametrize("count", [3600, 360_000])
+def test_fourbar_engine_cost_per_position(benchmark, count):
+    """Kinematics and forces, whole sweep against blocks of 2048 positions (the streamed
+    path): divide by the count for the cost per position."""
+    from dyade.linkage.stream import BLOCK_SIZE
+
+    mechanism = toml_input.read_mechanism(shipped("fourbar.toml"))
+    angles = _angles(count)
+
+    def engine():
+        for first in range(0, count, BLOCK_SIZE):
+            kin = kinematics.sweep(mechanism, angles[first:first + BLOCK_SIZE])
+            kinetostatics.solve(mechanism, kin)
+
+    benchmark(engine)
 
 
 @pytest.mark.parametrize("edges", [True, False], ids=["edge-friction", "no-edge-friction"])
