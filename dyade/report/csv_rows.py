@@ -45,9 +45,14 @@ def _words(texts) -> np.ndarray:
     return np.frombuffer(raw, dtype=np.uint64).copy()
 
 
-_DIGITS = _words("\0".join(f"{k:04d}") + "\0" for k in range(10_000))
-"""four digits of 0..9999, each followed by an empty decimal-point place"""
-_FIRST = _words("\0\0" + "\0".join(f"{k:04d}"[1:]) + "\0" for k in range(10_000))
+_GROUP = np.arange(10_000)
+_DIGIT_BYTES = np.zeros((10_000, 8), dtype=np.uint8)
+_DIGIT_BYTES[:, 0::2] = (_GROUP[:, None] // np.array([1000, 100, 10, 1]) % 10) + ord("0")
+_DIGITS = _DIGIT_BYTES.view(np.uint64).reshape(-1)
+"""four digits of 0..9999, each followed by an empty decimal-point place (as 8 bytes)"""
+_DIGIT_BYTES = _DIGIT_BYTES.copy()
+_DIGIT_BYTES[:, 0] = 0
+_FIRST = _DIGIT_BYTES.view(np.uint64).reshape(-1)
 """the same with the first digit left out (the leading group holds 3 digits)"""
 _PREFIX = _words([sign + lead for sign in ("", "-")
                   for lead in ("", "0.", "0.0", "0.00", "0.000")])
@@ -64,9 +69,8 @@ for _c in range(17):
         if 1 <= _place <= _c:
             _mask[2 * _place] = 0xFF
     _KEEP[:, _c] = np.frombuffer(bytes(_mask), dtype=np.uint64)
-_TRAILING = np.array([4] + [len(f"{k:04d}") - len(f"{k:04d}".rstrip("0"))
-                           for k in range(1, 10_000)], dtype=np.int64)
-"""trailing zeros of the four-digit groups"""
+_TRAILING = sum((_GROUP % 10 ** k == 0).astype(np.int64) for k in range(1, 5))
+"""trailing zeros of the four-digit groups (4 for 0)"""
 _POWERS = np.array([np.longdouble(f"1e{k}") for k in range(-310, 350)])
 """10^k for k = −310..349, correctly rounded to np.longdouble (strtold)"""
 _TIE = 1e-3
