@@ -24,7 +24,7 @@ sys.path.insert(0, str(ROOT))
 import dyade  # noqa: E402
 from dyade import clearance  # noqa: E402
 from dyade.plot import animate, canvas, clearance as clearance_plot  # noqa: E402
-from dyade.plot import coupling, curves, polar  # noqa: E402
+from dyade.plot import campbell, coupling, curves, modes, polar  # noqa: E402
 
 DOCS = ROOT / "docs"
 MECHANISMS = ROOT / "mechanisms"
@@ -67,6 +67,17 @@ def clearance_paper(path: Path) -> None:
     canvas.save(clearance_plot.figure([case], speeds=speeds, history=history), str(path), dpi=80)
 
 
+def two_stage_campbell(path: Path) -> None:
+    drive = dyade.read_gears(MECHANISMS / "gears" / "two-stage.toml")
+    diagram = dyade.campbell(drive, campbell.default_speeds(drive.speed.rpm))
+    canvas.save(campbell.figure(diagram), str(path), dpi=80)
+
+
+def two_stage_modes(path: Path) -> None:
+    drive = dyade.read_gears(MECHANISMS / "gears" / "two-stage.toml")
+    canvas.save(modes.figure(dyade.gear_modes(drive), 4), str(path), dpi=80)
+
+
 FIGURES = {
     "fourbar-polar.png": fourbar_polar,
     "dyade-16-reversals.png": dyade16_polar_reversals,
@@ -74,6 +85,8 @@ FIGURES = {
     "slotted-lever-motion.gif": slotted_lever_motion,
     "coupling-resonance.png": coupling_resonance,
     "clearance-paper.png": clearance_paper,
+    "two-stage-campbell.png": two_stage_campbell,
+    "two-stage-modes.png": two_stage_modes,
 }
 
 

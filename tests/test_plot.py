@@ -23,7 +23,7 @@ pytest.importorskip("matplotlib")
 import dyade  # noqa: E402
 from dyade.cli import main  # noqa: E402
 from dyade.plot import animate, canvas, clearance as clearance_plot, coupling, curves  # noqa: E402
-from dyade.plot import mechanism, polar  # noqa: E402
+from dyade.plot import campbell as campbell_plot, mechanism, modes as modes_plot, polar  # noqa: E402
 from tests.conftest import SHIPPED  # noqa: E402
 from tests.helpers import read_csv, shipped  # noqa: E402
 
@@ -358,10 +358,179 @@ def test_clearance_points_history_and_speeds_are_the_api_numbers():
     assert line(speed_ax, "speed-(5,6)").get_ydata()[1] == pytest.approx(at_300, rel=1e-12)
 
 
+# -- gear drives: Campbell diagram and mode shapes ----------------------------------------
+TWO_STAGE = shipped("gears/two-stage.toml")
+
+
+@pytest.fixture(scope="module")
+def two_stage():
+    drive = dyade.read_gears(TWO_STAGE)
+    diagram = dyade.campbell(drive, np.arange(0.0, 2201.0, 10.0))
+    return drive, diagram, campbell_plot.figure(diagram)
+
+
+def collection(ax, gid: str):
+    found = [c for c in ax.collections if c.get_gid() == gid]
+    assert len(found) == 1, gid
+    return found[0]
+
+
+def test_campbell_natural_frequencies_are_horizontal_lines_at_the_api_frequencies(two_stage):
+    _, diagram, fig = two_stage
+    ax = fig.axes[0]
+    f = diagram.modes.frequencies
+    top = ax.get_ylim()[1]
+    drawn = {l.get_gid() for l in ax.get_lines() if l.get_gid().startswith("mode-")}
+    assert drawn == {f"mode-{k + 1}" for k in np.flatnonzero(f <= top)}
+    assert {f"mode-{c.mode}" for c in diagram.crossings} <= drawn  # every resonance's mode
+    for k in np.flatnonzero(f <= top):
+        mode = line(ax, f"mode-{k + 1}")
+        assert list(mode.get_ydata()) == [f[k], f[k]]  # horizontal, exactly the API's value
+        assert list(mode.get_xdata()) == [0.0, 2200.0]
+    title = fig.get_suptitle()
+    assert "no gyroscopic" in title and f"{int(np.sum(f > top))} modes above" in title
+
+
+def test_campbell_order_lines_pass_through_order_times_speed(two_stage):
+    _, diagram, fig = two_stage
+    ax = fig.axes[0]
+    # written out from the file: shafts 1 : 1/3 : 1/10.5, pinions of 20 teeth on the input
+    # and the intermediate shaft, the load's torque ripple twice per revolution
+    per_rpm = {"input ×1": 1.0, "intermediate ×1": 1 / 3, "output ×1": 1 / 10.5,
+               **{f"stage1 ×{h}": 20.0 * h for h in (1, 2, 3)},
+               **{f"stage2 ×{h}": 20.0 * h / 3 for h in (1, 2, 3)},
+               "excitation1": 20.0, "excitation2": 2 / 10.5}
+    assert [o.name for o in diagram.orders] == list(per_rpm)
+    for k, order in enumerate(diagram.orders):
+        drawn = line(ax, f"order-{order.name}")
+        n, y = drawn.get_xdata(), drawn.get_ydata()
+        assert np.array_equal(n, diagram.speeds_rpm) and np.array_equal(y, diagram.lines[k])
+        assert np.allclose(y, per_rpm[order.name] * n / 60.0, rtol=1e-12, atol=0.0)
+
+
+def test_campbell_crossing_markers_sit_at_the_api_crossings(two_stage):
+    _, diagram, fig = two_stage
+    ax = fig.axes[0]
+    parts = {gid: collection(ax, f"crossings-{gid}") for gid in ("ranked", "weak", "unranked")}
+    marked = np.vstack([c.get_offsets() for c in parts.values()])
+    expected = np.array([(c.speed_rpm, c.frequency) for c in diagram.crossings])
+    assert marked.shape == expected.shape
+    assert np.array_equal(marked[np.lexsort(marked.T)], expected[np.lexsort(expected.T)])
+    lines = {o.name: o for o in diagram.orders}
+    for c in diagram.crossings:  # each on its line and its mode: f = slope·n, f = f_mode
+        assert c.frequency == pytest.approx(lines[c.order].slope * c.speed_rpm, rel=1e-12)
+        assert c.frequency == diagram.modes.frequencies[c.mode - 1]
+    kappa = np.array([c.mesh_stiffness for c in diagram.crossings])
+    largest = np.nanmax(kappa)
+    ranked = np.isfinite(kappa) & (kappa >= campbell_plot.WEAK * largest)
+    unranked = np.isnan(kappa)
+    assert np.array_equal(parts["ranked"].get_offsets(), expected[ranked])
+    assert np.array_equal(parts["unranked"].get_offsets(), expected[unranked])
+    assert len(parts["weak"].get_offsets()) == np.sum(~ranked & ~unranked) > 0
+    sizes = parts["ranked"].get_sizes()  # larger κ, larger marker; the largest the largest
+    order = np.argsort(kappa[ranked])
+    assert np.all(np.diff(sizes[order]) >= 0) and sizes.max() == campbell_plot.SIZES[1]
+    assert [lines[c.order].mesh is None for c in diagram.crossings] == list(unranked)
+    labels = [t.get_text() for t in ax.texts if t.get_gid() == "crossing-label"]
+    strongest = diagram.crossings[int(np.nanargmax(kappa))]
+    assert labels[0] == f"mode {strongest.mode}\n{strongest.speed_rpm:.0f} rpm"
+
+
+def test_campbell_shaft_and_torque_crossings_are_marked_unranked():
+    diagram = dyade.campbell(dyade.read_gears(TWO_STAGE), np.arange(0.0, 20001.0, 500.0))
+    ax = campbell_plot.figure(diagram).axes[0]
+    squares = collection(ax, "crossings-unranked").get_offsets()
+    expected = [(c.speed_rpm, c.frequency) for c in diagram.crossings
+                if c.kind == "shaft" or c.order == "excitation2"]
+    assert len(expected) == 10 and np.array_equal(squares, expected)
+
+
+def test_mode_shape_vertices_are_the_api_shapes_normalised():
+    modes = dyade.gear_modes(dyade.read_gears(TWO_STAGE))
+    fig = modes_plot.figure(modes, 4)
+    system = modes.system
+    names = [b.name for b in system.bodies]
+    lines = {"input": ["motor", "input.1", "gear1"],
+             "intermediate": ["gear2", "intermediate.1", "gear3"],
+             "output": ["gear4", "output.1", "load"]}
+    columns = {"ux": 0, "uy": 1, "uz": 2, "rx": 3}
+    for k in range(4):
+        shape = modes.shapes[:, k].reshape(-1, 6)
+        radius = np.array([np.sqrt(b.inertia[0] / b.mass) for b in system.bodies])
+        raw = {d: shape[:, c] * (radius if d == "rx" else 1.0) for d, c in columns.items()}
+        every = np.concatenate(list(raw.values()))
+        scale = every[np.argmax(np.abs(every))]  # the largest entry becomes +1
+        axes = fig.subfigs[k].axes
+        assert [ax.get_title() for ax in axes] == list(lines)
+        for ax, (shaft, bodies) in zip(axes, lines.items()):
+            index = [names.index(b) for b in bodies]
+            for dof in columns:
+                drawn = line(ax, f"shape-{k + 1}-{shaft}-{dof}")
+                x = [system.bodies[i].position[0] * 1e3 for i in index]
+                assert np.allclose(drawn.get_xdata(), x, rtol=0, atol=1e-9)
+                assert np.allclose(drawn.get_ydata(), raw[dof][index] / scale, rtol=1e-12,
+                                   atol=1e-15)
+        title = fig.subfigs[k]._suptitle.get_text()
+        owner, motion, share = modes.dominant()[k]
+        assert title.startswith(f"mode {k + 1}: {modes.frequencies[k]:.5g} Hz")
+        assert f"{owner} {motion} {share:.0%}" in title
+    assert "ρ·rx" in fig.get_suptitle() and "largest entry" in fig.get_suptitle()
+
+
+def test_torsional_mode_shapes_follow_the_shafts_without_positions():
+    modes = dyade.gear_modes(dyade.read_gears(shipped("gears/friswell-geared.toml")))
+    fig = modes_plot.figure(modes, 3)
+    names = [b.name for b in modes.system.bodies]
+    for k in range(3):
+        rx = modes.shapes[:, k]
+        scale = rx[np.argmax(np.abs(rx))]
+        axes = fig.subfigs[k].axes
+        for ax, bodies in zip(axes, (["motor", "gear1", "rotor4"], ["gear2", "rotor3"])):
+            drawn = line(ax, f"shape-{k + 1}-{ax.get_title()}-rx")
+            assert list(drawn.get_xdata()) == list(range(len(bodies)))
+            assert [t.get_text() for t in ax.get_xticklabels()] == bodies
+            assert np.allclose(drawn.get_ydata(), rx[[names.index(b) for b in bodies]] / scale,
+                               rtol=1e-12)
+        assert not [l for l in axes[0].get_lines() if str(l.get_gid()).endswith("-uy")]
+
+
+def test_gear_plots_same_data_same_bytes():
+    drive = dyade.read_gears(TWO_STAGE)
+    for fmt in ("png", "svg"):
+        made = [canvas.render(campbell_plot.figure(dyade.campbell(drive, [0, 500, 1000])), fmt,
+                              dpi=30) for _ in range(2)]
+        assert made[0] == made[1], fmt
+        made = [canvas.render(modes_plot.figure(dyade.gear_modes(drive), 2), fmt, dpi=30)
+                for _ in range(2)]
+        assert made[0] == made[1], fmt
+
+
+def test_plot_campbell_default_speeds_and_errors(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert np.array_equal(campbell_plot.default_speeds(1450), np.linspace(0, 2200, 201))
+    out = run("plot", "campbell", TWO_STAGE, "--dpi", "25")
+    assert out.exit_code == 0 and "wrote two-stage-campbell.png" in out.stderr, out.output
+    out = run("plot", "campbell", shipped("gears/friswell-geared.toml"), "-o", "x.png")
+    assert out.exit_code == 2 and "`[speed]`" in out.output
+    no_rpm = tmp_path / "no-rpm.toml"
+    no_rpm.write_text(TWO_STAGE.read_text().replace("rpm = 1450", ""))
+    out = run("plot", "campbell", no_rpm, "-o", "x.png")
+    assert out.exit_code == 2 and "--speed-range" in out.output
+    out = run("plot", "campbell", TWO_STAGE, "--speed-range", "0:100:0", "-o", "x.png")
+    assert out.exit_code == 2 and "--speed-range" in out.output
+    out = run("plot", "modes", shipped("gears/friswell-geared.toml"), "--modes", "9", "-o",
+              "m.svg")
+    assert out.exit_code == 0, out.output
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["m.svg", "no-rpm.toml",
+                                                          "two-stage-campbell.png"]
+
+
 # -- every kind, every format, same bytes ---------------------------------------------------
 KINDS = [("polar", "fourbar.toml"), ("curves", "dyade-16.toml"), ("mechanism", "watt-sixbar.toml")]
 SPECIAL = {
     "coupling": [shipped("coupling/stiff-coupling.toml")],
+    "campbell": [shipped("gears/two-stage.toml"), "--speed-range", "0:2000:50"],
+    "modes": [shipped("gears/two-stage.toml"), "--modes", "2"],
     "clearance": ["--mass", "3.6", "--stiffness", "1e7", "--clearance", "1e-4", "--slope",
                   "360000", "--speed-rpm", "300", "--speed-range", "100:600:100", "--simulate"],
 }
@@ -443,11 +612,12 @@ def test_bad_output_options_are_usage_errors(args, message, tmp_path, monkeypatc
 
 
 @pytest.mark.parametrize("kind", ["polar", "curves", "mechanism", "animate", "coupling",
-                                  "clearance"])
+                                  "clearance", "campbell", "modes"])
 def test_without_matplotlib_every_plot_command_names_the_extra(kind, monkeypatch, tmp_path):
     monkeypatch.setitem(sys.modules, "matplotlib", None)  # import matplotlib fails
     args = {"coupling": ["--J", "1", "--c1", "1", "--c2", "1"],
-            "clearance": SPECIAL["clearance"]}.get(kind, [shipped("fourbar.toml")])
+            "clearance": SPECIAL["clearance"], "campbell": SPECIAL["campbell"],
+            "modes": SPECIAL["modes"]}.get(kind, [shipped("fourbar.toml")])
     out = run("plot", kind, *args, "-o", tmp_path / "x.gif")
     assert out.exit_code == 2
     assert 'pip install "dyade[plot]"' in out.output

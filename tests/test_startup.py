@@ -39,7 +39,8 @@ def test_help_imports_no_numpy():
 
 
 def test_plot_help_imports_no_matplotlib():
-    for args in (["plot", "--help"], ["plot", "polar", "--help"]):
+    for args in (["plot", "--help"], ["plot", "polar", "--help"], ["plot", "campbell", "--help"],
+                 ["plot", "modes", "--help"]):
         modules = _imported(args)
         assert "numpy" not in modules
         assert not any(name.startswith(("matplotlib", "dyade.plot")) for name in modules)
@@ -60,3 +61,4 @@ def test_gears_help_imports_no_numpy():
     modules = _imported(["gears", "--help"])
     assert "dyade.cli.gears" in modules  # it did load the command
     assert "numpy" not in modules
+    assert not any(name.startswith(("matplotlib", "dyade.plot")) for name in modules)

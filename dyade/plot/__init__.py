@@ -12,7 +12,10 @@ with the object API (never pyplot's global state) from result objects of the API
   paths of its named points; ``animate``: the same in motion, one frame per step;
 - ``coupling``: the transfer functions and phases of a stiff coupling (Strümpfel);
 - ``clearance``: f(τ) with the operating points, the peak force against crank speed and
-  the simulated force history next to the closed form (Dresig & Thümmel).
+  the simulated force history next to the closed form (Dresig & Thümmel);
+- ``campbell``: a gear drive's natural frequencies against the input speed with the
+  excitation lines and the resonance crossings ranked by modal mesh stiffness;
+  ``modes``: its mode shapes per shaft line (Berczyński, Maćkowiak & Marchelek).
 
 ``canvas`` holds what they share: the style (line styles and markers that read in
 grey-scale), shading of the result's notes and deterministic output (the same data

@@ -6,7 +6,7 @@ from __future__ import annotations
 import copy
 
 import pytest
-import tomli_w
+import tomlkit
 from click.testing import CliRunner
 
 import dyade
@@ -101,7 +101,7 @@ def test_bad_input_is_named(case, tmp_path):
     assert message in str(err.value)
     assert str(err.value).startswith("drive.toml: ")
     path = tmp_path / "drive.toml"
-    path.write_text(tomli_w.dumps(data), encoding="utf-8")
+    path.write_text(tomlkit.dumps(data), encoding="utf-8")
     run = CliRunner().invoke(main, ["gears", str(path)])
     assert run.exit_code == 2, run.output
     assert message in run.output and "Traceback" not in run.output
@@ -109,7 +109,7 @@ def test_bad_input_is_named(case, tmp_path):
 
 def test_bad_options_are_named(tmp_path):
     path = tmp_path / "drive.toml"
-    path.write_text(tomli_w.dumps(single_stage()), encoding="utf-8")
+    path.write_text(tomlkit.dumps(single_stage()), encoding="utf-8")
     cases = [(["--dof", "motor.qx", "--response", "1:2:1"], "--dof names 'motor.qx'"),
              (["--campbell", "0:100"], "--campbell"),
              (["--campbell", "0:100:1", "--check"], "--campbell and --check: one analysis")]
@@ -118,6 +118,6 @@ def test_bad_options_are_named(tmp_path):
         assert run.exit_code == 2 and message in run.output, run.output
     no_speed = single_stage(mesh={"rotation": "right"})
     no_speed.pop("speed")
-    path.write_text(tomli_w.dumps(no_speed), encoding="utf-8")
+    path.write_text(tomlkit.dumps(no_speed), encoding="utf-8")
     run = CliRunner().invoke(main, ["gears", str(path), "--campbell", "0:100:1"])
     assert run.exit_code == 2 and "drive.toml: `[speed]` is not given" in run.output
