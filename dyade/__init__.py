@@ -11,7 +11,9 @@ The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``
 
 - ``read_mechanism(path, overrides=None)``, ``build_mechanism(data)`` -> ``Mechanism``
 - ``plan(mechanism)`` -> ``Plan``; ``analyse(mechanism, ...)`` -> ``Result`` with
-  ``.columns()``, ``.summary()``, ``.notes``, ``.to_pandas()``
+  ``.columns()``, ``.summary()``, ``.notes``, ``.to_pandas()``;
+  ``analyse_in_blocks(mechanism, block_size=...)`` -> a ``Stream`` whose ``.blocks()``
+  give the same columns block by block, in bounded memory
 - ``check_clearance(mechanism, ...)``, ``clearance_speed_study(mechanism, speeds, ...)``,
   ``peak_force(mass, stiffness, *, clearance, slope)``, ``simulate_clearance(...)``
 - ``Coupling``, ``read_coupling(path)``, ``coupling_response(coupling, eta)``,
@@ -44,6 +46,7 @@ _EXPORTS = {
     "build_mechanism": ("dyade.files.mechanism", "build"),
     "plan": "dyade.linkage.sweep",
     "analyse": "dyade.linkage.sweep",
+    "analyse_in_blocks": ("dyade.linkage.stream", "stream"),
     "Plan": "dyade.linkage.sweep",
     "Result": "dyade.linkage.sweep",
     "Note": "dyade.linkage.sweep",

@@ -180,11 +180,11 @@ def test_piped_output_of_the_real_command_is_plain():
 def test_interrupted_write_leaves_no_partial_file(tmp_path, monkeypatch):
     target = tmp_path / "result.csv"
 
-    def explode(cols, handle):
-        handle.write("angle_deg,half a line")
+    def explode(writer, block):
+        writer.out.write("half a line")
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(csv_rows, "write", explode)
+    monkeypatch.setattr(csv_rows.Writer, "rows", explode)  # streamed or whole
     result = run("analyse", shipped("fourbar.toml"), "-o", target)
     assert result.exit_code == 130 and "Interrupted." in result.output  # Ctrl-C: 128 + SIGINT
     assert list(tmp_path.iterdir()) == []  # neither the result nor its temporary file

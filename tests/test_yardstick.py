@@ -5,7 +5,7 @@ import numpy as np
 
 from dyade.linkage import sweep as analysis
 from dyade.files import mechanism as toml_input
-from tests.benchmarks.yardstick import fourbar
+from tests.benchmarks.yardstick import fourbar, slider_crank
 from tests.helpers import shipped
 
 
@@ -16,6 +16,20 @@ def test_yardstick_agrees_with_dyade():
     motion = result.kinematics.motion
     assert np.allclose(motion.omega[:, 3], ref["omega3"], rtol=1e-9)
     assert np.allclose(motion.alpha[:, 4], ref["alpha4"], rtol=1e-9)
+    assert np.allclose(result.forces.revolute[(3, 4)], np.stack((ref["F34x"], ref["F34y"]), -1),
+                       rtol=1e-8, atol=1e-8)
+    assert np.allclose(result.forces.drive_torque, ref["M_drive"], rtol=1e-8, atol=1e-9)
+
+
+def test_slider_crank_yardstick_agrees_with_dyade():
+    mechanism = toml_input.read_mechanism(shipped("slider-crank.toml"))
+    result = analysis.run(mechanism)
+    ref = slider_crank(result.crank_angle, mechanism.crank.speed)
+    motion = result.kinematics.motion
+    cols = result.columns()
+    assert np.allclose(motion.omega[:, 3], ref["omega3"], rtol=1e-9)
+    assert np.allclose(motion.alpha[:, 3], ref["alpha3"], rtol=1e-9)
+    assert np.allclose(cols["ax_3_4"], ref["a_B"], rtol=1e-9, atol=1e-9)
     assert np.allclose(result.forces.revolute[(3, 4)], np.stack((ref["F34x"], ref["F34y"]), -1),
                        rtol=1e-8, atol=1e-8)
     assert np.allclose(result.forces.drive_torque, ref["M_drive"], rtol=1e-8, atol=1e-9)

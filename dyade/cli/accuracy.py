@@ -8,7 +8,7 @@ import click
 
 from dyade.cli import main
 from dyade.cli.analyse import MECHANISM_FILE, load, set_option
-from dyade.cli.output import show, write_json, write_rows
+from dyade.cli.output import progress, show, write_json, write_rows
 
 
 @main.command()
@@ -34,7 +34,9 @@ def accuracy(mechanism_file: Path, assignments, repeats: int, fmt: str, output) 
     from dyade.report import accuracy as report
 
     mechanism = load(mechanism_file, assignments).mechanism
-    records = report.records(dyade.accuracy_studies(mechanism, repeats=repeats))
+    with progress(f"{mechanism.name}: accuracy studies") as tick:
+        records = report.records(dyade.accuracy_studies(mechanism, repeats=repeats,
+                                                        progress=tick))
     if fmt == "csv":
         write_rows(records, report.COLUMNS, output)
     elif fmt == "json":

@@ -11,7 +11,7 @@ import click
 
 from dyade.cli import main
 from dyade.cli.options import FINITE, POSITIVE
-from dyade.cli.output import atomic, console, flags, show, write_json
+from dyade.cli.output import atomic, console, flags, progress, show, write_json
 
 # paths stay strings on the way of `dyade analyse`: pathlib alone costs 5 ms of start-up
 MECHANISM_FILE = click.Path(exists=True, dir_okay=False, allow_dash=True)
@@ -20,7 +20,7 @@ FLAGS = {"friction_tol": "--friction-tol", "friction_max_iter": "--friction-max-
          "start": "--start", "stop": "--stop", "step": "--step",
          "sweep": "the sweep (--start, --stop, --step)", "max_memory": "--max-memory",
          "dead_centre": "--dead-centre", "transmission_warning": "--transmission-warning",
-         "run_up": "--run-up"}
+         "run_up": "--run-up", "block_size": "--block-size"}
 """API parameter -> the flag it comes from"""
 
 set_option = click.option(
@@ -28,6 +28,12 @@ set_option = click.option(
     help="Override a key of the file without editing it, with its dotted path as in the file "
          "(repeatable): --set crank.speed_rpm=600 --set dyad.2.lengths=[200,150]. Validated "
          "like the file.")
+
+
+jobs_option = click.option(
+    "-j", "--jobs", type=click.IntRange(min=0), default=1, show_default=True, metavar="N",
+    help="Analyse several files (or speeds) on N processes at once (0: all cores); the "
+         "output is that of a serial run, in the same order.")
 
 
 class SweepOptions(NamedTuple):
@@ -157,7 +163,12 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
                    "rule)].")
 @click.option("--max-memory", type=POSITIVE, default=4096, show_default=True, metavar="MB",
               help="Refuse, before computing, a sweep estimated to need more memory [MB] "
-                   "(positions × columns × 90 B).")
+                   "(in memory: positions × columns × 90 B; streamed CSV: a block's, and "
+                   "about 100 B per position).")
+@click.option("--block-size", type=click.IntRange(min=0), default=None, metavar="N",
+              help="CSV: compute and write the sweep N positions at a time, in memory that "
+                   "does not grow with the sweep (0: all at once)  [default: 2048]. Sweeps "
+                   "with friction are computed whole.")
 @click.option("--fail-on-lock", is_flag=True,
               help="Exit with status 1 when the mechanism self-locks (otherwise self-locking "
                    "is a finding: reported, exit status 0).")
@@ -168,13 +179,14 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
 @click.option("--constant-speed", is_flag=True,
               help="Ignore the [drive] table: the crank at its constant speed_rpm (to compare "
                    "with the real speed).")
+@jobs_option
 def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
             start: float | None, stop: float | None, step: float | None,
             assignments: tuple[str, ...], save_as: str | None, allow_partial: bool,
             friction_tol: float | None, friction_max_iter: int | None,
             show_all: bool, patterns: str | None, units: str, dead_centre: float | None,
-            transmission_warning: float | None, max_memory: float, fail_on_lock: bool,
-            run_up: bool, constant_speed: bool) -> None:
+            transmission_warning: float | None, max_memory: float, block_size: int | None,
+            fail_on_lock: bool, run_up: bool, constant_speed: bool, jobs: int) -> None:
     """Sweep the crank of MECHANISM_FILES: positions, velocities and accelerations of every
     link, joint and named point.
 
@@ -203,7 +215,7 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
               friction_max_iter, fail_on_lock, show_all, chosen, units, max_memory * 2 ** 20,
               None if dead_centre is None else math.radians(dead_centre),
               None if transmission_warning is None else math.radians(transmission_warning),
-              run_up, constant_speed)
+              run_up, constant_speed, block_size)
     if len(mechanism_files) == 1 and not (output and os.path.isdir(output)):
         job.run(mechanism_files[0], output, save_as)
         return
@@ -218,7 +230,7 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
         raise click.UsageError(f"-o {output}: not a directory (several input files write one "
                                f"result each into a directory).")
     os.makedirs(output, exist_ok=True)
-    failures = batch(mechanism_files, output, job.run, SUFFIX[fmt])
+    failures = batch(mechanism_files, output, job.run, SUFFIX[fmt], jobs)
     if failures:
         lines = "\n".join(f"  {path}: {reason}" for path, reason in failures)
         raise DyadeError(f"{len(failures)} of {len(mechanism_files)} files failed:\n{lines}")
@@ -244,33 +256,78 @@ def infer_format(output: str | None) -> str:
     return FORMATS[suffix]
 
 
-def batch(paths, directory: str, run_one, suffix: str) -> list[tuple[str, str]]:
-    """Run ``run_one(path, target)`` for every path; a progress bar on stderr when it is
-    a terminal; returns the failures (path, reason) instead of stopping."""
-    from dyade.errors import DyadeError
-
+def batch(paths, directory: str, run_one, suffix: str, jobs: int = 1) -> list[tuple[str, str]]:
+    """Run ``run_one(path, target, None)`` for every path, on ``jobs`` processes (0: all
+    cores); a progress bar on stderr when it is a terminal; returns the failures (path,
+    reason) instead of stopping. With several processes each file's warnings are kept and
+    printed in the order of the files, as in a serial run."""
     targets = _targets(paths, directory, suffix)
     failures = []
-    progress = None
-    if sys.stderr.isatty():
-        from rich.progress import Progress
+    workers = min(workers_for(jobs), len(paths))
+    with progress("analysing", total=len(paths)) as tick:
+        if workers <= 1:
+            outcomes = (attempt(run_one, path, target, False)
+                        for path, target in zip(paths, targets))
+        else:
+            from concurrent.futures import ProcessPoolExecutor
 
-        progress = Progress(console=console(stderr=True), transient=True)
-        task = progress.add_task("analysing", total=len(paths))
-        progress.start()
-    try:
-        for path, target in zip(paths, targets):
-            try:
-                run_one(path, target, None)
-            except (DyadeError, click.ClickException) as err:
-                message = err.format_message() if isinstance(err, click.ClickException) else str(err)
-                failures.append((path, message))
-            if progress is not None:
-                progress.advance(task)
-    finally:
-        if progress is not None:
-            progress.stop()
+            warm()
+            pool = ProcessPoolExecutor(workers)
+            futures = [pool.submit(attempt, run_one, path, target, True)
+                       for path, target in zip(paths, targets)]
+            outcomes = (future.result() for future in futures)
+        try:
+            for done, (path, (failure, said)) in enumerate(zip(paths, outcomes), start=1):
+                if said:
+                    sys.stderr.write(said)
+                if failure is not None:
+                    failures.append((path, failure))
+                tick(done)
+        finally:
+            if workers > 1:
+                pool.shutdown(cancel_futures=True)
     return failures
+
+
+WARM = ("numpy", "numpy.ma", "rich.console", "dyade.cli.memory", "dyade.files.mechanism",
+        "dyade.linkage.dyads.rrr", "dyade.linkage.dyads.rrp", "dyade.linkage.dyads.rpr",
+        "dyade.linkage.dyads.prp", "dyade.linkage.dyads.ppr", "dyade.linkage.stream",
+        "dyade.linkage.summary", "dyade.linkage.columns", "dyade.linkage.friction",
+        "dyade.linkage.self_locking", "dyade.linkage.joint_clearance",
+        "dyade.report.csv_rows", "dyade.report.document", "dyade.report.tables",
+        "dyade.report.clearance")
+"""modules the workers of -j need: imported once before they are forked"""
+
+
+def warm() -> None:
+    """Import ``WARM`` here, so that forked workers do not each import them again."""
+    import importlib
+
+    for name in WARM:
+        importlib.import_module(name)
+
+
+def workers_for(jobs: int) -> int:
+    """Processes for -j N: N, or every core for 0."""
+    return jobs if jobs > 0 else (os.cpu_count() or 1)
+
+
+def attempt(run_one, path, target, capture: bool) -> tuple[str | None, str]:
+    """``run_one(path, target, None)``: (None or the reason it failed, what it wrote on
+    stderr when ``capture``)."""
+    import contextlib
+    import io
+
+    from dyade.errors import DyadeError
+
+    said = io.StringIO()
+    with contextlib.redirect_stderr(said) if capture else contextlib.nullcontext():
+        try:
+            run_one(path, target, None)
+        except (DyadeError, click.ClickException) as err:
+            return (err.format_message() if isinstance(err, click.ClickException)
+                    else str(err)), said.getvalue()
+    return None, said.getvalue()
 
 
 def _targets(paths, directory: str, suffix: str) -> list[str]:
@@ -307,6 +364,8 @@ class Job(NamedTuple):
     """[rad]"""
     run_up: bool = False
     constant_speed: bool = False
+    block_size: int | None = None
+    """positions per block of a streamed CSV (None: the default, 0: the whole sweep)"""
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
         output = None if output == "-" else output  # -o -: standard output
@@ -316,6 +375,13 @@ class Job(NamedTuple):
         mechanism = loaded.mechanism
         if save_as_path:
             save_as(loaded, save_as_path)
+        if self.fmt == "csv" and self.block_size != 0:
+            from dyade.linkage.stream import streams
+            from dyade.linkage.sweep import plan
+
+            if streams(plan(mechanism)):
+                self.stream_csv(mechanism, path, output)
+                return
         result = sweep(mechanism, self.allow_partial, self.friction_tol, self.friction_max_iter,
                        max_memory=self.max_memory, dead_centre=self.dead_centre,
                        transmission_warning=self.transmission_warning, run_up=self.run_up,
@@ -371,23 +437,94 @@ class Job(NamedTuple):
                              "was given.")
 
 
+    def stream_csv(self, mechanism, path: str, output: str | None) -> None:
+        """The sweep as CSV, block by block (``dyade.linkage.stream``): each block's rows
+        written as soon as they are computed."""
+        from dyade.linkage.stream import stream
+        from dyade.report import csv_rows
+
+        with options_named():
+            sweep_ = stream(mechanism, block_size=self.block_size,
+                            allow_partial=self.allow_partial, max_memory=self.max_memory,
+                            dead_centre=self.dead_centre,
+                            transmission_warning=self.transmission_warning,
+                            constant_speed=self.constant_speed, run_up=self.run_up)
+            blocks = sweep_.blocks()
+            with progress(f"{os.path.basename(path)}: checking the sweep",
+                          show=long_run(sweep_)) as tick:
+                sweep_.progress = tick
+                first = next(blocks)  # the assembly check fails here, before any output
+        names = list(first)
+        if self.columns:
+            from dyade.report.tables import select
+
+            names = list(select(first, list(self.columns)))
+            if len(names) == 1:
+                raise click.BadParameter(f"no column matches {', '.join(self.columns)}; the "
+                                         f"columns are {', '.join(list(first)[:12])}, … "
+                                         f"(mechanisms/README.md lists them).",
+                                         param_hint="--columns")
+
+        def emit(handle) -> None:
+            writer = csv_rows.Writer(names, handle)
+            writer.header()
+            with progress(f"{os.path.basename(path)}: analysing",
+                          show=long_run(sweep_)) as tick:
+                sweep_.progress = tick
+                writer.rows(first)
+                for cols in blocks:
+                    writer.rows(cols)
+            writer.close()
+
+        if output:
+            with atomic(output) as handle:
+                emit(handle)
+        else:
+            emit(sys.stdout)
+        warn(sweep_.notes, f"{os.path.basename(path)}: " if output else "")
+
+
+SECOND = 8e6
+"""values (positions × columns) a streamed CSV computes and writes in about a second"""
+
+
+def long_run(sweep_) -> bool:
+    """A streamed sweep expected to take more than about a second."""
+    from dyade.linkage.sweep import BYTES_PER_VALUE, memory_estimate
+
+    values = (memory_estimate(sweep_.mechanism, sweep_.crank_angle.size) - (50 << 20)) \
+        / BYTES_PER_VALUE
+    return values > SECOND
+
+
+class options_named:
+    """Errors of the API named as the options give them: flags for parameters, and a
+    partial closure suggests --allow-partial."""
+
+    def __enter__(self) -> None:
+        pass
+
+    def __exit__(self, exc_type, exc, tb) -> bool:
+        from dyade.errors import AssemblyError, InputError
+
+        if isinstance(exc, InputError):
+            raise exc.naming(FLAGS) from None
+        if isinstance(exc, AssemblyError) and exc.partial:
+            raise AssemblyError("; ".join(exc.problems) + ". Change the dimensions or the "
+                                "sweep, or use --allow-partial to analyse only where it "
+                                "closes.", exc.problems, exc.partial) from None
+        return False
+
+
 def sweep(mechanism, allow_partial: bool, friction_tol: float | None = None,
           friction_max_iter: int | None = None, **options):
     """``dyade.analyse`` with the options' names in its errors (a partial closure
     suggests --allow-partial); ``options``: its other keywords."""
-    from dyade.errors import AssemblyError
     from dyade.linkage.sweep import analyse
 
-    try:
-        with flags(FLAGS):
-            return analyse(mechanism, allow_partial=allow_partial, friction_tol=friction_tol,
-                           friction_max_iter=friction_max_iter, **options)
-    except AssemblyError as err:
-        if not err.partial:
-            raise
-        raise AssemblyError("; ".join(err.problems) + ". Change the dimensions or the sweep, "
-                            "or use --allow-partial to analyse only where it closes.",
-                            err.problems, err.partial) from None
+    with options_named():
+        return analyse(mechanism, allow_partial=allow_partial, friction_tol=friction_tol,
+                       friction_max_iter=friction_max_iter, **options)
 
 
 def warn(notes, prefix: str = "") -> None:

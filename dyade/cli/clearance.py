@@ -9,9 +9,9 @@ from typing import NamedTuple
 import click
 
 from dyade.cli import main
-from dyade.cli.analyse import MECHANISM_FILE, SUFFIX, batch
+from dyade.cli.analyse import MECHANISM_FILE, SUFFIX, batch, jobs_option, workers_for
 from dyade.cli.options import FINITE, Number, value_range
-from dyade.cli.output import console, flags, show, write_json, write_rows
+from dyade.cli.output import console, flags, progress, show, write_json, write_rows
 
 FLAGS = {"mass": "--mass", "stiffness": "--stiffness", "clearance": "--clearance",
          "slope": "--slope", "joints": "--joint", "speeds_rpm": "--speed-range"}
@@ -159,10 +159,12 @@ def mechanism_options(given: Inputs) -> dict:
 @click.option("-o", "--output", type=click.Path(writable=True, path_type=Path),
               help="Write the result to this file instead of standard output; with several "
                    "mechanism files a directory with one result per file.")
+@jobs_option
 def clearance(mechanism_files: tuple[Path, ...], joints: tuple[str, ...], masses: tuple[float, ...],
               stiffness: float | None, gap: float | None, slope: float | None,
               speed_rpm: float | None, speed_range: str | None, simulate: bool,
-              sim_steps: int, max_wander: float, fmt: str, output: Path | None) -> None:
+              sim_steps: int, max_wander: float, fmt: str, output: Path | None,
+              jobs: int) -> None:
     """Peak force in a revolute joint with clearance (Dresig & Thümmel, eq. (36)).
 
     Where a joint force reverses its sense, the pin crosses the clearance 2s and strikes
@@ -188,21 +190,31 @@ def clearance(mechanism_files: tuple[Path, ...], joints: tuple[str, ...], masses
     else:
         mechanism_check(given)
 
-        def run_one(path: Path, target: Path | None, _: object = None) -> None:
-            _over_mechanism(path, given, fmt, target)
-
         if len(mechanism_files) == 1 and not (output and output.is_dir()):
-            run_one(mechanism_files[0], output)
+            OverMechanism(given, fmt, jobs)(mechanism_files[0], output)
             return
+        run_one = OverMechanism(given, fmt)  # the files run in parallel, not their speeds
         from dyade.errors import DyadeError
 
         if output is None:
             raise click.UsageError(f"{len(mechanism_files)} mechanism files need -o DIR.")
         output.mkdir(parents=True, exist_ok=True)
-        failures = batch(mechanism_files, output, run_one, SUFFIX[fmt])
+        failures = batch(mechanism_files, output, run_one, SUFFIX[fmt], jobs)
         if failures:
             lines = "\n".join(f"  {path}: {reason}" for path, reason in failures)
             raise DyadeError(f"{len(failures)} of {len(mechanism_files)} files failed:\n{lines}")
+
+
+class OverMechanism(NamedTuple):
+    """The check over one mechanism file, as the options describe it (picklable, for -j);
+    ``jobs``: processes for its speeds."""
+
+    given: Inputs
+    fmt: str
+    jobs: int = 1
+
+    def __call__(self, path, target=None, _: object = None) -> None:
+        _over_mechanism(path, self.given, self.fmt, target, self.jobs)
 
 
 def _standalone(given: Inputs, fmt, output):
@@ -222,7 +234,7 @@ def _standalone(given: Inputs, fmt, output):
           lambda: [report.standalone_table(rows, bool(speeds), given.simulate)])
 
 
-def _over_mechanism(path, given: Inputs, fmt, output):
+def _over_mechanism(path, given: Inputs, fmt, output, jobs: int = 1):
     import dyade
     from dyade.report import clearance as report
 
@@ -231,7 +243,11 @@ def _over_mechanism(path, given: Inputs, fmt, output):
     mechanism = load(path).mechanism
     with flags(FLAGS):
         if given.speeds:
-            study = dyade.clearance_speed_study(mechanism, given.speeds, **mechanism_options(given))
+            with progress(f"{mechanism.name}: clearance at {len(given.speeds)} speeds",
+                          show=len(given.speeds) > 5) as tick:
+                study = dyade.clearance_speed_study(mechanism, given.speeds, progress=tick,
+                                                    workers=workers_for(jobs),
+                                                    **mechanism_options(given))
         else:
             study = [(None, dyade.check_clearance(mechanism, **mechanism_options(given)))]
     rows, skipped = report.mechanism_rows(study, given.simulate, given.sim_steps)

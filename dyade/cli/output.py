@@ -191,3 +191,25 @@ def flags(names: dict[str, str]) -> Iterator[None]:
         yield
     except InputError as err:
         raise err.naming(names) from None
+
+
+@contextmanager
+def progress(description: str, total: float | None = None, show: bool = True
+             ) -> Iterator[Any]:
+    """A transient progress bar on stderr while a long run goes on, only when stderr is
+    a terminal (and ``show``); yields ``tick(done, total=None)``, which does nothing
+    otherwise. The commands show it for runs expected to take more than about a second."""
+    if not show or not sys.stderr.isatty():
+        yield lambda done, total=None: None
+        return
+    from rich.progress import Progress
+
+    bar = Progress(console=console(stderr=True), transient=True)
+    task = bar.add_task(description, total=total)
+
+    def tick(done: float, new_total: float | None = None) -> None:
+        bar.update(task, completed=done, **({} if new_total is None else {"total": new_total}))
+
+    with bar:
+        yield tick
+

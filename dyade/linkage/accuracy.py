@@ -82,7 +82,7 @@ def _compare(study: str, runs: list[tuple[str, float, dict[str, float], str]]) -
     return rows
 
 
-def crank_step(mechanism: Mechanism, steps=STEPS_DEG, repeats: int = 3) -> list[Row]:
+def crank_step(mechanism: Mechanism, steps=STEPS_DEG, repeats: int = 3, tick=None) -> list[Row]:
     """Peaks against the crank step, over one revolution from the file's start angle;
     AssemblyError where the mechanism does not close everywhere (as ``analyse``: peaks
     next to a position that does not close mean nothing)."""
@@ -92,6 +92,8 @@ def crank_step(mechanism: Mechanism, steps=STEPS_DEG, repeats: int = 3) -> list[
         seconds, result = _timed(lambda: analysis.run(mechanism, None, False, angles), repeats)
         runs.append((f"{step:g}°", seconds, _peaks(result) or _kinematic_peaks(result),
                      f"{angles.size} positions"))
+        if tick is not None:
+            tick()
     return _compare("crank step", runs)
 
 
@@ -102,7 +104,8 @@ def _kinematic_peaks(result: analysis.Result) -> dict[str, float]:
             for k in result.mechanism.moving_links[1:]}
 
 
-def friction_tol(mechanism: Mechanism, tols=FRICTION_TOLS, repeats: int = 3) -> list[Row]:
+def friction_tol(mechanism: Mechanism, tols=FRICTION_TOLS, repeats: int = 3, tick=None
+                 ) -> list[Row]:
     """Passes of the friction solution, time and peaks against the friction tolerance."""
     from dyade.linkage import friction, kinematics
 
@@ -115,6 +118,8 @@ def friction_tol(mechanism: Mechanism, tols=FRICTION_TOLS, repeats: int = 3) -> 
         its = rubbing.iterations[kin.valid]
         runs.append((f"{tol:g}", seconds, _peaks(result),
                      f"passes {its.min():.0f}–{its.max():.0f} (mean {its.mean():.2f})"))
+        if tick is not None:
+            tick()
     return _compare("friction tol", runs)
 
 
@@ -143,16 +148,26 @@ def clearance_simulation(result: analysis.Result, steps=SIM_STEPS, repeats: int 
     return rows
 
 
-def studies(mechanism: Mechanism, *, repeats: int = 3) -> list[Row]:
+def studies(mechanism: Mechanism, *, repeats: int = 3, progress=None) -> list[Row]:
     """Every study the mechanism calls for: the crank step always, the friction
     tolerance with friction, closed form against simulation with clearance data; each
-    setting timed (best of ``repeats``) and its peaks compared with the finest one."""
-    rows = crank_step(mechanism, repeats=repeats)
+    setting timed (best of ``repeats``) and its peaks compared with the finest one.
+    ``progress(done, total)`` is called after each setting."""
     the_plan = analysis.plan(mechanism)
+    total = len(STEPS_DEG) + bool(the_plan.friction) * len(FRICTION_TOLS) + bool(the_plan.clearance)
+    done = [0]
+
+    def tick() -> None:
+        done[0] += 1
+        if progress is not None:
+            progress(done[0], total)
+
+    rows = crank_step(mechanism, repeats=repeats, tick=tick)
     if the_plan.friction:
-        rows += friction_tol(mechanism, repeats=repeats)
+        rows += friction_tol(mechanism, repeats=repeats, tick=tick)
     if the_plan.clearance:
         rows += clearance_simulation(analysis.run(mechanism), repeats=repeats)
+        tick()
     return rows
 
 

@@ -34,7 +34,9 @@ def kinematic_columns(result: Result) -> Columns:
     motion = kin.motion
     out: Columns = {"angle_deg": np.rad2deg(kin.crank_angle)}
     for link in mech.moving_links:
-        out[f"phi_{link}_deg"] = np.rad2deg(continuous(motion.angle[rows, link], rows))
+        angle = motion.angle[rows, link]
+        out[f"phi_{link}_deg"] = np.rad2deg(continuous(angle, rows) if result.phases is None
+                                            else result.phases[link](angle))
         out[f"omega_{link}"] = motion.omega[:, link]
         out[f"alpha_{link}"] = motion.alpha[:, link]
     for joint in mech.joints:
@@ -80,6 +82,52 @@ def continuous(angle: FloatArray, rows: FloatArray) -> FloatArray:
     out = np.full(angle.shape, np.nan)
     out[finite] = values
     return out
+
+
+class Continuous:
+    """``continuous`` over a sweep that comes block by block: each call continues the
+    unwrapping from the blocks before (exactly ``np.unwrap``'s arithmetic, its running
+    sum of corrections carried on), ``commit()`` once a block is final."""
+
+    def __init__(self) -> None:
+        self.state: tuple | None = None
+        """(last finite raw angle, running correction, turns) after the committed blocks"""
+        self.pending: tuple | None = None
+
+    def __call__(self, angle: FloatArray) -> FloatArray:
+        finite = np.isfinite(angle)
+        if not finite.any():
+            self.pending = self.state
+            return angle
+        p = angle[finite]
+        ext = p if self.state is None else np.concatenate(([self.state[0]], p))
+        dd = np.diff(ext)
+        ddmod = np.mod(dd + np.pi, 2 * np.pi) - np.pi  # np.unwrap with period 2π
+        np.copyto(ddmod, np.pi, where=(ddmod == -np.pi) & (dd > 0))
+        correction = ddmod - dd
+        np.copyto(correction, 0, where=abs(dd) < np.pi)
+        if self.state is None:
+            values = p.copy()
+            carry = 0.0
+            if p.size > 1:
+                running = correction.cumsum()
+                values[1:] = p[1:] + running
+                carry = running[-1]
+            first = values[0]
+            turns = np.ceil((first - np.pi) / (2.0 * np.pi))
+        else:
+            running = np.concatenate(([self.state[1]], correction)).cumsum()[1:]
+            values = p + running
+            carry, turns = running[-1], self.state[2]
+        if turns:
+            values = values - 2.0 * np.pi * turns
+        self.pending = (p[-1], carry, turns)
+        out = np.full(angle.shape, np.nan)
+        out[finite] = values
+        return out
+
+    def commit(self) -> None:
+        self.state = self.pending
 
 
 def force_columns(result: Result) -> Columns:

@@ -330,19 +330,46 @@ def check(mechanism: Mechanism, *, joints=None, stiffness: float | None = None,
     return check_mechanism(mechanism, result, joints, override, mass, max_wander)
 
 
-def speed_study(mechanism: Mechanism, speeds_rpm, **options) -> list[tuple[float, list]]:
+def speed_study(mechanism: Mechanism, speeds_rpm, progress=None, workers: int = 1,
+                **options) -> list[tuple[float, list]]:
     """The clearance check at each crank speed of ``speeds_rpm`` [rpm] (the crank keeps
-    its sense of rotation); ``options`` as for ``check``.
+    its sense of rotation); ``options`` as for ``check``; ``progress(done, total)`` is
+    called after each speed; ``workers`` processes check the speeds (the same results,
+    in the same order).
 
     Returns (speed [rpm], list of JointCheck) per speed.
     """
-    sign = 1.0 if mechanism.crank.speed > 0 else -1.0
-    out = []
+    speeds_rpm = list(speeds_rpm)
     for rpm in speeds_rpm:
         if not np.isfinite(rpm) or rpm <= 0:
             raise InputError.parameter("speeds_rpm", f"must be positive speeds [rpm], got "
                                                      f"{rpm:g}.", value=rpm, unit="rpm")
-        faster = replace(mechanism, crank=replace(mechanism.crank,
-                                                  speed=sign * rpm * RPM))
-        out.append((float(rpm), check(faster, **options)))
+    workers = min(workers, len(speeds_rpm))
+    if workers > 1:
+        from concurrent.futures import ProcessPoolExecutor
+
+        from dyade.linkage import columns, summary  # noqa: F401 (imported once, not per worker)
+
+        with ProcessPoolExecutor(workers) as pool:
+            checks = pool.map(_at_speed, [(mechanism, rpm, options) for rpm in speeds_rpm])
+            return _collect(speeds_rpm, checks, progress)
+    return _collect(speeds_rpm, map(_at_speed, [(mechanism, rpm, options)
+                                                for rpm in speeds_rpm]), progress)
+
+
+def _at_speed(task) -> list:
+    """The clearance check of (mechanism, crank speed [rpm], options); the crank keeps
+    its sense of rotation."""
+    mechanism, rpm, options = task
+    sign = 1.0 if mechanism.crank.speed > 0 else -1.0
+    faster = replace(mechanism, crank=replace(mechanism.crank, speed=sign * rpm * RPM))
+    return check(faster, **options)
+
+
+def _collect(speeds_rpm, checks, progress) -> list[tuple[float, list]]:
+    out = []
+    for rpm, result in zip(speeds_rpm, checks):
+        out.append((float(rpm), result))
+        if progress is not None:
+            progress(len(out), len(speeds_rpm))
     return out

@@ -138,6 +138,9 @@ class Result:
     """the columns, computed once by ``run``"""
     drive: drive.CrankMotion | None = None
     """the crank's motion from the equation of motion; None at constant speed"""
+    phases: dict | None = None
+    """a block of a streamed sweep: link -> ``columns.Continuous``, its link angles'
+    unwrapping carried on from the blocks before; None for a whole sweep"""
 
     @property
     def crank_angle(self) -> FloatArray:
@@ -243,10 +246,12 @@ def memory_estimate(mechanism: Mechanism, positions: int) -> int:
     return BYTES_PER_VALUE * columns * positions + (50 << 20)
 
 
-def check_size(mechanism: Mechanism, positions: int, max_memory: float | None) -> None:
-    """Refuse a sweep that would take more than ``max_memory`` [B], before allocating."""
+def check_size(mechanism: Mechanism, positions: int, max_memory: float | None,
+               estimate=None) -> None:
+    """Refuse a sweep that would take more than ``max_memory`` [B], before allocating;
+    ``estimate(mechanism, positions)`` [B] (default ``memory_estimate``)."""
     bound = MAX_MEMORY if max_memory is None else max_memory
-    need = memory_estimate(mechanism, positions)
+    need = (estimate or memory_estimate)(mechanism, positions)
     if need > bound:
         raise InputError.parameter(
             "max_memory", f"is {_size(bound)}, and this sweep of {positions:,} positions would "
@@ -332,6 +337,31 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
     >>> round(float(torque[0]), 4)
     0.0378
     """
+    mechanism, the_plan = configure(
+        mechanism, start=start, stop=stop, step=step, positions=None if crank_angle is None
+        else np.size(crank_angle), friction_tol=friction_tol,
+        friction_max_iter=friction_max_iter, plan=plan, max_memory=max_memory,
+        dead_centre=dead_centre, transmission_warning=transmission_warning,
+        given_speed=crank_speed is not None or crank_acceleration is not None,
+        constant_speed=constant_speed, run_up=run_up)
+    for name, value in (("crank_speed", crank_speed), ("crank_acceleration", crank_acceleration)):
+        if value is not None and not np.all(np.isfinite(value)):
+            raise InputError.parameter(name, "must be finite.", value=value)
+    return run(mechanism, the_plan, allow_partial, crank_angle, crank_speed, crank_acceleration,
+               run_up)
+
+
+def configure(mechanism: Mechanism, *, start: float | None = None, stop: float | None = None,
+              step: float | None = None, positions: int | None = None,
+              friction_tol: float | None = None, friction_max_iter: int | None = None,
+              plan: Plan | None = None, max_memory: float | None = None,
+              dead_centre: float | None = None, transmission_warning: float | None = None,
+              given_speed: bool = False, constant_speed: bool = False, run_up: bool = False,
+              estimate=None) -> tuple[Mechanism, Plan]:
+    """``analyse``'s options checked and applied: the mechanism to sweep and its plan.
+    ``positions``: how many crank angles are given (default: the sweep's); ``estimate``:
+    the memory the sweep needs [B] as a function of (mechanism, positions) (default
+    ``memory_estimate``)."""
     mechanism = with_sweep(mechanism, start, stop, step)
     if friction_tol is not None:
         if not (math.isfinite(friction_tol) and friction_tol > 0):
@@ -352,25 +382,20 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
                                        f"must satisfy 0 ≤ the dead-centre band < the warning angle ≤ "
                                        f"90°, got {np.rad2deg(hard):g}° and {np.rad2deg(soft):g}°.")
         mechanism = replace(mechanism, dead_centre_angle=hard, transmission_warning=soft)
-    positions = mechanism.sweep.count if crank_angle is None else np.size(crank_angle)
-    check_size(mechanism, positions, max_memory)
+    positions = mechanism.sweep.count if positions is None else positions
+    check_size(mechanism, positions, max_memory, estimate)
     the_plan = plan if plan is not None else _infer_plan(mechanism)
     if constant_speed and the_plan.equation_of_motion:
         the_plan = replace(the_plan, equation_of_motion="")
     if run_up and not the_plan.equation_of_motion:
         raise InputError.parameter("run_up", "needs a [drive] table in the mechanism (a motor "
                                              "to run it up with).", value=run_up)
-    if the_plan.equation_of_motion and (crank_speed is not None
-                                        or crank_acceleration is not None):
+    if the_plan.equation_of_motion and given_speed:
         raise InputError.parameter(("crank_speed", "crank_acceleration"),
                                    "cannot be given with a [drive] table: its equation of "
                                    "motion sets the crank's speed (analyse at constant speed "
                                    "to give them).")
-    for name, value in (("crank_speed", crank_speed), ("crank_acceleration", crank_acceleration)):
-        if value is not None and not np.all(np.isfinite(value)):
-            raise InputError.parameter(name, "must be finite.", value=value)
-    return run(mechanism, the_plan, allow_partial, crank_angle, crank_speed, crank_acceleration,
-               run_up)
+    return mechanism, the_plan
 
 
 def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool = False,
@@ -414,12 +439,7 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
             for mask in rubbing.near.values():
                 invalid &= ~mask
         if invalid.any():
-            spans = ranges(angle, invalid)
-            notes.append(Note("forces_invalid", "", tuple(spans),
-                              f"forces are not given at crank angles "
-                              f"{format_ranges(spans, digits=digits)}, where the kinematics is: "
-                              f"the rigid model's forces are not valid there (forces_valid = 0, "
-                              f"force fields empty)."))
+            notes.append(_forces_invalid_note(angle, invalid, digits))
     if motion is not None:
         _motion_notes(motion, notes)
     if the_plan.clearance and run_up:
@@ -427,16 +447,22 @@ def run(mechanism: Mechanism, the_plan: Plan | None = None, allow_partial: bool 
                           "the clearance check is not made on a run-up: it needs the periodic "
                           "cycle."))
     elif the_plan.clearance:
-        from dyade.linkage import joint_clearance
-
-        result.clearance = joint_clearance.check_mechanism(mechanism, result, the_plan.clearance)
-        for check in result.clearance:
-            if not check.applies:
-                a, b = check.joint
-                notes.append(Note("clearance_not_applicable", f"joint ({a},{b})", (),
-                                  f"clearance check of joint ({a},{b}) does not apply: "
-                                  f"{check.reason}."))
+        result.clearance = _clearance(mechanism, result, the_plan, notes)
     return result
+
+
+def _clearance(mechanism: Mechanism, result, the_plan: Plan, notes: list[Note]) -> list:
+    """The clearance check of the plan's joints, and a note for each it does not apply to."""
+    from dyade.linkage import joint_clearance
+
+    checks = joint_clearance.check_mechanism(mechanism, result, the_plan.clearance)
+    for check in checks:
+        if not check.applies:
+            a, b = check.joint
+            notes.append(Note("clearance_not_applicable", f"joint ({a},{b})", (),
+                              f"clearance check of joint ({a},{b}) does not apply: "
+                              f"{check.reason}."))
+    return checks
 
 
 def _check_assembly(mechanism: Mechanism, kin: kinematics.Kinematics, allow_partial: bool,
@@ -510,9 +536,12 @@ def _bands(mechanism: Mechanism, kin: kinematics.Kinematics, rows: FloatArray,
     return well
 
 
-def _plausible(result: Result, digits: int) -> dict[str, FloatArray]:
+def _plausible(result: Result, digits: int, masks: dict | None = None
+               ) -> dict[str, FloatArray]:
     """The columns, with the rows that hold a value beyond ``PLAUSIBLE`` taken out
-    (``result.valid``, ``forces.valid`` updated) and a note; returns the columns."""
+    (``result.valid``, ``forces.valid`` updated) and a note; returns the columns.
+    With ``masks`` (a block of a streamed sweep), the positions taken out go there
+    ("kinematics", "forces" -> (n,) bool) instead of a note."""
     from dyade.linkage import columns
 
     cols = columns.columns(result)
@@ -532,13 +561,30 @@ def _plausible(result: Result, digits: int) -> dict[str, FloatArray]:
             result.valid &= ~mask
         if result.forces is not None:
             result.forces.valid &= ~mask
-        spans = ranges(result.crank_angle, mask)
-        result.notes.append(Note("implausible", "", tuple(spans),
-                                 f"{block} beyond {columns.PLAUSIBLE:.0e} (SI units) at crank "
-                                 f"angles {format_ranges(spans, digits=digits)}: no machine moves "
-                                 f"or loads so; those rows are not given."))
+        if masks is None:
+            result.notes.append(_implausible_note(block, result.crank_angle, mask, digits))
+        else:
+            masks[block] = mask
         cols = columns.columns(result)
     return cols
+
+
+def _implausible_note(block: str, angle: FloatArray, mask: FloatArray, digits: int) -> Note:
+    from dyade.linkage.columns import PLAUSIBLE
+
+    spans = ranges(angle, mask)
+    return Note("implausible", "", tuple(spans),
+                f"{block} beyond {PLAUSIBLE:.0e} (SI units) at crank angles "
+                f"{format_ranges(spans, digits=digits)}: no machine moves or loads so; those "
+                f"rows are not given.")
+
+
+def _forces_invalid_note(angle: FloatArray, invalid: FloatArray, digits: int) -> Note:
+    spans = ranges(angle, invalid)
+    return Note("forces_invalid", "", tuple(spans),
+                f"forces are not given at crank angles {format_ranges(spans, digits=digits)}, "
+                f"where the kinematics is: the rigid model's forces are not valid there "
+                f"(forces_valid = 0, force fields empty).")
 
 
 def _friction_notes(mechanism: Mechanism, kin: kinematics.Kinematics,

@@ -19,7 +19,7 @@ from dyade import clearance
 from dyade.vibration import coupling
 from dyade.files import mechanism as toml_input
 from dyade.linkage.model import Prismatic
-from tests.benchmarks.yardstick import fourbar
+from tests.benchmarks.yardstick import fourbar, slider_crank
 from tests.helpers import shipped
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -51,10 +51,11 @@ def test_full_analysis(benchmark, name, count):
     assert result.forces is not None
 
 
-@pytest.mark.parametrize("count", [360, 3600])
-def test_fourbar_engine_kinematics_and_forces(benchmark, count):
-    """The general engine, kinematics + forces only: compare with the yardstick."""
-    mechanism = toml_input.read_mechanism(shipped("fourbar.toml"))
+@pytest.mark.parametrize("name, count", [("fourbar.toml", 360), ("fourbar.toml", 3600),
+                                         ("slider-crank.toml", 3600)])
+def test_engine_kinematics_and_forces(benchmark, name, count):
+    """The general engine, kinematics + forces only: compare with the yardsticks."""
+    mechanism = toml_input.read_mechanism(shipped(name))
     angles = _angles(count)
 
     def engine():
@@ -68,6 +69,28 @@ def test_fourbar_engine_kinematics_and_forces(benchmark, count):
 def test_fourbar_yardstick(benchmark, count):
     angles = _angles(count)
     benchmark(fourbar, angles, 300 * 2 * np.pi / 60)
+
+
+@pytest.mark.parametrize("count", [3600])
+def test_slider_crank_yardstick(benchmark, count):
+    benchmark(slider_crank, _angles(count), 1500 * 2 * np.pi / 60)
+
+
+@pytest.mark.parametrize("count", [3600, 360_000])
+def test_fourbar_engine_cost_per_position(benchmark, count):
+    """Kinematics and forces, whole sweep against blocks of 2048 positions (the streamed
+    path): divide by the count for the cost per position."""
+    from dyade.linkage.stream import BLOCK_SIZE
+
+    mechanism = toml_input.read_mechanism(shipped("fourbar.toml"))
+    angles = _angles(count)
+
+    def engine():
+        for first in range(0, count, BLOCK_SIZE):
+            kin = kinematics.sweep(mechanism, angles[first:first + BLOCK_SIZE])
+            kinetostatics.solve(mechanism, kin)
+
+    benchmark(engine)
 
 
 @pytest.mark.parametrize("edges", [True, False], ids=["edge-friction", "no-edge-friction"])
@@ -153,3 +176,27 @@ def test_command(benchmark, command):
         subprocess.run(command, stdout=subprocess.DEVNULL, check=True, cwd=ROOT)
 
     benchmark.pedantic(run, rounds=15, iterations=1, warmup_rounds=1)
+
+
+def _dyade16_columns():
+    mechanism = toml_input.read_mechanism(shipped("dyade-16.toml"))
+    return analysis.analyse(mechanism, step=np.deg2rad(0.1)).columns()
+
+
+@pytest.mark.parametrize("writer", ["row by row (before issue 17)", "blocks"])
+def test_csv_writer_dyade16_3600(benchmark, writer, tmp_path):
+    """CSV throughput: the block writer against the one it replaced, same columns,
+    same file; divide by the values written (3 601 rows × the columns)."""
+    import os
+
+    from dyade.report import csv_rows
+    from tests.benchmarks import old_csv
+
+    cols = _dyade16_columns()
+    write = old_csv.write if writer.startswith("row") else csv_rows.write
+
+    def run():
+        with open(os.devnull, "w", encoding="utf-8", newline="") as handle:
+            write(cols, handle)
+
+    benchmark(run)

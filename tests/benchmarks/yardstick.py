@@ -54,3 +54,34 @@ def fourbar(phi: np.ndarray, omega: float) -> dict[str, np.ndarray]:
     torque = ax * f23y - ay * f23x
     return {"phi3": phi3, "phi4": phi4, "omega3": w3, "omega4": w4, "alpha3": a3,
             "alpha4": a4, "F34x": fx, "F34y": fy, "F23x": f23x, "F23y": f23y, "M_drive": torque}
+
+
+SR2, SL3, SE = 0.04, 0.16, 0.01  # [m] crank, conrod, guide offset (mechanisms/slider-crank.toml)
+SM3, SJ3, SG3, SM4 = 0.6, 0.0013, 0.08, 0.5  # conrod mass, inertia, centre from A; slider mass
+
+
+def slider_crank(phi: np.ndarray, omega: float) -> dict[str, np.ndarray]:
+    """The offset slider-crank of mechanisms/slider-crank.toml (crank 40, conrod 160 mm,
+    guide 10 mm above the crank pivot along x, slider ahead; conrod 0.6 kg / J 0.0013 with
+    its centre 80 mm from the crank pin, slider 0.5 kg at the piston pin, crank massless):
+    closed-form loop equations, Newton–Euler per link solved by hand."""
+    c2, s2 = np.cos(phi), np.sin(phi)
+    ax, ay = SR2 * c2, SR2 * s2
+    s3 = (SE - ay) / SL3
+    c3 = np.sqrt(1.0 - s3 * s3)
+    phi3 = np.arctan2(s3, c3)
+    bx = ax + SL3 * c3
+    w3 = -SR2 * omega * c2 / (SL3 * c3)  # the slider stays on its guide: d/dt(ay + l s3) = 0
+    vb = -SR2 * omega * s2 - SL3 * s3 * w3
+    a_ax, a_ay = -SR2 * omega ** 2 * c2, -SR2 * omega ** 2 * s2
+    a3 = (SL3 * s3 * w3 ** 2 - a_ay) / (SL3 * c3)
+    ab = a_ax - SL3 * (c3 * w3 ** 2 + s3 * a3)
+    gx = a_ax + SG3 * (-s3 * a3 - c3 * w3 ** 2)
+    gy = a_ay + SG3 * (c3 * a3 - s3 * w3 ** 2)
+    fx = SM4 * ab  # on the slider at B along the frictionless guide
+    k3 = SJ3 * a3 + SG3 * (c3 * SM3 * gy - s3 * SM3 * gx)  # conrod moments about A
+    fy = (s3 * fx - k3 / SL3) / c3
+    f23x, f23y = SM3 * gx + fx, SM3 * gy + fy
+    torque = ax * f23y - ay * f23x
+    return {"phi3": phi3, "x_B": bx, "v_B": vb, "a_B": ab, "omega3": w3, "alpha3": a3,
+            "F34x": fx, "F34y": fy, "F23x": f23x, "F23y": f23y, "M_drive": torque}

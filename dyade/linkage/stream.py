@@ -1,0 +1,214 @@
+"""A sweep in blocks of positions, in memory that does not grow with the sweep.
+
+``stream`` gives the columns of a sweep block by block (``Stream.blocks()``), each as
+soon as it is computed, and afterwards the notes and the clearance check, exactly as
+``analyse(...).columns()`` and ``.notes`` give them for the whole sweep:
+
+1. a first pass computes the kinematics block by block and keeps what the validity
+   policy needs per position (closure, transmission angle and conditioning of every
+   dyad: 17 B per dyad and position): the assembly check (and its error, before any
+   output) and the dead-centre bands are decided over the whole sweep;
+2. a second pass computes each block again (kinematics and forces) and gives its
+   columns; link angles are unwrapped on from the block before (``columns.Continuous``);
+   the rows with implausible values, the positions where the forces are not given, and
+   the forces of the joints with clearance data are kept per position for the notes and
+   the clearance check, which are made at the end.
+
+A ``[drive]`` mechanism solves its crank's motion over the whole cycle first (a few
+arrays of the positions), then streams. Friction is not streamed (its iteration is
+decided over the whole sweep at once): ``streams(plan)`` says whether a plan can be.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from types import SimpleNamespace
+from typing import Any, Iterator
+
+import numpy as np
+
+from dyade.linkage import kinematics, kinetostatics
+from dyade.linkage.model import FloatArray, Mechanism, Revolute
+from dyade.linkage.sweep import (Note, Plan, Result, _bands, _check_assembly,
+                                 _clearance, _forces_invalid_note, _implausible_note,
+                                 _motion_notes, _plausible, configure, decimals)
+
+BLOCK_SIZE = 2048
+"""positions per block (``--block-size``): a block's arrays (kinematics, forces, its
+columns: a few kB per position for dyade-16's 270 columns) stay within a few MB, near
+the cache; larger blocks gain nothing measurable (tests/benchmarks)"""
+KEPT_PER_POSITION = 64
+"""[B] what a streamed sweep keeps per position besides the per-dyad arrays: crank
+angle, speed and acceleration, masks, the clearance joints' forces"""
+
+
+def streams(the_plan: Plan) -> bool:
+    """The plan can be streamed (everything but friction)."""
+    return not the_plan.friction
+
+
+def stream_estimate(block_size: int):
+    """What a streamed sweep needs [B], as ``configure``'s ``estimate``: one block's
+    columns and arrays, and the per-position arrays kept for the whole sweep."""
+    def estimate(mechanism: Mechanism, positions: int) -> int:
+        from dyade.linkage.sweep import memory_estimate
+
+        per_position = 17 * len(mechanism.dyads) + KEPT_PER_POSITION + 16 * sum(
+            isinstance(j, Revolute) for j in mechanism.joints)
+        block = memory_estimate(mechanism, min(positions, block_size)) - (50 << 20)
+        return 2 * block + per_position * positions + (60 << 20)
+
+    return estimate
+
+
+@dataclass(eq=False)
+class Stream:
+    """A configured sweep to be computed block by block (``stream``)."""
+
+    mechanism: Mechanism
+    plan: Plan
+    allow_partial: bool
+    block_size: int
+    crank_angle: FloatArray
+    speed: FloatArray | float | None
+    acceleration: FloatArray | float | None
+    motion: Any = None
+    """the crank's motion (``drive.CrankMotion``) of a [drive] mechanism, else None"""
+    notes: list[Note] = field(default_factory=list)
+    """complete once ``blocks()`` is exhausted"""
+    clearance: list | None = None
+    """the clearance check (``joint_clearance.JointCheck`` per joint), once streamed"""
+    positions: int = 0
+    """rows given"""
+    progress: Any = None
+    """called with (done, total) as the blocks are computed: the first pass (the
+    validity policy) counts the first half"""
+
+    def _slice(self, value, first: int, last: int):
+        return value[first:last] if isinstance(value, np.ndarray) else value
+
+    def _kinematics(self, first: int, last: int) -> kinematics.Kinematics:
+        return kinematics.sweep(self.mechanism, self.crank_angle[first:last],
+                                self._slice(self.speed, first, last),
+                                self._slice(self.acceleration, first, last))
+
+    def _tick(self, done: int, total: int) -> None:
+        if self.progress is not None:
+            self.progress(done, total)
+
+    def _spans(self) -> Iterator[tuple[int, int]]:
+        n = self.crank_angle.shape[0]
+        for first in range(0, n, self.block_size):
+            yield first, min(n, first + self.block_size)
+
+    def blocks(self) -> Iterator[dict[str, FloatArray]]:
+        """The columns of every block of positions, in order (NaN where not given)."""
+        mechanism, n = self.mechanism, self.crank_angle.shape[0]
+        dyads = len(mechanism.dyads)
+        policy = SimpleNamespace(crank_angle=self.crank_angle,
+                                 closes=np.empty((n, dyads), dtype=bool),
+                                 transmission=np.empty((n, dyads)),
+                                 conditioning=np.empty((n, dyads)),
+                                 valid=np.empty(n, dtype=bool))
+        for first, last in self._spans():
+            kin = self._kinematics(first, last)
+            for name in ("closes", "transmission", "conditioning", "valid"):
+                getattr(policy, name)[first:last] = getattr(kin, name)
+            self._tick(last, 2 * n)
+        notes = self.notes
+        rows = _check_assembly(mechanism, policy, self.allow_partial, notes)
+        well = _bands(mechanism, policy, rows, notes)
+        del policy
+        digits = decimals(self.crank_angle)
+        implausible = {"kinematics": np.zeros(n, dtype=bool), "forces": np.zeros(n, dtype=bool)}
+        forces_valid = np.zeros(n, dtype=bool) if self.plan.kinetostatics else None
+        joints = self.plan.clearance if self.plan.clearance and not (
+            self.motion is not None and self.motion.state == "run-up") else ()
+        kept = {name: np.empty((n, 2)) for name in joints}
+        phases = None
+        for first, last in self._spans():
+            kin = self._kinematics(first, last)
+            forces = kinetostatics.solve(mechanism, kin) if self.plan.kinetostatics else None
+            motion = None
+            if self.motion is not None:
+                motion = replace(self.motion, **{
+                    name: getattr(self.motion, name)[first:last]
+                    for name in ("crank_angle", "speed", "acceleration", "time",
+                                 "motor_torque", "friction_torque")})
+            if phases is None:
+                from dyade.linkage.columns import Continuous
+
+                phases = {link: Continuous() for link in mechanism.moving_links}
+            result = Result(mechanism, self.plan, kin, forces, rows[first:last].copy(), [],
+                            valid=well[first:last].copy(), drive=motion, phases=phases)
+            masks: dict[str, FloatArray] = {}
+            cols = _plausible(result, digits, masks)
+            for phase in phases.values():
+                phase.commit()
+            for block, mask in masks.items():
+                implausible[block][first:last] = mask
+            if forces is not None:
+                well[first:last] = result.valid
+                forces_valid[first:last] = forces.valid
+                for name in joints:
+                    kept[name][first:last] = forces.revolute[name]
+            self.positions += int(cols["angle_deg"].size)
+            yield cols
+            self._tick(n + last, 2 * n)
+        for block in ("kinematics", "forces"):
+            if implausible[block].any():
+                notes.append(_implausible_note(block, self.crank_angle, implausible[block],
+                                               digits))
+        if forces_valid is not None:
+            invalid = well & ~forces_valid
+            if invalid.any():
+                notes.append(_forces_invalid_note(self.crank_angle, invalid, digits))
+        if self.motion is not None:
+            _motion_notes(self.motion, notes)
+        if self.plan.clearance and not joints:
+            notes.append(Note("clearance_not_applicable", "", (),
+                              "the clearance check is not made on a run-up: it needs the "
+                              "periodic cycle."))
+        elif joints:
+            whole = SimpleNamespace(crank_angle=self.crank_angle, rows=rows, drive=self.motion,
+                                    forces=SimpleNamespace(revolute=kept, valid=forces_valid))
+            self.clearance = _clearance(mechanism, whole, self.plan, notes)
+
+
+def stream(mechanism: Mechanism, *, block_size: int | None = None, start: float | None = None,
+           stop: float | None = None, step: float | None = None,
+           allow_partial: bool = False, max_memory: float | None = None,
+           dead_centre: float | None = None, transmission_warning: float | None = None,
+           constant_speed: bool = False, run_up: bool = False) -> Stream:
+    """``analyse`` block by block: a ``Stream`` whose ``blocks()`` give the columns of
+    ``block_size`` positions at a time (default ``BLOCK_SIZE``), in memory that does
+    not grow with the number of positions; the options as for ``analyse``
+    (``max_memory`` bounds what the stream needs). Plans with friction are refused
+    (``streams``): analyse them whole.
+
+    >>> import dyade
+    >>> sweep = stream(dyade.read_mechanism("mechanisms/fourbar.toml"), block_size=100)
+    >>> [cols["angle_deg"].size for cols in sweep.blocks()], sweep.positions
+    ([100, 100, 100, 61], 361)
+    """
+    from dyade.errors import InputError
+
+    size = BLOCK_SIZE if block_size is None else block_size
+    if not (isinstance(size, (int, np.integer)) and size >= 1):
+        raise InputError.parameter("block_size", f"must be a whole number of positions ≥ 1, "
+                                                 f"got {size}.", value=size)
+    mechanism, the_plan = configure(
+        mechanism, start=start, stop=stop, step=step, max_memory=max_memory,
+        dead_centre=dead_centre, transmission_warning=transmission_warning,
+        constant_speed=constant_speed, run_up=run_up, estimate=stream_estimate(int(size)))
+    if not streams(the_plan):
+        raise InputError.parameter("block_size", "a sweep with friction is iterated over all "
+                                                 "its positions at once: analyse it whole.")
+    angle, speed, acceleration, motion = mechanism.sweep.angles(), None, None, None
+    if the_plan.equation_of_motion:
+        from dyade.linkage import drive
+
+        motion = drive.solve(mechanism, None, run_up=run_up, friction=False)
+        angle, speed, acceleration = motion.crank_angle, motion.speed, motion.acceleration
+    return Stream(mechanism, the_plan, allow_partial, int(size), np.asarray(angle, np.float64),
+                  speed, acceleration, motion)

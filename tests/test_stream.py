@@ -1,0 +1,111 @@
+"""The streamed sweep (issue 17): block by block it gives exactly the columns, notes and
+clearance check of the whole sweep, whatever the block size (one position, a block
+boundary inside a dead-centre range, blocks larger than the sweep)."""
+
+from __future__ import annotations
+
+import tomllib
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+import dyade
+from dyade.cli import main
+from dyade.errors import AssemblyError, InputError
+from dyade.files import mechanism as toml_input
+from dyade.linkage.stream import stream, streams
+from tests.helpers import mechanism_from
+from tests.conftest import SHIPPED
+from tests.test_machine import _driven
+
+SIZES = [1, 7, 100, 4096]
+
+
+def _same(whole, streamed, parts) -> None:
+    cols = whole.columns()
+    got = {name: np.concatenate([part[name] for part in parts]) for name in parts[0]}
+    assert list(got) == list(cols)
+    for name, values in cols.items():
+        assert np.array_equal(got[name], values, equal_nan=True), name
+    assert [n.text for n in streamed.notes] == [n.text for n in whole.notes]
+    assert [n.ranges for n in streamed.notes] == [n.ranges for n in whole.notes]
+    assert repr(streamed.clearance) == repr(whole.clearance)
+    assert streamed.positions == cols["angle_deg"].size
+
+
+def _check(mechanism, size, **options):
+    whole = dyade.analyse(mechanism, **options)
+    streamed = stream(mechanism, block_size=size, **options)
+    _same(whole, streamed, list(streamed.blocks()))
+    return whole
+
+
+@pytest.mark.parametrize("size", SIZES)
+@pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.name)
+def test_every_shipped_mechanism(path, size):
+    mechanism = dyade.read_mechanism(path)
+    if not streams(dyade.plan(mechanism)):
+        pytest.skip("friction is not streamed")
+    _check(mechanism, size, allow_partial=True)
+
+
+LEVER = (SHIPPED[0].parent / "slotted-lever.toml").read_text().replace(
+    "B = { guide = 4, offset = 0 }", "B = { guide = 4, offset = 90 }")
+
+
+@pytest.mark.parametrize("size", [1, 2, 3, 5, 13, 90, 271])
+def test_blocks_that_split_a_dead_centre_range(tmp_path, size):
+    """The lever's exact dead centre at 270° with a 4° band at a 0.5° step: a range of
+    17 positions, cut by the blocks at every place."""
+    path = tmp_path / "lever.toml"
+    path.write_text(LEVER)
+    whole = _check(dyade.read_mechanism(path), size, step=np.deg2rad(0.5),
+                   dead_centre=np.deg2rad(4.0))
+    assert any(note.kind == "dead_centre" for note in whole.notes)
+
+
+@pytest.mark.parametrize("size", [1, 50, 1000])
+def test_a_partial_sweep(size):
+    """A coupler too short to close over part of the revolution: the rows left out, the
+    same note; without allow_partial the same error before any block."""
+    data = tomllib.loads((SHIPPED[0].parent / "fourbar.toml").read_text())
+    data["dyad"][0]["lengths"] = [200, 80]
+    shrunk = mechanism_from(data)
+    whole = _check(shrunk, size, allow_partial=True)
+    assert whole.notes[0].kind == "partial"
+    with pytest.raises(AssemblyError) as whole_error:
+        dyade.analyse(shrunk)
+    with pytest.raises(AssemblyError) as streamed_error:
+        stream(shrunk, block_size=size).blocks().__next__()
+    assert str(streamed_error.value) == str(whole_error.value)
+
+
+@pytest.mark.parametrize("run_up, size", [(False, 1), (False, 33), (True, 50), (True, 5000)],
+                         ids=["steady-1", "steady-33", "run-up-50", "run-up-5000"])
+def test_a_drive_streams_its_kinematics_and_forces(size, run_up):
+    mechanism = _driven({"motor": "asynchronous", "rated_torque": 1.5,
+                         "rated_speed_rpm": 288, "synchronous_speed_rpm": 300,
+                         "flywheel_inertia": 0.05})
+    whole = _check(mechanism, size, run_up=run_up)
+    assert "t" in whole.columns()
+
+
+def test_friction_is_not_streamed():
+    mechanism = dyade.read_mechanism(SHIPPED[0].parent / "self-locking.toml")
+    with pytest.raises(InputError, match="friction"):
+        stream(mechanism)
+
+
+@pytest.mark.parametrize("size", ["1", "5", "64"])
+@pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.name)
+def test_the_cli_csv_is_byte_identical_to_the_whole_sweep(path, size, tmp_path):
+    """``dyade analyse --format csv`` streams; --block-size 0 is the whole sweep at once."""
+    runner = CliRunner()
+    outputs = []
+    for blocks in (size, "0"):
+        target = tmp_path / f"out-{blocks}.csv"
+        result = runner.invoke(main, ["analyse", str(path), "--allow-partial", "--block-size",
+                                      blocks, "-o", str(target)], catch_exceptions=False)
+        outputs.append((result.exit_code, result.output, target.read_bytes()))
+    assert outputs[0] == outputs[1]
