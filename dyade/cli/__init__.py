@@ -36,10 +36,8 @@ class DyadeGroup(click.Group):
         return super().get_command(ctx, name)
 
     def invoke(self, ctx: click.Context) -> object:
-        from dyade.cli.memory import keep_freed_memory
         from dyade.errors import DyadeError, InputError
 
-        keep_freed_memory()  # a process-wide setting: the command's to make, not the library's
         _process_settings()
         try:
             return super().invoke(ctx)
@@ -63,9 +61,13 @@ def _process_settings() -> None:
     """What a command may set for the whole process and a library may not: SIGTERM
     unwinds like Ctrl-C (so no partial file is left), and a Python warning, should one
     ever escape the engine, is one line on stderr, not a source listing."""
-    import signal
     import threading
     import warnings
+
+    try:  # the C module: signal.py builds enums at import (0.7 ms) that this needs not
+        import _signal as signal
+    except ImportError:  # pragma: no cover - not CPython
+        import signal
 
     def terminate(signum, frame):
         raise Terminated

@@ -261,6 +261,9 @@ def batch(paths, directory: str, run_one, suffix: str, jobs: int = 1) -> list[tu
     cores); a progress bar on stderr when it is a terminal; returns the failures (path,
     reason) instead of stopping. With several processes each file's warnings are kept and
     printed in the order of the files, as in a serial run."""
+    from dyade.cli.memory import keep_freed_memory
+
+    keep_freed_memory()  # many sweeps in this process: keep the freed arrays' pages
     targets = _targets(paths, directory, suffix)
     failures = []
     workers = min(workers_for(jobs), len(paths))
