@@ -118,6 +118,12 @@ def test_no_response_at_zero_frequency_when_the_drive_turns_freely():
     assert np.all(np.isfinite(response.displacement[1]))
 
 
+def test_an_empty_frequency_list_gives_empty_results_in_full_coordinates():
+    drive = dyade.read_gears(shipped("gears/two-stage.toml"))
+    empty, one = dyade.gear_response(drive, []), dyade.gear_response(drive, [5.0])
+    assert empty.displacement.shape == (0,) + one.displacement.shape[1:]
+
+
 def test_the_radial_force_is_the_largest_over_a_cycle():
     """The semi-major axis of the ellipse (Re(a·e^{iΩt}), Re(b·e^{iΩt})), against a
     brute-force maximum over a cycle."""

@@ -166,7 +166,7 @@ def gear_response(drive: GearDrive | System, frequencies, *, coordinates=None,
                     r[start + i] = np.linalg.solve(z[i], reduced_rhs[start + i])
                 except np.linalg.LinAlgError:
                     unbounded[start + i] = True
-    q = np.stack([null.expand(row) for row in r]) + fixed[None, :] if freq.size else r
+    q = null.expand(r.T).T + fixed[None, :]  # N·r for every frequency at once
     q[unbounded] = np.nan
     # dynamic mesh forces: F = −λ (ideal), (k + iωc)(w·q − e) (elastic)
     forces = np.zeros((freq.size, len(system.drive.meshes)), dtype=complex)
