@@ -146,7 +146,7 @@ def gear_response(drive: GearDrive | System, frequencies, *, coordinates=None,
         rhs += np.outer(mesh.stiffness + 1j * omega * mesh.damping, system.mesh_rows[:, j] * e[j])
     rhs -= (k @ fixed)[None, :] + 1j * omega[:, None] * (c @ fixed)[None, :] - (
         omega[:, None] ** 2) * (m @ fixed)[None, :]
-    reduced_rhs = np.stack([null.project(row) for row in rhs]) if freq.size else rhs
+    reduced_rhs = null.project(rhs.T).T  # Nᵀ·rhs for every frequency at once
     size = null.size
     unbounded = np.zeros(freq.size, dtype=bool)
     if rigid_modes(system).shape[1]:
