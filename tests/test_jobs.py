@@ -50,3 +50,62 @@ def test_clearance_batch_and_speed_range_on_two_processes(tmp_path):
                       "1e-4", "--format", "json", "-j", jobs, "-o", folder)
         outcomes.append((result.exit_code, result.stderr, _files(folder)))
     assert outcomes[1] == outcomes[0]
+
+
+# dyade.parallel: the pool under the batches and speed ranges
+
+def test_ordered_map_gives_the_results_in_order_from_every_process():
+    import os
+    import time
+
+    from dyade.parallel import ordered_map
+
+    parent = os.getpid()
+
+    def slow_square(x):  # a closure: nothing but the results is pickled
+        time.sleep(0.02 if x % 3 else 0.0)
+        return x * x, os.getpid()
+
+    out = list(ordered_map(slow_square, range(12), workers=3))
+    assert [square for square, _ in out] == [x * x for x in range(12)]
+    pids = {pid for _, pid in out}
+    assert parent in pids and len(pids) == 3  # the caller works too
+
+
+def test_ordered_map_raises_an_error_at_its_place_and_names_a_killed_worker():
+    import os
+    import signal
+    import time
+
+    from dyade.parallel import ordered_map
+
+    parent = os.getpid()
+
+    def fragile(x):
+        if x == 2:
+            raise ValueError("item two")
+        return x
+
+    seen = []
+    with pytest.raises(ValueError, match="item two"):
+        for value in ordered_map(fragile, range(6), workers=2):
+            seen.append(value)
+    assert seen == [0, 1]
+
+    def killed(x):  # every child dies on its first item
+        time.sleep(0.05)
+        if os.getpid() != parent:
+            os.kill(os.getpid(), signal.SIGKILL)
+        return x
+
+    out = list(ordered_map(killed, range(8), workers=2, lost=lambda x, why: (x, why)))
+    lost = [value for value in out if isinstance(value, tuple)]
+    assert len(lost) == 1 and "killed by signal 9" in lost[0][1]
+    assert out == [lost[0] if x == lost[0][0] else x for x in range(8)]
+
+
+def test_ordered_map_with_more_items_than_the_queue_holds():
+    from dyade.parallel import ordered_map
+
+    count = 40_000  # 160 kB of item numbers: the queue (a pipe) is refilled as it drains
+    assert list(ordered_map(lambda x: x, range(count), workers=2)) == list(range(count))

@@ -230,7 +230,7 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
         raise click.UsageError(f"-o {output}: not a directory (several input files write one "
                                f"result each into a directory).")
     os.makedirs(output, exist_ok=True)
-    failures = batch(mechanism_files, output, job.run, SUFFIX[fmt], jobs)
+    failures = batch(mechanism_files, output, job.run, SUFFIX[fmt], jobs, NEEDS[fmt])
     if failures:
         lines = "\n".join(f"  {path}: {reason}" for path, reason in failures)
         raise DyadeError(f"{len(failures)} of {len(mechanism_files)} files failed:\n{lines}")
@@ -256,58 +256,61 @@ def infer_format(output: str | None) -> str:
     return FORMATS[suffix]
 
 
-def batch(paths, directory: str, run_one, suffix: str, jobs: int = 1) -> list[tuple[str, str]]:
+def batch(paths, directory: str, run_one, suffix: str, jobs: int = 1,
+          modules: tuple[str, ...] = ()) -> list[tuple[str, str]]:
     """Run ``run_one(path, target, None)`` for every path, on ``jobs`` processes (0: all
-    cores); a progress bar on stderr when it is a terminal; returns the failures (path,
-    reason) instead of stopping. With several processes each file's warnings are kept and
-    printed in the order of the files, as in a serial run."""
+    cores; this one included, see ``dyade.parallel``); a progress bar on stderr when it
+    is a terminal; returns the failures (path, reason) instead of stopping. With several
+    processes each file's warnings are kept and printed in the order of the files, as in
+    a serial run, and ``modules`` (those every file needs) are imported once, before the
+    other processes are forked, instead of once in each."""
+    from dyade import parallel
     from dyade.cli.memory import keep_freed_memory
 
     keep_freed_memory()  # many sweeps in this process: keep the freed arrays' pages
     targets = _targets(paths, directory, suffix)
-    failures = []
     workers = min(workers_for(jobs), len(paths))
-    with progress("analysing", total=len(paths)) as tick:
-        if workers <= 1:
-            outcomes = (attempt(run_one, path, target, False)
-                        for path, target in zip(paths, targets))
-        else:
-            from concurrent.futures import ProcessPoolExecutor
+    capture = workers > 1 and parallel.available()
+    if capture:
+        import importlib
 
-            warm()
-            pool = ProcessPoolExecutor(workers)
-            futures = [pool.submit(attempt, run_one, path, target, True)
-                       for path, target in zip(paths, targets)]
-            outcomes = (future.result() for future in futures)
-        try:
-            for done, (path, (failure, said)) in enumerate(zip(paths, outcomes), start=1):
+        for name in modules:
+            importlib.import_module(name)
+
+    def one(task):
+        path, target = task
+        return attempt(run_one, path, target, capture)
+
+    def lost(task, reason):
+        return f"{reason} before {task[0]} was done (rerun it alone)", ""
+
+    failures = []
+    outcomes = parallel.ordered_map(one, list(zip(paths, targets)), workers, lost)
+    try:
+        next_outcome = next(outcomes, None)  # the workers start before the progress bar
+        with progress("analysing", total=len(paths)) as tick:
+            for done, path in enumerate(paths, start=1):
+                failure, said = next_outcome if done == 1 else next(outcomes)
                 if said:
                     sys.stderr.write(said)
                 if failure is not None:
                     failures.append((path, failure))
                 tick(done)
-        finally:
-            if workers > 1:
-                pool.shutdown(cancel_futures=True)
+    finally:
+        if hasattr(outcomes, "close"):
+            outcomes.close()
     return failures
 
 
-WARM = ("numpy", "numpy.ma", "rich.console", "dyade.cli.memory", "dyade.files.mechanism",
-        "dyade.linkage.dyads.rrr", "dyade.linkage.dyads.rrp", "dyade.linkage.dyads.rpr",
-        "dyade.linkage.dyads.prp", "dyade.linkage.dyads.ppr", "dyade.linkage.stream",
-        "dyade.linkage.summary", "dyade.linkage.columns", "dyade.linkage.friction",
-        "dyade.linkage.self_locking", "dyade.linkage.joint_clearance",
-        "dyade.report.csv_rows", "dyade.report.document", "dyade.report.tables",
-        "dyade.report.clearance")
-"""modules the workers of -j need: imported once before they are forked"""
-
-
-def warm() -> None:
-    """Import ``WARM`` here, so that forked workers do not each import them again."""
-    import importlib
-
-    for name in WARM:
-        importlib.import_module(name)
+SWEEP = ("dyade.files.mechanism", "dyade.linkage.sweep", "dyade.linkage.kinetostatics",
+         "dyade.linkage.reduced", "dyade.linkage.columns", "dyade.linkage.dyads.rrr",
+         "dyade.linkage.dyads.rrp", "dyade.linkage.dyads.rpr", "dyade.linkage.dyads.prp",
+         "dyade.linkage.dyads.ppr")
+"""what every sweep of a mechanism file imports (friction only where a file has it)"""
+NEEDS = {"csv": SWEEP + ("dyade.linkage.stream", "dyade.report.csv_rows"),
+         "json": SWEEP + ("dyade.linkage.summary", "dyade.report.document"),
+         "table": SWEEP + ("dyade.linkage.summary", "dyade.report.tables")}
+"""modules ``analyse`` needs for every file, by output format"""
 
 
 def workers_for(jobs: int) -> int:

@@ -9,7 +9,7 @@ from typing import NamedTuple
 import click
 
 from dyade.cli import main
-from dyade.cli.analyse import MECHANISM_FILE, SUFFIX, batch, jobs_option, workers_for
+from dyade.cli.analyse import MECHANISM_FILE, SUFFIX, SWEEP, batch, jobs_option, workers_for
 from dyade.cli.options import FINITE, Number, value_range
 from dyade.cli.output import console, flags, progress, show, write_json, write_rows
 
@@ -199,7 +199,8 @@ def clearance(mechanism_files: tuple[Path, ...], joints: tuple[str, ...], masses
         if output is None:
             raise click.UsageError(f"{len(mechanism_files)} mechanism files need -o DIR.")
         output.mkdir(parents=True, exist_ok=True)
-        failures = batch(mechanism_files, output, run_one, SUFFIX[fmt], jobs)
+        failures = batch(mechanism_files, output, run_one, SUFFIX[fmt], jobs,
+                         SWEEP + ("dyade.linkage.joint_clearance", "dyade.report.clearance"))
         if failures:
             lines = "\n".join(f"  {path}: {reason}" for path, reason in failures)
             raise DyadeError(f"{len(failures)} of {len(mechanism_files)} files failed:\n{lines}")

@@ -344,17 +344,10 @@ def speed_study(mechanism: Mechanism, speeds_rpm, progress=None, workers: int = 
         if not np.isfinite(rpm) or rpm <= 0:
             raise InputError.parameter("speeds_rpm", f"must be positive speeds [rpm], got "
                                                      f"{rpm:g}.", value=rpm, unit="rpm")
-    workers = min(workers, len(speeds_rpm))
-    if workers > 1:
-        from concurrent.futures import ProcessPoolExecutor
+    from dyade import parallel
 
-        from dyade.linkage import columns, summary  # noqa: F401 (imported once, not per worker)
-
-        with ProcessPoolExecutor(workers) as pool:
-            checks = pool.map(_at_speed, [(mechanism, rpm, options) for rpm in speeds_rpm])
-            return _collect(speeds_rpm, checks, progress)
-    return _collect(speeds_rpm, map(_at_speed, [(mechanism, rpm, options)
-                                                for rpm in speeds_rpm]), progress)
+    tasks = [(mechanism, rpm, options) for rpm in speeds_rpm]
+    return _collect(speeds_rpm, parallel.ordered_map(_at_speed, tasks, workers), progress)
 
 
 def _at_speed(task) -> list:
