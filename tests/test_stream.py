@@ -109,3 +109,50 @@ def test_the_cli_csv_is_byte_identical_to_the_whole_sweep(path, size, tmp_path):
                                       blocks, "-o", str(target)], catch_exceptions=False)
         outputs.append((result.exit_code, result.output, target.read_bytes()))
     assert outputs[0] == outputs[1]
+
+
+@pytest.mark.parametrize("fmt, extra", [("json", ()), ("table", ()), ("table", ("--all",)),
+                                        ("json", ("--columns", "mu_*,s_*,F_*")),
+                                        ("table", ("--columns", "mu_*,phi_*"))])
+@pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.name)
+def test_json_and_tables_stream_the_same_text(path, fmt, extra, tmp_path):
+    """JSON and the tables go through a spool on disk, block by block; their text is the
+    whole sweep's (--block-size 0) to the byte, --columns included (which once crashed
+    the JSON summary: it needs columns the user did not choose)."""
+    runner = CliRunner()
+    outputs = []
+    for blocks in ("7", "100", "0"):
+        result = runner.invoke(main, ["analyse", str(path), "--allow-partial", "--block-size",
+                                      blocks, "--format", fmt, *extra], catch_exceptions=False)
+        outputs.append((result.exit_code, result.stdout, result.stderr))
+    assert outputs[0][0] == 0, outputs[0][2]
+    assert outputs[0] == outputs[2] and outputs[1] == outputs[2]
+
+
+def test_a_driven_json_streams_its_motion_summary(tmp_path):
+    import json
+
+    from tests.test_machine import _drive_file
+
+    path = _drive_file(tmp_path, {"motor": "asynchronous", "rated_torque": 4.0,
+                                  "rated_speed_rpm": 290, "synchronous_speed_rpm": 302})
+    runner = CliRunner()
+    texts = [runner.invoke(main, ["analyse", str(path), "--format", "json", "--block-size",
+                                  blocks, "--columns", "M_drive"]).stdout
+             for blocks in ("50", "0")]
+    assert texts[0] == texts[1]
+    document = json.loads(texts[0])
+    assert list(document["columns"]) == ["angle_deg", "M_drive"]
+    assert list(document["summary"]["columns"]) == ["M_drive"]
+    assert document["summary"]["motion"]["fluctuation"] > 0
+
+
+def test_the_spool_gives_back_every_column():
+    from dyade.linkage.stream import Spool
+
+    mechanism = dyade.read_mechanism(SHIPPED[0])
+    whole = dyade.analyse(mechanism).columns()
+    with Spool(stream(mechanism, block_size=13).blocks()) as spool:
+        assert list(spool) == list(whole)
+        for name, values in whole.items():
+            assert np.array_equal(spool[name], values, equal_nan=True), name

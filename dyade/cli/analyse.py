@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 import os
 import sys
+from collections.abc import Mapping
 from typing import Any, NamedTuple
 
 import click
@@ -163,12 +165,13 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
                    "rule)].")
 @click.option("--max-memory", type=POSITIVE, default=4096, show_default=True, metavar="MB",
               help="Refuse, before computing, a sweep estimated to need more memory [MB] "
-                   "(in memory: positions × columns × 90 B; streamed CSV: a block's, and "
-                   "about 100 B per position).")
+                   "(in memory, with friction or --block-size 0: positions × columns × 90 B; "
+                   "streamed: a block's, and about 100 B per position).")
 @click.option("--block-size", type=click.IntRange(min=0), default=None, metavar="N",
-              help="CSV: compute and write the sweep N positions at a time, in memory that "
-                   "does not grow with the sweep (0: all at once)  [default: 2048]. Sweeps "
-                   "with friction are computed whole.")
+              help="Compute the sweep N positions at a time, in memory that does not grow "
+                   "with the sweep (0: all at once)  [default: 2048]: CSV rows are written "
+                   "as they come; for JSON and the tables the columns wait in a temporary "
+                   "file (8 B per value, in TMPDIR). Sweeps with friction are computed whole.")
 @click.option("--fail-on-lock", is_flag=True,
               help="Exit with status 1 when the mechanism self-locks (otherwise self-locking "
                    "is a finding: reported, exit status 0).")
@@ -381,31 +384,49 @@ class Job(NamedTuple):
         mechanism = loaded.mechanism
         if save_as_path:
             save_as(loaded, save_as_path)
-        if self.fmt == "csv" and self.block_size != 0:
+        if self.block_size != 0:
             from dyade.linkage.stream import streams
             from dyade.linkage.sweep import plan
 
             if streams(plan(mechanism)):
-                self.stream_csv(mechanism, path, output)
+                self.streamed(mechanism, loaded, path, output)
                 return
         result = sweep(mechanism, self.allow_partial, self.friction_tol, self.friction_max_iter,
                        max_memory=self.max_memory, dead_centre=self.dead_centre,
                        transmission_warning=self.transmission_warning, run_up=self.run_up,
                        constant_speed=self.constant_speed)
-        cols = result.columns()
-        every = cols
-        if self.columns:
-            from dyade.report.tables import select
+        every = result.columns()
+        self.write(result, every, self.chosen(every), output, loaded,
+                   lambda: result.summary(every))
+        warn(result.notes, f"{os.path.basename(path)}: " if output else "")
+        locks = any(lock.locks[result.rows].any() for lock in (result.locking or {}).values())
+        if self.fail_on_lock and locks:
+            raise DyadeError("the mechanism self-locks (see the warning above); --fail-on-lock "
+                             "was given.")
 
-            cols = select(cols, list(self.columns))
-            if len(cols) == 1:
-                raise click.BadParameter(f"no column matches {', '.join(self.columns)}; the "
-                                         f"columns are {', '.join(list(every)[:12])}, … "
-                                         f"(mechanisms/README.md lists them).",
-                                         param_hint="--columns")
+    def chosen(self, every):
+        """The columns --columns names (all of them without it): a view, nothing copied."""
+        if not self.columns:
+            return every
+        from dyade.report.tables import select
+
+        names = list(select(dict.fromkeys(every, 0), list(self.columns)))
+        if len(names) == 1:
+            raise click.BadParameter(f"no column matches {', '.join(self.columns)}; the "
+                                     f"columns are {', '.join(list(every)[:12])}, … "
+                                     f"(mechanisms/README.md lists them).",
+                                     param_hint="--columns")
+        return Chosen(every, names)
+
+    def write(self, result, every, cols, output: str | None, loaded, summarise) -> None:
+        """The JSON document or the tables of a result (a whole ``Result`` or a stream's
+        ``outcome()``): ``every`` its columns, ``cols`` those chosen, ``summarise()`` its
+        summary (of every column)."""
+        mechanism = result.mechanism
         if self.fmt == "csv":
             from dyade.report import csv_rows
 
+            cols = cols if isinstance(cols, dict) else {name: cols[name] for name in cols}
             if output:
                 with atomic(output) as handle:
                     csv_rows.write(cols, handle)
@@ -416,14 +437,15 @@ class Job(NamedTuple):
             from dyade.report.document import document
 
             write_json(document("analyse", cols, {name: unit_of(name) for name in cols},
-                                result.summary(cols), [note.text for note in result.notes],
+                                selected_summary(summarise(), cols),
+                                [note.text for note in result.notes],
                                 mechanism=mechanism.name, source=loaded.label,
-                                positions=int(cols["angle_deg"].size)), output)
+                                positions=int(every["angle_deg"].size)), output)
         else:
             from dyade.report import tables
 
             unit = mechanism.units[0] if self.units == "file" else "m"
-            summary = result.summary(cols) if result.drive is not None or not (
+            summary = summarise() if result.drive is not None or not (
                 self.columns or self.show_all) else None
             motion = (tables.motion_table(result, summary) if result.drive is not None
                       else None)
@@ -436,17 +458,12 @@ class Job(NamedTuple):
             else:
                 parts = [tables.key_results(result, cols, summary, unit), motion]
             show(parts, output)
-        warn(result.notes, f"{os.path.basename(path)}: " if output else "")
-        locks = any(lock.locks[result.rows].any() for lock in (result.locking or {}).values())
-        if self.fail_on_lock and locks:
-            raise DyadeError("the mechanism self-locks (see the warning above); --fail-on-lock "
-                             "was given.")
 
-
-    def stream_csv(self, mechanism, path: str, output: str | None) -> None:
-        """The sweep as CSV, block by block (``dyade.linkage.stream``): each block's rows
-        written as soon as they are computed."""
-        from dyade.linkage.stream import stream
+    def streamed(self, mechanism, loaded, path: str, output: str | None) -> None:
+        """The sweep block by block (``dyade.linkage.stream``): CSV rows written as soon as
+        they are computed; for JSON and the tables the blocks go to a ``Spool`` on disk,
+        from which the summary and the JSON arrays take one column at a time."""
+        from dyade.linkage.stream import Spool, stream
         from dyade.report import csv_rows
 
         with options_named():
@@ -460,34 +477,62 @@ class Job(NamedTuple):
                           show=long_run(sweep_)) as tick:
                 sweep_.progress = tick
                 first = next(blocks)  # the assembly check fails here, before any output
-        names = list(first)
-        if self.columns:
-            from dyade.report.tables import select
+        names = list(self.chosen(first))
 
-            names = list(select(first, list(self.columns)))
-            if len(names) == 1:
-                raise click.BadParameter(f"no column matches {', '.join(self.columns)}; the "
-                                         f"columns are {', '.join(list(first)[:12])}, … "
-                                         f"(mechanisms/README.md lists them).",
-                                         param_hint="--columns")
+        def analysing():
+            return progress(f"{os.path.basename(path)}: analysing", show=long_run(sweep_))
 
         def emit(handle) -> None:
             writer = csv_rows.Writer(names, handle)
             writer.header()
-            with progress(f"{os.path.basename(path)}: analysing",
-                          show=long_run(sweep_)) as tick:
+            with analysing() as tick:
                 sweep_.progress = tick
                 writer.rows(first)
                 for cols in blocks:
                     writer.rows(cols)
             writer.close()
 
-        if output:
+        if self.fmt != "csv":
+            with analysing() as tick:
+                sweep_.progress = tick
+                spool = Spool(itertools.chain([first], blocks))
+            with spool:
+                from dyade.linkage.summary import summary
+
+                outcome = sweep_.outcome()
+                self.write(outcome, spool, self.chosen(spool), output, loaded,
+                           lambda: summary(outcome, spool))
+        elif output:
             with atomic(output) as handle:
                 emit(handle)
         else:
             emit(sys.stdout)
         warn(sweep_.notes, f"{os.path.basename(path)}: " if output else "")
+
+
+class Chosen(Mapping):
+    """Some of a mapping's columns, in their order (the others are not read)."""
+
+    def __init__(self, columns, names: list[str]) -> None:
+        self.columns, self.names = columns, names
+        self.float_columns = getattr(columns, "float_columns", False)
+
+    def __getitem__(self, name: str):
+        if name not in self.names:
+            raise KeyError(name)
+        return self.columns[name]
+
+    def __iter__(self):
+        return iter(self.names)
+
+    def __len__(self) -> int:
+        return len(self.names)
+
+
+def selected_summary(summary: dict, cols) -> dict:
+    """The summary of the whole sweep with the extremes of the chosen columns only."""
+    return {**summary, "columns": {name: extremes for name, extremes in
+                                   summary["columns"].items() if name in cols}}
 
 
 SECOND = 8e6

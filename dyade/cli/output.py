@@ -151,7 +151,9 @@ def write_rows(rows: list[dict], names: list[str], output: str | os.PathLike | N
 
 def jsonable(value: Any) -> Any:
     """numpy and floats to JSON values, numbers as in the CSV (15 significant digits: no
-    3.0000000000000004 where the CSV says 3); NaN and inf become null."""
+    3.0000000000000004 where the CSV says 3); NaN and inf become null (and so does a
+    value within 10⁻¹⁵ of the largest double, whose 15 digits read back as inf: JSON has
+    no infinity)."""
     import numpy as np
 
     if isinstance(value, dict):
@@ -162,7 +164,8 @@ def jsonable(value: Any) -> Any:
         return [jsonable(v) for v in value.tolist()]
     if isinstance(value, (np.floating, float)):
         value = float(value)
-        return float(f"{value + 0.0:.15g}") if math.isfinite(value) else None
+        rounded = float(f"{value + 0.0:.15g}")  # ±1.79769313486232e+308 is inf
+        return rounded if math.isfinite(rounded) else None
     if isinstance(value, (np.integer,)):
         return int(value)
     if isinstance(value, np.bool_):
@@ -171,14 +174,40 @@ def jsonable(value: Any) -> Any:
 
 
 def write_json(obj: dict, output: str | os.PathLike | None) -> None:
+    """The document as ``json.dumps(jsonable(obj), indent=1)`` writes it; columns that
+    are float arrays (a sweep's, perhaps spooled on disk) are written a column and a
+    block of values at a time, in the same text (``report.document.write_columns``)."""
     import json  # only here: the import is not free
 
-    text = json.dumps(jsonable(obj), ensure_ascii=False, indent=1)
+    def emit(handle) -> None:
+        if _arrays_first(obj):
+            from dyade.report.document import write_columns
+
+            rest = json.dumps(jsonable({k: v for k, v in obj.items() if k != "columns"}),
+                              ensure_ascii=False, indent=1)
+            handle.write("{\n")
+            write_columns(obj["columns"], handle)
+            handle.write(",\n" + rest[2:] + "\n" if rest != "{}" else "\n}\n")
+        else:
+            handle.write(json.dumps(jsonable(obj), ensure_ascii=False, indent=1) + "\n")
+
     if output:
         with atomic(output) as handle:
-            handle.write(text + "\n")
+            emit(handle)
     else:
-        sys.stdout.write(text + "\n")
+        emit(sys.stdout)
+
+
+def _arrays_first(obj: dict) -> bool:
+    """A document whose first entry is its columns, each a float array."""
+    import numpy as np
+
+    columns = next(iter(obj.values()), None) if next(iter(obj), None) == "columns" else None
+    if getattr(columns, "float_columns", False):  # a Spool: no need to read them to know
+        return True
+    return columns is not None and not isinstance(columns, (list, tuple)) and all(
+        isinstance(values, np.ndarray) and values.dtype == np.float64 and values.ndim == 1
+        for values in (columns[name] for name in columns))
 
 
 @contextmanager

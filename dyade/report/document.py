@@ -8,6 +8,7 @@ written as in the CSV (15 significant digits), NaN and infinities as null
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 
@@ -19,3 +20,81 @@ def document(command: str, columns: dict[str, Any], units: dict[str, str],
     return {"columns": columns, "units": {name: units.get(name, "") for name in columns},
             "summary": summary, "warnings": [str(w) for w in warnings],
             "meta": {"command": command, "dyade": __version__, **meta}}
+
+
+CHUNK = 1 << 16
+"""values formatted and written at a time"""
+
+
+def json_numbers(values) -> list[str]:
+    """float64 values as JSON numbers, exactly as ``json.dumps`` writes
+    ``float(f"{v + 0.0:.15g}")`` (and null for NaN and ±inf), a block at a time.
+
+    The 15-digit text of the CSV writer (``report.csv_rows``) is that number's shortest
+    text already (two decimals of at most 15 digits are never the same double), in a
+    different dress in two cases only: a whole number gets ".0" (``90`` → ``90.0``),
+    and 10¹⁵ ≤ |v| < 10¹⁶ is written without an exponent (``1.5e+15`` →
+    ``1500000000000000.0``); below 10⁻³⁰⁸ (subnormal) a double holds fewer digits,
+    and Python's shortest text is used. A value that rounds to 15 digits beyond the largest double
+    (1.79769313486232e+308, which reads back as infinity) is null, as NaN and ±inf.
+
+    >>> import numpy as np
+    >>> json_numbers(np.array([90.0, -0.0, 0.1 + 0.2, 1.5e15, 2e-7, np.nan, -np.inf]))
+    ['90.0', '0.0', '0.3', '1500000000000000.0', '2e-07', 'null', 'null']
+    """
+    import io
+
+    import numpy as np
+
+    from dyade.report import csv_rows
+
+    buffer = io.StringIO()
+    writer = csv_rows.Writer(["value"], buffer)
+    writer.rows(np.asarray(values, dtype=np.float64).reshape(-1, 1))
+    lines = buffer.getvalue().split("\n")
+    lines.pop()
+    return [text if ("." in text or "e" in text) and "e+15" not in text
+            and "e+308" not in text and "e-3" not in text else _number(text)
+            for text in lines]
+
+
+def _number(text: str) -> str:
+    """The rare cases: whole numbers, 10¹⁵..10¹⁶, exponents −30..−39 and −300.. (below
+    10⁻³⁰⁸ a double has fewer than 15 digits: Python writes fewer), and what is not a
+    finite number (NaN, ±inf, and 1.79769313486232e+308, which reads back as inf):
+    null."""
+    if not text or text.endswith("inf"):
+        return "null"
+    if "e" not in text:
+        return text + ".0"
+    value = float(text)
+    return repr(value) if math.isfinite(value) else "null"
+
+
+def write_columns(columns, handle) -> None:
+    """``"columns": {...}`` of a document as ``json.dumps(..., indent=1)`` writes it
+    there (one value a line), a column and a block of values at a time: the columns may
+    be a ``Spool`` that reads each back from disk."""
+    import json
+
+    import numpy as np
+
+    names = list(columns)
+    if not names:
+        handle.write(' "columns": {}')
+        return
+    handle.write(' "columns": {\n')
+    for k, name in enumerate(names):
+        values = np.asarray(columns[name], dtype=np.float64)
+        handle.write(f"  {json.dumps(name, ensure_ascii=False)}: ")
+        if values.size == 0:
+            handle.write("[]")
+        else:
+            handle.write("[\n   ")
+            for first in range(0, values.size, CHUNK):
+                if first:
+                    handle.write(",\n   ")
+                handle.write(",\n   ".join(json_numbers(values[first:first + CHUNK])))
+            handle.write("\n  ]")
+        handle.write(",\n" if k < len(names) - 1 else "\n")
+    handle.write(" }")
