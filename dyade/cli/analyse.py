@@ -289,19 +289,13 @@ def batch(paths, directory: str, run_one, suffix: str, jobs: int = 1,
 
     failures = []
     outcomes = parallel.ordered_map(one, list(zip(paths, targets)), workers, lost)
-    try:
-        next_outcome = next(outcomes, None)  # the workers start before the progress bar
-        with progress("analysing", total=len(paths)) as tick:
-            for done, path in enumerate(paths, start=1):
-                failure, said = next_outcome if done == 1 else next(outcomes)
-                if said:
-                    sys.stderr.write(said)
-                if failure is not None:
-                    failures.append((path, failure))
-                tick(done)
-    finally:
-        if hasattr(outcomes, "close"):
-            outcomes.close()
+    with progress("analysing", total=len(paths)) as tick:
+        for done, (path, (failure, said)) in enumerate(zip(paths, outcomes), start=1):
+            if said:
+                sys.stderr.write(said)
+            if failure is not None:
+                failures.append((path, failure))
+            tick(done)
     return failures
 
 

@@ -227,7 +227,9 @@ def progress(description: str, total: float | None = None, show: bool = True
              ) -> Iterator[Any]:
     """A transient progress bar on stderr while a long run goes on, only when stderr is
     a terminal (and ``show``); yields ``tick(done, total=None)``, which does nothing
-    otherwise. The commands show it for runs expected to take more than about a second."""
+    otherwise. The commands show it for runs expected to take more than about a second.
+    The bar (and its refresh thread) starts at the first tick: the worker processes of
+    ``-j`` are forked before, from a process without threads."""
     if not show or not sys.stderr.isatty():
         yield lambda done, total=None: None
         return
@@ -235,10 +237,18 @@ def progress(description: str, total: float | None = None, show: bool = True
 
     bar = Progress(console=console(stderr=True), transient=True)
     task = bar.add_task(description, total=total)
+    started = False
 
     def tick(done: float, new_total: float | None = None) -> None:
+        nonlocal started
+        if not started:  # the bar's refresh thread starts here, after any fork of -j
+            bar.start()
+            started = True
         bar.update(task, completed=done, **({} if new_total is None else {"total": new_total}))
 
-    with bar:
+    try:
         yield tick
+    finally:
+        if started:
+            bar.stop()
 
