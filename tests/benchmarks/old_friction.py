@@ -1,9 +1,9 @@
 """The fixed-point friction iteration dyade had before issue 15 (dyade/linkage/friction.py
 at faca28f): the speed yardstick of ``friction.solve`` (tests/benchmarks/
 test_friction_speed.py). Frozen: its model has no edge friction and no self-locking
-verdict. Only change: ``surface = {}`` on ``_Rub``, which today's
+verdict. Only changes: ``surface = {}`` on ``_Rub``, which today's
 ``kinetostatics.backward`` reads (empty: the whole along-guide force acts at the surface,
-as it did then)."""
+as it did then), and its unused ``joint_forces_on`` left out."""
 
 from __future__ import annotations
 
