@@ -306,3 +306,14 @@ def test_edge_friction_is_a_file_key():
         toml_input.read_mechanism(shipped("self-locking.toml"), overrides={"friction.edge_friction": 1})
     with pytest.raises(toml_input.InputError, match=r"`dyad.2.C.edge_friction` must be true or false"):
         toml_input.read_mechanism(shipped("self-locking.toml"), overrides={"dyad.2.C.edge_friction": "no"})
+
+
+def test_the_force_floor_median_is_numpys():
+    """friction._median replaces np.median (whose first call imports numpy.ma): the
+    same value to the bit, for odd and even counts."""
+    from dyade.linkage.friction import _median
+
+    rng = np.random.default_rng(7)
+    for size in range(1, 120):
+        values = rng.random(size) * 10.0 ** rng.integers(-5, 5, size)
+        assert _median(values) == float(np.median(values)), size
