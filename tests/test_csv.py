@@ -23,12 +23,28 @@ def _both(cols) -> tuple[str, str]:
     return old.getvalue(), new.getvalue()
 
 
+def _assert_same(new: str, old: str) -> None:
+    """new == old; a failure shows the first differing line and field (pytest's diff of
+    two long texts would take minutes)."""
+    if new == old:
+        return
+    lines = new.split("\n"), old.split("\n")
+    row = next((k for k, pair in enumerate(zip(*lines)) if pair[0] != pair[1]),
+               min(map(len, lines)))
+    fields = [line[row].split(",") if row < len(line) else [] for line in lines]
+    column = next((k for k, pair in enumerate(zip(*fields)) if pair[0] != pair[1]),
+                  min(map(len, fields)))
+    assert (row, column, fields[0][column:column + 1]) == (row, column,
+                                                           fields[1][column:column + 1])
+    assert len(lines[0]) == len(lines[1])
+
+
 @pytest.mark.parametrize("path", sorted((ROOT / "mechanisms").glob("*.toml")),
                          ids=lambda p: p.name)
 def test_shipped_mechanisms_byte_identical(path):
     cols = dyade.analyse(dyade.read_mechanism(path), allow_partial=True).columns()
     old, new = _both(cols)
-    assert new == old
+    _assert_same(new, old)
 
 
 def _awkward(rng, rows: int) -> np.ndarray:
@@ -59,7 +75,7 @@ def test_random_arrays_byte_identical(seed):
     table = _awkward(rng, 20_000)
     cols = {f"c{k}": table[:, k] for k in range(table.shape[1])}
     old, new = _both(cols)
-    assert new == old
+    _assert_same(new, old)
 
 
 @pytest.mark.parametrize("shape", [(0, 3), (1, 1), (3, 0), (7, 5000)])
@@ -68,7 +84,7 @@ def test_edge_shapes(shape):
     table = rng.standard_normal(shape) * 1e3
     cols = {f"c{k}": table[:, k] for k in range(shape[1])}
     old, new = _both(cols)
-    assert new == old
+    _assert_same(new, old)
 
 
 def test_blocks_stream_the_same_text():
@@ -84,7 +100,7 @@ def test_blocks_stream_the_same_text():
     for first, last in ((0, 1), (1, 2), (2, 500), (500, 1000)):
         writer.rows(table[first:last])
     writer.close()
-    assert streamed.getvalue() == whole.getvalue()
+    _assert_same(streamed.getvalue(), whole.getvalue())
 
 
 def test_python_path(monkeypatch):
@@ -94,7 +110,15 @@ def test_python_path(monkeypatch):
     rng = np.random.default_rng(3)
     table = _awkward(rng, 300)
     old, new = _both({f"c{k}": table[:, k] for k in range(table.shape[1])})
-    assert new == old
+    _assert_same(new, old)
+
+
+def test_big_endian_fallback(monkeypatch):
+    """Where words are not little-endian, Python formats every value."""
+    monkeypatch.setattr(csv_rows, "_LITTLE_ENDIAN", False)
+    table = _awkward(np.random.default_rng(4), 300)
+    old, new = _both({f"c{k}": table[:, k] for k in range(table.shape[1])})
+    _assert_same(new, old)
 
 
 def _table(values: np.ndarray, width: int) -> dict[str, np.ndarray]:
@@ -116,7 +140,7 @@ def test_edges_of_the_numpy_path():
         values = [np.nextafter(values[0], 0.0), *values, np.nextafter(values[-1], np.inf)]
     values = np.concatenate(values)
     old, new = _both(_table(np.concatenate([values, -values]), 7))
-    assert new == old
+    _assert_same(new, old)
 
 
 FLOATS = st.integers(0, 2 ** 64 - 1).map(lambda bits: np.uint64(bits).view(np.float64))
@@ -126,7 +150,7 @@ FLOATS = st.integers(0, 2 ** 64 - 1).map(lambda bits: np.uint64(bits).view(np.fl
 def test_random_bit_patterns(values, width):
     """Any float64 (every exponent, sign, NaN payload), in any number of columns."""
     old, new = _both(_table(np.array(values), width))
-    assert new == old
+    _assert_same(new, old)
 
 
 @given(st.lists(st.floats(width=64), min_size=1, max_size=400), st.integers(1, 9))
@@ -134,4 +158,4 @@ def test_hypothesis_floats(values, width):
     """Hypothesis' floats lean to the awkward ones: ±0, ±inf, NaN, the smallest and
     largest, integers, simple decimals."""
     old, new = _both(_table(np.array(values, dtype=np.float64), width))
-    assert new == old
+    _assert_same(new, old)

@@ -34,6 +34,7 @@ whole table at once.
 
 from __future__ import annotations
 
+import sys
 from typing import TextIO
 
 import numpy as np
@@ -58,6 +59,8 @@ _TIE = 1e-9
 """how near a rounding midpoint (in units of the 15th digit) a value is left to Python"""
 _SPLIT = 2.0 ** 27 + 1
 """Veltkamp's constant: splits a double into two halves of 26 bits"""
+_LITTLE_ENDIAN = sys.byteorder == "little"
+"""the rows are built as little-endian words; elsewhere Python formats every value"""
 
 
 def _word(text: str) -> int:
@@ -183,37 +186,34 @@ def _scaled(work: _Work, n: int) -> None:
     np.copyto(work.q[:n], scratch, casting="unsafe")
 
 
-def _outside(q: np.ndarray, rest: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Whether ``q + rest`` (floor and rest of a scaled value) is below 10^14 or at least
-    10^15: the exponent is one too large or too small."""
-    return (q - 10 ** 14) + rest < 0, (q - 10 ** 15) + rest >= 0
-
-
 def _rounded(work: _Work, n: int, python: list[np.ndarray]) -> None:
     """``q = round(|x|·10^(14−e))`` in [10^14, 10^15) and the exponent table entry of
     ``e`` (``entry``) of the first ``n`` values; the indices of values too near a
-    rounding midpoint are added to ``python``."""
+    rounding midpoint are added to ``python``.
+
+    Where log10 was one off (next to a power of ten) the floor of the scaled value lies
+    outside [10^14, 10^15), and the value is scaled again with the next exponent. The
+    floor is enough: the scaled value can be just below 10^14 with a floor of 10^14 (the
+    product rounded up), or at least 10^15 with a floor of 10^15 − 1 (``hi`` of an inexact
+    power is below it), but then it rounds to 10^14, or to 10^15 which carries, and 15
+    digits of the right exponent round to the same power of ten."""
     _scaled(work, n)
     q, rest, entry, flag = work.q[:n], work.product[:n], work.entry[:n], work.flag[:n]
-    near = None
-    if q.min() <= 10 ** 14 or q.max() >= 10 ** 15 - 1:  # next to a power of ten
-        near = np.flatnonzero((q <= 10 ** 14) | (q >= 10 ** 15 - 1))
-        small, large = _outside(q[near], rest[near])
-        wrong = near[small | large]
-        if wrong.size:  # log10 was one off
-            again = _Work(wrong.size)
-            again.magnitude[:] = work.magnitude[wrong]
-            again.entry[:] = entry[wrong]
-            for _ in range(3):
-                _scaled(again, wrong.size)
-                small, large = _outside(again.q, again.product)
-                if not (small | large).any():
-                    break
-                again.entry += large
-                again.entry -= small
-            else:
-                python.append(wrong[small | large])
-            q[wrong], rest[wrong], entry[wrong] = again.q, again.product, again.entry
+    if q.min() < 10 ** 14 or q.max() >= 10 ** 15:
+        wrong = np.flatnonzero((q < 10 ** 14) | (q >= 10 ** 15))
+        again = _Work(wrong.size)
+        again.magnitude[:] = work.magnitude[wrong]
+        again.entry[:] = entry[wrong]
+        for _ in range(3):
+            _scaled(again, wrong.size)
+            small, large = again.q < 10 ** 14, again.q >= 10 ** 15
+            if not (small | large).any():
+                break
+            again.entry += large
+            again.entry -= small
+        else:
+            python.append(wrong[small | large])
+        q[wrong], rest[wrong], entry[wrong] = again.q, again.product, again.entry
     rest -= 0.5
     np.greater(rest, 0.0, out=flag)
     q += flag
@@ -221,8 +221,8 @@ def _rounded(work: _Work, n: int, python: list[np.ndarray]) -> None:
     np.less(rest, _TIE, out=flag)
     if flag.any():
         python.append(np.flatnonzero(flag))
-    if near is not None:
-        carry = near[q[near] == 10 ** 15]  # 9.99…95 rounds up to the next power of ten
+    if q.max() == 10 ** 15:  # 9.99…95 rounds up to the next power of ten
+        carry = np.flatnonzero(q == 10 ** 15)
         q[carry] = 10 ** 14
         entry[carry] += 1
 
@@ -263,9 +263,10 @@ def _digit_words(work: _Work, n: int) -> None:
     rest >>= 3
 
 
-def _format(values: np.ndarray, separators: np.ndarray, work: _Work) -> bytearray:
-    """The "%.15g" texts of ``values`` (flat), each followed by its separator (a word
-    with the byte at bit ``_SEPARATOR``)."""
+def _exponents(values: np.ndarray, work: _Work) -> list[np.ndarray]:
+    """``magnitude`` (|x|, 1 where not formatted in numpy) and the exponent table
+    ``entry`` of ``floor(log10|x|)`` (or of the zero, or of the empty field); returns the
+    indices of the values Python formats: ±inf, the huge and the tiny."""
     n = values.size
     a, entry, slow, flag = work.magnitude[:n], work.entry[:n], work.slow[:n], work.flag[:n]
     log = work.product[:n]
@@ -276,7 +277,7 @@ def _format(values: np.ndarray, separators: np.ndarray, work: _Work) -> bytearra
     np.logical_not(slow, out=slow)  # zero, NaN, ±inf, huge or tiny
     np.greater(a, 0.0, out=flag)  # not zero, not NaN
     flag &= slow
-    python: list[np.ndarray] = [np.flatnonzero(flag)] if flag.any() else []
+    python = [np.flatnonzero(flag)] if flag.any() else []
     np.copyto(a, 1.0, where=slow)
     np.log10(a, out=log)
     log -= _E_MIN  # positive: truncation is floor
@@ -284,10 +285,14 @@ def _format(values: np.ndarray, separators: np.ndarray, work: _Work) -> bytearra
     np.copyto(entry, _EMPTY, where=slow)
     np.equal(values, 0.0, out=flag)
     np.copyto(entry, _ZERO, where=flag)
-    _rounded(work, n, python)
-    _digit_words(work, n)
+    return python
+
+
+def _rows(values: np.ndarray, separators: np.ndarray, work: _Work) -> None:
+    """The rows of ``values`` from their digit words, significant digits and exponents."""
+    n = values.size
     key, mask, shifted, back = work.key[:n], work.mask[:n], work.shifted[:n], work.back[:n]
-    text0, text1 = work.text0[:n], work.text1[:n]
+    text0, text1, entry = work.text0[:n], work.text1[:n], work.entry[:n]
     _CLASS_KEY.take(entry, out=key, mode="clip")
     key += work.rest[:n]
     np.right_shift(values.view(np.uint64), np.uint64(59), out=mask)
@@ -326,7 +331,21 @@ def _format(values: np.ndarray, separators: np.ndarray, work: _Work) -> bytearra
     _EXPONENT.take(entry, out=mask, mode="clip")
     text1 |= mask
     np.bitwise_or(text1, separators, out=rows[:, 2])
-    text = rows.view(np.uint8)
+
+
+def _format(values: np.ndarray, separators: np.ndarray, work: _Work) -> bytes | bytearray:
+    """The "%.15g" texts of ``values`` (flat, at most ``work.size``), each followed by its
+    separator (a word with the byte at bit ``_SEPARATOR``)."""
+    if not _LITTLE_ENDIAN:  # the rows are built as little-endian words
+        ends = (separators >> np.uint64(_SEPARATOR)).astype(np.uint8).tobytes().decode()
+        return "".join(("%.15g" % x if x == x else "") + end
+                       for x, end in zip((values + 0.0).tolist(), ends)).encode()
+    n = values.size
+    python = _exponents(values, work)
+    _rounded(work, n, python)
+    _digit_words(work, n)
+    _rows(values, separators, work)
+    text = work.rows[:n].view(np.uint8)
     for k in np.concatenate(python) if python else ():
         python_text = ("%.15g" % values[k]).encode()
         text[k, :ROW - 1] = 0
