@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade.linkage.motion import Motion, Screw, guide_direction
-from dyade.linkage.kinematics import Kinematics, crank_screw
+from dyade.linkage.kinematics import Kinematics, _mul, crank_screw
 from dyade.linkage.model import CRANK, FRAME, FloatArray, Mechanism, Revolute, toward_higher
 
 
@@ -138,11 +138,17 @@ def add_force(wrench: FloatArray, point: FloatArray, force: FloatArray) -> None:
 
 
 def dot3(unit: Screw, wrench: FloatArray) -> FloatArray:
-    """Power pairing of a unit twist and a wrench (3, n)."""
-    x, y, w = unit
-    out = x * wrench[0] + y * wrench[1]
-    if w != 0.0:
-        out += wrench[2] if w == 1.0 else w * wrench[2]
+    """Power pairing of a unit twist (components, ``dyade.linkage.kinematics``) and a
+    wrench (3, n); a new array."""
+    terms = [_mul(part, load) for part, load in zip(unit, wrench)
+             if not (isinstance(part, float) and part == 0.0)]
+    if not terms:
+        return np.zeros_like(wrench[0])
+    if len(terms) == 1:
+        return np.array(terms[0])  # a copy: the term may be a row of the wrench
+    out = terms[0] + terms[1]
+    if len(terms) == 3:
+        out += terms[2]
     return out
 
 
@@ -170,8 +176,8 @@ def backward(mechanism: Mechanism, kin: Kinematics, q: FloatArray, rub=None) -> 
     for group in reversed(kin.groups):
         (i, j), (g, h) = group.links, group.known
         q_i, q_j = q[i], q[j]
-        s_a, _, s_c = group.screws
-        w_b = solve_transposed(group.inverse, dot3(s_a, q_i), dot3(s_c, q_j))
+        s_a, _, s_c = group.units
+        w_b = group.reaction(dot3(s_a, q_i), dot3(s_c, q_j))
         if rub is not None:
             w_b = rub.group(group, w_b, q_i, q_j)
         w_a = w_b - q_i  # on i from g
