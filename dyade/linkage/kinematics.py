@@ -35,135 +35,82 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade.linkage import dyads as dyad_kinds
+from dyade.linkage.dyads import is_zero, minus, plus, times
 from dyade.linkage.motion import Motion, Screw, guide_direction
 from dyade.linkage.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
 
 
-def _zero(a) -> bool:
-    return isinstance(a, float) and a == 0.0
-
-
-def _mul(a, b):
-    """a·b for components (arrays or plain numbers), skipping plain zeros and ones."""
-    for x, y in ((a, b), (b, a)):
-        if isinstance(x, float):
-            if x == 0.0:
-                return 0.0
-            if x == 1.0:
-                return y
-            if x == -1.0:
-                return -y
-    return a * b
-
-
-def _add(a, b):
-    """a + b for components, skipping plain zeros."""
-    if _zero(b):
-        return a
-    return b if _zero(a) else a + b
-
-
-def _sub(a, b):
-    """a − b for components, skipping plain zeros."""
-    if _zero(b):
-        return a
-    return -b if _zero(a) else a - b
-
-
 def _cross(u, v):
     """u_x·v_y − u_y·v_x of the (x, y) parts of two screws (components)."""
-    return _sub(_mul(u[0], v[1]), _mul(u[1], v[0]))
+    return minus(times(u[0], v[1]), times(u[1], v[0]))
+
+
+def _scaled(value, scale: FloatArray, negated: FloatArray):
+    """An entry of M⁻¹ from its cofactor and the row's factor (and its negative): a
+    plain 0.0 stays one, ±1 gives the factor itself."""
+    if type(value) is float:
+        if value == 0.0:
+            return 0.0
+        if value == 1.0:
+            return scale
+        if value == -1.0:
+            return negated
+    return value * scale
 
 
 class Group:
     """One dyad's loop M·r = V_h − V_g (module docstring), as the force stage needs it.
 
-    M⁻¹ is formed entry by entry as it is asked for (``entry``), each the way
-    ``inverse3`` forms it, so that the results do not depend on which entries a stage
-    needs; an entry that vanishes for the kind is a plain 0.0 and costs nothing.
+    Attributes: ``links`` (i, j); ``known`` (g, h); ``joints`` A, B, C; ``on``, the link
+    each joint's twist and wrench refer to, (i, j, j); ``units``, the unit twists S_A
+    (i rel. g), S_B (j rel. i), S_C (j rel. h) as components (x, y, ω) with ω a plain
+    1.0 or 0.0 (``screws`` gives arrays); ``usable``, (n,) bool, where the dyad closes
+    and is not singular; ``loop``, V_h − V_g (components); ``rates``, the joint rates
+    a, b, c (n,) along S_A, S_B, S_C [rad/s or m/s], on demand (``rate``);
+    ``entries``, the entries (k, c) of M⁻¹, (n,) arrays or plain zeros, NaN where the
+    dyad is not usable, each formed as ``inverse3`` forms it.
     """
 
     __slots__ = ("links", "known", "joints", "on", "units", "usable", "loop", "rates",
-                 "_entries", "_scale", "_inverse")
+                 "entries", "_inverse")
 
     def __init__(self, links: tuple[int, int], known: tuple[int, int],
                  joints: tuple[Joint, Joint, Joint], units: tuple, usable: FloatArray) -> None:
-        self.links = links
-        """(i, j)"""
-        self.known = known
-        """(g, h)"""
-        self.joints = joints
-        """A, B, C"""
+        self.links, self.known, self.joints, self.units = links, known, joints, units
         self.on = (links[0], links[1], links[1])
-        """the link each joint's twist and wrench refer to: (i, j, j)"""
-        self.units = units
-        """unit twists S_A (i rel. g), S_B (j rel. i), S_C (j rel. h) as components
-        (x, y, ω), ω a plain 1.0 or 0.0 (``screws`` gives arrays)"""
         self.usable = usable
-        """(n,) bool: the dyad closes and is not singular here"""
         self.loop = (0.0, 0.0, 0.0)
-        """V_h − V_g, the right-hand side of the velocity loop (components)"""
         self.rates = [None, None, None]
-        """joint rates a, b, c (n,) along S_A, S_B, S_C [rad/s or m/s]; on demand"""
-        self._entries = {}
-        self._scale = None
         self._inverse = None
-
-    def _unscaled(self, k: int, c: int):
-        """Entry (k, c) of adj [S_A, S_B, S_C] (``inverse3``'s order of operations)."""
-        key = (k, c, False)
-        if key not in self._entries:
-            (x0, y0, w0), (x1, y1, w1), (x2, y2, w2) = self.units
-            self._entries[key] = (
-                (_comb(w2, y1, w1, y2), _comb(w1, x2, w2, x1), _cross((x1, y1), (x2, y2))),
-                (_comb(w0, y2, w2, y0), _comb(w2, x0, w0, x2), _cross((x2, y2), (x0, y0))),
-                (_comb(w1, y0, w0, y1), _comb(w0, x1, w1, x0), _cross((x0, y0), (x1, y1))),
-            )[k][c]
-        return self._entries[key]
-
-    def scale(self, k: int) -> FloatArray:
-        """(n,) the factor of row k of M⁻¹: 1/det [S_A, S_B, S_C], negated for row 2;
-        NaN where the dyad is not usable."""
-        if self._scale is None:
-            x0, y0, w0 = self.units[0]
-            det = _add(_mul(x0, self._unscaled(0, 0)), _mul(y0, self._unscaled(0, 1)))
-            if w0 != 0.0:
-                det = _add(det, _mul(w0, self._unscaled(0, 2)))
-            det = np.broadcast_to(det, self.usable.shape)
-            # singular rows become NaN below; a determinant below 1e-308 overflows to inf
-            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-                scale = 1.0 / det
-            if not self.usable.all():
-                scale[~self.usable] = np.nan
-            self._scale = [scale, None]
-        if k == 2:
-            if self._scale[1] is None:
-                self._scale[1] = -self._scale[0]
-            return self._scale[1]
-        return self._scale[0]
-
-    def entry(self, k: int, c: int):
-        """Entry (k, c) of M⁻¹ (n,); a plain 0.0 where it vanishes for the kind."""
-        key = (k, c, True)
-        if key not in self._entries:
-            value = self._unscaled(k, c)
-            self._entries[key] = 0.0 if _zero(value) else value * self.scale(k)
-        return self._entries[key]
+        # the rows of adj [S_A, S_B, S_C] are S_B × S_C, S_C × S_A, S_A × S_B (``inverse3``)
+        (x0, y0, w0), (x1, y1, w1), (x2, y2, w2) = units
+        rows = ((minus(times(w2, y1), times(w1, y2)), minus(times(w1, x2), times(w2, x1)),
+                 minus(times(x1, y2), times(y1, x2))),
+                (minus(times(w0, y2), times(w2, y0)), minus(times(w2, x0), times(w0, x2)),
+                 minus(times(x2, y0), times(y2, x0))),
+                (minus(times(w1, y0), times(w0, y1)), minus(times(w0, x1), times(w1, x0)),
+                 minus(times(x0, y1), times(y0, x1))))
+        det = plus(times(x0, rows[0][0]), times(y0, rows[0][1]))
+        if w0 != 0.0:
+            det = plus(det, times(w0, rows[0][2]))
+        # 1/det where usable, NaN elsewhere (a dead centre's det is 0)
+        scale = np.full(usable.shape[0], np.nan)
+        np.divide(1.0, det, out=scale, where=usable)
+        flipped = -scale  # M = [S_A, S_B, −S_C]: the last row changes sign
+        self.entries = [[_scaled(value, scale, flipped) for value in rows[0]],
+                        [_scaled(value, scale, flipped) for value in rows[1]],
+                        [_scaled(value, flipped, scale) for value in rows[2]]]
 
     def solve(self, rhs: tuple, k: int) -> FloatArray:
         """Row k of M⁻¹·rhs (``solve_rows``); ``rhs`` in components (x, y, ω)."""
         total = None
-        for c, part in enumerate(rhs):
-            term = _mul(self.entry(k, c), part)
-            if _zero(term):
+        for entry, part in zip(self.entries[k], rhs):
+            if type(part) is float and part == 0.0 or type(entry) is float:
                 continue
-            if total is None:
-                total = term if not isinstance(term, float) else np.full(self.usable.shape,
-                                                                         term)
-            else:
-                total = total + term
+            term = entry * part
+            total = term if total is None else total + term
         if total is None:  # no term: zero, NaN where the dyad is not usable
-            return self.scale(k) * 0.0
+            return np.where(self.usable, 0.0, np.nan)
         return total
 
     def rate(self, k: int) -> FloatArray:
@@ -176,13 +123,12 @@ class Group:
         """(3, n) M⁻ᵀ·(rhs0, 0, rhs2) (``kinetostatics.solve_transposed``): the load W_B
         of the force stage."""
         out = np.empty((3, self.usable.shape[0]))
-        for c, row in enumerate(out):
-            first, second = self.entry(0, c), self.entry(2, c)
-            if _zero(first):
+        for row, first, second in zip(out, self.entries[0], self.entries[2]):
+            if type(first) is float:
                 np.multiply(second, rhs2, out=row)
             else:
                 np.multiply(first, rhs0, out=row)
-                if not _zero(second):
+                if type(second) is not float:
                     row += second * rhs2
         return out
 
@@ -196,13 +142,13 @@ class Group:
     @property
     def inverse(self) -> FloatArray:
         """(3, 3, n): rows of M⁻¹, M = [S_A, S_B, −S_C]; NaN where the dyad is not usable
-        (formed on first use, ``inverse3``)."""
+        (formed on first use)."""
         if self._inverse is None:
             self._inverse = np.empty((3, 3, self.usable.shape[0]))
-            for k in range(3):
-                for c in range(3):
-                    value = self.entry(k, c)
-                    self._inverse[k, c] = value if not _zero(value) else self.scale(k) * 0.0
+            for k, row in enumerate(self.entries):
+                for c, entry in enumerate(row):
+                    self._inverse[k, c] = (entry if type(entry) is not float
+                                           else np.where(self.usable, 0.0, np.nan))
         return self._inverse
 
 
@@ -238,7 +184,9 @@ def crank_motion(mechanism: Mechanism, crank_angle: FloatArray,
     n = crank_angle.shape[0]
     motion = Motion.at_rest(n, mechanism.max_link + 1, placed)
     motion.origin[:, CRANK] = mechanism.crank.pivot
-    motion.set_angle(CRANK, crank_angle)
+    motion.angle[:, CRANK] = crank_angle
+    np.cos(crank_angle, out=motion.cos[:, CRANK])
+    np.sin(crank_angle, out=motion.sin[:, CRANK])
     motion.velocity[:, CRANK] = 0.0
     motion.omega[:, CRANK] = mechanism.crank.speed if crank_speed is None else crank_speed
     motion.acceleration[:, CRANK] = 0.0  # the pivot (the crank frame's origin) stays put
@@ -319,42 +267,41 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
     motion = crank_motion(mechanism, crank_angle, tuple(mechanism.moving_links), crank_speed,
                           crank_acceleration)
     count = len(mechanism.dyads)
-    closes = np.empty((n, count), dtype=bool)
-    transmission = np.empty((n, count))
-    singular = np.empty((n, count), dtype=bool)
-    conditioning = np.empty((n, count))
+    # per dyad and position, each dyad's column contiguous (the results are (n, dyads))
+    closes, singular = np.empty((count, n), dtype=bool), np.empty((count, n), dtype=bool)
+    transmission, conditioning = np.empty((count, n)), np.empty((count, n))
     # twists of the moving links and their time derivatives, in components; the frame's
     # are zero (not in the dicts)
     px, py = (float(v) for v in mechanism.crank.pivot)
     speed = mechanism.crank.speed if crank_speed is None else np.broadcast_to(crank_speed, (n,))
-    twists = {CRANK: (_mul(py, speed), _mul(-px, speed), speed)}
+    twists = {CRANK: (times(py, speed), times(-px, speed), speed)}
     changes = {}  # constant speed about a fixed pivot: zero
     if crank_acceleration is not None and np.any(crank_acceleration):
         rate = np.broadcast_to(crank_acceleration, (n,))
-        changes[CRANK] = (_mul(py, rate), _mul(-px, rate), rate)
+        changes[CRANK] = (times(py, rate), times(-px, rate), rate)
     groups = []
     upstream_ok = np.ones(n, dtype=bool)
     for col, dyad in enumerate(mechanism.dyads):
         closure = dyad.kind.close(dyad, motion)
-        ok = closure.closes & upstream_ok
-        closes[:, col] = closure.closes
-        transmission[:, col] = closure.transmission
+        ok = np.logical_and(closure.closes, upstream_ok, out=closes[col])
         if closure.lever is not None:  # a length scale the angle alone does not see
             closure.conditioning = closure.conditioning * np.minimum(
                 1.0, closure.lever / mechanism.crank.length)
-        conditioning[:, col] = closure.conditioning
+        transmission[col] = closure.transmission
+        conditioning[col] = closure.conditioning
         if not ok.all():
-            transmission[~ok, col] = np.nan
-            conditioning[~ok, col] = np.nan
+            transmission[col, ~ok] = np.nan
+            conditioning[col, ~ok] = np.nan
             for link in dyad.links:
                 motion.invalidate(link, ~ok)
-        np.less(closure.conditioning, dyad_kinds.SINGULAR_SIN, out=singular[:, col])
-        singular[:, col] &= ok
-        usable = ok & ~singular[:, col]
+        np.less(closure.conditioning, dyad_kinds.SINGULAR_SIN, out=singular[col])
+        singular[col] &= ok
+        usable = ok & ~singular[col]
+        closes[col] = closure.closes
         groups.append(_derivatives(dyad, closure, motion, twists, changes, usable))
         upstream_ok = usable
-    return Kinematics(crank_angle, motion, closes, transmission, singular, conditioning,
-                      groups, upstream_ok)
+    return Kinematics(crank_angle, motion, closes.T, transmission.T, singular.T,
+                      conditioning.T, groups, upstream_ok)
 
 
 def _unit(joint: Joint, motion: Motion, on: int, closure, k: int) -> tuple:
@@ -363,11 +310,11 @@ def _unit(joint: Joint, motion: Motion, on: int, closure, k: int) -> tuple:
     if isinstance(joint, Revolute):
         x, y = closure.pins[k] if k in closure.pins else motion.point_xy(joint.links[0],
                                                                          joint.points[0])
-        return y, _mul(-1.0, x), 1.0
+        return y, times(-1.0, x), 1.0
     dx, dy = closure.guides[k] if k in closure.guides else guide_direction(joint, motion)
     if on == joint.slider:
         return dx, dy, 0.0
-    return _mul(-1.0, dx), _mul(-1.0, dy), 0.0
+    return times(-1.0, dx), times(-1.0, dy), 0.0
 
 
 def _derivatives(dyad, closure, motion: Motion, twists: dict, changes: dict,
@@ -381,19 +328,26 @@ def _derivatives(dyad, closure, motion: Motion, twists: dict, changes: dict,
     group = Group((i, j), (g, h), dyad.joints, units, usable)
     zero = (0.0, 0.0, 0.0)
     v_g, v_h = twists.get(g, zero), twists.get(h, zero)
-    group.loop = loop = tuple(_sub(a, b) for a, b in zip(v_h, v_g))
+    group.loop = loop = (minus(v_h[0], v_g[0]), minus(v_h[1], v_g[1]), minus(v_h[2], v_g[2]))
     rate_a, rate_b = group.rate(0), group.rate(1)
-    v_i = twists[i] = _advance(v_g, rate_a, units[0])
-    v_j = twists[j] = _advance(v_i, rate_b, units[1])
+    v_i = twists[i] = _advance(v_g, rate_a, units[0], motion.omega[:, i])
+    v_j = twists[j] = _advance(v_i, rate_b, units[1], motion.omega[:, j])
     # M·ṙ = A_h − A_g − V_g×V_i − V_i×V_j + V_h×V_j (ω part: α_h − α_g)
-    turn_gi, turn_ij, turn_hj = turn(v_g, v_i), turn(v_i, v_j), turn(v_h, v_j)
+    turn_ij = turn(v_i, v_j)
     a_g, a_h = changes.get(g, zero), changes.get(h, zero)
-    bias = (_add(_sub(_sub(_sub(a_h[0], a_g[0]), turn_ij[0]), turn_gi[0]), turn_hj[0]),
-            _add(_sub(_sub(_sub(a_h[1], a_g[1]), turn_ij[1]), turn_gi[1]), turn_hj[1]),
-            _sub(a_h[2], a_g[2]))
+    bias_x, bias_y = minus(minus(a_h[0], a_g[0]), turn_ij[0]), minus(minus(a_h[1], a_g[1]),
+                                                                   turn_ij[1])
+    turn_gi = (0.0, 0.0)
+    if g in twists:
+        turn_gi = turn(v_g, v_i)
+        bias_x, bias_y = minus(bias_x, turn_gi[0]), minus(bias_y, turn_gi[1])
+    if h in twists:
+        turn_hj = turn(v_h, v_j)
+        bias_x, bias_y = plus(bias_x, turn_hj[0]), plus(bias_y, turn_hj[1])
+    bias = (bias_x, bias_y, minus(a_h[2], a_g[2]))
     accel_a, accel_b = group.solve(bias, 0), group.solve(bias, 1)  # ċ is not needed
-    a_i = changes[i] = _advance(a_g, accel_a, units[0], turn_gi)
-    a_j = changes[j] = _advance(a_i, accel_b, units[1], turn_ij)
+    a_i = changes[i] = _advance(a_g, accel_a, units[0], motion.alpha[:, i], turn_gi)
+    a_j = changes[j] = _advance(a_i, accel_b, units[1], motion.alpha[:, j], turn_ij)
     _frame_motion(motion, i, v_i, a_i)
     _frame_motion(motion, j, v_j, a_j)
     return group
@@ -402,30 +356,36 @@ def _derivatives(dyad, closure, motion: Motion, twists: dict, changes: dict,
 def turn(v: tuple, w: tuple) -> tuple:
     """(x, y) of the twist cross product V×W = (ω_V·E·w − ω_W·E·v, 0): the rate of
     change of a twist W fixed in a body that moves with V (components)."""
-    return (_sub(_mul(w[2], v[1]), _mul(v[2], w[1])),
-            _sub(_mul(v[2], w[0]), _mul(w[2], v[0])))
+    return (minus(times(w[2], v[1]), times(v[2], w[1])),
+            minus(times(v[2], w[0]), times(w[2], v[0])))
 
 
-def _advance(base: tuple, rate: FloatArray, unit: tuple, extra: tuple = (0.0, 0.0)) -> tuple:
-    """base + rate·unit (+ extra in x, y), twists in components."""
-    return (_add(_add(base[0], _mul(rate, unit[0])), extra[0]),
-            _add(_add(base[1], _mul(rate, unit[1])), extra[1]),
-            _add(base[2], _mul(rate, unit[2])))
+def _advance(base: tuple, rate: FloatArray, unit: tuple, angular: FloatArray,
+             extra: tuple = (0.0, 0.0)) -> tuple:
+    """base + rate·unit (+ extra in x, y), twists in components; the ω part is written
+    into ``angular`` (the link's ω or α in the motion) and is that view."""
+    w = times(rate, unit[2])
+    if is_zero(base[2]):
+        angular[:] = w
+    else:
+        np.add(base[2], w, out=angular)
+    return (plus(plus(base[0], times(rate, unit[0])), extra[0]),
+            plus(plus(base[1], times(rate, unit[1])), extra[1]), angular)
 
 
 def _frame_motion(motion: Motion, link: int, twist: tuple, change: tuple) -> None:
     """Velocity and acceleration of a link frame's origin r from the link's twist:
-    v = v_O + ω·E·r,  a = A_O + α·E·r + ω·E·v."""
+    v = v_O + ω·E·r,  a = A_O + α·E·r + ω·E·v (ω and α are in the motion already)."""
     x, y = motion.origin[:, link, 0], motion.origin[:, link, 1]
     omega, alpha = twist[2], change[2]
     vx, vy = motion.velocity[:, link, 0], motion.velocity[:, link, 1]
-    vx[:] = _sub(twist[0], _mul(omega, y))
-    vy[:] = _add(twist[1], _mul(omega, x))
-    motion.omega[:, link] = omega
+    np.subtract(twist[0], omega * y, out=vx)
+    np.add(twist[1], omega * x, out=vy)
     ax, ay = motion.acceleration[:, link, 0], motion.acceleration[:, link, 1]
-    ax[:] = _sub(_sub(change[0], _mul(alpha, y)), _mul(omega, vy))
-    ay[:] = _add(_add(change[1], _mul(alpha, x)), _mul(omega, vx))
-    motion.alpha[:, link] = alpha
+    np.subtract(change[0], alpha * y, out=ax)
+    ax -= omega * vy
+    np.add(change[1], alpha * x, out=ay)
+    ay += omega * vx
 
 
 # -- derived quantities the reports use --------------------------------------------

@@ -29,7 +29,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade.linkage.motion import Motion, Screw, guide_direction
-from dyade.linkage.kinematics import Kinematics, _mul, crank_screw
+from dyade.linkage.dyads import (direction_xy, is_zero, minus, plus, pose, rotate_xy,
+                                  times)
+from dyade.linkage.kinematics import Kinematics, crank_screw
 from dyade.linkage.model import CRANK, FRAME, FloatArray, Mechanism, Revolute, toward_higher
 
 
@@ -65,28 +67,37 @@ def applied_loads(mechanism: Mechanism, kin: Kinematics) -> FloatArray:
     d'Alembert inertia, gravity, applied forces and moments, springs."""
     motion = kin.motion
     n = kin.crank_angle.shape[0]
-    q = np.zeros((mechanism.max_link + 1, 3, n))
+    q = np.empty((mechanism.max_link + 1, 3, n))
     gx, gy = mechanism.gravity
+    massive = set()
     for number, link in mechanism.links.items():
         if number == FRAME or not link.has_mass:
             continue
-        rx, ry = motion.rotated_xy(number, link.centre)
+        massive.add(number)
+        rx, ry = rotate_xy(motion.cos[:, number], motion.sin[:, number], link.centre)
         omega, alpha = motion.omega[:, number], motion.alpha[:, number]
-        squared = omega * omega
         # the centre's acceleration a_S, then f = m·(g − a_S) and its moment about O
         fx, fy, moment = q[number]
-        np.subtract(motion.acceleration[:, number, 0], alpha * ry, out=fx)
-        fx -= squared * rx
-        np.add(motion.acceleration[:, number, 1], alpha * rx, out=fy)
-        fy -= squared * ry
+        if is_zero(rx) and is_zero(ry):  # the centre at the frame's origin
+            fx[:] = motion.acceleration[:, number, 0]
+            fy[:] = motion.acceleration[:, number, 1]
+        else:
+            squared = omega * omega
+            np.subtract(motion.acceleration[:, number, 0], alpha * ry, out=fx)
+            fx -= squared * rx
+            np.add(motion.acceleration[:, number, 1], alpha * rx, out=fy)
+            fy -= squared * ry
         for part, g in ((fx, gx), (fy, gy)):
             if g != 0.0:
                 part -= g
             part *= -link.mass
-        np.multiply(motion.origin[:, number, 0] + rx, fy, out=moment)
-        moment -= (motion.origin[:, number, 1] + ry) * fx
+        np.multiply(plus(motion.origin[:, number, 0], rx), fy, out=moment)
+        moment -= plus(motion.origin[:, number, 1], ry) * fx
         if link.inertia:
             moment -= link.inertia * alpha
+    for number in range(q.shape[0]):
+        if number not in massive:
+            q[number] = 0.0
     add_loads_and_springs(q, mechanism, kin)
     return q
 
@@ -140,16 +151,26 @@ def add_force(wrench: FloatArray, point: FloatArray, force: FloatArray) -> None:
 def dot3(unit: Screw, wrench: FloatArray) -> FloatArray:
     """Power pairing of a unit twist (components, ``dyade.linkage.kinematics``) and a
     wrench (3, n); a new array."""
-    terms = [_mul(part, load) for part, load in zip(unit, wrench)
-             if not (isinstance(part, float) and part == 0.0)]
-    if not terms:
-        return np.zeros_like(wrench[0])
-    if len(terms) == 1:
-        return np.array(terms[0])  # a copy: the term may be a row of the wrench
-    out = terms[0] + terms[1]
-    if len(terms) == 3:
-        out += terms[2]
-    return out
+    out = _power(unit, wrench)
+    return out.copy() if np.shares_memory(out, wrench) else out
+
+
+def _power(unit: Screw, wrench: FloatArray) -> FloatArray:
+    """``dot3``, or one of the wrench's rows itself where the twist is a unit vector."""
+    x, y, w = unit
+    out = None
+    for part, load in ((x, wrench[0]), (y, wrench[1])):
+        if type(part) is float:
+            if part == 0.0:
+                continue
+            term = load if part == 1.0 else part * load
+        else:
+            term = part * load
+        out = term if out is None else out + term
+    if w != 0.0:
+        term = wrench[2] if w == 1.0 else w * wrench[2]
+        out = term if out is None else out + term
+    return np.zeros_like(wrench[0]) if out is None else out
 
 
 def solve_transposed(inverse: FloatArray, rhs0: FloatArray, rhs2: FloatArray) -> FloatArray:
@@ -177,7 +198,7 @@ def backward(mechanism: Mechanism, kin: Kinematics, q: FloatArray, rub=None) -> 
         (i, j), (g, h) = group.links, group.known
         q_i, q_j = q[i], q[j]
         s_a, _, s_c = group.units
-        w_b = group.reaction(dot3(s_a, q_i), dot3(s_c, q_j))
+        w_b = group.reaction(_power(s_a, q_i), _power(s_c, q_j))
         if rub is not None:
             w_b = rub.group(group, w_b, q_i, q_j)
         w_a = w_b - q_i  # on i from g
@@ -189,7 +210,7 @@ def backward(mechanism: Mechanism, kin: Kinematics, q: FloatArray, rub=None) -> 
         (frame if g == FRAME else q[g])[...] -= w_a
         (frame if h == FRAME else q[h])[...] += on_h
     joint = mechanism.crank.joint
-    drive = -dot3(crank_screw(mechanism), q[CRANK])
+    drive = -_power(crank_screw(mechanism), q[CRANK])
     if rub is not None:
         drive = drive - rub.crank(q[CRANK])
     w_12 = -q[CRANK]
@@ -218,14 +239,17 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
         valid &= column > band
     forces = Forces(wrenches, {}, {}, {}, drive, frame.T, valid)
     for joint in mechanism.joints:
-        higher = max(joint.links)
+        target, wrench = wrenches[joint.name]
         if isinstance(joint, Revolute):
-            forces.revolute[joint.name] = forces.on(joint.name, higher)[:2].T
+            force = wrench[:2] if target == max(joint.links) else -wrench[:2]
+            forces.revolute[joint.name] = force.T
             continue
-        slider = forces.on(joint.name, joint.slider)
-        dx, dy = guide_direction(joint, motion)
-        sx, sy = motion.point_xy(joint.slider, joint.slider_point)
-        normal = dx * slider[1] - dy * slider[0]
+        slider = wrench if target == joint.slider else -wrench
+        dx, dy = direction_xy(joint, *pose(motion, joint.carrier)[:2])
+        c, s, ox, oy = pose(motion, joint.slider)
+        rx, ry = rotate_xy(c, s, joint.slider_point)
+        sx, sy = plus(ox, rx), plus(oy, ry)
+        normal = minus(times(dx, slider[1]), times(dy, slider[0]))
         moment = slider[2] - (sx * slider[1] - sy * slider[0])
         if joint.friction > 0.0:  # friction acting H/2 off, at the guide surface
             if surface is not None and joint.name in surface:

@@ -139,14 +139,17 @@ def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: Float
     vector (wx, wy) of the same length, with its local point ``local`` on (px, py):
     the cosine and sine of its angle come without trigonometric functions."""
     beta = float(np.arctan2(arm[1], arm[0]))
-    ex, ey = wx / length, wy / length
+    cos, sin, angle = motion.cos[:, link], motion.sin[:, link], motion.angle[:, link]
+    np.arctan2(wy, wx, out=angle)
     if beta == 0.0:
-        cos, sin = ex, ey
+        np.divide(wx, length, out=cos)
+        np.divide(wy, length, out=sin)
     else:
+        ex, ey = wx / length, wy / length
         cb, sb = np.cos(beta), np.sin(beta)
-        cos, sin = ex * cb + ey * sb, ey * cb - ex * sb
-    angle = np.arctan2(wy, wx)
-    motion.set_angle(link, angle - beta if beta else angle, cos, sin)
+        np.add(ex * cb, ey * sb, out=cos)
+        np.subtract(ey * cb, ex * sb, out=sin)
+        angle -= beta
     if local[0] == 0.0 and local[1] == 0.0:
         motion.origin[:, link, 0] = px
         motion.origin[:, link, 1] = py
@@ -191,14 +194,47 @@ def rotate_xy(cos, sin, local: Vec) -> tuple:
     return cos * u - sin * v, sin * u + cos * v
 
 
+def is_zero(a) -> bool:
+    """A plain number zero (not an array of zeros)."""
+    return type(a) is float and a == 0.0
+
+
+def times(a, b):
+    """a·b for components, skipping plain zeros and ±1 (the skipped products differ
+    from the computed ones at most in the sign of a zero)."""
+    if type(a) is float:
+        if a == 0.0:
+            return 0.0
+        if a == 1.0:
+            return b
+        if a == -1.0:
+            return -b
+    if type(b) is float:
+        if b == 0.0:
+            return 0.0
+        if b == 1.0:
+            return a
+        if b == -1.0:
+            return -a
+    return a * b
+
+
 def plus(a, b):
-    """a + b, skipping a plain zero b."""
-    return a if type(b) is float and b == 0.0 else a + b
+    """a + b for components, skipping plain zeros."""
+    if type(b) is float and b == 0.0:
+        return a
+    if type(a) is float and a == 0.0:
+        return b
+    return a + b
 
 
 def minus(a, b):
-    """a − b, skipping a plain zero b."""
-    return a if type(b) is float and b == 0.0 else a - b
+    """a − b for components, skipping plain zeros."""
+    if type(b) is float and b == 0.0:
+        return a
+    if type(a) is float and a == 0.0:
+        return -b
+    return a - b
 
 
 def full(motion: Motion, value):
@@ -235,7 +271,7 @@ def turn(motion: Motion, link: int, known: int, offset: float) -> tuple:
 def direction_xy(joint: Prismatic, cos, sin) -> tuple:
     """World guide direction d of a prismatic joint from its carrier's cos and sin."""
     theta = joint.guide_angle
-    return rotate_xy(cos, sin, (np.cos(theta), np.sin(theta)))
+    return rotate_xy(cos, sin, (float(np.cos(theta)), float(np.sin(theta))))
 
 
 def guide_line(joint: Prismatic, unknown: int, motion: Motion, cos, sin) -> tuple:

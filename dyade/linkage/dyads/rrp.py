@@ -29,7 +29,7 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     offset = dyads.shift_line(offset, dx, dy, c_j, s_j, b_j)  # now n·B = offset
     arm_i = (b_i[0] - a_i[0], b_i[1] - a_i[1])
     length = float(np.hypot(*arm_i))
-    height = offset - (nx * ax + ny * ay)
+    height = dyads.minus(offset, dyads.plus(dyads.times(nx, ax), dyads.times(ny, ay)))
     along = length ** 2 - height ** 2
     closes = along >= -1e-12 * length ** 2
     np.maximum(along, 0.0, out=along)
@@ -38,14 +38,14 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     np.sqrt(along, out=along)
     if dyad.variant < 0:
         np.negative(along, out=along)
-    bx = (ax + height * nx) + along * dx
-    by = (ay + height * ny) + along * dy
+    bx = dyads.plus(dyads.plus(ax, dyads.times(height, nx)), dyads.times(along, dx))
+    by = dyads.plus(dyads.plus(ay, dyads.times(height, ny)), dyads.times(along, dy))
     abx, aby = bx - ax, by - ay
     dyads.orient(motion, i, abx, aby, arm_i, length, ax, ay, a_i)
     dyads.place_origin(motion, j, bx, by, c_j, s_j, b_j)
     # μ between B − A and the guide normal n (|n| = 1)
-    sin = np.abs(abx * ny - aby * nx)
-    transmission = np.arctan2(sin, abx * nx + aby * ny)
+    sin = np.abs(dyads.minus(dyads.times(abx, ny), dyads.times(aby, nx)))
+    transmission = np.arctan2(sin, dyads.plus(dyads.times(abx, nx), dyads.times(aby, ny)))
     sin /= length
     return dyads.Closure(closes, transmission, sin,
                          dyads.same_pins({0: (joint_a, i, (ax, ay))}), {2: (dx, dy)})
