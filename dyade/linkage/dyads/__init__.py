@@ -33,7 +33,7 @@ from typing import Callable, NamedTuple
 import numpy as np
 
 from dyade.linkage.motion import Motion, cross, dot, perp
-from dyade.linkage.model import FRAME, FloatArray, Prismatic, Revolute, Vec
+from dyade.linkage.model import CRANK, FRAME, FloatArray, Prismatic, Revolute, Vec
 
 SINGULAR_SIN = 1e-10  # [-] |sin μ| below this: the closure Jacobian is singular
 
@@ -130,7 +130,9 @@ def pin_xy(joint: Revolute, unknown: int, motion: Motion) -> tuple[tuple, Vec]:
     known, local, other = (q, u_q, u_p) if p == unknown else (p, u_p, u_q)
     if known == FRAME:
         return (float(local[0]), float(local[1])), other
-    return motion.point_xy(known, local), other
+    cos, sin, ox, oy = pose(motion, known)
+    rx, ry = rotate_xy(cos, sin, local)
+    return (plus(ox, rx), plus(oy, ry)), other
 
 
 def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: FloatArray,
@@ -177,11 +179,14 @@ def ends(joint: Revolute, first: int) -> tuple[Vec, Vec]:
 # what is known to be zero. The sums are written in the order of the vector forms they
 # replace (``dot``, ``cross``, ``Motion.point``), so the positions are the same to the bit.
 def pose(motion: Motion, link: int) -> tuple:
-    """cos φ, sin φ and the origin (x, y) of a link; plain numbers for the frame."""
+    """cos φ, sin φ and the origin (x, y) of a link; plain numbers for the frame, and
+    for the crank's origin (its fixed pivot, ``dyade.linkage.kinematics.crank_motion``)."""
     if link == FRAME:
         return 1.0, 0.0, 0.0, 0.0
-    return (motion.cos[:, link], motion.sin[:, link], motion.origin[:, link, 0],
-            motion.origin[:, link, 1])
+    cos, sin = motion.cos[:, link], motion.sin[:, link]
+    if link == CRANK and motion.origin.shape[0]:
+        return cos, sin, float(motion.origin[0, CRANK, 0]), float(motion.origin[0, CRANK, 1])
+    return cos, sin, motion.origin[:, link, 0], motion.origin[:, link, 1]
 
 
 def rotate_xy(cos, sin, local: Vec) -> tuple:
