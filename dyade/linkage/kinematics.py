@@ -45,6 +45,9 @@ def _cross(u, v):
     return minus(times(u[0], v[1]), times(u[1], v[0]))
 
 
+TINY_DET = 1e-300  # [m²] below this the loop matrix counts as singular (1 µm links: 1e-22)
+
+
 def _scaled(value, scale: FloatArray, negated: FloatArray):
     """An entry of M⁻¹ from its cofactor and the row's factor (and its negative): a
     plain 0.0 stays one, ±1 gives the factor itself."""
@@ -93,7 +96,9 @@ class Group:
         det = plus(times(x0, rows[0][0]), times(y0, rows[0][1]))
         if w0 != 0.0:
             det = plus(det, times(w0, rows[0][2]))
-        # 1/det where usable, NaN elsewhere (a dead centre's det is 0)
+        # 1/det where usable, NaN elsewhere; where |det| is below TINY_DET (lengths far
+        # below a micrometre: its inverse would overflow) the dyad counts as singular
+        self.usable = usable = usable & (np.abs(det) >= TINY_DET)
         scale = np.full(usable.shape[0], np.nan)
         np.divide(1.0, det, out=scale, where=usable)
         flipped = -scale  # M = [S_A, S_B, −S_C]: the last row changes sign
@@ -103,14 +108,16 @@ class Group:
 
     def solve(self, rhs: tuple, k: int) -> FloatArray:
         """Row k of M⁻¹·rhs (``solve_rows``); ``rhs`` in components (x, y, ω)."""
-        total = None
+        total, given = None, False
         for entry, part in zip(self.entries[k], rhs):
-            if type(part) is float and part == 0.0 or type(entry) is float:
+            if type(part) is float and part == 0.0:
                 continue
-            term = entry * part
-            total = term if total is None else total + term
-        if total is None:  # no term: zero, NaN where the dyad is not usable
-            return np.where(self.usable, 0.0, np.nan)
+            given = True
+            if type(entry) is not float:
+                term = entry * part
+                total = term if total is None else total + term
+        if total is None:  # zero (an entry that vanishes is NaN where not usable)
+            return np.where(self.usable, 0.0, np.nan) if given else np.zeros(self.usable.shape)
         return total
 
     def rate(self, k: int) -> FloatArray:
@@ -294,12 +301,12 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
             conditioning[col, ~ok] = np.nan
             for link in dyad.links:
                 motion.invalidate(link, ~ok)
-        np.less(closure.conditioning, dyad_kinds.SINGULAR_SIN, out=singular[col])
-        singular[col] &= ok
-        usable = ok & ~singular[col]
+        usable = ok & ~(closure.conditioning < dyad_kinds.SINGULAR_SIN)
         closes[col] = closure.closes
-        groups.append(_derivatives(dyad, closure, motion, twists, changes, usable))
-        upstream_ok = usable
+        group = _derivatives(dyad, closure, motion, twists, changes, usable)
+        np.logical_and(ok, ~group.usable, out=singular[col])
+        groups.append(group)
+        upstream_ok = group.usable
     return Kinematics(crank_angle, motion, closes.T, transmission.T, singular.T,
                       conditioning.T, groups, upstream_ok)
 

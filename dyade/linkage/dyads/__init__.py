@@ -135,6 +135,16 @@ def pin_xy(joint: Revolute, unknown: int, motion: Motion) -> tuple[tuple, Vec]:
     return (plus(ox, rx), plus(oy, ry)), other
 
 
+def pin(joint: Revolute, unknown: int, motion: Motion) -> tuple[tuple, Vec]:
+    """``pin_xy`` with a frame point taken as the frame's origin plus the point (a zero
+    coordinate is +0.0, as ``Motion.point`` gives it: the sign of a zero decides the
+    branch of an arctan2 at ±180°)."""
+    (x, y), other = pin_xy(joint, unknown, motion)
+    if type(x) is float:
+        return (0.0 + x, 0.0 + y), other
+    return (x, y), other
+
+
 def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: FloatArray,
            length: float, px, py, local: Vec) -> None:
     """Place a link whose local vector ``arm`` (of ``length``) lies along the world

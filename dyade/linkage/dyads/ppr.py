@@ -20,7 +20,7 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     g, _ = dyad.known
     joint_a, joint_b, joint_c = dyad.joints
     c_i, s_i = dyads.carry(joint_a, g, i, motion)
-    (cx, cy), c_j = dyads.pin_xy(joint_c, j, motion)
+    (cx, cy), c_j = dyads.pin(joint_c, j, motion)
     cos_j, sin_j = dyads.carry(joint_b, i, j, motion)
     dyads.place_origin(motion, j, cx, cy, cos_j, sin_j, c_j)
     (dax, day), e_a = dyads.guide_line(joint_a, i, motion, c_i, s_i)

@@ -25,7 +25,7 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     results stay the same to the bit.)"""
     i, j = dyad.links
     joint_a, joint_b, joint_c = dyad.joints
-    pins = {i: dyads.pin_xy(joint_a, i, motion), j: dyads.pin_xy(joint_c, j, motion)}
+    pins = {i: dyads.pin(joint_a, i, motion), j: dyads.pin(joint_c, j, motion)}
     c, s = joint_b.carrier, joint_b.slider
     ((ocx, ocy), p_c), ((osx, osy), p_s) = pins[c], pins[s]
     theta, kappa = joint_b.guide_angle, joint_b.relative_angle
@@ -34,7 +34,8 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     c0 = float(n_local @ np.subtract(joint_b.guide_point, p_c) - n_local @ slider_arm)
     dx, dy = dyads.full(motion, osx - ocx), dyads.full(motion, osy - ocy)
     rho = np.hypot(dx, dy)
-    with np.errstate(divide="ignore", invalid="ignore"):  # pivots on top of each other
+    # pivots on top of each other (or a subnormal distance apart): no closure
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         ratio = c0 / rho
     # lever arm: distance along the guide between the two pivots; 0 at the dead centre
     # where the slider point passes the guide link's pivot foot point (|ratio| = 1: the

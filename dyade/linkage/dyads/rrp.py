@@ -19,7 +19,7 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     i, j = dyad.links
     _, h = dyad.known
     joint_a, joint_b, joint_c = dyad.joints
-    (ax, ay), a_i = dyads.pin_xy(joint_a, i, motion)
+    (ax, ay), a_i = dyads.pin(joint_a, i, motion)
     if h == FRAME:  # A on the frame too: a constant group
         ax, ay = dyads.full(motion, ax), dyads.full(motion, ay)
     b_i, b_j = dyads.ends(joint_b, i)
