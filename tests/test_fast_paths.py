@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from hypothesis import assume, given, reject
+from hypothesis import strategies as st
 
 from dyade.errors import InputError
 from dyade.linkage import kinematics, kinetostatics
@@ -79,6 +80,27 @@ def test_shipped_closures_are_the_vector_closures(name):
     from dyade.files import mechanism as toml_input
 
     _same_closures(toml_input.read_mechanism(shipped(name)))
+
+
+@pytest.mark.parametrize("kind", ["RRP", "PRP"])
+def test_middle_pin_off_the_origins_is_the_vector_closure(kind):
+    """The readers put pin B at the origin of link j (RRP) or of both links (PRP); a
+    mechanism built in Python may put it anywhere: the line through B moves with it."""
+    from dataclasses import replace
+
+    @given(data=dyad_files(kind=kind), shift=st.tuples(*[st.floats(-1.0, 1.0)] * 4))
+    def check(data, shift):
+        mechanism = mechanism_from(data)
+        (dyad,) = mechanism.dyads
+        joint_a, joint_b, joint_c = dyad.joints
+        size = mechanism.crank.length
+        (u_i, u_j) = joint_b.points
+        points = ((u_i[0] + shift[0] * size, u_i[1] + shift[1] * size) if kind == "PRP" else u_i,
+                  (shift[2] * size, shift[3] * size))
+        moved = replace(dyad, joints=(joint_a, replace(joint_b, points=points), joint_c))
+        _same_closures(replace(mechanism, dyads=(moved,)))
+
+    check()
 
 
 def _same_solves(mechanism) -> None:
