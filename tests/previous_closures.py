@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.linkage.dyads import SINGULAR_SIN, angle_between, polar_angle
+from dyade.linkage.dyads import SINGULAR_SIN, angle_between, orient, polar_angle
 from dyade.linkage.motion import cross, dot, perp, rotate
 
 
@@ -56,25 +56,6 @@ def _solve_lines(n1, c1, n2, c2):
     return point, sin
 
 
-def _orient(motion, link, wx, wy, arm, length, px, py, local):
-    beta = float(np.arctan2(arm[1], arm[0]))
-    ex, ey = wx / length, wy / length
-    if beta == 0.0:
-        cos, sin = ex, ey
-    else:
-        cb, sb = np.cos(beta), np.sin(beta)
-        cos, sin = ex * cb + ey * sb, ey * cb - ex * sb
-    angle = np.arctan2(wy, wx)
-    motion.set_angle(link, angle - beta if beta else angle, cos, sin)
-    if local[0] == 0.0 and local[1] == 0.0:
-        motion.origin[:, link, 0] = px
-        motion.origin[:, link, 1] = py
-    else:
-        rx, ry = motion.rotated_xy(link, local)
-        motion.origin[:, link, 0] = px - rx
-        motion.origin[:, link, 1] = py - ry
-
-
 def rrp(dyad, motion):
     i, j = dyad.links
     _, h = dyad.known
@@ -93,7 +74,7 @@ def rrp(dyad, motion):
     along = np.sqrt(np.where(closes, np.maximum(along_sq, 0.0), np.nan))
     b = a + height[:, None] * normal + dyad.variant * along[:, None] * direction
     ab = b - a
-    _orient(motion, i, ab[:, 0], ab[:, 1], arm_i, length, a[:, 0], a[:, 1], a_i)
+    orient(motion, i, ab[:, 0], ab[:, 1], arm_i, length, a[:, 0], a[:, 1], a_i)  # as RRR's
     motion.origin[:, j] = b - motion.rotated(j, b_j)
     transmission = angle_between(ab, normal)
     return closes, transmission, np.abs(np.sin(transmission))

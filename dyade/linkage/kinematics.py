@@ -51,14 +51,9 @@ TINY_DET = 1e-300  # [m²] below this the loop matrix counts as singular (1 µm 
 def _scaled(value, scale: FloatArray, negated: FloatArray):
     """An entry of M⁻¹ from its cofactor and the row's factor (and its negative): a
     plain 0.0 stays one, ±1 gives the factor itself."""
-    if type(value) is float:
-        if value == 0.0:
-            return 0.0
-        if value == 1.0:
-            return scale
-        if value == -1.0:
-            return negated
-    return value * scale
+    if type(value) is float and (value == 1.0 or value == -1.0):
+        return scale if value == 1.0 else negated
+    return times(value, scale)
 
 
 class Group:

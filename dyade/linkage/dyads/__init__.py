@@ -214,23 +214,21 @@ def is_zero(a) -> bool:
     return type(a) is float and a == 0.0
 
 
+def _scalar_times(c: float, x):
+    if c == 0.0:
+        return 0.0
+    if c == 1.0:
+        return x
+    return -x if c == -1.0 else c * x
+
+
 def times(a, b):
     """a·b for components, skipping plain zeros and ±1 (the skipped products differ
     from the computed ones at most in the sign of a zero)."""
     if type(a) is float:
-        if a == 0.0:
-            return 0.0
-        if a == 1.0:
-            return b
-        if a == -1.0:
-            return -b
+        return _scalar_times(a, b)
     if type(b) is float:
-        if b == 0.0:
-            return 0.0
-        if b == 1.0:
-            return a
-        if b == -1.0:
-            return -a
+        return _scalar_times(b, a)
     return a * b
 
 
