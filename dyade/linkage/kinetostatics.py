@@ -244,7 +244,9 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
             force = wrench[:2] if target == max(joint.links) else -wrench[:2]
             forces.revolute[joint.name] = force.T
             continue
-        slider = wrench if target == joint.slider else -wrench
+        # on the slider; frictionless, the sign of the wrench goes into the result's sign
+        flip = target != joint.slider and joint.friction == 0.0
+        slider = -wrench if target != joint.slider and not flip else wrench  # (3, n)
         dx, dy = direction_xy(joint, *pose(motion, joint.carrier)[:2])
         c, s, ox, oy = pose(motion, joint.slider)
         rx, ry = rotate_xy(c, s, joint.slider_point)
@@ -257,7 +259,7 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
             else:
                 along = dx * slider[0] + dy * slider[1]
             moment = moment - np.sign(normal) * 0.5 * joint.slider_height * along
-        sign = toward_higher(joint.name, joint.slider)
+        sign = toward_higher(joint.name, joint.slider) * (-1.0 if flip else 1.0)
         forces.normal[joint.name] = sign * normal
         forces.moment[joint.name] = sign * moment
     return forces
