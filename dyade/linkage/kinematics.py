@@ -82,12 +82,9 @@ class Group:
         self._inverse = None
         # the rows of adj [S_A, S_B, S_C] are S_B × S_C, S_C × S_A, S_A × S_B (``inverse3``)
         (x0, y0, w0), (x1, y1, w1), (x2, y2, w2) = units
-        rows = ((minus(times(w2, y1), times(w1, y2)), minus(times(w1, x2), times(w2, x1)),
-                 minus(times(x1, y2), times(y1, x2))),
-                (minus(times(w0, y2), times(w2, y0)), minus(times(w2, x0), times(w0, x2)),
-                 minus(times(x2, y0), times(y2, x0))),
-                (minus(times(w1, y0), times(w0, y1)), minus(times(w0, x1), times(w1, x0)),
-                 minus(times(x0, y1), times(y0, x1))))
+        rows = ((_comb(w2, y1, w1, y2), _comb(w1, x2, w2, x1), _cross((x1, y1), (x2, y2))),
+                (_comb(w0, y2, w2, y0), _comb(w2, x0, w0, x2), _cross((x2, y2), (x0, y0))),
+                (_comb(w1, y0, w0, y1), _comb(w0, x1, w1, x0), _cross((x0, y0), (x1, y1))))
         det = plus(times(x0, rows[0][0]), times(y0, rows[0][1]))
         if w0 != 0.0:
             det = plus(det, times(w0, rows[0][2]))

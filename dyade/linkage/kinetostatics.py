@@ -67,13 +67,11 @@ def applied_loads(mechanism: Mechanism, kin: Kinematics) -> FloatArray:
     d'Alembert inertia, gravity, applied forces and moments, springs."""
     motion = kin.motion
     n = kin.crank_angle.shape[0]
-    q = np.empty((mechanism.max_link + 1, 3, n))
+    q = np.zeros((mechanism.max_link + 1, 3, n))
     gx, gy = mechanism.gravity
-    massive = set()
     for number, link in mechanism.links.items():
         if number == FRAME or not link.has_mass:
             continue
-        massive.add(number)
         rx, ry = rotate_xy(motion.cos[:, number], motion.sin[:, number], link.centre)
         omega, alpha = motion.omega[:, number], motion.alpha[:, number]
         # the centre's acceleration a_S, then f = m·(g − a_S) and its moment about O
@@ -95,9 +93,6 @@ def applied_loads(mechanism: Mechanism, kin: Kinematics) -> FloatArray:
         moment -= plus(motion.origin[:, number, 1], ry) * fx
         if link.inertia:
             moment -= link.inertia * alpha
-    for number in range(q.shape[0]):
-        if number not in massive:
-            q[number] = 0.0
     add_loads_and_springs(q, mechanism, kin)
     return q
 
