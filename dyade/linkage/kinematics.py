@@ -15,8 +15,17 @@ more, with the twist cross product V×W (``turn``) for the moving joint axes,
     A_i = A_g + ȧ·S_A + V_g×V_i,   A_j = A_i + ḃ·S_B + V_i×V_j,
 
 A being the time derivative of the twist (its ω part is α). det M = 0 exactly where the
-dyad is at a dead centre or blocked. M's inverse is kept: the force stage solves the
-transposed system with it. Loops run over dyads, never over crank angles.
+dyad is at a dead centre or blocked. Loops run over dyads, never over crank angles.
+
+The ω parts of the unit twists are constants (1 for a revolute joint, 0 for a prismatic
+one), so M's determinant and the solutions are written by Cramer's rule in components,
+det M = −(w_A·S_B×S_C + w_B·S_C×S_A + w_C·S_A×S_B) with × the planar cross product of
+the (x, y) parts, and the terms that vanish for a kind are never computed: each kind's
+closed form comes out of the one formula (``Group``). A component is an (n,) array, or
+a plain number where it is the same at every position (the frame at rest, a crank turning
+about the origin, a guide on the frame). The force stage solves the transposed system
+with the same determinant; M⁻¹ itself is formed only on demand (``Group.inverse``: the
+friction and self-locking stages use its rows).
 """
 
 from __future__ import annotations
@@ -26,36 +35,120 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade.linkage import dyads as dyad_kinds
-from dyade.linkage.motion import Motion, Screw, screw
+from dyade.linkage.dyads import is_zero, minus, plus, times
+from dyade.linkage.motion import Motion, Screw, guide_direction
 from dyade.linkage.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
 
 
-@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
-class Group:
-    """One dyad's loop, as the force stage needs it."""
+def _cross(u, v):
+    """u_x·v_y − u_y·v_x of the (x, y) parts of two screws (components)."""
+    return minus(times(u[0], v[1]), times(u[1], v[0]))
 
-    links: tuple[int, int]
-    """(i, j)"""
-    known: tuple[int, int]
-    """(g, h)"""
-    joints: tuple[Joint, Joint, Joint]
-    """A, B, C"""
-    on: tuple[int, int, int]
-    """the link each joint's twist and wrench refer to: (i, j, j)"""
-    screws: tuple[Screw, Screw, Screw]
-    """unit twists S_A (i rel. g), S_B (j rel. i), S_C (j rel. h)"""
-    inverse: FloatArray
-    """(3, 3, n): rows of M⁻¹, M = [S_A, S_B, −S_C]; NaN where the dyad is not usable"""
-    loop: tuple
-    """V_h − V_g, the right-hand side of the velocity loop (components; 0.0 for zero)"""
-    rates: list
-    """joint rates a, b, c (n,) along S_A, S_B, S_C [rad/s or m/s]; c on demand"""
+
+TINY_DET = 1e-300  # [m²] below this the loop matrix counts as singular (1 µm links: 1e-22)
+
+
+def _scaled(value, scale: FloatArray, negated: FloatArray):
+    """An entry of M⁻¹ from its cofactor and the row's factor (and its negative): a
+    plain 0.0 stays one, ±1 gives the factor itself."""
+    if type(value) is float and (value == 1.0 or value == -1.0):
+        return scale if value == 1.0 else negated
+    return times(value, scale)
+
+
+class Group:
+    """One dyad's loop M·r = V_h − V_g (module docstring), as the force stage needs it.
+
+    Attributes: ``links`` (i, j); ``known`` (g, h); ``joints`` A, B, C; ``on``, the link
+    each joint's twist and wrench refer to, (i, j, j); ``units``, the unit twists S_A
+    (i rel. g), S_B (j rel. i), S_C (j rel. h) as components (x, y, ω) with ω a plain
+    1.0 or 0.0 (``screws`` gives arrays); ``usable``, (n,) bool, where the dyad closes
+    and is not singular; ``loop``, V_h − V_g (components); ``rates``, the joint rates
+    a, b, c (n,) along S_A, S_B, S_C [rad/s or m/s], on demand (``rate``);
+    ``entries``, the entries (k, c) of M⁻¹, (n,) arrays or plain zeros, NaN where the
+    dyad is not usable, each formed as ``inverse3`` forms it.
+    """
+
+    __slots__ = ("links", "known", "joints", "on", "units", "usable", "loop", "rates",
+                 "entries", "_inverse")
+
+    def __init__(self, links: tuple[int, int], known: tuple[int, int],
+                 joints: tuple[Joint, Joint, Joint], units: tuple, usable: FloatArray) -> None:
+        self.links, self.known, self.joints, self.units = links, known, joints, units
+        self.on = (links[0], links[1], links[1])
+        self.usable = usable
+        self.loop = (0.0, 0.0, 0.0)
+        self.rates = [None, None, None]
+        self._inverse = None
+        # the rows of adj [S_A, S_B, S_C] are S_B × S_C, S_C × S_A, S_A × S_B (``inverse3``)
+        (x0, y0, w0), (x1, y1, w1), (x2, y2, w2) = units
+        rows = ((_comb(w2, y1, w1, y2), _comb(w1, x2, w2, x1), _cross((x1, y1), (x2, y2))),
+                (_comb(w0, y2, w2, y0), _comb(w2, x0, w0, x2), _cross((x2, y2), (x0, y0))),
+                (_comb(w1, y0, w0, y1), _comb(w0, x1, w1, x0), _cross((x0, y0), (x1, y1))))
+        det = plus(times(x0, rows[0][0]), times(y0, rows[0][1]))
+        if w0 != 0.0:
+            det = plus(det, times(w0, rows[0][2]))
+        # 1/det where usable, NaN elsewhere; where |det| is below TINY_DET (lengths far
+        # below a micrometre: its inverse would overflow) the dyad counts as singular
+        self.usable = usable = usable & (np.abs(det) >= TINY_DET)
+        scale = np.full(usable.shape[0], np.nan)
+        np.divide(1.0, det, out=scale, where=usable)
+        flipped = -scale  # M = [S_A, S_B, −S_C]: the last row changes sign
+        self.entries = [[_scaled(value, scale, flipped) for value in rows[0]],
+                        [_scaled(value, scale, flipped) for value in rows[1]],
+                        [_scaled(value, flipped, scale) for value in rows[2]]]
+
+    def solve(self, rhs: tuple, k: int) -> FloatArray:
+        """Row k of M⁻¹·rhs (``solve_rows``); ``rhs`` in components (x, y, ω)."""
+        total, given = None, False
+        for entry, part in zip(self.entries[k], rhs):
+            if type(part) is float and part == 0.0:
+                continue
+            given = True
+            if type(entry) is not float:
+                term = entry * part
+                total = term if total is None else total + term
+        if total is None:  # zero (an entry that vanishes is NaN where not usable)
+            return np.where(self.usable, 0.0, np.nan) if given else np.zeros(self.usable.shape)
+        return total
 
     def rate(self, k: int) -> FloatArray:
         """Joint rate k (0 A, 1 B, 2 C) over the sweep."""
         if self.rates[k] is None:
-            self.rates[k] = solve_rows(self.inverse, self.loop, (k,))[0]
+            self.rates[k] = self.solve(self.loop, k)
         return self.rates[k]
+
+    def reaction(self, rhs0: FloatArray, rhs2: FloatArray) -> FloatArray:
+        """(3, n) M⁻ᵀ·(rhs0, 0, rhs2) (``kinetostatics.solve_transposed``): the load W_B
+        of the force stage."""
+        out = np.empty((3, self.usable.shape[0]))
+        for row, first, second in zip(out, self.entries[0], self.entries[2]):
+            if type(first) is float:
+                np.multiply(second, rhs2, out=row)
+            else:
+                np.multiply(first, rhs0, out=row)
+                if type(second) is not float:
+                    row += second * rhs2
+        return out
+
+    @property
+    def screws(self) -> tuple:
+        """The unit twists S_A, S_B, S_C with (n,) arrays for x and y."""
+        n = self.usable.shape[0]
+        return tuple((np.broadcast_to(x, (n,)), np.broadcast_to(y, (n,)), w)
+                     for x, y, w in self.units)
+
+    @property
+    def inverse(self) -> FloatArray:
+        """(3, 3, n): rows of M⁻¹, M = [S_A, S_B, −S_C]; NaN where the dyad is not usable
+        (formed on first use)."""
+        if self._inverse is None:
+            self._inverse = np.empty((3, 3, self.usable.shape[0]))
+            for k, row in enumerate(self.entries):
+                for c, entry in enumerate(row):
+                    self._inverse[k, c] = (entry if type(entry) is not float
+                                           else np.where(self.usable, 0.0, np.nan))
+        return self._inverse
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
@@ -90,7 +183,9 @@ def crank_motion(mechanism: Mechanism, crank_angle: FloatArray,
     n = crank_angle.shape[0]
     motion = Motion.at_rest(n, mechanism.max_link + 1, placed)
     motion.origin[:, CRANK] = mechanism.crank.pivot
-    motion.set_angle(CRANK, crank_angle)
+    motion.angle[:, CRANK] = crank_angle
+    np.cos(crank_angle, out=motion.cos[:, CRANK])
+    np.sin(crank_angle, out=motion.sin[:, CRANK])
     motion.velocity[:, CRANK] = 0.0
     motion.omega[:, CRANK] = mechanism.crank.speed if crank_speed is None else crank_speed
     motion.acceleration[:, CRANK] = 0.0  # the pivot (the crank frame's origin) stays put
@@ -102,12 +197,6 @@ def crank_screw(mechanism: Mechanism) -> Screw:
     """Unit twist of joint (1,2): the crank turning about its fixed pivot."""
     x, y = mechanism.crank.pivot
     return y, -x, 1.0
-
-
-def turn(v: FloatArray, w: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """(x, y) of the twist cross product V×W = (ω_V·E·w − ω_W·E·v, 0): the rate of
-    change of a twist W fixed in a body that moves with V."""
-    return w[2] * v[1] - v[2] * w[1], v[2] * w[0] - w[2] * v[0]
 
 
 def _comb(p: float, a: FloatArray, q: float, b: FloatArray):
@@ -177,122 +266,125 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
     motion = crank_motion(mechanism, crank_angle, tuple(mechanism.moving_links), crank_speed,
                           crank_acceleration)
     count = len(mechanism.dyads)
-    closes = np.ones((n, count), dtype=bool)
-    transmission = np.full((n, count), np.nan)
-    singular = np.zeros((n, count), dtype=bool)
-    conditioning = np.full((n, count), np.nan)
-    # twists of the moving links and their time derivatives; the frame's are zero
-    unit = np.array(crank_screw(mechanism))[:, None]
-    if crank_speed is None:
-        twists = {CRANK: np.repeat(mechanism.crank.speed * unit, n, axis=1)}
-    else:
-        twists = {CRANK: unit * np.broadcast_to(crank_speed, (n,))}
-    changes = {CRANK: None}  # constant speed about a fixed pivot: zero
+    # per dyad and position, each dyad's column contiguous (the results are (n, dyads))
+    closes, singular = np.empty((count, n), dtype=bool), np.empty((count, n), dtype=bool)
+    transmission, conditioning = np.empty((count, n)), np.empty((count, n))
+    # twists of the moving links and their time derivatives, in components; the frame's
+    # are zero (not in the dicts)
+    px, py = (float(v) for v in mechanism.crank.pivot)
+    speed = mechanism.crank.speed if crank_speed is None else np.broadcast_to(crank_speed, (n,))
+    twists = {CRANK: (times(py, speed), times(-px, speed), speed)}
+    changes = {}  # constant speed about a fixed pivot: zero
     if crank_acceleration is not None and np.any(crank_acceleration):
-        changes[CRANK] = unit * np.broadcast_to(crank_acceleration, (n,))
+        rate = np.broadcast_to(crank_acceleration, (n,))
+        changes[CRANK] = (times(py, rate), times(-px, rate), rate)
     groups = []
     upstream_ok = np.ones(n, dtype=bool)
     for col, dyad in enumerate(mechanism.dyads):
         closure = dyad.kind.close(dyad, motion)
-        ok = closure.closes & upstream_ok
-        closes[:, col] = closure.closes
-        transmission[:, col] = closure.transmission
+        ok = np.logical_and(closure.closes, upstream_ok, out=closes[col])
         if closure.lever is not None:  # a length scale the angle alone does not see
             closure.conditioning = closure.conditioning * np.minimum(
                 1.0, closure.lever / mechanism.crank.length)
-        conditioning[:, col] = closure.conditioning
+        transmission[col] = closure.transmission
+        conditioning[col] = closure.conditioning
         if not ok.all():
-            transmission[~ok, col] = np.nan
-            conditioning[~ok, col] = np.nan
+            transmission[col, ~ok] = np.nan
+            conditioning[col, ~ok] = np.nan
             for link in dyad.links:
                 motion.invalidate(link, ~ok)
-        singular[:, col] = ok & (closure.conditioning < dyad_kinds.SINGULAR_SIN)
-        usable = ok & ~singular[:, col]
-        groups.append(_derivatives(dyad, closure, motion, twists, changes, usable))
-        upstream_ok = usable
-    return Kinematics(crank_angle, motion, closes, transmission, singular, conditioning,
-                      groups, upstream_ok)
+        usable = ok & ~(closure.conditioning < dyad_kinds.SINGULAR_SIN)
+        closes[col] = closure.closes
+        group = _derivatives(dyad, closure, motion, twists, changes, usable)
+        np.logical_and(ok, ~group.usable, out=singular[col])
+        groups.append(group)
+        upstream_ok = group.usable
+    return Kinematics(crank_angle, motion, closes.T, transmission.T, singular.T,
+                      conditioning.T, groups, upstream_ok)
+
+
+def _unit(joint: Joint, motion: Motion, on: int, closure, k: int) -> tuple:
+    """Unit twist of joint k of a dyad (``dyade.linkage.motion.screw``) in components,
+    from the closure's pin or guide where it found one."""
+    if isinstance(joint, Revolute):
+        x, y = closure.pins[k] if k in closure.pins else motion.point_xy(joint.links[0],
+                                                                         joint.points[0])
+        return y, times(-1.0, x), 1.0
+    dx, dy = closure.guides[k] if k in closure.guides else guide_direction(joint, motion)
+    if on == joint.slider:
+        return dx, dy, 0.0
+    return times(-1.0, dx), times(-1.0, dy), 0.0
 
 
 def _derivatives(dyad, closure, motion: Motion, twists: dict, changes: dict,
                  usable: FloatArray) -> Group:
     """Twists and their rates of links i and j (module docstring); writes the link
     frames' velocities and accelerations into ``motion``. ``twists`` and ``changes``
-    map link -> (3, n); the frame (and a zero change, None) is not in them."""
+    map link -> components (x, y, ω); the frame (and a zero change) is not in them."""
     (i, j), (g, h) = dyad.links, dyad.known
-    screws = tuple(screw(joint, motion, on, closure.pins.get(k))
-                   for k, (joint, on) in enumerate(zip(dyad.joints, (i, j, j))))
-    inverse = inverse3(*screws, usable)
-    v_g, v_h = twists.get(g), twists.get(h)
-    loop = _difference(v_h, v_g)
-    rate_a, rate_b = solve_rows(inverse, loop, (0, 1))
-    v_i = twists[i] = _advance(v_g, rate_a, screws[0])
-    v_j = twists[j] = _advance(v_i, rate_b, screws[1])
+    units = tuple(_unit(joint, motion, on, closure, k)
+                  for k, (joint, on) in enumerate(zip(dyad.joints, (i, j, j))))
+    group = Group((i, j), (g, h), dyad.joints, units, usable)
+    zero = (0.0, 0.0, 0.0)
+    v_g, v_h = twists.get(g, zero), twists.get(h, zero)
+    group.loop = loop = (minus(v_h[0], v_g[0]), minus(v_h[1], v_g[1]), minus(v_h[2], v_g[2]))
+    rate_a, rate_b = group.rate(0), group.rate(1)
+    v_i = twists[i] = _advance(v_g, rate_a, units[0], motion.omega[:, i])
+    v_j = twists[j] = _advance(v_i, rate_b, units[1], motion.omega[:, j])
     # M·ṙ = A_h − A_g − V_g×V_i − V_i×V_j + V_h×V_j (ω part: α_h − α_g)
     turn_ij = turn(v_i, v_j)
-    bias = list(_difference(changes.get(h), changes.get(g)))
-    bias[0], bias[1] = bias[0] - turn_ij[0], bias[1] - turn_ij[1]
-    turn_gi = None
-    if v_g is not None:
+    a_g, a_h = changes.get(g, zero), changes.get(h, zero)
+    bias_x, bias_y = minus(minus(a_h[0], a_g[0]), turn_ij[0]), minus(minus(a_h[1], a_g[1]),
+                                                                   turn_ij[1])
+    turn_gi = (0.0, 0.0)
+    if g in twists:
         turn_gi = turn(v_g, v_i)
-        bias[0], bias[1] = bias[0] - turn_gi[0], bias[1] - turn_gi[1]
-    if v_h is not None:
+        bias_x, bias_y = minus(bias_x, turn_gi[0]), minus(bias_y, turn_gi[1])
+    if h in twists:
         turn_hj = turn(v_h, v_j)
-        bias[0], bias[1] = bias[0] + turn_hj[0], bias[1] + turn_hj[1]
-    accel_a, accel_b = solve_rows(inverse, bias, (0, 1))  # ċ is not needed
-    a_i = changes[i] = _advance(changes.get(g), accel_a, screws[0], turn_gi)
-    a_j = changes[j] = _advance(a_i, accel_b, screws[1], turn_ij)
+        bias_x, bias_y = plus(bias_x, turn_hj[0]), plus(bias_y, turn_hj[1])
+    bias = (bias_x, bias_y, minus(a_h[2], a_g[2]))
+    accel_a, accel_b = group.solve(bias, 0), group.solve(bias, 1)  # ċ is not needed
+    a_i = changes[i] = _advance(a_g, accel_a, units[0], motion.alpha[:, i], turn_gi)
+    a_j = changes[j] = _advance(a_i, accel_b, units[1], motion.alpha[:, j], turn_ij)
     _frame_motion(motion, i, v_i, a_i)
     _frame_motion(motion, j, v_j, a_j)
-    return Group((i, j), (g, h), dyad.joints, (i, j, j), screws, inverse, loop,
-                 [rate_a, rate_b, None])
+    return group
 
 
-def _difference(a: FloatArray | None, b: FloatArray | None) -> tuple:
-    """Components of a − b for twists (3, n); None and 0.0 stand for zero."""
-    if a is None and b is None:
-        return 0.0, 0.0, 0.0
-    if b is None:
-        return a[0], a[1], a[2]
-    if a is None:
-        return -b[0], -b[1], -b[2]
-    return a[0] - b[0], a[1] - b[1], a[2] - b[2]
+def turn(v: tuple, w: tuple) -> tuple:
+    """(x, y) of the twist cross product V×W = (ω_V·E·w − ω_W·E·v, 0): the rate of
+    change of a twist W fixed in a body that moves with V (components)."""
+    return (minus(times(w[2], v[1]), times(v[2], w[1])),
+            minus(times(v[2], w[0]), times(w[2], v[0])))
 
 
-def _advance(base: FloatArray | None, rate: FloatArray, unit: Screw,
-             extra: tuple | None = None) -> FloatArray:
-    """base + rate·unit (+ extra in x, y) for twists (3, n); None is zero."""
-    x, y, w = unit
-    out = np.empty((3, rate.shape[0]))
-    np.multiply(rate, x, out=out[0])
-    np.multiply(rate, y, out=out[1])
-    if w == 1.0:
-        out[2] = rate
+def _advance(base: tuple, rate: FloatArray, unit: tuple, angular: FloatArray,
+             extra: tuple = (0.0, 0.0)) -> tuple:
+    """base + rate·unit (+ extra in x, y), twists in components; the ω part is written
+    into ``angular`` (the link's ω or α in the motion) and is that view."""
+    w = times(rate, unit[2])
+    if is_zero(base[2]):
+        angular[:] = w
     else:
-        np.multiply(rate, w, out=out[2])
-    if base is not None:
-        out += base
-    if extra is not None:
-        out[0] += extra[0]
-        out[1] += extra[1]
-    return out
+        np.add(base[2], w, out=angular)
+    return (plus(plus(base[0], times(rate, unit[0])), extra[0]),
+            plus(plus(base[1], times(rate, unit[1])), extra[1]), angular)
 
 
-def _frame_motion(motion: Motion, link: int, twist: FloatArray, change: FloatArray) -> None:
+def _frame_motion(motion: Motion, link: int, twist: tuple, change: tuple) -> None:
     """Velocity and acceleration of a link frame's origin r from the link's twist:
-    v = v_O + ω·E·r,  a = A_O + α·E·r + ω·E·v."""
+    v = v_O + ω·E·r,  a = A_O + α·E·r + ω·E·v (ω and α are in the motion already)."""
     x, y = motion.origin[:, link, 0], motion.origin[:, link, 1]
     omega, alpha = twist[2], change[2]
     vx, vy = motion.velocity[:, link, 0], motion.velocity[:, link, 1]
     np.subtract(twist[0], omega * y, out=vx)
     np.add(twist[1], omega * x, out=vy)
-    motion.omega[:, link] = omega
     ax, ay = motion.acceleration[:, link, 0], motion.acceleration[:, link, 1]
     np.subtract(change[0], alpha * y, out=ax)
     ax -= omega * vy
     np.add(change[1], alpha * x, out=ay)
     ay += omega * vx
-    motion.alpha[:, link] = alpha
 
 
 # -- derived quantities the reports use --------------------------------------------

@@ -29,6 +29,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade.linkage.motion import Motion, Screw, guide_direction
+from dyade.linkage.dyads import (direction_xy, is_zero, minus, plus, pose, rotate_xy,
+                                  times)
 from dyade.linkage.kinematics import Kinematics, crank_screw
 from dyade.linkage.model import CRANK, FRAME, FloatArray, Mechanism, Revolute, toward_higher
 
@@ -70,21 +72,25 @@ def applied_loads(mechanism: Mechanism, kin: Kinematics) -> FloatArray:
     for number, link in mechanism.links.items():
         if number == FRAME or not link.has_mass:
             continue
-        rx, ry = motion.rotated_xy(number, link.centre)
+        rx, ry = rotate_xy(motion.cos[:, number], motion.sin[:, number], link.centre)
         omega, alpha = motion.omega[:, number], motion.alpha[:, number]
-        squared = omega * omega
         # the centre's acceleration a_S, then f = m·(g − a_S) and its moment about O
         fx, fy, moment = q[number]
-        np.subtract(motion.acceleration[:, number, 0], alpha * ry, out=fx)
-        fx -= squared * rx
-        np.add(motion.acceleration[:, number, 1], alpha * rx, out=fy)
-        fy -= squared * ry
+        if is_zero(rx) and is_zero(ry):  # the centre at the frame's origin
+            fx[:] = motion.acceleration[:, number, 0]
+            fy[:] = motion.acceleration[:, number, 1]
+        else:
+            squared = omega * omega
+            np.subtract(motion.acceleration[:, number, 0], alpha * ry, out=fx)
+            fx -= squared * rx
+            np.add(motion.acceleration[:, number, 1], alpha * rx, out=fy)
+            fy -= squared * ry
         for part, g in ((fx, gx), (fy, gy)):
             if g != 0.0:
                 part -= g
             part *= -link.mass
-        np.multiply(motion.origin[:, number, 0] + rx, fy, out=moment)
-        moment -= (motion.origin[:, number, 1] + ry) * fx
+        np.multiply(plus(motion.origin[:, number, 0], rx), fy, out=moment)
+        moment -= plus(motion.origin[:, number, 1], ry) * fx
         if link.inertia:
             moment -= link.inertia * alpha
     add_loads_and_springs(q, mechanism, kin)
@@ -138,12 +144,28 @@ def add_force(wrench: FloatArray, point: FloatArray, force: FloatArray) -> None:
 
 
 def dot3(unit: Screw, wrench: FloatArray) -> FloatArray:
-    """Power pairing of a unit twist and a wrench (3, n)."""
+    """Power pairing of a unit twist (components, ``dyade.linkage.kinematics``) and a
+    wrench (3, n); a new array."""
+    out = _power(unit, wrench)
+    return out.copy() if np.shares_memory(out, wrench) else out
+
+
+def _power(unit: Screw, wrench: FloatArray) -> FloatArray:
+    """``dot3``, or one of the wrench's rows itself where the twist is a unit vector."""
     x, y, w = unit
-    out = x * wrench[0] + y * wrench[1]
+    out = None
+    for part, load in ((x, wrench[0]), (y, wrench[1])):
+        if type(part) is float:
+            if part == 0.0:
+                continue
+            term = load if part == 1.0 else part * load
+        else:
+            term = part * load
+        out = term if out is None else out + term
     if w != 0.0:
-        out += wrench[2] if w == 1.0 else w * wrench[2]
-    return out
+        term = wrench[2] if w == 1.0 else w * wrench[2]
+        out = term if out is None else out + term
+    return np.zeros_like(wrench[0]) if out is None else out
 
 
 def solve_transposed(inverse: FloatArray, rhs0: FloatArray, rhs2: FloatArray) -> FloatArray:
@@ -170,8 +192,8 @@ def backward(mechanism: Mechanism, kin: Kinematics, q: FloatArray, rub=None) -> 
     for group in reversed(kin.groups):
         (i, j), (g, h) = group.links, group.known
         q_i, q_j = q[i], q[j]
-        s_a, _, s_c = group.screws
-        w_b = solve_transposed(group.inverse, dot3(s_a, q_i), dot3(s_c, q_j))
+        s_a, _, s_c = group.units
+        w_b = group.reaction(_power(s_a, q_i), _power(s_c, q_j))
         if rub is not None:
             w_b = rub.group(group, w_b, q_i, q_j)
         w_a = w_b - q_i  # on i from g
@@ -183,7 +205,7 @@ def backward(mechanism: Mechanism, kin: Kinematics, q: FloatArray, rub=None) -> 
         (frame if g == FRAME else q[g])[...] -= w_a
         (frame if h == FRAME else q[h])[...] += on_h
     joint = mechanism.crank.joint
-    drive = -dot3(crank_screw(mechanism), q[CRANK])
+    drive = -_power(crank_screw(mechanism), q[CRANK])
     if rub is not None:
         drive = drive - rub.crank(q[CRANK])
     w_12 = -q[CRANK]
@@ -212,14 +234,19 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
         valid &= column > band
     forces = Forces(wrenches, {}, {}, {}, drive, frame.T, valid)
     for joint in mechanism.joints:
-        higher = max(joint.links)
+        target, wrench = wrenches[joint.name]
         if isinstance(joint, Revolute):
-            forces.revolute[joint.name] = forces.on(joint.name, higher)[:2].T
+            force = wrench[:2] if target == max(joint.links) else -wrench[:2]
+            forces.revolute[joint.name] = force.T
             continue
-        slider = forces.on(joint.name, joint.slider)
-        dx, dy = guide_direction(joint, motion)
-        sx, sy = motion.point_xy(joint.slider, joint.slider_point)
-        normal = dx * slider[1] - dy * slider[0]
+        # on the slider; frictionless, the sign of the wrench goes into the result's sign
+        flip = target != joint.slider and joint.friction == 0.0
+        slider = -wrench if target != joint.slider and not flip else wrench  # (3, n)
+        dx, dy = direction_xy(joint, *pose(motion, joint.carrier)[:2])
+        c, s, ox, oy = pose(motion, joint.slider)
+        rx, ry = rotate_xy(c, s, joint.slider_point)
+        sx, sy = plus(ox, rx), plus(oy, ry)
+        normal = minus(times(dx, slider[1]), times(dy, slider[0]))
         moment = slider[2] - (sx * slider[1] - sy * slider[0])
         if joint.friction > 0.0:  # friction acting H/2 off, at the guide surface
             if surface is not None and joint.name in surface:
@@ -227,7 +254,7 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
             else:
                 along = dx * slider[0] + dy * slider[1]
             moment = moment - np.sign(normal) * 0.5 * joint.slider_height * along
-        sign = toward_higher(joint.name, joint.slider)
+        sign = toward_higher(joint.name, joint.slider) * (-1.0 if flip else 1.0)
         forces.normal[joint.name] = sign * normal
         forces.moment[joint.name] = sign * moment
     return forces

@@ -33,7 +33,7 @@ from typing import Callable, NamedTuple
 import numpy as np
 
 from dyade.linkage.motion import Motion, cross, dot, perp
-from dyade.linkage.model import FRAME, FloatArray, Prismatic, Revolute, Vec
+from dyade.linkage.model import CRANK, FRAME, FloatArray, Prismatic, Revolute, Vec
 
 SINGULAR_SIN = 1e-10  # [-] |sin μ| below this: the closure Jacobian is singular
 
@@ -101,6 +101,8 @@ class Closure:
     pins: dict = field(default_factory=dict)
     """joint index (0 A, 1 B, 2 C) -> world position (x, y) of a revolute joint the
     closure found on the way (saves recomputing it for the joint's twist)"""
+    guides: dict = field(default_factory=dict)
+    """joint index -> world guide direction (dx, dy) of a prismatic joint (likewise)"""
     lever: FloatArray | None = None
     """(n,) [m] a distance whose vanishing also makes the closure singular although the
     transmission angle stays away from 0° and 180° (RPR: the pivot distance ρ); it
@@ -128,7 +130,19 @@ def pin_xy(joint: Revolute, unknown: int, motion: Motion) -> tuple[tuple, Vec]:
     known, local, other = (q, u_q, u_p) if p == unknown else (p, u_p, u_q)
     if known == FRAME:
         return (float(local[0]), float(local[1])), other
-    return motion.point_xy(known, local), other
+    cos, sin, ox, oy = pose(motion, known)
+    rx, ry = rotate_xy(cos, sin, local)
+    return (plus(ox, rx), plus(oy, ry)), other
+
+
+def pin(joint: Revolute, unknown: int, motion: Motion) -> tuple[tuple, Vec]:
+    """``pin_xy`` with a frame point taken as the frame's origin plus the point (a zero
+    coordinate is +0.0, as ``Motion.point`` gives it: the sign of a zero decides the
+    branch of an arctan2 at ±180°)."""
+    (x, y), other = pin_xy(joint, unknown, motion)
+    if type(x) is float:
+        return (0.0 + x, 0.0 + y), other
+    return (x, y), other
 
 
 def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: FloatArray,
@@ -137,14 +151,17 @@ def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: Float
     vector (wx, wy) of the same length, with its local point ``local`` on (px, py):
     the cosine and sine of its angle come without trigonometric functions."""
     beta = float(np.arctan2(arm[1], arm[0]))
-    ex, ey = wx / length, wy / length
+    cos, sin, angle = motion.cos[:, link], motion.sin[:, link], motion.angle[:, link]
+    np.arctan2(wy, wx, out=angle)
     if beta == 0.0:
-        cos, sin = ex, ey
+        np.divide(wx, length, out=cos)
+        np.divide(wy, length, out=sin)
     else:
+        ex, ey = wx / length, wy / length
         cb, sb = np.cos(beta), np.sin(beta)
-        cos, sin = ex * cb + ey * sb, ey * cb - ex * sb
-    angle = np.arctan2(wy, wx)
-    motion.set_angle(link, angle - beta if beta else angle, cos, sin)
+        np.add(ex * cb, ey * sb, out=cos)
+        np.subtract(ey * cb, ex * sb, out=sin)
+        angle -= beta
     if local[0] == 0.0 and local[1] == 0.0:
         motion.origin[:, link, 0] = px
         motion.origin[:, link, 1] = py
@@ -154,13 +171,11 @@ def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: Float
         motion.origin[:, link, 1] = py - ry
 
 
-def pin(joint: Revolute, unknown: int, motion: Motion) -> tuple[FloatArray, Vec]:
-    """World position of a revolute joint, from its known side, and its local point on
-    the ``unknown`` link."""
-    (p, q), (u_p, u_q) = joint.links, joint.points
-    if p == unknown:
-        return motion.point(q, u_q), u_p
-    return motion.point(p, u_p), u_q
+def same_pins(joints: dict) -> dict:
+    """The pins a closure passes on: joint index -> (joint, unknown link, world (x, y)
+    found from the known side) for those whose twist would be computed from that side
+    anyway (``dyade.linkage.motion.screw`` uses the joint's first link)."""
+    return {k: xy for k, (joint, unknown, xy) in joints.items() if joint.links[0] != unknown}
 
 
 def ends(joint: Revolute, first: int) -> tuple[Vec, Vec]:
@@ -168,44 +183,155 @@ def ends(joint: Revolute, first: int) -> tuple[Vec, Vec]:
     return joint.points if joint.links[0] == first else joint.points[::-1]
 
 
-def carry_angle(joint: Prismatic, known: int, unknown: int, motion: Motion) -> None:
-    """Set the angle of the link across a prismatic joint from ``known`` (φ_s − φ_c = κ)."""
+# -- closures in components ---------------------------------------------------------
+# A component is an (n,) array, or a plain number where it is the same at every position
+# (the frame's pose, a guide on the frame): the arithmetic below works on both and skips
+# what is known to be zero. The sums are written in the order of the vector forms they
+# replace (``dot``, ``cross``, ``Motion.point``), so the positions are the same to the bit.
+def pose(motion: Motion, link: int) -> tuple:
+    """cos φ, sin φ and the origin (x, y) of a link; plain numbers for the frame, and
+    for the crank's origin (its fixed pivot, ``dyade.linkage.kinematics.crank_motion``)."""
+    if link == FRAME:
+        return 1.0, 0.0, 0.0, 0.0
+    cos, sin = motion.cos[:, link], motion.sin[:, link]
+    if link == CRANK and motion.origin.shape[0]:
+        return cos, sin, float(motion.origin[0, CRANK, 0]), float(motion.origin[0, CRANK, 1])
+    return cos, sin, motion.origin[:, link, 0], motion.origin[:, link, 1]
+
+
+def rotate_xy(cos, sin, local: Vec) -> tuple:
+    """R(φ)·u from cos φ and sin φ (as ``Motion.rotated_xy``); (0.0, 0.0) for u = 0."""
+    u, v = local
+    if v == 0.0:
+        if u == 0.0:
+            return 0.0, 0.0
+        return cos * u, sin * u
+    return cos * u - sin * v, sin * u + cos * v
+
+
+def is_zero(a) -> bool:
+    """A plain number zero (not an array of zeros)."""
+    return type(a) is float and a == 0.0
+
+
+def _scalar_times(c: float, x):
+    if c == 0.0:
+        return 0.0
+    if c == 1.0:
+        return x
+    return -x if c == -1.0 else c * x
+
+
+def times(a, b):
+    """a·b for components, skipping plain zeros and ±1 (the skipped products differ
+    from the computed ones at most in the sign of a zero)."""
+    if type(a) is float:
+        return _scalar_times(a, b)
+    if type(b) is float:
+        return _scalar_times(b, a)
+    return a * b
+
+
+def plus(a, b):
+    """a + b for components, skipping plain zeros."""
+    if type(b) is float and b == 0.0:
+        return a
+    if type(a) is float and a == 0.0:
+        return b
+    return a + b
+
+
+def minus(a, b):
+    """a − b for components, skipping plain zeros."""
+    if type(b) is float and b == 0.0:
+        return a
+    if type(a) is float and a == 0.0:
+        return -b
+    return a - b
+
+
+def full(motion: Motion, value):
+    """A component as an (n,) array (a closure of two frame-fixed joints is constant)."""
+    if np.ndim(value) == 0:
+        return np.full(motion.angle.shape[0], float(value))
+    return value
+
+
+def carry(joint: Prismatic, known: int, unknown: int, motion: Motion) -> tuple:
+    """Set the angle of the link across a prismatic joint from ``known`` (φ_s − φ_c = κ);
+    returns its cos and sin (plain numbers when ``known`` is the frame)."""
     offset = joint.relative_angle if joint.carrier == known else -joint.relative_angle
-    motion.turn_with(unknown, known, offset)
+    if known != FRAME:
+        return turn(motion, unknown, known, offset)
+    cos, sin = float(np.cos(offset)), float(np.sin(offset))
+    motion.angle[:, unknown] = offset
+    motion.cos[:, unknown] = cos
+    motion.sin[:, unknown] = sin
+    return cos, sin
 
 
-def guide_line(joint: Prismatic, unknown: int, motion: Motion) -> tuple[FloatArray, FloatArray]:
+def turn(motion: Motion, link: int, known: int, offset: float) -> tuple:
+    """φ_link = φ_known + offset (``Motion.turn_with``, a copy for no offset); returns
+    the link's cos and sin."""
+    if offset == 0.0:
+        for array in (motion.angle, motion.cos, motion.sin):
+            array[:, link] = array[:, known]
+    else:
+        motion.turn_with(link, known, offset)
+    return motion.cos[:, link], motion.sin[:, link]
+
+
+def direction_xy(joint: Prismatic, cos, sin) -> tuple:
+    """World guide direction d of a prismatic joint from its carrier's cos and sin."""
+    theta = joint.guide_angle
+    return rotate_xy(cos, sin, (float(np.cos(theta)), float(np.sin(theta))))
+
+
+def guide_line(joint: Prismatic, unknown: int, motion: Motion, cos, sin) -> tuple:
     """The prismatic constraint as a line for the origin of a translating link.
 
-    The ``unknown`` link's angle must already be in ``motion``, the other link's whole
-    pose too. Returns (normal, c) with normal·r_unknown = c, shapes (n, 2) and (n,).
+    ``cos``, ``sin``: the ``unknown`` link's, already set; the other link's whole pose
+    is in ``motion``. Returns (d, c): the guide direction d = (dx, dy) and c with
+    n·r_unknown = c, n = E·d the guide's left normal.
     """
-    normal = perp(motion.direction(joint.carrier, joint.guide_angle))
     if joint.slider == unknown:
-        other = motion.point(joint.carrier, joint.guide_point)
-        own = motion.rotated(unknown, joint.slider_point)
+        c_c, s_c, ox, oy = pose(motion, joint.carrier)
+        px, py = rotate_xy(c_c, s_c, joint.guide_point)
+        wx, wy = rotate_xy(cos, sin, joint.slider_point)
     else:
-        other = motion.point(joint.slider, joint.slider_point)
-        own = motion.rotated(unknown, joint.guide_point)
-    return normal, dot(normal, other - own)
+        c_c, s_c = cos, sin
+        c_s, s_s, ox, oy = pose(motion, joint.slider)
+        px, py = rotate_xy(c_s, s_s, joint.slider_point)
+        wx, wy = rotate_xy(cos, sin, joint.guide_point)
+    dx, dy = direction_xy(joint, c_c, s_c)
+    return (dx, dy), -dy * minus(plus(ox, px), wx) + dx * minus(plus(oy, py), wy)
 
 
-def place(motion: Motion, link: int, angle: FloatArray, world: FloatArray, local: Vec) -> None:
-    """Set a link's angle and put its origin so that ``local`` lands on ``world``."""
-    motion.set_angle(link, angle)
-    motion.origin[:, link] = world - motion.rotated(link, local)
+def shift_line(c, dx, dy, cos, sin, local: Vec):
+    """c + n·R(φ)·u: the line n·r = c of a link's origin moved to its point u."""
+    if local[0] == 0.0 and local[1] == 0.0:
+        return c
+    ux, uy = rotate_xy(cos, sin, local)
+    return c + (-dy * ux + dx * uy)
 
 
-def solve_lines(n1: FloatArray, c1: FloatArray, n2: FloatArray, c2: FloatArray
-                ) -> tuple[FloatArray, FloatArray]:
-    """Intersection of n1·x = c1 and n2·x = c2, shape (n, 2); and the sine of the angle
-    between the lines (0: parallel, blocked)."""
-    det = cross(n1, n2)
-    sin = det / np.sqrt(dot(n1, n1) * dot(n2, n2))
-    blocked = np.abs(sin) < SINGULAR_SIN
+def crossing(nx, ny, c, mx, my, e, motion: Motion) -> tuple:
+    """Intersection (x, y) of the lines n·r = c and m·r = e, and det = n × m (the sine of
+    the angle between unit normals; 0: parallel, blocked): NaN where |det| is below
+    ``SINGULAR_SIN``."""
+    det = full(motion, nx * my - ny * mx)
     with np.errstate(all="ignore"):  # blocked (near-parallel) rows overflow; NaN below
-        x = (c1 * n2[:, 1] - c2 * n1[:, 1]) / det
-        y = (n1[:, 0] * c2 - n2[:, 0] * c1) / det
-    point = np.stack((x, y), axis=-1)
-    point[blocked] = np.nan
-    return point, sin
+        x = full(motion, (c * my - e * ny) / det)
+        y = full(motion, (nx * e - mx * c) / det)
+    blocked = np.abs(det) < SINGULAR_SIN
+    if blocked.any():
+        x[blocked] = np.nan
+        y[blocked] = np.nan
+    return x, y, det
+
+
+def place_origin(motion: Motion, link: int, px, py, cos, sin, local: Vec) -> None:
+    """Put a link's origin so that its point ``local`` lands on (px, py)."""
+    rx, ry = rotate_xy(cos, sin, local)
+    motion.origin[:, link, 0] = minus(px, rx)
+    motion.origin[:, link, 1] = minus(py, ry)

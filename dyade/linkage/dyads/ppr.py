@@ -6,26 +6,33 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from dyade.linkage import dyads
-from dyade.linkage.motion import Motion, perp
+from dyade.linkage.motion import Motion
 from dyade.linkage.model import Dyad, Prismatic
 
 
-
 def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
+    """Link i translates along guide A, link j turns with i about the pin C; the origin
+    of i is where guide A and guide B (drawn for the origin of i) cross."""
     i, j = dyad.links
     g, _ = dyad.known
     joint_a, joint_b, joint_c = dyad.joints
-    dyads.carry_angle(joint_a, g, i, motion)
-    c, c_j = dyads.pin(joint_c, j, motion)
-    dyads.carry_angle(joint_b, i, j, motion)
-    motion.origin[:, j] = c - motion.rotated(j, c_j)
-    n_a, c_a = dyads.guide_line(joint_a, i, motion)
-    n_b, c_b = dyads.guide_line(joint_b, i, motion)
-    origin, sin = dyads.solve_lines(n_a, c_a, n_b, c_b)
-    motion.origin[:, i] = origin
-    closes = abs(sin) >= dyads.SINGULAR_SIN
-    return dyads.Closure(closes, dyads.angle_between(-perp(n_a), -perp(n_b)))
+    c_i, s_i = dyads.carry(joint_a, g, i, motion)
+    (cx, cy), c_j = dyads.pin(joint_c, j, motion)
+    cos_j, sin_j = dyads.carry(joint_b, i, j, motion)
+    dyads.place_origin(motion, j, cx, cy, cos_j, sin_j, c_j)
+    (dax, day), e_a = dyads.guide_line(joint_a, i, motion, c_i, s_i)
+    (dbx, dby), e_b = dyads.guide_line(joint_b, i, motion, c_i, s_i)
+    ox, oy, det = dyads.crossing(-day, dax, e_a, -dby, dbx, e_b, motion)
+    motion.origin[:, i, 0] = ox
+    motion.origin[:, i, 1] = oy
+    sin = np.abs(det)  # μ between the guide directions d_a and d_b, |d| = 1
+    transmission = np.arctan2(sin, dyads.full(motion, dax * dbx + day * dby))
+    return dyads.Closure(sin >= dyads.SINGULAR_SIN, transmission, sin,
+                         dyads.same_pins({2: (joint_c, j, (cx, cy))}),
+                         {0: (dax, day), 1: (dbx, dby)})
 
 
 def middle(reader, table, key: str, i: int, j: int, dyad_table, dyad_key: str) -> Prismatic:

@@ -3,28 +3,33 @@ for dyade); blocked when the guides are parallel."""
 
 from __future__ import annotations
 
+import numpy as np
+
 from dyade.linkage import dyads
-from dyade.linkage.motion import Motion, dot, perp
+from dyade.linkage.motion import Motion
 from dyade.linkage.model import Dyad, Revolute
 
 
-
 def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
+    """Both links translate (their angles follow g and h); the pin B is where the guide
+    lines of A and C, carried to B, cross."""
     i, j = dyad.links
     g, h = dyad.known
     joint_a, joint_b, joint_c = dyad.joints
     b_i, b_j = dyads.ends(joint_b, i)
-    dyads.carry_angle(joint_a, g, i, motion)
-    dyads.carry_angle(joint_c, h, j, motion)
-    n_a, c_a = dyads.guide_line(joint_a, i, motion)
-    n_c, c_c = dyads.guide_line(joint_c, j, motion)
-    c_a = c_a + dot(n_a, motion.rotated(i, b_i))
-    c_c = c_c + dot(n_c, motion.rotated(j, b_j))
-    b, sin = dyads.solve_lines(n_a, c_a, n_c, c_c)
-    motion.origin[:, i] = b - motion.rotated(i, b_i)
-    motion.origin[:, j] = b - motion.rotated(j, b_j)
-    closes = abs(sin) >= dyads.SINGULAR_SIN
-    return dyads.Closure(closes, dyads.angle_between(-perp(n_a), -perp(n_c)))
+    c_i, s_i = dyads.carry(joint_a, g, i, motion)
+    c_j, s_j = dyads.carry(joint_c, h, j, motion)
+    (dax, day), e_a = dyads.guide_line(joint_a, i, motion, c_i, s_i)
+    (dcx, dcy), e_c = dyads.guide_line(joint_c, j, motion, c_j, s_j)
+    e_a = dyads.shift_line(e_a, dax, day, c_i, s_i, b_i)  # now n_a·B = e_a
+    e_c = dyads.shift_line(e_c, dcx, dcy, c_j, s_j, b_j)
+    bx, by, det = dyads.crossing(-day, dax, e_a, -dcy, dcx, e_c, motion)
+    dyads.place_origin(motion, i, bx, by, c_i, s_i, b_i)
+    dyads.place_origin(motion, j, bx, by, c_j, s_j, b_j)
+    sin = np.abs(det)  # μ between the guide directions d_a and d_c, |d| = 1
+    transmission = np.arctan2(sin, dyads.full(motion, dax * dcx + day * dcy))
+    return dyads.Closure(sin >= dyads.SINGULAR_SIN, transmission, sin, {},
+                         {0: (dax, day), 2: (dcx, dcy)})
 
 
 def middle(reader, table, key: str, i: int, j: int, dyad_table, dyad_key: str) -> Revolute:

@@ -17,32 +17,45 @@ from dyade.linkage.model import Dyad, Prismatic
 
 
 def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
+    """The guide through the carrier's pivot O_c passes at distance c0 from the slider's
+    pivot O_s: with D = O_s − O_c and ρ = |D|, its angle is ψ = atan2(D) − asin(c0/ρ)
+    (variant +1, towards O_s) or atan2(D) − π + asin(c0/ρ), and the lever arm is
+    √(ρ² − c0²). (The guide direction could be had without trigonometric functions, as
+    (√(ρ² − c0²)·D ± c0·E·D)/ρ²; cos ψ and sin ψ are taken from ψ instead so that the
+    results stay the same to the bit.)"""
     i, j = dyad.links
     joint_a, joint_b, joint_c = dyad.joints
     pins = {i: dyads.pin(joint_a, i, motion), j: dyads.pin(joint_c, j, motion)}
     c, s = joint_b.carrier, joint_b.slider
-    (o_c, p_c), (o_s, p_s) = pins[c], pins[s]
+    ((ocx, ocy), p_c), ((osx, osy), p_s) = pins[c], pins[s]
     theta, kappa = joint_b.guide_angle, joint_b.relative_angle
     n_local = np.array([-np.sin(theta), np.cos(theta)])
     slider_arm = rotate(np.array(kappa), np.subtract(joint_b.slider_point, p_s))
     c0 = float(n_local @ np.subtract(joint_b.guide_point, p_c) - n_local @ slider_arm)
-    d = o_s - o_c
-    rho = np.hypot(d[:, 0], d[:, 1])
-    with np.errstate(divide="ignore", invalid="ignore"):  # pivots on top of each other
+    dx, dy = dyads.full(motion, osx - ocx), dyads.full(motion, osy - ocy)
+    rho = np.hypot(dx, dy)
+    # pivots on top of each other (or a subnormal distance apart): no closure
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         ratio = c0 / rho
     # lever arm: distance along the guide between the two pivots; 0 at the dead centre
     # where the slider point passes the guide link's pivot foot point (|ratio| = 1: the
     # dyad closes there, singular); where the pivots coincide (ρ = 0) the guide has no
     # direction and the dyad does not close
-    arm = np.sqrt(np.maximum(rho ** 2 - c0 ** 2, 0.0))
+    arm = np.maximum(rho ** 2 - c0 ** 2, 0.0)
+    np.sqrt(arm, out=arm)
     closes = np.abs(ratio) <= 1.0 + 1e-12
-    tilt = np.arcsin(np.clip(np.where(closes, ratio, np.nan), -1.0, 1.0))
-    beta0 = dyads.polar_angle(d)
+    if not closes.all():
+        ratio[~closes] = np.nan
+        arm[~closes] = np.nan
+    tilt = np.arcsin(np.clip(ratio, -1.0, 1.0))
+    beta0 = np.arctan2(dy, dx)
     psi = beta0 - tilt if dyad.variant > 0 else beta0 - np.pi + tilt
-    phi_c = psi - theta
-    dyads.place(motion, c, phi_c, o_c, p_c)
-    motion.turn_with(s, c, kappa)
-    motion.origin[:, s] = o_s - motion.rotated(s, p_s)
+    # the carrier's frame is the guide turned back by θ, the slider's turned on by κ
+    motion.set_angle(c, psi - theta)
+    cos_c, sin_c = motion.cos[:, c], motion.sin[:, c]
+    dyads.place_origin(motion, c, ocx, ocy, cos_c, sin_c, p_c)
+    cos_s, sin_s = dyads.turn(motion, s, c, kappa)
+    dyads.place_origin(motion, s, osx, osy, cos_s, sin_s, p_s)
     # μ: angle between the guide normal and the pivot line, cos μ = c0/ρ, sin μ = arm/ρ.
     # The closure's determinant is the lever arm itself: with zero offset μ stays 90°
     # while the arm (= ρ) goes to 0 as the pivots approach each other, so the quality is
@@ -50,7 +63,9 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     # combined in ``dyade.linkage.kinematics``), at each position on its own.
     with np.errstate(invalid="ignore"):  # ρ = 0: no closure, NaN
         sin_mu = arm / rho
-    return dyads.Closure(closes, np.arctan2(arm, c0), np.abs(sin_mu), lever=rho)
+    pins = dyads.same_pins({0: (joint_a, i, pins[i][0]), 2: (joint_c, j, pins[j][0])})
+    return dyads.Closure(closes, np.arctan2(arm, c0), sin_mu, pins,
+                         {1: dyads.direction_xy(joint_b, cos_c, sin_c)}, lever=rho)
 
 
 def middle(reader, table, key: str, i: int, j: int, dyad_table, dyad_key: str) -> Prismatic:
