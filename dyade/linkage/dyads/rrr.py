@@ -26,7 +26,9 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     l_i, l_j = float(np.hypot(*arm_i)), float(np.hypot(*arm_j))
     dx, dy = cx - ax, cy - ay
     dist_sq = dx * dx + dy * dy
-    with np.errstate(divide="ignore", invalid="ignore"):  # A on C: no direction, NaN
+    # A on C: no direction, NaN; A a subnormal distance from C: along² overflows to inf,
+    # and the dyad does not close (as it cannot: |l_i − l_j| > |AC|)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         inverse = 1.0 / np.sqrt(dist_sq)
         along = (dist_sq + (l_i * l_i - l_j * l_j)) * (0.5 * inverse)
         height_sq = l_i * l_i - along * along
