@@ -371,3 +371,18 @@ def test_missing_folders_are_created_and_unwritable_targets_are_named(tmp_path):
     blocker.write_text("")
     bad = run("analyse", shipped("fourbar.toml"), "-o", blocker / "x.csv")
     assert bad.exit_code == 2 and "cannot write the file" in bad.output
+
+
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="needs /dev/full (Linux)")
+@pytest.mark.parametrize("args", [["analyse", "mechanisms/fourbar.toml", "--format", "csv"],
+                                  ["analyse", "mechanisms/dyade-16.toml", "--format", "json"],
+                                  ["describe", "mechanisms/fourbar.toml"]])
+def test_a_full_disk_is_an_error_not_a_traceback(args):
+    """Standard output on a full disk (/dev/full): one line naming the problem, exit 1
+    (it was a Python traceback from the writer, or from rich)."""
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    with open("/dev/full", "w") as full:
+        done = subprocess.run([sys.executable, "-m", "dyade", *args], cwd=root, stdout=full,
+                              stderr=subprocess.PIPE, text=True, timeout=60)
+    assert done.returncode == 1
+    assert done.stderr.strip() == "Error: could not write the output: No space left on device."

@@ -9,6 +9,9 @@ inside the commands, so that ``dyade --help`` stays fast.
 
 from __future__ import annotations
 
+import errno
+import sys
+
 import click
 
 from dyade import __version__
@@ -40,7 +43,15 @@ class DyadeGroup(click.Group):
 
         _process_settings()
         try:
-            return super().invoke(ctx)
+            outcome = super().invoke(ctx)
+            sys.stdout.flush()  # a full disk says so here, not in Python's exit
+            return outcome
+        except OSError as err:  # writing the output failed (reading is an InputError)
+            if err.errno == errno.EPIPE:
+                raise  # the reader went away (`| head`): click ends quietly
+            raise click.ClickException(f"could not write the output: {err.strerror or err}"
+                                       f"{f' ({err.filename})' if err.filename else ''}."
+                                       ) from None
         except KeyboardInterrupt:  # Ctrl-C: the shell's convention, 128 + SIGINT
             click.echo("Interrupted.", err=True)
             raise click.exceptions.Exit(130) from None
