@@ -386,3 +386,23 @@ def test_a_full_disk_is_an_error_not_a_traceback(args):
                               stderr=subprocess.PIPE, text=True, timeout=60)
     assert done.returncode == 1
     assert done.stderr.strip() == "Error: could not write the output: No space left on device."
+
+
+def test_the_command_ends_at_once_with_its_output_and_exit_status_intact(tmp_path):
+    """``dyade.cli.run`` (the console script, ``python -m dyade``) skips Python's
+    teardown after flushing: the bytes and the exit status are those of ``main``
+    (standard output buffered, as it is unless PYTHONUNBUFFERED is set)."""
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    cases = [(["analyse", "mechanisms/dyade-16.toml", "--format", "csv"], 0),
+             (["analyse", "mechanisms/missing.toml"], 2),
+             (["analyse", "mechanisms/self-locking.toml", "--fail-on-lock", "--format", "json"],
+              1)]
+    for args, status in cases:
+        buffered = {k: v for k, v in os.environ.items() if k != "PYTHONUNBUFFERED"}
+        done = subprocess.run([sys.executable, "-m", "dyade", *args], cwd=root, env=buffered,
+                              capture_output=True, timeout=120)
+        inside = CliRunner().invoke(main, args)
+        assert done.returncode == inside.exit_code == status, args
+        assert done.stdout == inside.stdout_bytes, args
+        # the same messages (a usage line names the program as it was called)
+        assert done.stderr.splitlines()[-1:] == inside.stderr_bytes.splitlines()[-1:], args
