@@ -93,6 +93,8 @@ class _Pool:
         """result pipe's read end -> (pid, bytes received and not yet taken)"""
         self.queued = 0
         """item numbers written into the queue so far"""
+        self.ended = "its worker process ended"
+        """how the last child that ended did (for the items it took with it)"""
 
     def results(self) -> Iterator:
         self.queue_r, self.queue_w = os.pipe()
@@ -114,7 +116,12 @@ class _Pool:
     def _fork(self) -> None:
         for _ in range(self.workers - 1):
             result_r, result_w = os.pipe()
-            pid = os.fork()
+            try:
+                pid = os.fork()
+            except OSError:  # no more processes allowed: work with those there are
+                os.close(result_r)
+                os.close(result_w)
+                break
             if pid == 0:  # the child
                 os.close(result_r)
                 os.close(self.queue_w)
@@ -178,7 +185,7 @@ class _Pool:
     def _mark_lost(self) -> None:
         """No child is left and the queue has ended: the first item without a result was
         taken by a child that ended (so are the others: one at a time)."""
-        reason = getattr(self, "ended", "its worker process ended")
+        reason = self.ended
         for index in range(len(self.items)):
             if index not in self.done:
                 if self.lost is None:

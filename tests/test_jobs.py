@@ -109,3 +109,14 @@ def test_ordered_map_with_more_items_than_the_queue_holds():
 
     count = 40_000  # 160 kB of item numbers: the queue (a pipe) is refilled as it drains
     assert list(ordered_map(lambda x: x, range(count), workers=2)) == list(range(count))
+
+
+def test_ordered_map_works_on_when_no_process_can_be_forked():
+    """fork refused (a process limit): the calling process does every item itself."""
+    from unittest import mock
+
+    from dyade.parallel import ordered_map
+
+    refused = BlockingIOError(11, "Resource temporarily unavailable")
+    with mock.patch("os.fork", side_effect=refused):
+        assert list(ordered_map(lambda x: x + 1, range(5), workers=3)) == [1, 2, 3, 4, 5]
