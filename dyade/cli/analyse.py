@@ -414,14 +414,13 @@ class Job(NamedTuple):
         return Chosen(every, names)
 
     def write(self, result, every, cols, output: str | None, loaded, summarise) -> None:
-        """The JSON document or the tables of a result (a whole ``Result`` or a stream's
-        ``outcome()``): ``every`` its columns, ``cols`` those chosen, ``summarise()`` its
-        summary (of every column)."""
+        """The CSV, the JSON document or the tables of a result (a whole ``Result`` or a
+        stream's ``outcome()``): ``every`` its columns, ``cols`` those chosen,
+        ``summarise()`` its summary (of every column)."""
         mechanism = result.mechanism
         if self.fmt == "csv":
             from dyade.report import csv_rows
 
-            cols = cols if isinstance(cols, dict) else {name: cols[name] for name in cols}
             if output:
                 with atomic(output) as handle:
                     csv_rows.write(cols, handle)
@@ -472,7 +471,7 @@ class Job(NamedTuple):
                           show=long_run(sweep_)) as tick:
                 sweep_.progress = tick
                 first = next(blocks)  # the assembly check fails here, before any output
-        names = list(self.chosen(first))
+        names = list(self.chosen(first))  # a wrong --columns fails before any output
 
         def analysing():
             return progress(f"{os.path.basename(path)}: analysing", show=long_run(sweep_))
@@ -495,8 +494,8 @@ class Job(NamedTuple):
                 from dyade.linkage.summary import summary
 
                 outcome = sweep_.outcome()
-                self.write(outcome, spool, self.chosen(spool), output, loaded,
-                           lambda: summary(outcome, spool))
+                cols = Chosen(spool, names) if self.columns else spool
+                self.write(outcome, spool, cols, output, loaded, lambda: summary(outcome, spool))
         elif output:
             with atomic(output) as handle:
                 emit(handle)

@@ -217,7 +217,7 @@ class Spool(Mapping):
         """(offset [B], rows) of every block: its columns one after another"""
         self.rows = 0
         self.kept: dict[str, FloatArray] = {}
-        """the one column read last (angle_deg is asked for again and again)"""
+        """the column read last (a table or the summary often asks for it twice running)"""
         for block in blocks:
             self.add(block)
 

@@ -37,6 +37,7 @@ whole table at once.
 from __future__ import annotations
 
 import sys
+from collections.abc import Mapping
 from typing import TextIO
 
 import numpy as np
@@ -381,9 +382,9 @@ class Writer:
         self.out.write(",".join(self.names) + "\n")
 
     def rows(self, block: Columns | np.ndarray) -> None:
-        """Write a block of rows: the columns by name (in ``names`` order), or a
-        (rows, columns) array."""
-        if isinstance(block, dict):
+        """Write a block of rows: the columns by name (any mapping, read in ``names``
+        order), or a (rows, columns) array."""
+        if isinstance(block, Mapping):
             block = np.column_stack([np.asarray(block[name], dtype=np.float64)
                                      for name in self.names]) if self.names else np.zeros((0, 0))
         table = np.ascontiguousarray(block, dtype=np.float64)

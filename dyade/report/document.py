@@ -31,12 +31,11 @@ def json_numbers(values) -> list[str]:
     ``float(f"{v + 0.0:.15g}")`` (and null for NaN and ±inf), a block at a time.
 
     The 15-digit text of the CSV writer (``report.csv_rows``) is that number's shortest
-    text already (two decimals of at most 15 digits are never the same double), in a
-    different dress in two cases only: a whole number gets ".0" (``90`` → ``90.0``),
-    and 10¹⁵ ≤ |v| < 10¹⁶ is written without an exponent (``1.5e+15`` →
-    ``1500000000000000.0``); below 10⁻³⁰⁸ (subnormal) a double holds fewer digits,
-    and Python's shortest text is used. A value that rounds to 15 digits beyond the largest double
-    (1.79769313486232e+308, which reads back as infinity) is null, as NaN and ±inf.
+    text already (two decimals of at most 15 digits are never the same normal double),
+    but for: a whole number, which gets ".0" (``90`` → ``90.0``); 10¹⁵ ≤ |v| < 10¹⁶,
+    written without an exponent (``1.5e+15`` → ``1500000000000000.0``); subnormals
+    (below 10⁻³⁰⁸ a double holds fewer digits: Python's shortest text); and
+    ±1.79769313486232e+308, which reads back as infinity: null, as NaN and ±inf.
 
     >>> import numpy as np
     >>> json_numbers(np.array([90.0, -0.0, 0.1 + 0.2, 1.5e15, 2e-7, np.nan, -np.inf]))
