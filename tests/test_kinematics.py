@@ -159,3 +159,17 @@ def test_slotted_lever_follows_the_block():
     block = 0.06 * np.stack((np.cos(phi), np.sin(phi)), -1)
     lever = np.arctan2(block[:, 1] + 0.15, block[:, 0])
     assert np.allclose(np.angle(np.exp(1j * (kin.motion.angle[:, 4] - lever))), 0, atol=1e-13)
+
+
+def test_crank_cos_sin_from_one_complex_exponential():
+    """``cos_sin`` (e^{iφ}) gives np.cos and np.sin to the last bit or so, over many turns
+    either way, and NaN for a NaN angle without a warning (pytest turns warnings into
+    errors), as np.cos does."""
+    angle = np.concatenate((np.linspace(-40.0, 40.0, 10_001), [np.nan, 0.0, -0.0]))
+    cos, sin = np.empty_like(angle), np.empty_like(angle)
+    kinematics.cos_sin(angle, cos, sin)
+    finite = np.isfinite(angle)
+    np.testing.assert_array_max_ulp(cos[finite], np.cos(angle[finite]), maxulp=1)
+    np.testing.assert_array_max_ulp(sin[finite], np.sin(angle[finite]), maxulp=1)
+    assert np.isnan(cos[~finite]).all() and np.isnan(sin[~finite]).all()
+    assert cos[-1] == 1.0 and sin[-2] == 0.0

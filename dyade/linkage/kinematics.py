@@ -91,8 +91,11 @@ class Group:
         # 1/det where usable, NaN elsewhere; where |det| is below TINY_DET (lengths far
         # below a micrometre: its inverse would overflow) the dyad counts as singular
         self.usable = usable = usable & (np.abs(det) >= TINY_DET)
-        scale = np.full(usable.shape[0], np.nan)
-        np.divide(1.0, det, out=scale, where=usable)
+        if usable.all():  # (det may be a plain number: screws constant over the sweep)
+            scale = np.divide(1.0, det, out=np.empty(usable.shape[0]))
+        else:
+            scale = np.full(usable.shape[0], np.nan)
+            np.divide(1.0, det, out=scale, where=usable)
         flipped = -scale  # M = [S_A, S_B, −S_C]: the last row changes sign
         self.entries = [[_scaled(value, scale, flipped) for value in rows[0]],
                         [_scaled(value, scale, flipped) for value in rows[1]],
@@ -184,13 +187,25 @@ def crank_motion(mechanism: Mechanism, crank_angle: FloatArray,
     motion = Motion.at_rest(n, mechanism.max_link + 1, placed)
     motion.origin[:, CRANK] = mechanism.crank.pivot
     motion.angle[:, CRANK] = crank_angle
-    np.cos(crank_angle, out=motion.cos[:, CRANK])
-    np.sin(crank_angle, out=motion.sin[:, CRANK])
+    cos_sin(crank_angle, motion.cos[:, CRANK], motion.sin[:, CRANK])
     motion.velocity[:, CRANK] = 0.0
     motion.omega[:, CRANK] = mechanism.crank.speed if crank_speed is None else crank_speed
     motion.acceleration[:, CRANK] = 0.0  # the pivot (the crank frame's origin) stays put
     motion.alpha[:, CRANK] = 0.0 if crank_acceleration is None else crank_acceleration
     return motion
+
+
+def cos_sin(angle: FloatArray, cos: FloatArray, sin: FloatArray) -> None:
+    """Write cos and sin of ``angle`` into ``cos`` and ``sin``: as e^{iφ}, one complex
+    exponential (the C library's sincos: about 15 % less than np.cos and np.sin, the
+    same numbers where numpy takes both from the C library, as on x86-64 Linux)."""
+    turn = np.empty(angle.shape[0], dtype=np.complex128)
+    turn.real = 0.0
+    turn.imag = angle
+    with np.errstate(invalid="ignore"):  # NaN where the angle is NaN, as np.cos gives it
+        np.exp(turn, out=turn)
+    cos[:] = turn.real
+    sin[:] = turn.imag
 
 
 def crank_screw(mechanism: Mechanism) -> Screw:
