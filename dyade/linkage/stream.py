@@ -105,14 +105,6 @@ class Rubbing:
     """joint -> its verdict, for every slider with friction and every joint that locks
     somewhere"""
 
-    @property
-    def blocked(self) -> FloatArray:
-        """(n,) bool: forces not given because of friction (locked, unsolved or near)."""
-        out = self.locked | self.unsolved
-        for mask in self.near.values():
-            out = out | mask
-        return out
-
     def keep(self, first: int, last: int, block, locking: dict | None) -> None:
         """Take over the verdicts of a block's ``FrictionResult`` and its ``locking``."""
         n = self.residual.shape[0]
@@ -248,7 +240,7 @@ class Stream:
         notes = self.notes
         rows = self.rows = _check_assembly(mechanism, policy, self.allow_partial, notes)
         well = _bands(mechanism, policy, rows, notes)
-        usable = policy.valid
+        usable = policy.valid if self.plan.friction else None  # for the joints never moving
         del policy
         coupling = None
         if self.plan.friction:
@@ -332,7 +324,9 @@ class Stream:
         locking = rubbing.locking(mechanism)
         if locking is not None:
             _locking_notes(mechanism, angle, locking, rows, self.notes)
-        invalid &= ~rubbing.blocked
+        invalid &= ~(rubbing.locked | rubbing.unsolved)  # those have their own notes
+        for mask in rubbing.near.values():
+            invalid &= ~mask
 
 
 class Spool(Mapping):
