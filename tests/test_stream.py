@@ -12,9 +12,9 @@ from click.testing import CliRunner
 
 import dyade
 from dyade.cli import main
-from dyade.errors import AssemblyError, InputError
+from dyade.errors import AssemblyError
 from dyade.files import mechanism as toml_input
-from dyade.linkage.stream import stream, streams
+from dyade.linkage.stream import stream
 from tests.helpers import mechanism_from
 from tests.conftest import SHIPPED
 from tests.test_machine import _driven
@@ -44,10 +44,7 @@ def _check(mechanism, size, **options):
 @pytest.mark.parametrize("size", SIZES)
 @pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.name)
 def test_every_shipped_mechanism(path, size):
-    mechanism = dyade.read_mechanism(path)
-    if not streams(dyade.plan(mechanism)):
-        pytest.skip("friction is not streamed")
-    _check(mechanism, size, allow_partial=True)
+    _check(dyade.read_mechanism(path), size, allow_partial=True)
 
 
 LEVER = (SHIPPED[0].parent / "slotted-lever.toml").read_text().replace(
@@ -89,12 +86,6 @@ def test_a_drive_streams_its_kinematics_and_forces(size, run_up):
                          "flywheel_inertia": 0.05})
     whole = _check(mechanism, size, run_up=run_up)
     assert "t" in whole.columns()
-
-
-def test_friction_is_not_streamed():
-    mechanism = dyade.read_mechanism(SHIPPED[0].parent / "self-locking.toml")
-    with pytest.raises(InputError, match="friction"):
-        stream(mechanism)
 
 
 @pytest.mark.parametrize("size", ["1", "5", "64"])

@@ -165,13 +165,13 @@ def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
                    "rule)].")
 @click.option("--max-memory", type=POSITIVE, default=4096, show_default=True, metavar="MB",
               help="Refuse, before computing, a sweep estimated to need more memory [MB] "
-                   "(in memory, with friction or --block-size 0: positions × columns × 90 B; "
-                   "streamed: a block's, and about 100 B per position).")
+                   "(in memory, with --block-size 0: positions × columns × 90 B; streamed: a "
+                   "block's, and about 100 B per position).")
 @click.option("--block-size", type=click.IntRange(min=0), default=None, metavar="N",
               help="Compute the sweep N positions at a time, in memory that does not grow "
                    "with the sweep (0: all at once)  [default: 2048]: CSV rows are written "
                    "as they come; for JSON and the tables the columns wait in a temporary "
-                   "file (8 B per value, in TMPDIR). Sweeps with friction are computed whole.")
+                   "file (8 B per value, in TMPDIR).")
 @click.option("--fail-on-lock", is_flag=True,
               help="Exit with status 1 when the mechanism self-locks (otherwise self-locking "
                    "is a finding: reported, exit status 0).")
@@ -373,19 +373,13 @@ class Job(NamedTuple):
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
         output = None if output == "-" else output  # -o -: standard output
-        from dyade.errors import DyadeError
-
         loaded = load(path, self.assignments, self.sweep)
         mechanism = loaded.mechanism
         if save_as_path:
             save_as(loaded, save_as_path)
         if self.block_size != 0:
-            from dyade.linkage.stream import streams
-            from dyade.linkage.sweep import plan
-
-            if streams(plan(mechanism)):
-                self.streamed(mechanism, loaded, path, output)
-                return
+            self.streamed(mechanism, loaded, path, output)
+            return
         result = sweep(mechanism, self.allow_partial, self.friction_tol, self.friction_max_iter,
                        max_memory=self.max_memory, dead_centre=self.dead_centre,
                        transmission_warning=self.transmission_warning, run_up=self.run_up,
@@ -394,6 +388,13 @@ class Job(NamedTuple):
         self.write(result, every, self.chosen(every), output, loaded,
                    lambda: result.summary(every))
         warn(result.notes, f"{os.path.basename(path)}: " if output else "")
+        self.check_locks(result)
+
+    def check_locks(self, result) -> None:
+        """--fail-on-lock: exit status 1 when the mechanism self-locks somewhere (a whole
+        ``Result`` or a stream's ``outcome()``)."""
+        from dyade.errors import DyadeError
+
         locks = any(lock.locks[result.rows].any() for lock in (result.locking or {}).values())
         if self.fail_on_lock and locks:
             raise DyadeError("the mechanism self-locks (see the warning above); --fail-on-lock "
@@ -462,7 +463,8 @@ class Job(NamedTuple):
 
         with options_named():
             sweep_ = stream(mechanism, block_size=self.block_size,
-                            allow_partial=self.allow_partial, max_memory=self.max_memory,
+                            allow_partial=self.allow_partial, friction_tol=self.friction_tol,
+                            friction_max_iter=self.friction_max_iter, max_memory=self.max_memory,
                             dead_centre=self.dead_centre,
                             transmission_warning=self.transmission_warning,
                             constant_speed=self.constant_speed, run_up=self.run_up)
@@ -502,6 +504,7 @@ class Job(NamedTuple):
         else:
             emit(sys.stdout)
         warn(sweep_.notes, f"{os.path.basename(path)}: " if output else "")
+        self.check_locks(sweep_.outcome())
 
 
 class Chosen(Mapping):

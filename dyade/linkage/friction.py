@@ -68,6 +68,43 @@ EDGE = 3.0  # [-] sum of the edge pressures of a linear distribution over L: 3·
 COMPACT = 0.1  # [-] pass only the unsolved positions on once they are below this share
 RENEW_BELOW = 0.5  # [-] det below this: (I + K)⁻¹ renewed at every pass
 RESTART_PASSES = 8  # most Newton passes from each forced pattern (suspect positions)
+SAMPLE = 256  # the force floors are taken from about this many positions of the sweep
+
+
+@dataclass(frozen=True, slots=True)
+class Coupling:
+    """What the friction solution takes from the whole sweep rather than from each
+    position: given to ``solve`` for a block of positions, the block is solved exactly
+    as within the whole sweep (``dyade.linkage.stream``; ``coupling`` computes it from
+    the sample positions alone)."""
+
+    speed: float
+    """the typical crank speed [rad/s]: the sweep's largest |φ̇21| (else the file's);
+    relative rates below ``AT_REST_RTOL`` of it (times the crank length for a slider)
+    count as at rest"""
+    floors: dict[tuple[int, int], float]
+    """dyad (its links) -> force floor [N]: ``FORCE_FLOOR`` times the median size of its
+    frictionless joint forces at the sample positions (``sample``), below which changes
+    are not relative"""
+
+
+def sample(positions: int) -> slice:
+    """The positions of a sweep the force floors are taken from: every k-th, about
+    ``SAMPLE`` of them."""
+    return slice(None, None, max(1, positions // SAMPLE))
+
+
+def top_speed(kin: Kinematics) -> float:
+    """The largest crank speed |φ̇21| of ``kin`` [rad/s] (0 if none is finite)."""
+    return float(np.nanmax(np.abs(kin.motion.omega[:, CRANK]), initial=0.0))
+
+
+def coupling(mechanism: Mechanism, kin: Kinematics, speed: float) -> Coupling:
+    """The ``Coupling`` of a whole sweep from its sample positions alone: ``kin`` the
+    kinematics at ``sample(n)`` of its n positions, ``speed`` its ``top_speed`` [rad/s].
+    The friction solution there is the whole sweep's (per position, once the floors
+    are known: and they come from these very positions)."""
+    return _run(_Direct, mechanism, kin, None, None, speed=speed, stride=1).coupling
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
@@ -109,6 +146,8 @@ class FrictionResult:
     near: dict[int, FloatArray]
     """dyad number -> (n,) bool: solved, but the determinant is below the band
     sin(dead_centre): near self-locking, the friction loads amplified over 1/det"""
+    coupling: Coupling
+    """what the solution took from the whole sweep (the crank speed, the force floors)"""
 
     @property
     def blocked(self) -> FloatArray:
@@ -222,7 +261,8 @@ class _Rub:
     """The friction laws, applied group by group inside the backward pass
     (``kinetostatics.backward``); subclasses solve a group."""
 
-    def __init__(self, mechanism: Mechanism, kin: Kinematics, tol: float, max_iter: int):
+    def __init__(self, mechanism: Mechanism, kin: Kinematics, tol: float, max_iter: int,
+                 speed: float | None = None, floors: dict | None = None, stride: int | None = None):
         n = kin.crank_angle.shape[0]
         self.mechanism, self.kin, self.tol, self.max_iter = mechanism, kin, tol, max_iter
         self.usable = kin.valid
@@ -242,8 +282,20 @@ class _Rub:
         self.near: dict[int, FloatArray] = {}
         self.dyads = {dyad.links: dyad.number for dyad in mechanism.dyads}
         self.crank_rate = kin.motion.omega[:, CRANK]  # constant, or from the equation of motion
-        omega = float(np.nanmax(np.abs(self.crank_rate), initial=0.0)) or abs(mechanism.crank.speed)
+        omega = (top_speed(kin) if speed is None else speed) or abs(mechanism.crank.speed)
+        self.speed = omega
         self.typical = {"R": omega, "P": omega * mechanism.crank.length}
+        self.floors: dict[tuple[int, int], float] = {} if floors is None else floors
+        """dyad (links) -> force floor [N]: given, or taken at every ``stride``-th position"""
+        self.stride = sample(n).step if stride is None else stride
+
+    def floored(self, group: Group, scale: FloatArray) -> FloatArray:
+        """A group's force size ``scale`` (``_scale``), not below its floor (the
+        ``Coupling``'s, or taken here from the sample)."""
+        floor = self.floors.get(group.links)
+        if floor is None:
+            floor = self.floors[group.links] = _floor(scale, self.stride)
+        return np.maximum(scale, floor)
 
     def _sign(self, joint: Joint, rate: FloatArray) -> FloatArray:
         sign = np.sign(rate)
@@ -280,21 +332,24 @@ class _Rub:
         return tau
 
 
-def _scale(w_b: FloatArray, q_i: FloatArray, q_j: FloatArray, floor: bool = True
-           ) -> FloatArray:
+def _scale(w_b: FloatArray, q_i: FloatArray, q_j: FloatArray) -> FloatArray:
     """(n,) the size of a group's joint forces: the largest force component of its three
     joints (W_A = W_B − Q_i, W_B, W_C = −Q_j − W_B); against the frictionless one
-    changes are relative (``floor``: not below a small share of a typical value)."""
+    changes are relative (``_Rub.floored``: not below a small share of a typical value)."""
     scale = np.abs(w_b[0])
     for part in (w_b[1], w_b[0] - q_i[0], w_b[1] - q_i[1], w_b[0] + q_j[0], w_b[1] + q_j[1]):
         np.maximum(scale, np.abs(part), out=scale)
-    if not floor:
-        return scale
-    # a typical size, not the largest (near a dead centre forces reach 1e30); a sample
-    sample = scale[::max(1, scale.size // 256)]
-    sample = sample[np.isfinite(sample) & (sample > 0.0)]
-    least = FORCE_FLOOR * (_median(sample) if sample.size else 1.0)
-    return np.maximum(scale, max(least, 1e-300))
+    return scale
+
+
+def _floor(scale: FloatArray, stride: int) -> float:
+    """The force floor [N] of a group of force sizes ``scale``: ``FORCE_FLOOR`` times a
+    typical size, not the largest (near a dead centre forces reach 1e30): the median of
+    every ``stride``-th."""
+    values = scale[::stride]
+    values = values[np.isfinite(values) & (values > 0.0)]
+    least = FORCE_FLOOR * (_median(values) if values.size else 1.0)
+    return max(least, 1e-300)
 
 
 def _median(values: FloatArray) -> float:
@@ -559,7 +614,7 @@ class _Direct(_Rub):
         start = self.usable & np.isfinite(w0[0])  # NaN: a dyad solved earlier failed there
         width = 2 if all(law.revolute for law in laws) else 3  # pins need no moments
         rows = [group.inverse[law.k][:width] for law in laws]
-        scale = _scale(w0, q_i, q_j)
+        scale = self.floored(group, _scale(w0, q_i, q_j))
         values = [law.measure(w0)[0] for law in laws]
         view = _View(laws, rows, w0, scale)
         taus = [-law.c * g for law, g in zip(laws, values)]  # a first fixed-point step
@@ -592,13 +647,13 @@ class _Direct(_Rub):
         # the plausibility bound: friction multiplies no joint force of the dyad by more
         # than 1/sin(dead_centre) (the largest force component of its three joints)
         band = np.sin(self.mechanism.dead_centre_angle)
-        amplified = _scale(w_b, q_i, q_j, floor=False) * band > scale
+        amplified = _scale(w_b, q_i, q_j) * band > scale
         self._verdict(group, laws, out, start, band, amplified)
         self.record(group, laws, taus, parts)
         return w_b
 
     def newton(self, view: _View, taus: list[FloatArray], out: _Newton, count: int,
-               chord: bool, limit: int | None = None) -> None:
+               chord: bool, limit: int | None = None, w: FloatArray | None = None) -> None:
         """Newton passes from ``taus`` (updated in place) at the positions of ``view``
         where ``out`` is not done, recording in ``out``; ``count`` passes are spent,
         ``limit`` (default ``max_iter``) is the most in all. ``chord``: keep (I + K)⁻¹
@@ -607,7 +662,7 @@ class _Direct(_Rub):
         n = view.size
         pending = ~out.done
         every = bool(pending.all())  # the common case, without masks
-        w = view.wrench(taus)
+        w = view.wrench(taus) if w is None else w
         while True:
             measured = [law.measure(w) for law in view.laws]
             change = [-law.c * g - tau for law, (g, _), tau in zip(view.laws, measured, taus)]
@@ -644,18 +699,18 @@ class _Direct(_Rub):
                 for tau, move in zip(taus, delta):
                     np.add(tau, move, out=tau, where=pending)
                 out.passes += pending
-                if n > 1 and np.count_nonzero(pending) < COMPACT * n:
-                    sub = np.flatnonzero(pending)
-                    inner, sub_taus = out.take(sub), [tau[sub] for tau in taus]
-                    self.newton(view.take(sub), sub_taus, inner, count, chord, limit)
-                    out.put(sub, inner)
-                    for tau, part in zip(taus, sub_taus):
-                        tau[sub] = part
-                    return
             term = np.empty_like(w)  # W_B moves with τ (the settled positions too: unused)
             for move, row in zip(delta, view.rows):
                 np.multiply(row, move, out=term)
                 w += term
+            if not every and n > 1 and np.count_nonzero(pending) < COMPACT * n:
+                sub = np.flatnonzero(pending)
+                inner, sub_taus = out.take(sub), [tau[sub] for tau in taus]
+                self.newton(view.take(sub), sub_taus, inner, count, chord, limit, w[:, sub])
+                out.put(sub, inner)
+                for tau, part in zip(taus, sub_taus):
+                    tau[sub] = part
+                return
 
     def restart(self, view: _View, taus: list[FloatArray], out: _Newton,
                 suspect: FloatArray) -> None:
@@ -733,7 +788,7 @@ class _FixedPoint(_Rub):
         if not laws:
             return w0
         rows = [group.inverse[law.k] for law in laws]
-        scale = _scale(w0, q_i, q_j)
+        scale = self.floored(group, _scale(w0, q_i, q_j))
         n = scale.shape[0]
         taus = [np.zeros(n) for _ in laws]
         pending = self.usable.copy()
@@ -759,14 +814,21 @@ class _FixedPoint(_Rub):
 
 
 def solve(mechanism: Mechanism, kin: Kinematics, tol: float | None = None,
-          max_iter: int | None = None) -> FrictionResult:
+          max_iter: int | None = None, *, coupling: Coupling | None = None) -> FrictionResult:
     """Reactions with Coulomb friction in every joint with μ > 0, solved directly for a
     consistent pattern of directions, with the self-locking verdict (module docstring).
 
     ``tol`` [-]: a position is solved when a fixed-point step would change its joint
-    forces by less than this share; ``max_iter``: most passes per group.
+    forces by less than this share; ``max_iter``: most passes per group. ``coupling``:
+    ``kin`` is a block of a larger sweep, whose ``Coupling`` this is (default: ``kin``
+    is the whole sweep); the block's positions are then solved as within that sweep,
+    and which joints never move is left to the caller (``never_moves`` empty,
+    ``at_rest`` as found).
     """
-    return _run(_Direct, mechanism, kin, tol, max_iter)
+    if coupling is None:
+        return _run(_Direct, mechanism, kin, tol, max_iter)
+    return _run(_Direct, mechanism, kin, tol, max_iter, speed=coupling.speed,
+                floors=coupling.floors, whole=False)
 
 
 def iterate(mechanism: Mechanism, kin: Kinematics, tol: float | None = None,
@@ -777,10 +839,11 @@ def iterate(mechanism: Mechanism, kin: Kinematics, tol: float | None = None,
 
 
 def _run(kind, mechanism: Mechanism, kin: Kinematics, tol: float | None,
-         max_iter: int | None) -> FrictionResult:
+         max_iter: int | None, *, speed: float | None = None, floors: dict | None = None,
+         stride: int | None = None, whole: bool = True) -> FrictionResult:
     tol = mechanism.friction_tol if tol is None else tol
     max_iter = mechanism.friction_max_iter if max_iter is None else max_iter
-    rub = kind(mechanism, kin, tol, max_iter)
+    rub = kind(mechanism, kin, tol, max_iter, speed, floors, stride)
     forces = kinetostatics.backward(mechanism, kin, kinetostatics.applied_loads(mechanism, kin),
                                     rub)
     # verdicts count where the frictionless forces are valid (outside the dead-centre band)
@@ -812,9 +875,19 @@ def _run(kind, mechanism: Mechanism, kin: Kinematics, tol: float | None,
             friction_forces[name] = towards * along * tau
     at_rest = {joint.name: usable & (rub.signs[joint.name] == 0.0)
                for joint in mechanism.joints if joint.name in rub.signs}
-    never = [name for name, mask in at_rest.items() if mask[usable].all() and usable.any()]
+    never = never_moves(at_rest, usable) if whole else []
     for name in never:
         at_rest[name] = np.zeros(n, dtype=bool)
     return FrictionResult(forces, moments, friction_forces, power, rub.iterations,
                           rub.residual, rub.converged, at_rest, never, rub.determinant,
-                          rub.locks, rub.lock_dyad, rub.locked, rub.unsolved, rub.near)
+                          rub.locks, rub.lock_dyad, rub.locked, rub.unsolved, rub.near,
+                          Coupling(rub.speed, rub.floors))
+
+
+def never_moves(at_rest: dict[tuple[int, int], FloatArray], usable: FloatArray
+                ) -> list[tuple[int, int]]:
+    """The joints at rest (``at_rest``: joint -> (n,) bool) at every usable position of a
+    sweep (``usable``: (n,) bool, the kinematics valid), if there is one."""
+    if not usable.any():
+        return []
+    return [name for name, mask in at_rest.items() if mask[usable].all()]
