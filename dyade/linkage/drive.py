@@ -3,11 +3,14 @@
 
 The linkage enters through its reduced moment of inertia J(φ), its slope J′(φ) and its
 reduced load torque M_L(φ) (``dyade.linkage.reduced``), computed once by the vectorised
-kinematics at unit crank speed on the integration grid. Coulomb friction enters as the
+kinematics at unit crank speed on the integration grid, block by block (of the
+kinematics only a block of positions is kept; the grid of a 0.001° sweep has 720 000
+points). Coulomb friction enters as the
 torque M_F that the friction adds to the drive torque; it depends on the joint forces
 and so on the motion itself. It is found by passes: solve the motion with M_F frozen
 (zero at first), run the kinetostatics with friction at the resulting speeds and
-accelerations at every grid point at once, take
+accelerations at every grid point (block by block, each solved as within the whole
+grid: ``friction.Coupling``), take
 
     M_F = M_drive(with friction) − (J·φ̈ + ½·J′·φ̇² − M_L),
 
@@ -145,15 +148,16 @@ def solve(mechanism: Mechanism, crank_angle: FloatArray | None = None, *, run_up
 
 def _machine(mechanism: Mechanism, angles: FloatArray) -> Reduced:
     """J, J′, M_L at ``angles``; an error where the machine has no inertia or a dead centre
-    leaves it undefined."""
-    kin = kinematics.sweep(mechanism, angles, crank_speed=1.0)
-    if not kin.closes.all():
-        col = int(np.flatnonzero(~kin.closes.all(axis=0))[0])
-        where = np.rad2deg(angles[~kin.closes[:, col]][0])
+    leaves it undefined. Computed in blocks of positions (``blocks``): the grid of a fine
+    sweep has hundreds of thousands of points, and only these three arrays are kept."""
+    closes = np.empty((angles.shape[0], len(mechanism.dyads)), dtype=bool)
+    machine = _reduced(mechanism, angles, closes)
+    if not closes.all():
+        col = int(np.flatnonzero(~closes.all(axis=0))[0])
+        where = np.rad2deg(angles[~closes[:, col]][0])
         raise DyadeError(f"the equation of motion needs the whole revolution, but "
                          f"{mechanism.dyads[col].label} cannot close at crank angle "
                          f"{where:.2f}°.")
-    machine = reduced(mechanism, kin)
     bad = ~np.isfinite(machine.inertia) | ~(machine.inertia > 0.0) | ~np.isfinite(machine.load)
     if bad.any():
         where = np.rad2deg(angles[bad][0])
@@ -162,6 +166,34 @@ def _machine(mechanism: Mechanism, angles: FloatArray) -> Reduced:
                          f"centre, or no moving mass there); give the crank or a flywheel "
                          f"inertia ([drive] flywheel_inertia).")
     return machine
+
+
+def _reduced(mechanism: Mechanism, angles: FloatArray, closes: FloatArray | None = None
+             ) -> Reduced:
+    """J, J′, M_L at ``angles`` (``reduced``), block by block (``blocks``): of the
+    kinematics only a block at a time is kept. With ``closes`` ((n, dyads) bool), where
+    the dyads close is written into it, and a block where one does not is left NaN."""
+    n = angles.shape[0]
+    inertia, slope, load = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.nan)
+    for first, last in blocks(n):
+        kin = kinematics.sweep(mechanism, angles[first:last], crank_speed=1.0)
+        if closes is not None:
+            closes[first:last] = kin.closes
+            if not kin.closes.all():
+                continue
+        part = reduced(mechanism, kin)
+        inertia[first:last], slope[first:last], load[first:last] = (
+            part.inertia, part.slope, part.load)
+    return Reduced(inertia, slope, load)
+
+
+def blocks(n: int):
+    """(first, last) of the blocks of ``dyade.linkage.stream.BLOCK_SIZE`` positions that
+    cover n positions."""
+    from dyade.linkage.stream import BLOCK_SIZE
+
+    for first in range(0, n, BLOCK_SIZE):
+        yield first, min(n, first + BLOCK_SIZE)
 
 
 def _torque_scale(tables: equation.Tables) -> float:
@@ -217,9 +249,23 @@ def _friction_torque(mechanism: Mechanism, path: equation.Path, tables: equation
     if run_up:  # at rest the friction's sense is undefined: take its limit as it moves off
         speed[0] = path.sense * AT_REST_NUDGE * max(float(np.max(np.abs(speed))), 1.0)
     angle = start + path.sense * 0.5 * path.step * j
-    kin = kinematics.sweep(mechanism, angle, crank_speed=speed, crank_acceleration=acceleration)
-    rubbing = friction.solve(mechanism, kin)
-    drive = rubbing.forces.drive_torque
+    spans = list(blocks(points))
+    if len(spans) == 1:
+        kin = kinematics.sweep(mechanism, angle, crank_speed=speed,
+                               crank_acceleration=acceleration)
+        drive = friction.solve(mechanism, kin).forces.drive_torque
+    else:  # block by block, each solved as within the whole grid (``friction.Coupling``)
+        index = j[friction.sample(points)]
+        coupling = friction.coupling(
+            mechanism, kinematics.sweep(mechanism, angle[index], crank_speed=speed[index],
+                                        crank_acceleration=acceleration[index]),
+            float(np.nanmax(np.abs(speed), initial=0.0)))
+        drive = np.empty(points)
+        for first, last in spans:
+            kin = kinematics.sweep(mechanism, angle[first:last], crank_speed=speed[first:last],
+                                   crank_acceleration=acceleration[first:last])
+            drive[first:last] = friction.solve(mechanism, kin,
+                                               coupling=coupling).forces.drive_torque
     if not np.all(np.isfinite(drive)):
         raise DyadeError("the equation of motion with friction cannot be solved: the forces "
                          "are undefined at a dead centre or a self-locking position of the "
@@ -255,7 +301,7 @@ def _at(mechanism: Mechanism, path: equation.Path, tables: equation.Tables, moto
     else:
         turns = np.floor(along / period + 1e-12)
         u = np.clip(along - turns * period, 0.0, period)
-    machine = reduced(mechanism, kinematics.sweep(mechanism, crank_angle, crank_speed=1.0))
+    machine = _reduced(mechanism, crank_angle)
     speed = sense * path.speed_at(u, machine.inertia)
     torque = sense * motor.torques(np.abs(speed))
     # M_F on the half-step grid, linear in between (exact on the grid)

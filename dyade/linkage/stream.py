@@ -14,8 +14,10 @@ soon as it is computed, and afterwards the notes and the clearance check, exactl
    the forces of the joints with clearance data are kept per position for the notes and
    the clearance check, which are made at the end.
 
-A ``[drive]`` mechanism solves its crank's motion over the whole cycle first (a few
-arrays of the positions), then streams.
+A ``[drive]`` mechanism solves its crank's motion over the whole cycle first, then
+streams: the equation of motion keeps a few arrays of its grid (J, J′, M_L, M_F and the
+path at every half step, computed block by block: ``drive``) and of the positions (the
+crank's speed, acceleration, time and torques).
 
 With friction, what couples the positions of the friction solution
 (``friction.Coupling``: the sweep's largest crank speed, and each dyad's force floor,
