@@ -147,3 +147,23 @@ def test_the_spool_gives_back_every_column():
         assert list(spool) == list(whole)
         for name, values in whole.items():
             assert np.array_equal(spool[name], values, equal_nan=True), name
+
+
+def test_progress_grows_to_the_whole_and_gives_the_first_pass_its_share():
+    """The progress of a stream: shares of the run that never shrink, the first pass
+    ending at ``FIRST_PASS`` of it, the last block at the whole; in between the second
+    pass's own pace (measured) decides."""
+    from dyade.linkage import stream as streaming
+
+    sweep = stream(dyade.read_mechanism("mechanisms/fourbar.toml"), block_size=50,
+                   step=np.radians(1.0))
+    seen = []
+    sweep.progress = lambda done, total: seen.append(done / total)
+    for _ in sweep.blocks():
+        pass
+    n = sweep.crank_angle.shape[0]
+    blocks = -(-n // 50)
+    assert len(seen) == 2 * blocks
+    assert seen[blocks - 1] == pytest.approx(streaming.FIRST_PASS)
+    assert all(later >= earlier for earlier, later in zip(seen, seen[1:]))
+    assert seen[-1] == pytest.approx(1.0)

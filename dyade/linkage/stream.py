@@ -32,6 +32,7 @@ decided at the end.
 
 from __future__ import annotations
 
+import time
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field, replace
 from types import SimpleNamespace
@@ -50,6 +51,10 @@ BLOCK_SIZE = 2048
 """positions per block (``--block-size``): a block's arrays (kinematics, forces, its
 columns: a few kB per position for dyade-16's 270 columns) stay within a few MB, near
 the cache; larger blocks gain nothing measurable (tests/benchmarks)"""
+FIRST_PASS = 0.1
+"""the first pass's share of a streamed sweep's time, for the progress bar until the
+second pass has measured its own (about 0.1 for dyade-16 with friction, 0.15 without,
+writing CSV)"""
 KEPT_PER_POSITION = 64
 """[B] what a streamed sweep keeps per position besides the per-dyad arrays: crank
 angle, speed and acceleration, masks, the clearance joints' forces"""
@@ -151,8 +156,10 @@ class Stream:
     positions: int = 0
     """rows given"""
     progress: Any = None
-    """called with (done, total) as the blocks are computed: the first pass (the
-    validity policy) counts the first half"""
+    """called with (done, total) as the blocks are computed, in units of the time they
+    take: the first pass (the validity policy) counts as ``FIRST_PASS`` of the whole
+    until the second pass's first block says how much slower that one is (the forces,
+    friction and the writer's work per block: 5 to 15 times)"""
     rows: FloatArray | None = None
     """(n,) bool: the positions reported (once the first pass is done)"""
     valid: FloatArray | None = None
@@ -162,6 +169,8 @@ class Stream:
     coupling: Any = None
     """what couples the positions of the friction solution (``friction.Coupling``), once
     the first pass is done; None without friction"""
+    _shown: float = field(default=0.0, repr=False)
+    """the share of the run the progress was last given"""
 
     def _slice(self, value, first: int, last: int):
         return value[first:last] if isinstance(value, np.ndarray) else value
@@ -171,9 +180,12 @@ class Stream:
                                 self._slice(self.speed, first, last),
                                 self._slice(self.acceleration, first, last))
 
-    def _tick(self, done: int, total: int) -> None:
+    def _tick(self, done: float, total: float) -> None:
+        """Report ``done`` of ``total``, never a smaller share than before (the second
+        pass's projection may grow)."""
         if self.progress is not None:
-            self.progress(done, total)
+            self._shown = max(self._shown, done / total)
+            self.progress(self._shown * total, total)
 
     def _spans(self) -> Iterator[tuple[int, int]]:
         n = self.crank_angle.shape[0]
@@ -229,6 +241,7 @@ class Stream:
                                  transmission=np.empty((n, dyads)),
                                  conditioning=np.empty((n, dyads)),
                                  valid=np.empty(n, dtype=bool))
+        started = time.perf_counter()
         top = 0.0  # the largest crank speed (friction)
         for first, last in self._spans():
             kin = self._kinematics(first, last)
@@ -238,7 +251,8 @@ class Stream:
                 from dyade.linkage.friction import top_speed
 
                 top = max(top, top_speed(kin))
-            self._tick(last, 2 * n)
+            self._tick(last, n / FIRST_PASS)
+        first_pass = time.perf_counter() - started
         notes = self.notes
         rows = self.rows = _check_assembly(mechanism, policy, self.allow_partial, notes)
         well = _bands(mechanism, policy, rows, notes)
@@ -288,7 +302,10 @@ class Stream:
                     kept[name][first:last] = forces.revolute[name]
             self.positions += int(cols["angle_deg"].size)
             yield cols
-            self._tick(n + last, 2 * n)
+            # the second pass's time projected from its blocks so far, against the first's
+            ratio = (time.perf_counter() - started - first_pass) * n / (
+                last * max(first_pass, 1e-9))
+            self._tick(n + ratio * last, n * (1.0 + ratio))
         invalid = None if forces_valid is None else well & ~forces_valid
         if self.friction is not None:
             self._rubbing_notes(usable, rows, invalid)
