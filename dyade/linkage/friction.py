@@ -814,21 +814,25 @@ class _FixedPoint(_Rub):
 
 
 def solve(mechanism: Mechanism, kin: Kinematics, tol: float | None = None,
-          max_iter: int | None = None, *, coupling: Coupling | None = None) -> FrictionResult:
+          max_iter: int | None = None, *, coupling: Coupling | None = None,
+          whole: bool | None = None) -> FrictionResult:
     """Reactions with Coulomb friction in every joint with μ > 0, solved directly for a
     consistent pattern of directions, with the self-locking verdict (module docstring).
 
     ``tol`` [-]: a position is solved when a fixed-point step would change its joint
     forces by less than this share; ``max_iter``: most passes per group. ``coupling``:
     ``kin`` is a block of a larger sweep, whose ``Coupling`` this is (default: ``kin``
-    is the whole sweep); the block's positions are then solved as within that sweep,
-    and which joints never move is left to the caller (``never_moves`` empty,
-    ``at_rest`` as found).
+    is the whole sweep, and its own coupling); the block's positions are then solved as
+    within that sweep. ``whole`` (default: without ``coupling``): which joints never move
+    is decided here; else it is left to the caller (``never_moves`` empty, ``at_rest``
+    as found).
     """
+    if whole is None:
+        whole = coupling is None
     if coupling is None:
-        return _run(_Direct, mechanism, kin, tol, max_iter)
+        return _run(_Direct, mechanism, kin, tol, max_iter, whole=whole)
     return _run(_Direct, mechanism, kin, tol, max_iter, speed=coupling.speed,
-                floors=coupling.floors, whole=False)
+                floors=coupling.floors, whole=whole)
 
 
 def iterate(mechanism: Mechanism, kin: Kinematics, tol: float | None = None,

@@ -8,8 +8,9 @@ soon as it is computed, and afterwards the notes and the clearance check, exactl
    policy needs per position (closure, transmission angle and conditioning of every
    dyad: 17 B per dyad and position): the assembly check (and its error, before any
    output) and the dead-centre bands are decided over the whole sweep;
-2. a second pass computes each block again (kinematics and forces) and gives its
-   columns; link angles are unwrapped on from the block before (``columns.Continuous``);
+2. a second pass computes each block again (kinematics and forces; a sweep of one
+   block keeps its kinematics from the first) and gives its columns; link angles are
+   unwrapped on from the block before (``columns.Continuous``);
    the rows with implausible values, the positions where the forces are not given, and
    the forces of the joints with clearance data are kept per position for the notes and
    the clearance check, which are made at the end.
@@ -225,7 +226,8 @@ class Stream:
             return kinetostatics.solve(self.mechanism, kin), None, None
         from dyade.linkage import friction, self_locking
 
-        rubbing = friction.solve(self.mechanism, kin, coupling=coupling)
+        rubbing = friction.solve(self.mechanism, kin, coupling=coupling, whole=False)
+        self.coupling = rubbing.coupling
         locking = None
         if self.plan.self_locking or rubbing.locks:  # as the whole sweep (sweep.run)
             locking = self_locking.test(self.mechanism, kin, rubbing)
@@ -253,6 +255,7 @@ class Stream:
                 top = max(top, top_speed(kin))
             self._tick(last, n / FIRST_PASS)
         first_pass = time.perf_counter() - started
+        kept_kin = kin if n <= self.block_size else None  # one block: computed once
         notes = self.notes
         rows = self.rows = _check_assembly(mechanism, policy, self.allow_partial, notes)
         well = _bands(mechanism, policy, rows, notes)
@@ -260,7 +263,8 @@ class Stream:
         del policy
         coupling = None
         if self.plan.friction:
-            coupling = self.coupling = self._coupling(top)
+            if n > self.block_size:  # (one block is the whole sweep: its own coupling)
+                coupling = self.coupling = self._coupling(top)
             self.friction = Rubbing(np.empty(n), np.empty(n, dtype=bool),
                                     np.empty(n, dtype=bool), {}, {})
         digits = decimals(self.crank_angle)
@@ -272,7 +276,7 @@ class Stream:
         kept = {name: np.empty((n, 2)) for name in joints}
         phases = None
         for first, last in self._spans():
-            kin = self._kinematics(first, last)
+            kin = kept_kin if kept_kin is not None else self._kinematics(first, last)
             forces = rubbing = locking = None
             if self.plan.kinetostatics:
                 forces, rubbing, locking = self._forces(kin, coupling, first, last)
