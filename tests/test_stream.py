@@ -167,3 +167,23 @@ def test_progress_grows_to_the_whole_and_gives_the_first_pass_its_share():
     assert seen[blocks - 1] == pytest.approx(streaming.FIRST_PASS)
     assert all(later >= earlier for earlier, later in zip(seen, seen[1:]))
     assert seen[-1] == pytest.approx(1.0)
+
+
+def test_a_sweep_of_one_block_computes_its_kinematics_and_friction_once(monkeypatch):
+    """Up to ``block_size`` positions the first pass's kinematics is the second's, and
+    the friction solution of the block is the whole sweep's (no sample solved first)."""
+    from dyade.linkage import friction, kinematics
+
+    calls = []
+    sweep = kinematics.sweep
+    monkeypatch.setattr(kinematics, "sweep", lambda *args, **kw: calls.append(1) or sweep(
+        *args, **kw))
+
+    def refuse(*args, **kw):
+        raise AssertionError("the sample of the force floors was solved")
+
+    monkeypatch.setattr(friction, "coupling", refuse)
+    mechanism = dyade.read_mechanism("mechanisms/self-locking.toml")
+    for _ in stream(mechanism).blocks():
+        pass
+    assert len(calls) == 1
