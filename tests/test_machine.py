@@ -609,7 +609,7 @@ def test_the_integration_grid_in_blocks_is_the_whole_grid(run_up, monkeypatch):
     """The equation of motion's grid (J, J′, M_L and the friction torque at every half
     step: 1440 points a revolution here, 720 000 for a 0.001° sweep) computed in blocks
     of positions gives the same motion to the bit as in one block (the friction solved
-    as within the whole grid: ``friction.Coupling``)."""
+    as within the whole grid: ``friction.Coupling``, checked block by block)."""
     from dyade.linkage import drive, stream
 
     if run_up:
@@ -620,10 +620,30 @@ def test_the_integration_grid_in_blocks_is_the_whole_grid(run_up, monkeypatch):
                              "flywheel_inertia": 0.3},
                             **{"friction.coefficient": 0.1, "friction.pin_radius": 5,
                                "friction.slider_length": 40, "friction.slider_height": 20})
+    from dyade.linkage import friction
+
+    solve, couplings = friction.solve, []
+
+    def recorded(*args, **kw):  # the coupling each solution took (its own: None)
+        result = solve(*args, **kw)
+        couplings.append((kw.get("coupling"), result.coupling))
+        return result
+
+    monkeypatch.setattr(friction, "solve", recorded)
+    monkeypatch.setattr(stream, "BLOCK_SIZE", 10 ** 9)  # the whole grid in one block
     whole = drive.solve(mechanism, run_up=run_up, friction=True)
+    own = [mine for given, mine in couplings]  # the whole grid's, pass by pass
+    assert all(given is None for given, _ in couplings)
+    couplings.clear()
     monkeypatch.setattr(stream, "BLOCK_SIZE", 97)
     assert len(list(drive.blocks(1440))) == 15
     parts = drive.solve(mechanism, run_up=run_up, friction=True)
     for name in ("speed", "acceleration", "time", "motor_torque", "friction_torque"):
         np.testing.assert_array_equal(getattr(parts, name), getattr(whole, name), err_msg=name)
     assert parts.figures == whole.figures
+    # every block of a pass was solved with that pass's whole-grid coupling (the force
+    # floors and the top speed hardly ever change a bit here: checked directly)
+    given = [coupling for coupling, _ in couplings]
+    assert None not in given and len(given) == len(own) * (len(given) // len(own))
+    per_pass = len(given) // len(own)
+    assert given == [coupling for coupling in own for _ in range(per_pass)]

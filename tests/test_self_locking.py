@@ -328,3 +328,19 @@ def test_slotted_lever_with_friction_says_nothing_about_locking(tmp_path):
     assert out.exit_code == 0
     assert "lock" not in out.stderr
     assert "lock_margin_3_4 min (no lock)" in " ".join(out.stdout.split())
+
+
+@pytest.mark.parametrize("fmt", ["json", "table"])
+def test_a_sweep_locked_throughout_gives_no_drive_torque_and_no_warning(fmt):
+    """280°–300° of the press lie inside its self-locking range: no position has forces,
+    so the summary's drive torque is not given (JSON null, the table leaves it out),
+    and no numpy warning (All-NaN slice) reaches the user."""
+    import json
+
+    result = CliRunner().invoke(main, ["analyse", str(shipped("self-locking.toml")),
+                                       "--start", "280", "--stop", "300", "--format", fmt])
+    assert result.exit_code == 0, result.output
+    assert "RuntimeWarning" not in result.output and "locks (self-locking)" in result.output
+    if fmt == "json":
+        drive = json.loads(result.stdout)["summary"]["drive"]
+        assert drive["M_max"] is None and drive["M_min"] is None

@@ -15,7 +15,7 @@ from dyade.cli import main
 from dyade.errors import AssemblyError
 from dyade.files import mechanism as toml_input
 from dyade.linkage.stream import stream
-from tests.helpers import mechanism_from
+from tests.helpers import mechanism_from, shipped
 from tests.conftest import SHIPPED
 from tests.test_machine import _driven
 
@@ -155,7 +155,7 @@ def test_progress_grows_to_the_whole_and_gives_the_first_pass_its_share():
     pass's own pace (measured) decides."""
     from dyade.linkage import stream as streaming
 
-    sweep = stream(dyade.read_mechanism("mechanisms/fourbar.toml"), block_size=50,
+    sweep = stream(dyade.read_mechanism(shipped("fourbar.toml")), block_size=50,
                    step=np.radians(1.0))
     seen = []
     sweep.progress = lambda done, total: seen.append(done / total)
@@ -183,7 +183,7 @@ def test_a_sweep_of_one_block_computes_its_kinematics_and_friction_once(monkeypa
         raise AssertionError("the sample of the force floors was solved")
 
     monkeypatch.setattr(friction, "coupling", refuse)
-    mechanism = dyade.read_mechanism("mechanisms/self-locking.toml")
+    mechanism = dyade.read_mechanism(shipped("self-locking.toml"))
     for _ in stream(mechanism).blocks():
         pass
     assert len(calls) == 1

@@ -188,3 +188,14 @@ def test_memory_does_not_grow_with_a_friction_sweep():
     large = _peak_kb(*args, "--step", "0.0018")
     growth = (large - small) * 1024 / (200_000 - 20_000)
     assert growth < 100, f"{growth:.0f} B per position"
+
+
+def test_positions_left_unsolved_are_noted_as_in_the_whole_sweep():
+    """One friction pass (``--friction-max-iter 1``) leaves 56 positions of the press
+    unsolved: the note names them (not as positions without forces), streamed as whole."""
+    args = [str(MECHANISMS / "self-locking.toml"), "--friction-max-iter", "1", "--format",
+            "csv"]
+    streamed, whole = _run([*args, "--block-size", "7"]), _run([*args, "--block-size", "0"])
+    assert streamed == whole
+    assert "no consistent friction solution was found" in streamed[2]
+    assert "at 56 positions" in streamed[2]

@@ -285,7 +285,7 @@ class _Rub:
         omega = (top_speed(kin) if speed is None else speed) or abs(mechanism.crank.speed)
         self.speed = omega
         self.typical = {"R": omega, "P": omega * mechanism.crank.length}
-        self.floors: dict[tuple[int, int], float] = {} if floors is None else floors
+        self.floors: dict[tuple[int, int], float] = {} if floors is None else dict(floors)
         """dyad (links) -> force floor [N]: given, or taken at every ``stride``-th position"""
         self.stride = sample(n).step if stride is None else stride
 

@@ -113,7 +113,9 @@ def summary(result: Result, cols: Columns) -> dict[str, Any]:
                                        for name, values in cols.items() if name != "angle_deg"}}
     if result.forces is not None:
         torque = cols["M_drive"]
-        out["drive"] = {"M_max": np.nanmax(torque), "M_min": np.nanmin(torque),
+        given = torque[np.isfinite(torque)]  # none where the forces are nowhere given
+        out["drive"] = {"M_max": given.max() if given.size else np.nan,
+                        "M_min": given.min() if given.size else np.nan,
                         "M_rms": float(np.sqrt(cycle_mean(angle, torque ** 2))),
                         "P_mean": cycle_mean(angle, cols["P_drive"])}
         peaks = {}
