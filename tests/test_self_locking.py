@@ -344,3 +344,22 @@ def test_a_sweep_locked_throughout_gives_no_drive_torque_and_no_warning(fmt):
     if fmt == "json":
         drive = json.loads(result.stdout)["summary"]["drive"]
         assert drive["M_max"] is None and drive["M_min"] is None
+
+
+@pytest.mark.parametrize("passes", [1, 2, 7])
+def test_too_few_friction_passes_give_no_self_locking_verdict(passes):
+    """The press self-locks at 270°–332° (found with 8 passes or more). With fewer the
+    search from every forced pattern is cut short: one pass once called 30°–90° and
+    216°–332° self-locking, where 30°–90° has a friction equilibrium. Now such positions
+    are "not solved", with the reason, and no slider is said to lock."""
+    mechanism = toml_input.read_mechanism(shipped("self-locking.toml"))
+    short = analysis.analyse(mechanism, friction_max_iter=passes)
+    assert not short.friction.locked.any() and short.friction.unsolved.any()
+    assert not any(note.kind == "self_locking" for note in short.notes)
+    note = next(note for note in short.notes if note.kind == "friction_not_converged")
+    assert "give no self-locking verdict" in note.text
+    full = analysis.analyse(mechanism, friction_max_iter=8)
+    locked = np.rad2deg(full.crank_angle[full.friction.locked])
+    assert locked.min() == pytest.approx(270.0) and locked.max() == pytest.approx(332.0)
+    # every position left unsolved is solved or locked with the whole search
+    assert not (short.friction.unsolved & ~full.friction.locked & ~full.friction.converged).any()

@@ -67,7 +67,10 @@ FORCE_FLOOR = 1e-12  # [-] share of a typical force below which changes are not 
 EDGE = 3.0  # [-] sum of the edge pressures of a linear distribution over L: 3·|M'|/L
 COMPACT = 0.1  # [-] pass only the unsolved positions on once they are below this share
 RENEW_BELOW = 0.5  # [-] det below this: (I + K)⁻¹ renewed at every pass
-RESTART_PASSES = 8  # most Newton passes from each forced pattern (suspect positions)
+RESTART_PASSES = 8
+"""most Newton passes from each forced pattern (suspect positions); the self-locking
+verdict takes the whole search: with fewer passes allowed (``friction_max_iter``) a
+position without a solution is "not solved", never "self-locking" """
 SAMPLE = 256  # the force floors are taken from about this many positions of the sweep
 
 
@@ -757,6 +760,8 @@ class _Direct(_Rub):
         if failed.any():
             fresh = failed & ~self.locked & ~self.unsolved
             locked = fresh & (out.lowest <= 0.0)
+            if self.max_iter < RESTART_PASSES:  # the search was cut short: no verdict
+                locked[:] = False
             unsolved = fresh & ~locked
             if locked.any():  # the joint whose friction alone brings det lowest
                 cause = np.argmin(np.where(np.isnan(out.own), np.inf, out.own), axis=0)

@@ -608,12 +608,17 @@ def _friction_notes(mechanism: Mechanism, kin: kinematics.Kinematics,
     failed = rows & rubbing.unsolved
     if failed.any():
         spans = ranges(angle, failed)
+        from dyade.linkage.friction import RESTART_PASSES
+
+        few = mechanism.friction_max_iter < RESTART_PASSES
         notes.append(Note("friction_not_converged", "", tuple(spans),
                           f"no consistent friction solution was found in "
                           f"{mechanism.friction_max_iter} passes (tolerance "
                           f"{mechanism.friction_tol:g}) at {int(failed.sum())} positions: crank "
                           f"angles {format_ranges(spans, digits=digits)}; forces are not given there "
-                          f"(forces_valid = 0)."))
+                          f"(forces_valid = 0)"
+                          + (f"; fewer than {RESTART_PASSES} passes (friction.max_iter) "
+                             f"give no self-locking verdict." if few else ".")))
     for name, mask in rubbing.at_rest.items():
         if (mask & rows).any():
             spans = ranges(angle, mask & rows)
