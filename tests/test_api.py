@@ -87,7 +87,11 @@ def test_notes_are_structured():
     assert lock.subject == "slider (1,4)"
     (first, last), = lock.ranges
     assert np.rad2deg([first, last]) == pytest.approx([270.0, 332.0])
-    assert str(lock) == lock.text and "270.0°–332.0°" in lock.text
+    assert lock.figures["joint"] == (1, 4) and lock.figures["slider"]
+    from dyade.report.notes import say
+
+    assert say(lock, result.mechanism).startswith("slider (1,4) locks (self-locking) at crank "
+                                                  "angles 270.0°–332.0°")
 
 
 def test_to_pandas_without_pandas_says_how_to_get_it(monkeypatch):

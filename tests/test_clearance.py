@@ -11,6 +11,7 @@ import pytest
 from click.testing import CliRunner
 from scipy.optimize import minimize_scalar
 
+import dyade
 from dyade.linkage import sweep as analysis
 from dyade import clearance
 from dyade.linkage import joint_clearance
@@ -251,7 +252,7 @@ def test_speed_study_slope_grows_with_the_cube_of_speed(tmp_path):
 
 
 def test_analyse_runs_the_check_only_with_clearance_data(monkeypatch):
-    result = analysis.run(toml_input.read_mechanism(shipped("dyade-16.toml")))
+    result = analysis.analyse(toml_input.read_mechanism(shipped("dyade-16.toml")))
     assert result.plan.clearance == ((2, 7),)
     assert len(result.clearance) == 1 and len(result.clearance[0].reversals) == 2
 
@@ -259,7 +260,7 @@ def test_analyse_runs_the_check_only_with_clearance_data(monkeypatch):
         raise AssertionError("clearance check ran without clearance data")
 
     monkeypatch.setattr(joint_clearance, "check_mechanism", must_not_run)
-    assert analysis.run(toml_input.read_mechanism(shipped("fourbar.toml"))).clearance is None
+    assert analysis.analyse(toml_input.read_mechanism(shipped("fourbar.toml"))).clearance is None
 
 
 def test_max_wander_reaches_the_check():
@@ -273,9 +274,9 @@ def test_max_wander_reaches_the_check():
 
 def test_force_lines_are_the_reversals_of_the_check():
     # the polar diagram's reversals and the clearance check's come from one computation
-    result = analysis.run(toml_input.read_mechanism(shipped("dyade-16.toml")))
+    result = analysis.analyse(toml_input.read_mechanism(shipped("dyade-16.toml")))
     lines = joint_clearance.force_lines(result)
-    checks = joint_clearance.check(result.mechanism, stiffness=1e8, clearance=1e-4,
+    checks = dyade.check_clearance(result.mechanism, stiffness=1e8, clearance=1e-4,
                                    result=result)
     assert [line.joint for line in lines] == [check.joint for check in checks]
     assert sum(len(line.reversal_angles) for line in lines) > 2
@@ -290,10 +291,10 @@ def test_force_lines_are_the_reversals_of_the_check():
 
 
 def test_force_lines_need_forces_and_a_revolute_joint():
-    result = analysis.run(toml_input.read_mechanism(shipped("scotch-yoke.toml")))
+    result = analysis.analyse(toml_input.read_mechanism(shipped("scotch-yoke.toml")))
     with pytest.raises(analysis.InputError, match="needs joint forces"):
         joint_clearance.force_lines(result)
-    result = analysis.run(toml_input.read_mechanism(shipped("slider-crank.toml")))
+    result = analysis.analyse(toml_input.read_mechanism(shipped("slider-crank.toml")))
     with pytest.raises(analysis.InputError, match="no revolute joint \\(1,4\\)"):
         joint_clearance.force_lines(result, [(4, 1)])
 

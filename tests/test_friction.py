@@ -12,6 +12,7 @@ from click.testing import CliRunner
 
 from dyade.linkage import sweep as analysis, friction, motion as joints, kinematics, kinetostatics, self_locking
 from dyade.files import mechanism as toml_input
+from dyade.report.notes import say
 from dyade.cli import main
 from dyade.linkage.model import Prismatic
 from tests.conftest import SHIPPED
@@ -114,10 +115,8 @@ def test_coulomb_law_holds_in_every_joint(path):
 
 
 def test_friction_columns_follow_the_joint_order():
-    from dyade.linkage import columns
-
     mechanism = loaded(shipped("dyade-16.toml"), 0.1)
-    names = list(columns.columns(analysis.run(mechanism)))
+    names = list(analysis.analyse(mechanism).columns())
     rubbing = [name for name in names if name.startswith(("MR_", "FR_"))]
     expected = ([f"MR_{i}_{j}" for i, j in (k.name for k in mechanism.joints
                                            if not isinstance(k, Prismatic))]
@@ -143,7 +142,7 @@ def test_scotch_yoke_by_hand_without_edge_friction():
     # FN = m·g, slot force N = m·a_x + μ·m·g·sign(v), M_drive = −r·sin φ·N
     #   = m·r²·Ω²·sin φ·cos φ + μ·m·g·r·|sin φ|
     mechanism = scotch_yoke(edges=False)
-    result = analysis.run(mechanism)
+    result = analysis.analyse(mechanism)
     assert result.plan.friction == ((1, 3),)
     phi = result.crank_angle
     m, r, omega, mu, g = 2.0, 0.05, mechanism.crank.speed, 0.2, 9.80665
@@ -163,7 +162,7 @@ def test_scotch_yoke_by_hand_with_edge_friction():
     # linear in N for each sign σ of M'; the consistent σ gives the solution (one here:
     # 3·μ·r/L < 1).
     mechanism = scotch_yoke(edges=True)
-    result = analysis.run(mechanism)
+    result = analysis.analyse(mechanism)
     phi = result.crank_angle
     m, r, omega, mu, g, length, height = 2.0, 0.05, mechanism.crank.speed, 0.2, 9.80665, 0.04, 0.02
     v = -r * omega * np.sin(phi)
@@ -183,7 +182,7 @@ def test_scotch_yoke_by_hand_with_edge_friction():
     assert np.allclose(result.forces.moment[(1, 3)], tilt, rtol=1e-9, atol=1e-12)
     fr = result.friction.friction_forces[(1, 3)]
     assert np.allclose(fr, -mu * s * (normal + 3.0 * np.abs(tilt) / length), rtol=1e-9)
-    plain = analysis.run(scotch_yoke(edges=False)).forces.drive_torque
+    plain = analysis.analyse(scotch_yoke(edges=False)).forces.drive_torque
     assert np.max(np.abs(result.forces.drive_torque - plain)) > 0.1  # the edges matter here
 
 
@@ -247,11 +246,11 @@ def test_fixed_point_iteration_agrees_with_the_direct_solution(label, mechanism)
 
 def test_unsolved_positions_are_reported_and_blanked():
     mechanism = replace(loaded(shipped("dyade-16.toml"), 0.1), friction_max_iter=1)
-    result = analysis.run(mechanism)
+    result = analysis.analyse(mechanism)
     unsolved = result.friction.unsolved
     assert unsolved.any() and not result.friction.converged[unsolved].any()
     note, = [note for note in result.notes if note.kind == "friction_not_converged"]
-    assert "no consistent friction solution was found in 1 passes" in note.text
+    assert "no consistent friction solution was found in 1 passes" in say(note, mechanism)
     cols = result.columns()
     assert np.all(cols["forces_valid"][unsolved] == 0.0)
     assert np.isnan(cols["M_drive"][unsolved]).all() and np.isnan(cols["F_3_4"][unsolved]).all()
@@ -264,7 +263,7 @@ def test_no_friction_no_friction_stage(monkeypatch):
     monkeypatch.setattr(friction, "solve", must_not_run)
     monkeypatch.setattr(friction, "iterate", must_not_run)
     monkeypatch.setattr(self_locking, "test", must_not_run)
-    result = analysis.run(toml_input.read_mechanism(shipped("dyade-16.toml")))
+    result = analysis.analyse(toml_input.read_mechanism(shipped("dyade-16.toml")))
     assert result.forces is not None and result.friction is None
     out = CliRunner().invoke(main, ["analyse", str(shipped("slider-crank.toml")), "--format", "csv"],
                              catch_exceptions=False)
@@ -278,7 +277,7 @@ def test_pin_friction_only_skips_the_slider_margin(monkeypatch):
     monkeypatch.setattr(self_locking, "test", must_not_run)
     mechanism = toml_input.read_mechanism(shipped("slider-crank.toml"), overrides={
         "crank.friction": 0.1, "crank.pin_radius": 8.0})
-    result = analysis.run(mechanism)
+    result = analysis.analyse(mechanism)
     assert result.plan.friction == ((1, 2),) and result.plan.self_locking == ()
     assert result.friction.moments[(1, 2)].any()
     assert not any(name.startswith("lock_margin") for name in result.columns())

@@ -203,7 +203,7 @@ def test_no_masses_no_force_stage(monkeypatch):
     monkeypatch.setattr(kinetostatics, "solve", must_not_run)
     mechanism = toml_input.read_mechanism(shipped("watt-sixbar.toml"))
     assert not mechanism.has_dynamics
-    result = analysis.run(mechanism)
+    result = analysis.analyse(mechanism)
     assert result.forces is None
     out = CliRunner().invoke(main, ["analyse", str(shipped("watt-sixbar.toml")), "--format", "csv"],
                              catch_exceptions=False)

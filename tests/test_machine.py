@@ -610,7 +610,7 @@ def test_the_integration_grid_in_blocks_is_the_whole_grid(run_up, monkeypatch):
     step: 1440 points a revolution here, 720 000 for a 0.001° sweep) computed in blocks
     of positions gives the same motion to the bit as in one block (the friction solved
     as within the whole grid: ``friction.Coupling``, checked block by block)."""
-    from dyade.linkage import drive, stream
+    from dyade.linkage import blocks, drive
 
     if run_up:
         mechanism = _driven(RUN_UP[0], name="fourbar.toml", **RUN_UP[1])
@@ -630,13 +630,13 @@ def test_the_integration_grid_in_blocks_is_the_whole_grid(run_up, monkeypatch):
         return result
 
     monkeypatch.setattr(friction, "solve", recorded)
-    monkeypatch.setattr(stream, "BLOCK_SIZE", 10 ** 9)  # the whole grid in one block
+    monkeypatch.setattr(drive, "BLOCK_SIZE", 10 ** 9)  # the whole grid in one block
     whole = drive.solve(mechanism, run_up=run_up, friction=True)
     own = [mine for given, mine in couplings]  # the whole grid's, pass by pass
     assert all(given is None for given, _ in couplings)
     couplings.clear()
-    monkeypatch.setattr(stream, "BLOCK_SIZE", 97)
-    assert len(list(drive.blocks(1440))) == 15
+    monkeypatch.setattr(drive, "BLOCK_SIZE", 97)
+    assert len(list(blocks.spans(1440, drive.BLOCK_SIZE))) == 15
     parts = drive.solve(mechanism, run_up=run_up, friction=True)
     for name in ("speed", "acceleration", "time", "motor_torque", "friction_torque"):
         np.testing.assert_array_equal(getattr(parts, name), getattr(whole, name), err_msg=name)

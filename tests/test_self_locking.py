@@ -17,6 +17,7 @@ import dyade
 from dyade.cli import main
 from dyade.errors import DyadeError
 from dyade.files import mechanism as toml_input
+from dyade.report.notes import say
 from dyade.linkage import friction, kinematics, kinetostatics, motion as joints, sweep as analysis
 from dyade.linkage.model import Prismatic, Revolute
 from tests.helpers import TEMPLATES, mechanism_from, shipped
@@ -129,9 +130,9 @@ def test_press_slide_locks_where_its_comment_says():
     assert np.all(np.diff(angles) == 1.0)  # one range
     note, = [note for note in result.notes if note.kind == "self_locking"]
     assert note.subject == "slider (1,4)"
-    assert note.text.startswith("slider (1,4) locks (self-locking) at crank angles 270.0°–332.0°")
+    assert say(note, result.mechanism).startswith("slider (1,4) locks (self-locking) at crank angles 270.0°–332.0°")
     near, = [note for note in result.notes if note.kind == "near_self_locking"]
-    assert near.text.startswith("dyad 2 (kind 2 RRP, links 3-4) is near self-locking at crank "
+    assert say(near, result.mechanism).startswith("dyad 2 (kind 2 RRP, links 3-4) is near self-locking at crank "
                                 "angles 221.0°–269.0°, 333.0°–359.0°")
     cols = result.columns()
     blank = ~cols["forces_valid"].astype(bool)
@@ -266,7 +267,7 @@ def test_random_mechanisms_are_solved_locked_or_flagged(data, mu, seed, sizes):
                                       mu, pin=pin, length=length, height=height),
                         friction_tol=1e-12)
     try:
-        result = analysis.run(mechanism, allow_partial=True)
+        result = analysis.analyse(mechanism, allow_partial=True)
     except DyadeError:
         return
     rows = result.rows
@@ -357,7 +358,7 @@ def test_too_few_friction_passes_give_no_self_locking_verdict(passes):
     assert not short.friction.locked.any() and short.friction.unsolved.any()
     assert not any(note.kind == "self_locking" for note in short.notes)
     note = next(note for note in short.notes if note.kind == "friction_not_converged")
-    assert "give no self-locking verdict" in note.text
+    assert "give no self-locking verdict" in say(note, mechanism)
     full = analysis.analyse(mechanism, friction_max_iter=8)
     locked = np.rad2deg(full.crank_angle[full.friction.locked])
     assert locked.min() == pytest.approx(270.0) and locked.max() == pytest.approx(332.0)

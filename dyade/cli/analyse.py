@@ -112,7 +112,7 @@ def save_as(loaded: Loaded, path: str) -> None:
 def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
     """Show MECHANISM_FILE in assembly order: crank, dyads, joints, link points, mobility,
     and which effects an analysis will simulate."""
-    from dyade.linkage.sweep import plan
+    from dyade.linkage.plan import plan
     from dyade.report import describe as report
     from dyade.report import tables
 
@@ -305,9 +305,11 @@ SWEEP = ("dyade.files.mechanism", "dyade.linkage.sweep", "dyade.linkage.kinetost
          "dyade.linkage.dyads.rrp", "dyade.linkage.dyads.rpr", "dyade.linkage.dyads.prp",
          "dyade.linkage.dyads.ppr")
 """what every sweep of a mechanism file imports (friction only where a file has it)"""
-NEEDS = {"csv": SWEEP + ("dyade.linkage.stream", "dyade.report.csv_rows"),
-         "json": SWEEP + ("dyade.linkage.summary", "dyade.report.document"),
-         "table": SWEEP + ("dyade.linkage.summary", "dyade.report.tables")}
+NEEDS = {"csv": SWEEP + ("dyade.report.csv_rows",),
+         "json": SWEEP + ("dyade.linkage.summary", "dyade.report.document",
+                          "dyade.report.spool", "dyade.report.notes"),
+         "table": SWEEP + ("dyade.linkage.summary", "dyade.report.tables",
+                           "dyade.report.spool", "dyade.report.notes")}
 """modules ``analyse`` needs for every file, by output format"""
 
 
@@ -372,30 +374,72 @@ class Job(NamedTuple):
     """positions per block of a streamed CSV (None: the default, 0: the whole sweep)"""
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
+        """The sweep of one file, block by block (``dyade.analyse_in_blocks``): CSV rows
+        written as soon as they are computed; for JSON and the tables the blocks go to a
+        ``Spool`` on disk, from which the summary and the JSON arrays take one column at
+        a time."""
+        from dyade.linkage.sweep import analyse_in_blocks
+        from dyade.report import csv_rows
+
         output = None if output == "-" else output  # -o -: standard output
         loaded = load(path, self.assignments, self.sweep)
         mechanism = loaded.mechanism
         if save_as_path:
             save_as(loaded, save_as_path)
-        if self.block_size != 0:
-            self.streamed(mechanism, loaded, path, output)
-            return
-        result = sweep(mechanism, self.allow_partial, self.friction_tol, self.friction_max_iter,
-                       max_memory=self.max_memory, dead_centre=self.dead_centre,
-                       transmission_warning=self.transmission_warning, run_up=self.run_up,
-                       constant_speed=self.constant_speed)
-        every = result.columns()
-        self.write(result, every, self.chosen(every), output, loaded,
-                   lambda: result.summary(every))
-        warn(result.notes, f"{os.path.basename(path)}: " if output else "")
-        self.check_locks(result)
+        with options_named():
+            run = analyse_in_blocks(mechanism, block_size=sys.maxsize if self.block_size == 0
+                                    else self.block_size,
+                                    allow_partial=self.allow_partial,
+                                    friction_tol=self.friction_tol,
+                                    friction_max_iter=self.friction_max_iter,
+                                    max_memory=self.max_memory, dead_centre=self.dead_centre,
+                                    transmission_warning=self.transmission_warning,
+                                    constant_speed=self.constant_speed, run_up=self.run_up)
+            blocks = (block.columns for block in run)
+            with progress(f"{os.path.basename(path)}: checking the sweep",
+                          show=long_run(run)) as tick:
+                run.progress = tick
+                first = next(blocks)  # the assembly check fails here, before any output
+        names = list(self.chosen(first))  # a wrong --columns fails before any output
 
-    def check_locks(self, result) -> None:
-        """--fail-on-lock: exit status 1 when the mechanism self-locks somewhere (a whole
-        ``Result`` or a stream's ``outcome()``)."""
+        def analysing():
+            return progress(f"{os.path.basename(path)}: analysing", show=long_run(run))
+
+        def emit(handle) -> None:
+            writer = csv_rows.Writer(names, handle)
+            writer.header()
+            with analysing() as tick:
+                run.progress = tick
+                writer.rows(first)
+                for cols in blocks:
+                    writer.rows(cols)
+            writer.close()
+
+        if self.fmt != "csv":
+            from dyade.report.spool import Spool
+
+            with analysing() as tick:
+                run.progress = tick
+                spool = Spool(itertools.chain([first], blocks))
+            with spool:
+                from dyade.linkage.summary import summary
+
+                outcome = run.outcome
+                cols = Chosen(spool, names) if self.columns else spool
+                self.write(outcome, spool, cols, output, loaded, lambda: summary(outcome, spool))
+        elif output:
+            with atomic(output) as handle:
+                emit(handle)
+        else:
+            emit(sys.stdout)
+        warn(run.outcome.notes, mechanism, f"{os.path.basename(path)}: " if output else "")
+        self.check_locks(run.outcome)
+
+    def check_locks(self, outcome) -> None:
+        """--fail-on-lock: exit status 1 when the mechanism self-locks somewhere."""
         from dyade.errors import DyadeError
 
-        locks = any(lock.locks[result.rows].any() for lock in (result.locking or {}).values())
+        locks = any(lock.locks[outcome.rows].any() for lock in (outcome.locking or {}).values())
         if self.fail_on_lock and locks:
             raise DyadeError("the mechanism self-locks (see the warning above); --fail-on-lock "
                              "was given.")
@@ -415,9 +459,9 @@ class Job(NamedTuple):
         return Chosen(every, names)
 
     def write(self, result, every, cols, output: str | None, loaded, summarise) -> None:
-        """The CSV, the JSON document or the tables of a result (a whole ``Result`` or a
-        stream's ``outcome()``): ``every`` its columns, ``cols`` those chosen,
-        ``summarise()`` its summary (of every column)."""
+        """The CSV, the JSON document or the tables of a sweep's ``outcome`` (``result``):
+        ``every`` its columns, ``cols`` those chosen, ``summarise()`` its summary (of
+        every column)."""
         mechanism = result.mechanism
         if self.fmt == "csv":
             from dyade.report import csv_rows
@@ -430,10 +474,12 @@ class Job(NamedTuple):
         elif self.fmt == "json":
             from dyade.linkage.columns import unit_of
             from dyade.report.document import document
+            from dyade.report.effects import with_effects
+            from dyade.report.notes import say
 
             write_json(document("analyse", cols, {name: unit_of(name) for name in cols},
-                                selected_summary(summarise(), cols),
-                                [note.text for note in result.notes],
+                                selected_summary(with_effects(summarise(), result.plan), cols),
+                                [say(note, mechanism) for note in result.notes],
                                 mechanism=mechanism.name, source=loaded.label,
                                 positions=int(every["angle_deg"].size)), output)
         else:
@@ -453,58 +499,6 @@ class Job(NamedTuple):
             else:
                 parts = [tables.key_results(result, cols, summary, unit), motion]
             show(parts, output)
-
-    def streamed(self, mechanism, loaded, path: str, output: str | None) -> None:
-        """The sweep block by block (``dyade.linkage.stream``): CSV rows written as soon as
-        they are computed; for JSON and the tables the blocks go to a ``Spool`` on disk,
-        from which the summary and the JSON arrays take one column at a time."""
-        from dyade.linkage.stream import Spool, stream
-        from dyade.report import csv_rows
-
-        with options_named():
-            sweep_ = stream(mechanism, block_size=self.block_size,
-                            allow_partial=self.allow_partial, friction_tol=self.friction_tol,
-                            friction_max_iter=self.friction_max_iter, max_memory=self.max_memory,
-                            dead_centre=self.dead_centre,
-                            transmission_warning=self.transmission_warning,
-                            constant_speed=self.constant_speed, run_up=self.run_up)
-            blocks = sweep_.blocks()
-            with progress(f"{os.path.basename(path)}: checking the sweep",
-                          show=long_run(sweep_)) as tick:
-                sweep_.progress = tick
-                first = next(blocks)  # the assembly check fails here, before any output
-        names = list(self.chosen(first))  # a wrong --columns fails before any output
-
-        def analysing():
-            return progress(f"{os.path.basename(path)}: analysing", show=long_run(sweep_))
-
-        def emit(handle) -> None:
-            writer = csv_rows.Writer(names, handle)
-            writer.header()
-            with analysing() as tick:
-                sweep_.progress = tick
-                writer.rows(first)
-                for cols in blocks:
-                    writer.rows(cols)
-            writer.close()
-
-        if self.fmt != "csv":
-            with analysing() as tick:
-                sweep_.progress = tick
-                spool = Spool(itertools.chain([first], blocks))
-            with spool:
-                from dyade.linkage.summary import summary
-
-                outcome = sweep_.outcome()
-                cols = Chosen(spool, names) if self.columns else spool
-                self.write(outcome, spool, cols, output, loaded, lambda: summary(outcome, spool))
-        elif output:
-            with atomic(output) as handle:
-                emit(handle)
-        else:
-            emit(sys.stdout)
-        warn(sweep_.notes, f"{os.path.basename(path)}: " if output else "")
-        self.check_locks(sweep_.outcome())
 
 
 class Chosen(Mapping):
@@ -536,11 +530,11 @@ SECOND = 8e6
 """values (positions × columns) a streamed CSV computes and writes in about a second"""
 
 
-def long_run(sweep_) -> bool:
-    """A streamed sweep expected to take more than about a second."""
+def long_run(run) -> bool:
+    """A sweep (``pipeline.Run``) expected to take more than about a second."""
     from dyade.linkage.sweep import BYTES_PER_VALUE, memory_estimate
 
-    values = (memory_estimate(sweep_.mechanism, sweep_.crank_angle.size) - (50 << 20)) \
+    values = (memory_estimate(run.setup.mechanism, run.setup.positions) - (50 << 20)) \
         / BYTES_PER_VALUE
     return values > SECOND
 
@@ -575,12 +569,16 @@ def sweep(mechanism, allow_partial: bool, friction_tol: float | None = None,
                        friction_max_iter=friction_max_iter, **options)
 
 
-def warn(notes, prefix: str = "") -> None:
-    """The result's notes on stderr, each a warning: one line each, as they are, into a
-    pipe or a file (or a batch worker's capture); through rich on a terminal, which
-    wraps them (rich is loaded only then: about 20 ms of every batch worker's start)."""
+def warn(notes, mechanism, prefix: str = "") -> None:
+    """A sweep's notes (of ``mechanism``) on stderr, each a warning: one line each, as
+    they are, into a pipe or a file (or a batch worker's capture); through rich on a
+    terminal, which wraps them (rich is loaded only then: about 20 ms of every batch
+    worker's start)."""
     if not notes:
         return
+    from dyade.report.notes import say
+
+    notes = [say(note, mechanism) for note in notes]
     if not sys.stderr.isatty():
         sys.stderr.write("".join(f"warning: {prefix}{note}\n" for note in notes))
         return

@@ -146,7 +146,7 @@ def _run_linkage(kind: str, files: tuple[str, ...], output: str | None, fmt: str
     def one(path: str, target: str | None, _: object = None) -> None:
         mechanism = load(path, assignments, sweep_options).mechanism
         result = sweep(mechanism, allow_partial)
-        warn(result.notes, f"{os.path.basename(path)}: " if len(files) > 1 else "")
+        warn(result.notes, mechanism, f"{os.path.basename(path)}: " if len(files) > 1 else "")
         draw(result, Target(target, show, dpi), announce)
 
     announce = output is None

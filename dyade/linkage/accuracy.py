@@ -12,7 +12,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from dyade.linkage import sweep as analysis
+from dyade.linkage.plan import plan
+from dyade.linkage.sweep import Result, analyse
 from dyade.linkage.model import Mechanism, Revolute
 
 STEPS_DEG = (5.0, 2.0, 1.0, 0.5, 0.1, 0.05)  # [°] crank steps, the last one is the reference
@@ -44,15 +45,16 @@ def _timed(run, repeats: int):
     return best, result
 
 
-def _peaks(result: analysis.Result) -> dict[str, float]:
-    """Peak |M_drive|, peak joint forces and clearance peaks of one run."""
+def _peaks(mechanism: Mechanism, forces, rows, clearance=None) -> dict[str, float]:
+    """Peak |M_drive|, peak joint forces and clearance peaks of one run: its ``forces``
+    (``kinetostatics.Forces`` or None), the positions reported (``rows``), its clearance
+    check."""
     out: dict[str, float] = {}
-    forces = result.forces
     if forces is None:
         return out
-    valid = forces.valid & result.rows
+    valid = forces.valid & rows
     out["|M_drive| max"] = float(np.max(np.abs(forces.drive_torque[valid]), initial=0.0))
-    for joint in result.mechanism.joints:
+    for joint in mechanism.joints:
         a, b = joint.name
         if isinstance(joint, Revolute):
             size = np.hypot(*forces.revolute[joint.name][valid].T)
@@ -64,7 +66,7 @@ def _peaks(result: analysis.Result) -> dict[str, float]:
     for key, value in out.items():  # a joint that carries nothing: round-off is no peak
         if key != "|M_drive| max" and value <= NOISE * largest:
             out[key] = 0.0
-    for check in result.clearance or []:
+    for check in clearance or []:
         if check.reversals:
             a, b = check.joint
             out[f"clearance F12max {a}_{b}"] = max(r.peak.force for r in check.reversals)
@@ -89,15 +91,16 @@ def crank_step(mechanism: Mechanism, steps=STEPS_DEG, repeats: int = 3, tick=Non
     runs = []
     for step in steps:
         angles = mechanism.sweep.start + np.deg2rad(step) * np.arange(int(round(360 / step)) + 1)
-        seconds, result = _timed(lambda: analysis.run(mechanism, None, False, angles), repeats)
-        runs.append((f"{step:g}°", seconds, _peaks(result) or _kinematic_peaks(result),
+        seconds, result = _timed(lambda: analyse(mechanism, crank_angle=angles), repeats)
+        peaks = _peaks(mechanism, result.forces, result.rows, result.clearance)
+        runs.append((f"{step:g}°", seconds, peaks or _kinematic_peaks(result),
                      f"{angles.size} positions"))
         if tick is not None:
             tick()
     return _compare("crank step", runs)
 
 
-def _kinematic_peaks(result: analysis.Result) -> dict[str, float]:
+def _kinematic_peaks(result: Result) -> dict[str, float]:
     """Without forces: the largest angular acceleration of each link."""
     motion = result.kinematics.motion
     return {f"|alpha_{k}| max": float(np.nanmax(np.abs(motion.alpha[result.rows, k])))
@@ -113,17 +116,15 @@ def friction_tol(mechanism: Mechanism, tols=FRICTION_TOLS, repeats: int = 3, tic
     runs = []
     for tol in tols:
         seconds, rubbing = _timed(lambda: friction.solve(mechanism, kin, tol=tol), repeats)
-        result = analysis.Result(mechanism, analysis.plan(mechanism), kin, rubbing.forces,
-                                 kin.valid.copy())
         its = rubbing.iterations[kin.valid]
-        runs.append((f"{tol:g}", seconds, _peaks(result),
+        runs.append((f"{tol:g}", seconds, _peaks(mechanism, rubbing.forces, kin.valid),
                      f"passes {its.min():.0f}–{its.max():.0f} (mean {its.mean():.2f})"))
         if tick is not None:
             tick()
     return _compare("friction tol", runs)
 
 
-def clearance_simulation(result: analysis.Result, steps=SIM_STEPS, repeats: int = 3) -> list[Row]:
+def clearance_simulation(result: Result, steps=SIM_STEPS, repeats: int = 3) -> list[Row]:
     """Closed form against the direct simulation for the first reversal of each joint."""
     from dyade import clearance
 
@@ -153,7 +154,7 @@ def studies(mechanism: Mechanism, *, repeats: int = 3, progress=None) -> list[Ro
     tolerance with friction, closed form against simulation with clearance data; each
     setting timed (best of ``repeats``) and its peaks compared with the finest one.
     ``progress(done, total)`` is called after each setting."""
-    the_plan = analysis.plan(mechanism)
+    the_plan = plan(mechanism)
     total = len(STEPS_DEG) + bool(the_plan.friction) * len(FRICTION_TOLS) + bool(the_plan.clearance)
     done = [0]
 
@@ -166,7 +167,7 @@ def studies(mechanism: Mechanism, *, repeats: int = 3, progress=None) -> list[Ro
     if the_plan.friction:
         rows += friction_tol(mechanism, repeats=repeats, tick=tick)
     if the_plan.clearance:
-        rows += clearance_simulation(analysis.run(mechanism), repeats=repeats)
+        rows += clearance_simulation(analyse(mechanism), repeats=repeats)
         tick()
     return rows
 

@@ -1,4 +1,4 @@
-"""The CSV contract: result -> ordered named columns.
+"""The CSV contract: a block of a sweep -> ordered named columns.
 
 One row per reported crank position; SI units except angles in degrees. The names are
 documented in ``mechanisms/README.md`` and are stable: scripts rely on them.
@@ -8,11 +8,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.linkage.sweep import Result
-from dyade.linkage.motion import travel
+from typing import TYPE_CHECKING
+
 from dyade.linkage.kinematics import joint_point
+from dyade.linkage.model import CRANK, FloatArray, Mechanism, Prismatic, Revolute
+from dyade.linkage.motion import travel
 from dyade.linkage.reduced import reduced
-from dyade.linkage.model import CRANK, FloatArray, Prismatic, Revolute
+
+if TYPE_CHECKING:
+    from dyade.linkage.pipeline import Block
 
 Columns = dict[str, FloatArray]
 
@@ -28,15 +32,15 @@ def _tag(name: tuple[int, int]) -> str:
     return f"{name[0]}_{name[1]}"
 
 
-def kinematic_columns(result: Result) -> Columns:
-    """Every kinematic column of the sweep, in contract order."""
-    kin, mech, rows = result.kinematics, result.mechanism, result.rows
+def kinematic_columns(mech: Mechanism, block: Block, phases: dict[int, Continuous]
+                      ) -> Columns:
+    """Every kinematic column of a block, in contract order; ``phases``: link ->
+    its angle's unwrapping, carried on from the blocks before."""
+    kin, rows = block.kinematics, block.rows
     motion = kin.motion
     out: Columns = {"angle_deg": np.rad2deg(kin.crank_angle)}
     for link in mech.moving_links:
-        angle = motion.angle[rows, link]
-        out[f"phi_{link}_deg"] = np.rad2deg(continuous(angle, rows) if result.phases is None
-                                            else result.phases[link](angle))
+        out[f"phi_{link}_deg"] = np.rad2deg(phases[link](motion.angle[rows, link]))
         out[f"omega_{link}"] = motion.omega[:, link]
         out[f"alpha_{link}"] = motion.alpha[:, link]
     for joint in mech.joints:
@@ -59,7 +63,7 @@ def kinematic_columns(result: Result) -> Columns:
     for col, dyad in enumerate(mech.dyads):
         out[f"mu_{dyad.number}_deg"] = np.rad2deg(kin.transmission[:, col])
     out = {key: value if key.startswith("phi_") else value[rows] for key, value in out.items()}
-    valid = result.valid[rows]
+    valid = block.valid[rows]
     if not valid.all():  # nothing of an invalid row but its crank and transmission angles
         out = {key: value if key == "angle_deg" or key.startswith("mu_")
                else np.where(valid, value, np.nan) for key, value in out.items()}
@@ -67,27 +71,12 @@ def kinematic_columns(result: Result) -> Columns:
     return out
 
 
-def continuous(angle: FloatArray, rows: FloatArray) -> FloatArray:
-    """A link angle [rad] over the reported positions, continuous: unwrapped across ±π
-    from its first value, which is brought into (−π, π]; positions without a value
-    (NaN) stay empty and are bridged."""
-    finite = np.isfinite(angle)
-    if not finite.any():
-        return angle
-    values = np.unwrap(angle[finite])
-    first = values[0]
-    turns = np.ceil((first - np.pi) / (2.0 * np.pi))  # first − 2π·turns in (−π, π]
-    if turns:
-        values = values - 2.0 * np.pi * turns
-    out = np.full(angle.shape, np.nan)
-    out[finite] = values
-    return out
-
-
 class Continuous:
-    """``continuous`` over a sweep that comes block by block: each call continues the
-    unwrapping from the blocks before (exactly ``np.unwrap``'s arithmetic, its running
-    sum of corrections carried on), ``commit()`` once a block is final."""
+    """A link angle [rad] over the reported positions of a sweep that comes block by
+    block, continuous: unwrapped across ±π from its first value, which is brought into
+    (−π, π]; positions without a value (NaN) stay empty and are bridged. Each call
+    continues the unwrapping from the blocks before (exactly ``np.unwrap``'s arithmetic,
+    its running sum of corrections carried on), ``commit()`` once a block is final."""
 
     def __init__(self) -> None:
         self.state: tuple | None = None
@@ -130,9 +119,9 @@ class Continuous:
         self.state = self.pending
 
 
-def force_columns(result: Result) -> Columns:
+def force_columns(mech: Mechanism, block: Block) -> Columns:
     """Joint forces, drive torque and power, shaking force; empty where invalid."""
-    forces, mech = result.forces, result.mechanism
+    forces = block.forces
     if forces is None:
         return {}
     out: Columns = {}
@@ -146,44 +135,44 @@ def force_columns(result: Result) -> Columns:
             out[f"FN_{tag}"] = forces.normal[joint.name]
             out[f"M_{tag}"] = forces.moment[joint.name]
     out["M_drive"] = forces.drive_torque
-    out["P_drive"] = forces.drive_torque * result.kinematics.motion.omega[:, CRANK]
+    out["P_drive"] = forces.drive_torque * block.kinematics.motion.omega[:, CRANK]
     out["Fx_shake"], out["Fy_shake"], out["M_shake"] = (forces.shaking[:, 0],
                                                         forces.shaking[:, 1],
                                                         forces.shaking[:, 2])
-    rubbing = result.friction
+    rubbing = block.friction
     if rubbing is not None:
         for name, value in rubbing.moments.items():
             out[f"MR_{_tag(name)}"] = value
         for name, value in rubbing.friction_forces.items():
             out[f"FR_{_tag(name)}"] = value
         out["P_friction"] = rubbing.power
-    invalid = ~(forces.valid & result.valid)
+    invalid = ~(forces.valid & block.valid)
     out = {key: np.where(invalid, np.nan, value) for key, value in out.items()}
     # the self-locking figures stay where friction is what makes the forces invalid
     dead = invalid & ~rubbing.blocked if rubbing is not None else invalid
-    for name, lock in (result.locking or {}).items():
+    for name, lock in (block.locking or {}).items():
         if lock.margin is not None:
             out[f"lock_margin_{_tag(name)}"] = np.where(dead, np.nan, lock.margin)
     if rubbing is not None:
         out["friction_iterations"] = rubbing.iterations
-    out["forces_valid"] = (forces.valid & result.valid).astype(np.float64)
+    out["forces_valid"] = (forces.valid & block.valid).astype(np.float64)
     if rubbing is not None:
         for number, det in sorted(rubbing.determinant.items()):
             out[f"friction_det_{number}"] = np.where(dead, np.nan, det)
-    machine = reduced(mech, result.kinematics)
-    given = result.valid  # from the kinematics: not given where it is not
+    machine = reduced(mech, block.kinematics)
+    given = block.valid  # from the kinematics: not given where it is not
     out["J_red"], out["dJ_red"], out["M_load"] = (np.where(given, machine.inertia, np.nan),
                                                   np.where(given, machine.slope, np.nan),
                                                   np.where(given, machine.load, np.nan))
-    if result.drive is not None:
-        out["t"], out["M_motor"] = (result.drive.time,
-                                    np.where(given, result.drive.motor_torque, np.nan))
-    return {key: value[result.rows] for key, value in out.items()}
+    if block.drive is not None:
+        out["t"], out["M_motor"] = (block.drive.time,
+                                    np.where(given, block.drive.motor_torque, np.nan))
+    return {key: value[block.rows] for key, value in out.items()}
 
 
-def columns(result: Result) -> Columns:
-    """All columns of a result, in contract order."""
-    return kinematic_columns(result) | force_columns(result)
+def columns(mech: Mechanism, block: Block, phases: dict[int, Continuous]) -> Columns:
+    """All columns of a block, in contract order."""
+    return kinematic_columns(mech, block, phases) | force_columns(mech, block)
 
 
 PLAUSIBLE = 1e12  # [SI] no machine has a value beyond this: a row with one is not given

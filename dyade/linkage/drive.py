@@ -16,25 +16,25 @@ grid: ``friction.Coupling``), take
 
 and repeat until M_F no longer changes. The result gives the crank's speed and
 acceleration at any crank angle, with which the whole kinematics and kinetostatics
-run again (``dyade.linkage.sweep``).
+run again (``dyade.linkage.pipeline``).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from dyade.errors import DyadeError, InputError
 from dyade.linkage import kinematics
+from dyade.linkage.blocks import BLOCK_SIZE, friction_coupling, spans
 from dyade.linkage.model import FloatArray, Mechanism
 from dyade.linkage.reduced import Reduced, reduced
 from dyade.machine import equation
 from dyade.machine.motor import Asynchronous, ConstantTorque, Motor, TorqueSpeedTable
 
 MIN_STEPS = 720  # integration steps per revolution unless the file says otherwise
-FINE_STEP = math.radians(0.1)  # [rad] largest default step of a torque curve
 AT_REST_NUDGE = 1e-6  # [-] share of the top speed at which friction is taken at rest
 
 
@@ -58,6 +58,12 @@ class CrankMotion:
     """(n,) M_F, the friction's share of the drive torque [N·m]"""
     figures: dict
     """speed extremes and fluctuation, period, iterations; a run-up's work balance"""
+
+    def part(self, first: int, last: int) -> CrankMotion:
+        """The motion at positions first..last−1 (the figures are the whole motion's)."""
+        return replace(self, **{name: getattr(self, name)[first:last] for name in (
+            "crank_angle", "speed", "acceleration", "time", "motor_torque",
+            "friction_torque")})
 
 
 def steps_for(mechanism: Mechanism) -> int:
@@ -148,7 +154,7 @@ def solve(mechanism: Mechanism, crank_angle: FloatArray | None = None, *, run_up
 
 def _machine(mechanism: Mechanism, angles: FloatArray) -> Reduced:
     """J, J′, M_L at ``angles``; an error where the machine has no inertia or a dead centre
-    leaves it undefined. Computed in blocks of positions (``blocks``): the grid of a fine
+    leaves it undefined. Computed in blocks of positions (``blocks.spans``): the grid of a fine
     sweep has hundreds of thousands of points, and only these three arrays are kept."""
     closes = np.empty((angles.shape[0], len(mechanism.dyads)), dtype=bool)
     machine = _reduced(mechanism, angles, closes)
@@ -170,12 +176,12 @@ def _machine(mechanism: Mechanism, angles: FloatArray) -> Reduced:
 
 def _reduced(mechanism: Mechanism, angles: FloatArray, closes: FloatArray | None = None
              ) -> Reduced:
-    """J, J′, M_L at ``angles`` (``reduced``), block by block (``blocks``): of the
+    """J, J′, M_L at ``angles`` (``reduced``), block by block (``blocks.spans``): of the
     kinematics only a block at a time is kept. With ``closes`` ((n, dyads) bool), where
     the dyads close is written into it, and a block where one does not is left NaN."""
     n = angles.shape[0]
     inertia, slope, load = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.nan)
-    for first, last in blocks(n):
+    for first, last in spans(n, BLOCK_SIZE):
         kin = kinematics.sweep(mechanism, angles[first:last], crank_speed=1.0)
         if closes is not None:
             closes[first:last] = kin.closes
@@ -185,15 +191,6 @@ def _reduced(mechanism: Mechanism, angles: FloatArray, closes: FloatArray | None
         inertia[first:last], slope[first:last], load[first:last] = (
             part.inertia, part.slope, part.load)
     return Reduced(inertia, slope, load)
-
-
-def blocks(n: int):
-    """(first, last) of the blocks of ``dyade.linkage.stream.BLOCK_SIZE`` positions that
-    cover n positions."""
-    from dyade.linkage.stream import BLOCK_SIZE
-
-    for first in range(0, n, BLOCK_SIZE):
-        yield first, min(n, first + BLOCK_SIZE)
 
 
 def _torque_scale(tables: equation.Tables) -> float:
@@ -249,23 +246,14 @@ def _friction_torque(mechanism: Mechanism, path: equation.Path, tables: equation
     if run_up:  # at rest the friction's sense is undefined: take its limit as it moves off
         speed[0] = path.sense * AT_REST_NUDGE * max(float(np.max(np.abs(speed))), 1.0)
     angle = start + path.sense * 0.5 * path.step * j
-    spans = list(blocks(points))
-    if len(spans) == 1:
-        kin = kinematics.sweep(mechanism, angle, crank_speed=speed,
-                               crank_acceleration=acceleration)
-        drive = friction.solve(mechanism, kin).forces.drive_torque
-    else:  # block by block, each solved as within the whole grid (``friction.Coupling``)
-        index = j[friction.sample(points)]
-        coupling = friction.coupling(
-            mechanism, kinematics.sweep(mechanism, angle[index], crank_speed=speed[index],
-                                        crank_acceleration=acceleration[index]),
-            float(np.nanmax(np.abs(speed), initial=0.0)))
-        drive = np.empty(points)
-        for first, last in spans:
-            kin = kinematics.sweep(mechanism, angle[first:last], crank_speed=speed[first:last],
-                                   crank_acceleration=acceleration[first:last])
-            drive[first:last] = friction.solve(mechanism, kin,
-                                               coupling=coupling).forces.drive_torque
+    # block by block, each solved as within the whole grid (``blocks.friction_coupling``)
+    coupling = friction_coupling(mechanism, angle, speed, acceleration, BLOCK_SIZE)
+    drive = np.empty(points)
+    for first, last in spans(points, BLOCK_SIZE):
+        kin = kinematics.sweep(mechanism, angle[first:last], crank_speed=speed[first:last],
+                               crank_acceleration=acceleration[first:last])
+        drive[first:last] = friction.solve(mechanism, kin,
+                                           coupling=coupling).forces.drive_torque
     if not np.all(np.isfinite(drive)):
         raise DyadeError("the equation of motion with friction cannot be solved: the forces "
                          "are undefined at a dead centre or a self-locking position of the "
@@ -372,39 +360,3 @@ def _mean_over_time(torque: FloatArray, speed: FloatArray) -> float:
     weights[0] = weights[-1] = 1.0
     weights = weights / speed
     return float(np.sum(weights * torque) / np.sum(weights))
-
-
-def torque_curve(mechanism: Mechanism, *, step: float | None = None):
-    """The machine's torque curve at constant speed, for the flywheel
-    (``dyade.machine.flywheel``): the drive torque M_drive over one revolution from the
-    sweep's start at ``step`` [rad] (default: the sweep's, at most 0.1°, since load
-    tables put kinks in the curve that only a fine step integrates well), against a
-    motor of constant torque, with the machine's mean reduced inertia. A ``[drive]``
-    table is ignored.
-
-    >>> import dyade
-    >>> curve = dyade.mechanism_torque_curve(dyade.read_mechanism("mechanisms/fourbar.toml"))
-    >>> flywheel = dyade.size_flywheel(curve, 0.02)
-    >>> round(flywheel.delta_energy, 4), round(flywheel.flywheel, 4)     # [J], [kg·m²]
-    (1.4385, 0.0705)
-    """
-    from dyade.linkage.sweep import analyse
-    from dyade.machine.flywheel import cycle_mean, machine_curve
-
-    step = min(mechanism.sweep.step, FINE_STEP) if step is None else step
-    if not (math.isfinite(step) and 0.0 < step < math.pi / 2):
-        raise InputError.parameter("step", f"must be a crank-angle step below 90° [rad], got "
-                                           f"{step}.", value=step, unit="rad")
-    if not mechanism.has_dynamics:
-        raise InputError(f"{mechanism.name}: no masses, loads or springs, so no drive torque to "
-                         f"size a flywheel by (add mass data, see mechanisms/README.md).")
-    count = int(math.ceil(2.0 * math.pi / step - 1e-9))
-    angle = mechanism.sweep.start + step * np.arange(count)
-    result = analyse(mechanism, crank_angle=angle, constant_speed=True)
-    torque = result.forces.drive_torque
-    if not np.all(np.isfinite(torque) & result.forces.valid):
-        raise DyadeError(f"{mechanism.name}: the drive torque is not given over the whole "
-                         f"revolution (a dead centre), so no flywheel can be sized from it.")
-    inertia = reduced(mechanism, result.kinematics).inertia
-    return machine_curve(angle, torque, speed=mechanism.crank.speed,
-                         machine_inertia=cycle_mean(angle, inertia), source=mechanism.name)

@@ -10,7 +10,7 @@ slope F0/t0 = |dF/dφ21|·Ω, the peak force and its amplification over the rigi
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -18,7 +18,6 @@ from dyade.arrays import FloatArray
 from dyade.clearance import Peak, peak_force, reduced_mass
 from dyade.errors import InputError
 from dyade.linkage.model import ClearanceData, Mechanism, Revolute
-from dyade.units import RPM
 
 MISSING = {
     "data": ("no clearance data: give {stiffness} and {clearance}, or "
@@ -181,8 +180,10 @@ def joint_mass(mechanism, joint) -> tuple[float | None, str]:
     return reduced_mass(*masses), f"reduced mass of links {a} and {b} (eq. 17)"
 
 
-def _needs_forces(result, what: str) -> None:
-    if result.forces is None:
+def needs_forces(result, what: str) -> None:
+    """An ``InputError`` where the sweep ``result`` has no forces (no masses, loads or
+    springs), for ``what`` needs them."""
+    if result.forces_valid is None:
         raise InputError(f"{what} needs joint forces: the file has no masses, loads or "
                          f"springs (add mass data, see mechanisms/README.md).")
 
@@ -205,11 +206,11 @@ def _cycle(mechanism, result) -> tuple[FloatArray, bool]:
     return phi, bool((phi[-1] - phi[0]) >= 2 * np.pi - 1.5 * mechanism.sweep.step)
 
 
-def _joint_force(result, name: tuple[int, int]) -> FloatArray:
-    """(n, 2) a joint's reported force [N], NaN where the forces are not valid."""
-    forces = result.forces
-    force = forces.revolute[name][result.rows]
-    return np.where(forces.valid[result.rows][:, None], force, np.nan)
+def _joint_force(result, forces: dict, name: tuple[int, int]) -> FloatArray:
+    """(n, 2) a joint's reported force [N] (of ``forces``: joint -> (n, 2) at every
+    position of the sweep ``result``), NaN where the forces are not given."""
+    force = forces[name][result.rows]
+    return np.where(result.forces_valid[result.rows][:, None], force, np.nan)
 
 
 def force_lines(result, joints=None, *, max_wander: float = MAX_WANDER) -> list[ForceLine]:
@@ -236,25 +237,28 @@ def force_lines(result, joints=None, *, max_wander: float = MAX_WANDER) -> list[
     [104.4, 329.2]
     """
     mechanism = result.mechanism
-    _needs_forces(result, "a line of action")
+    needs_forces(result, "a line of action")
     if joints is None:
         joints = [j.name for j in mechanism.joints if isinstance(j, Revolute)]
     phi, full = _cycle(mechanism, result)
+    forces = result.forces.revolute
     out = []
     for a, b in joints:
         name = (a, b) if a < b else (b, a)
         _revolute(mechanism, name)
-        out.append(force_line(name, phi, _joint_force(result, name), full, max_wander))
+        out.append(force_line(name, phi, _joint_force(result, forces, name), full, max_wander))
     return out
 
 
-def check_mechanism(mechanism, result, joints, override=None, mass_override=None,
-                    max_wander: float = MAX_WANDER) -> list:
-    """Clearance check of the given revolute joints from an analysis result.
+def check_mechanism(mechanism, result, forces: dict, joints, override=None,
+                    mass_override=None, max_wander: float = MAX_WANDER) -> list[JointCheck]:
+    """Clearance check of the given revolute joints from a sweep's outcome ``result``
+    (``verdicts.Outcome``: its positions, the forces given, the crank's motion) and
+    ``forces`` (joint -> (n, 2) force [N] at each of its positions).
 
     ``override``: ClearanceData applied to every joint (CLI), ``mass_override`` [kg],
     ``max_wander`` [rad]: how far the force may leave its line of action."""
-    _needs_forces(result, "the clearance check")
+    needs_forces(result, "the clearance check")
     phi, full = _cycle(mechanism, result)
     speed = mechanism.crank.speed  # with a drive: its mean speed 2π/T
     if getattr(result, "drive", None) is not None:
@@ -274,95 +278,6 @@ def check_mechanism(mechanism, result, joints, override=None, mass_override=None
                                              clearance="the clearance", mass="the mass")
             checks.append(JointCheck(name, np.nan, np.nan, False, reason, (), "", missing))
             continue
-        checks.append(check_joint(name, phi, _joint_force(result, name), speed, data, mass,
-                                  source, full, max_wander))
+        checks.append(check_joint(name, phi, _joint_force(result, forces, name), speed, data,
+                                  mass, source, full, max_wander))
     return checks
-
-
-def check(mechanism: Mechanism, *, joints=None, stiffness: float | None = None,
-          clearance: float | None = None, mass: float | None = None,
-          max_wander: float = MAX_WANDER, result=None) -> list[JointCheck]:
-    """The clearance check of a mechanism's revolute joints over its cycle.
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-        With masses, loads or springs (the check needs the rigid joint forces).
-    joints : iterable of (int, int), optional
-        The revolute joints to check (default: every revolute joint).
-    stiffness, clearance : float, optional
-        Contact stiffness c [N/m] and clearance 2s [m] for every joint checked, together;
-        default: each joint's clearance data from the file.
-    mass : float, optional
-        Reduced mass m [kg] for every joint; default: the file's, or the reduced mass of
-        the joint's two links (eq. 17; the frame counts as rigid).
-    max_wander : float
-        How far [rad] the force may leave its dominant line of action for the model to
-        apply (forces of at least 25 % of the peak count).
-    result : Result, optional
-        An analysis of ``mechanism`` to reuse (default: analysed here).
-
-    Returns
-    -------
-    list of JointCheck
-        One per joint, in the order asked: its line of action, whether the model
-        applies (else why not), and every reversal with its peak force.
-
-    Examples
-    --------
-    >>> import dyade
-    >>> mechanism = dyade.read_mechanism("mechanisms/dyade-16.toml")
-    >>> checks = dyade.check_clearance(mechanism, joints=[(2, 7)], stiffness=1e8,
-    ...                                clearance=1e-4)
-    >>> [round(r.peak.force) for r in checks[0].reversals]
-    [318, 738]
-    """
-    from dyade.linkage.sweep import analyse
-
-    if (stiffness is None) != (clearance is None):
-        raise InputError.parameter("stiffness", "and clearance go together (or neither, to use "
-                                                "the clearance data of the mechanism).")
-    override = ClearanceData(clearance, stiffness, None) if stiffness is not None else None
-    if joints is None:
-        joints = [j.name for j in mechanism.joints if isinstance(j, Revolute)]
-    joints = [(a, b) if a < b else (b, a) for a, b in joints]
-    result = analyse(mechanism) if result is None else result
-    return check_mechanism(mechanism, result, joints, override, mass, max_wander)
-
-
-def speed_study(mechanism: Mechanism, speeds_rpm, progress=None, workers: int = 1,
-                **options) -> list[tuple[float, list]]:
-    """The clearance check at each crank speed of ``speeds_rpm`` [rpm] (the crank keeps
-    its sense of rotation); ``options`` as for ``check``; ``progress(done, total)`` is
-    called after each speed; ``workers`` processes check the speeds (the same results,
-    in the same order).
-
-    Returns (speed [rpm], list of JointCheck) per speed.
-    """
-    speeds_rpm = list(speeds_rpm)
-    for rpm in speeds_rpm:
-        if not np.isfinite(rpm) or rpm <= 0:
-            raise InputError.parameter("speeds_rpm", f"must be positive speeds [rpm], got "
-                                                     f"{rpm:g}.", value=rpm, unit="rpm")
-    from dyade import parallel
-
-    tasks = [(mechanism, rpm, options) for rpm in speeds_rpm]
-    return _collect(speeds_rpm, parallel.ordered_map(_at_speed, tasks, workers), progress)
-
-
-def _at_speed(task) -> list:
-    """The clearance check of (mechanism, crank speed [rpm], options); the crank keeps
-    its sense of rotation."""
-    mechanism, rpm, options = task
-    sign = 1.0 if mechanism.crank.speed > 0 else -1.0
-    faster = replace(mechanism, crank=replace(mechanism.crank, speed=sign * rpm * RPM))
-    return check(faster, **options)
-
-
-def _collect(speeds_rpm, checks, progress) -> list[tuple[float, list]]:
-    out = []
-    for rpm, result in zip(speeds_rpm, checks):
-        out.append((float(rpm), result))
-        if progress is not None:
-            progress(len(out), len(speeds_rpm))
-    return out

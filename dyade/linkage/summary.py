@@ -1,4 +1,5 @@
-"""Result -> a plain summary dictionary: extremes and the figures parts are sized by."""
+"""A sweep's outcome and columns -> a plain summary dictionary: extremes and the figures
+parts are sized by (numbers only; the report words them)."""
 
 from __future__ import annotations
 
@@ -6,9 +7,9 @@ from typing import Any
 
 import numpy as np
 
-from dyade.linkage.sweep import Result
-from dyade.linkage.model import Revolute
 from dyade.linkage.columns import Columns
+from dyade.linkage.model import Revolute
+from dyade.linkage.verdicts import Outcome
 
 
 def cycle_mean(angle: np.ndarray, values: np.ndarray) -> float:
@@ -58,7 +59,7 @@ def _vertex(angle_deg: np.ndarray, cycle: np.ndarray, step: float, sign: float) 
     return float(angle_deg[k] + shift * step)
 
 
-def motion_figures(result: Result, cols: Columns) -> dict[str, Any]:
+def motion_figures(result: Outcome, cols: Columns) -> dict[str, Any]:
     """What a designer reads off the kinematics: the smallest transmission angle of each
     dyad (its distance from a dead centre) and where, the stroke of every slider and the
     swing of every rocker (a link turning about a frame pivot without turning round),
@@ -104,14 +105,14 @@ def _extreme(angle, values) -> dict[str, Any]:
     return {"min": values[lo], "min_at_deg": angle[lo], "max": values[hi], "max_at_deg": angle[hi]}
 
 
-def summary(result: Result, cols: Columns) -> dict[str, Any]:
+def summary(result: Outcome, cols: Columns) -> dict[str, Any]:
     """Per column min/max and where; drive, friction, self-locking, clearance figures."""
     angle = cols["angle_deg"]
     out: dict[str, Any] = {"mechanism": result.mechanism.name, "positions": int(angle.size),
-                           "effects": result.plan.effects(), **motion_figures(result, cols),
+                           **motion_figures(result, cols),
                            "columns": {name: _extreme(angle, values)
                                        for name, values in cols.items() if name != "angle_deg"}}
-    if result.forces is not None:
+    if result.forces_valid is not None:
         torque = cols["M_drive"]
         given = torque[np.isfinite(torque)]  # none where the forces are nowhere given
         out["drive"] = {"M_max": given.max() if given.size else np.nan,
@@ -127,12 +128,12 @@ def summary(result: Result, cols: Columns) -> dict[str, Any]:
                 k = int(np.nanargmax(values))
                 peaks[name] = {"value": cols[name][k], "at_deg": angle[k]}
         out["joint_peaks"] = peaks
-    if result.friction is not None:
-        rows = result.rows & result.forces.valid
+    if result.rubbing is not None:
+        rows = result.rows & result.forces_valid
         out["friction"] = {"P_mean": cycle_mean(angle, cols["P_friction"]),
                            "iterations_min": float(np.min(cols["friction_iterations"])),
                            "iterations_max": float(np.max(cols["friction_iterations"])),
-                           "worst_residual": float(np.max(result.friction.residual[rows], initial=0.0))}
+                           "worst_residual": float(np.max(result.rubbing.residual[rows], initial=0.0))}
     if result.locking:
         out["self_locking"] = {f"{a}_{b}": {"locks": bool(lock.locks[result.rows].any()),
                                             "locking_angles_deg": np.rad2deg(
@@ -152,7 +153,7 @@ def summary(result: Result, cols: Columns) -> dict[str, Any]:
     return out
 
 
-def motion_summary(result: Result) -> dict[str, Any]:
+def motion_summary(result: Outcome) -> dict[str, Any]:
     """The crank's speed from the equation of motion (over the last revolution of a
     run-up), SI units; angles in degrees."""
     motion = result.drive

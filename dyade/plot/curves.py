@@ -42,7 +42,7 @@ def energy_surplus(angle: np.ndarray, torque: np.ndarray) -> tuple[float, np.nda
 
 def default_quantities(result) -> list[str]:
     """The drive torque (with forces) and every dyad's transmission angle."""
-    torque = ["M_drive"] if result.forces is not None else []
+    torque = ["M_drive"] if result.forces_valid is not None else []
     return torque + [f"mu_{dyad.number}_deg" for dyad in result.mechanism.dyads]
 
 

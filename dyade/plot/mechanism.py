@@ -368,7 +368,8 @@ def figure(result, at=None, *, fig: Figure | None = None) -> Figure:
     >>> [ax.get_title() for ax in mechanism.figure(result, [0.0, 1.5707963267948966]).axes]
     ['φ21 = 0°', 'φ21 = 90°']
     """
-    from dyade.linkage.sweep import Plan, analyse
+    from dyade.linkage.plan import Plan
+    from dyade.linkage.sweep import analyse
 
     if at is None:
         angle = result.crank_angle[result.rows]

@@ -16,7 +16,8 @@ from rich.markup import escape
 from rich.tree import Tree
 
 from dyade.linkage.model import CRANK, FRAME, Mechanism, Prismatic, Revolute
-from dyade.linkage.sweep import Plan
+from dyade.linkage.plan import Plan
+from dyade.report.effects import effects
 from dyade.units import LENGTH_FACTORS
 
 
@@ -70,14 +71,14 @@ def describe(mechanism: Mechanism, the_plan: Plan, skipped: list[str]) -> Tree:
              f"  [{links} links, {revolute} revolute, {prismatic} prismatic joints]")
     for line in loop_type(mechanism, length):
         tree.add(line)
-    effects = tree.add("effects simulated")
-    for line in the_plan.effects():
-        effects.add(line)
+    simulated = tree.add("effects simulated")
+    for line in effects(the_plan):
+        simulated.add(line)
     if the_plan.friction:
-        effects.add(f"friction iteration: tolerance {mechanism.friction_tol:g}, at most "
+        simulated.add(f"friction iteration: tolerance {mechanism.friction_tol:g}, at most "
                     f"{mechanism.friction_max_iter} steps")
     for line in skipped:
-        effects.add(f"[dim]not simulated — {line}[/dim]")
+        simulated.add(f"[dim]not simulated — {line}[/dim]")
     sweep = mechanism.sweep
     tree.add(f"sweep: crank angle {np.rad2deg(sweep.start):g}° to {np.rad2deg(sweep.stop):g}° "
              f"in steps of {np.rad2deg(sweep.step):g}° ({sweep.angles().size} positions); "
@@ -225,7 +226,7 @@ def _motion(mechanism: Mechanism):
 
     from dyade.errors import AssemblyError
     from dyade.linkage.summary import motion_figures
-    from dyade.linkage.sweep import Plan, analyse
+    from dyade.linkage.sweep import analyse
 
     one = replace(mechanism, sweep=type(mechanism.sweep)(0.0, 2 * math.pi, math.radians(0.5)))
     try:

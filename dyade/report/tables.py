@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 from rich.table import Table
 
-from dyade.linkage.sweep import Plan, Result
+from dyade.linkage.plan import Plan
+from dyade.linkage.verdicts import Outcome as Result
 from dyade.linkage.model import FRAME, Mechanism, Prismatic, Revolute
 from dyade.linkage.columns import Columns, unit_of
 from dyade.linkage.summary import cycle_mean
@@ -162,10 +163,10 @@ def skipped(the_plan: Plan) -> list[str]:
 
 def force_summary(result: Result, cols: Columns) -> Table | None:
     """Per joint: the largest force and where; the drive: max/min/RMS torque, mean power."""
-    if result.forces is None:
+    if result.forces_valid is None:
         return None
     angle = cols["angle_deg"]
-    rubbing = result.friction
+    rubbing = result.rubbing
     kind = "with Coulomb friction" if rubbing is not None else "frictionless"
     table = Table(title=f"Joint forces and drive (rigid, {kind})", title_justify="left")
     table.add_column("quantity")
@@ -194,7 +195,7 @@ def force_summary(result: Result, cols: Columns) -> Table | None:
     if rubbing is not None:
         table.add_row("P_friction mean", "W", f"{cycle_mean(angle, cols['P_friction']):.6g}", "")
         its = cols["friction_iterations"]
-        rows = result.rows & result.forces.valid
+        rows = result.rows & result.forces_valid
         worst = float(np.max(rubbing.residual[rows], initial=0.0))
         table.add_row("friction passes", "-", f"{its.min():.0f}–{its.max():.0f}", "")
         table.add_row("worst final residual", "-", f"{worst:.2g}", "")

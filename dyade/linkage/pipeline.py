@@ -1,0 +1,341 @@
+"""The one sweep pipeline: plan → blocks of positions → stages → per-block results →
+what the sweep keeps.
+
+``prepare`` turns a mechanism and its plan into a ``Setup``: the crank angles, and the
+crank's speed and acceleration there (from the equation of motion when the plan has a
+drive: ``drive.solve``). ``Run`` computes it in blocks of positions:
+
+1. a first pass computes the kinematics block by block and keeps what the validity
+   policy needs per position (``validity.Policy``): the assembly check (and its error,
+   before any result) and the dead-centre bands are decided over the whole sweep;
+2. a second pass runs every stage the plan calls for on each block (kinematics;
+   kinetostatics; friction and self-locking, each block solved as within the whole
+   sweep: ``blocks.friction_coupling``), makes its columns (``columns``; link angles
+   unwrapped on from the block before) and takes out the rows with implausible values,
+   and yields it as a ``Block``; what the notes, the summary and the clearance check
+   need is kept per position (``verdicts``);
+3. at the end, the notes and the clearance check (``Run.outcome``).
+
+The block size changes nothing but memory and speed: the columns are the same to the
+bit for any block size, the notes the same. A sweep of one block keeps the kinematics
+of its first pass.
+
+The parameters of a sweep are scalars today; a study of variants will broadcast them
+against the positions (variants × positions) through the same ``Setup``.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from dyade.linkage import columns as columns_, kinematics, kinetostatics
+from dyade.linkage.blocks import friction_coupling, spans
+from dyade.linkage.columns import Columns, Continuous
+from dyade.linkage.model import FloatArray, Mechanism
+from dyade.linkage.notes import Note, NoteKind, decimals, ranges
+from dyade.linkage.plan import Plan
+from dyade.linkage.validity import Policy, assembly, bands
+from dyade.linkage.verdicts import Outcome, Rubbing
+
+if TYPE_CHECKING:  # imported where used: a kinematics-only run never loads them
+    from dyade.linkage import friction
+    from dyade.linkage.drive import CrankMotion
+
+FIRST_PASS = 0.1
+"""the first pass's share of a sweep's time, for the progress until the second pass has
+measured its own (about 0.1 for dyade-16 with friction, 0.15 without, writing CSV)"""
+
+
+@dataclass(slots=True, eq=False)
+class Setup:
+    """A sweep ready to run: the mechanism, its plan and the positions."""
+
+    mechanism: Mechanism
+    plan: Plan
+    crank_angle: FloatArray
+    """(n,) crank angle φ21 of every position [rad]"""
+    speed: FloatArray | float | None = None
+    """crank speed φ̇21 [rad/s]: one per position, one value, or None (the file's)"""
+    acceleration: FloatArray | float | None = None
+    """crank acceleration φ̈21 [rad/s²]: one per position, one value, or None (zero)"""
+    motion: CrankMotion | None = None
+    """the crank's motion from the equation of motion; None at constant speed"""
+    allow_partial: bool = False
+    """report only the positions where every dyad closes (else an ``AssemblyError``)"""
+
+    @property
+    def positions(self) -> int:
+        return self.crank_angle.shape[0]
+
+    def kinematics(self, first: int, last: int) -> kinematics.Kinematics:
+        """The kinematics of positions first..last−1."""
+        return kinematics.sweep(self.mechanism, self.crank_angle[first:last],
+                                _part(self.speed, first, last),
+                                _part(self.acceleration, first, last))
+
+
+def _part(value, first: int, last: int):
+    return value[first:last] if isinstance(value, np.ndarray) else value
+
+
+def _per_position(value) -> FloatArray | float | None:
+    if value is None or np.ndim(value) == 0:
+        return value
+    return np.asarray(value, dtype=np.float64)
+
+
+def prepare(mechanism: Mechanism, the_plan: Plan, *, allow_partial: bool = False,
+            crank_angle: FloatArray | None = None, crank_speed: FloatArray | float | None = None,
+            crank_acceleration: FloatArray | float | None = None, run_up: bool = False
+            ) -> Setup:
+    """The sweep of ``mechanism`` at ``crank_angle`` [rad] (default: its own sweep; for a
+    run-up the whole run-up), the crank at ``crank_speed`` and ``crank_acceleration``,
+    or, where the plan has an equation of motion, as that gives them."""
+    motion = None
+    if the_plan.equation_of_motion:
+        from dyade.linkage import drive
+
+        motion = drive.solve(mechanism, crank_angle, run_up=run_up,
+                             friction=bool(the_plan.friction))
+        crank_angle, crank_speed = motion.crank_angle, motion.speed
+        crank_acceleration = motion.acceleration
+    angle = mechanism.sweep.angles() if crank_angle is None else crank_angle
+    return Setup(mechanism, the_plan, np.asarray(angle, dtype=np.float64),
+                 _per_position(crank_speed), _per_position(crank_acceleration), motion,
+                 allow_partial)
+
+
+@dataclass(slots=True, eq=False)
+class Block:
+    """One block of positions through every stage the plan calls for (SI units)."""
+
+    first: int
+    """its first position in the sweep"""
+    last: int
+    """one past its last position"""
+    kinematics: kinematics.Kinematics
+    forces: kinetostatics.Forces | None
+    """joint forces and drive torque (``forces.valid``: given); None without
+    kinetostatics"""
+    friction: friction.FrictionResult | None
+    """friction loads, determinants and verdicts; None without friction"""
+    locking: dict | None
+    """joint -> ``self_locking.Locking``: every slider with friction and every joint
+    that self-locks in the block; None without"""
+    rows: FloatArray
+    """(m,) bool: the positions reported"""
+    valid: FloatArray
+    """(m,) bool: the kinematics is given (closes, outside the dead-centre band,
+    plausible)"""
+    drive: CrankMotion | None = None
+    """the crank's motion at the block's positions; None at constant speed"""
+    columns: Columns = field(default_factory=dict)
+    """the reported positions as named columns (``columns.columns``)"""
+    implausible: dict[str, FloatArray] = field(default_factory=dict)
+    """"kinematics"/"forces" -> (m,) bool: the positions taken out for a value beyond
+    ``columns.PLAUSIBLE``"""
+
+
+def stages(setup: Setup, kin: kinematics.Kinematics, first: int, last: int,
+           coupling: friction.Coupling | None) -> Block:
+    """The stages after the kinematics (``kin``, of positions first..last−1): the
+    forces, with friction its solution and the self-locking verdicts. ``coupling``: the
+    sweep's friction coupling (None when the block is the whole sweep)."""
+    mechanism, the_plan = setup.mechanism, setup.plan
+    forces = rubbing = locking = None
+    if the_plan.friction:
+        from dyade.linkage import friction, self_locking
+
+        rubbing = friction.solve(mechanism, kin, coupling=coupling, whole=False)
+        forces = rubbing.forces
+        if the_plan.self_locking or rubbing.locks:  # slider margins, or a lock to name
+            locking = self_locking.test(mechanism, kin, rubbing)
+    elif the_plan.kinetostatics:
+        forces = kinetostatics.solve(mechanism, kin)
+    motion = None
+    if setup.motion is not None:
+        motion = setup.motion.part(first, last)
+    m = last - first
+    return Block(first, last, kin, forces, rubbing, locking, np.ones(m, dtype=bool),
+                 np.ones(m, dtype=bool), motion)
+
+
+def tabulate(mechanism: Mechanism, block: Block, phases: dict[int, Continuous]) -> None:
+    """The block's columns, with the rows that hold a value beyond ``PLAUSIBLE`` taken
+    out (``block.valid``, ``forces.valid`` updated, ``block.implausible`` set)."""
+    cols = columns_.columns(mechanism, block, phases)
+    kinematic = [name for name in cols if name in columns_.KINEMATIC_EXEMPT
+                 or not name.startswith(columns_.FORCE_PREFIXES)]
+    for part, names in (("kinematics", [n for n in kinematic if n != "angle_deg"]),
+                        ("forces", [n for n in cols if n not in kinematic])):
+        if not names:
+            continue
+        bad = columns_.implausible(cols, names)
+        if not bad.any():
+            continue
+        mask = np.zeros_like(block.rows)
+        mask[np.flatnonzero(block.rows)[bad]] = True
+        if part == "kinematics":
+            block.valid &= ~mask
+        if block.forces is not None:
+            block.forces.valid &= ~mask
+        block.implausible[part] = mask
+        cols = columns_.columns(mechanism, block, phases)
+    for phase in phases.values():
+        phase.commit()
+    block.columns = cols
+
+
+@dataclass(eq=False)
+class Run:
+    """A sweep computed in blocks of ``block_size`` positions: iterate for the
+    ``Block``s, in order; then ``outcome`` holds the notes and verdicts.
+
+    ``progress(done, total)`` is called as the blocks are computed, in units of the time
+    they take: the first pass (the validity policy) counts as ``FIRST_PASS`` of the
+    whole until the second pass's first block says how much slower that one is (the
+    forces, friction and what the caller does with each block: 5 to 15 times)."""
+
+    setup: Setup
+    block_size: int
+    progress: Callable[[float, float], None] | None = None
+    outcome: Outcome | None = None
+    """all but the columns, once the blocks are exhausted"""
+    rows: FloatArray | None = None
+    """(n,) bool: the positions reported, once the first pass is done"""
+    coupling: friction.Coupling | None = None
+    """the friction coupling of the sweep (None without friction, or with one block)"""
+    positions: int = 0
+    """rows given so far"""
+    _shown: float = field(default=0.0, repr=False)
+
+    def _tick(self, done: float, total: float) -> None:
+        """Report ``done`` of ``total``, never a smaller share than before (the second
+        pass's projection may grow)."""
+        if self.progress is not None:
+            self._shown = max(self._shown, done / total)
+            self.progress(self._shown * total, total)
+
+    def __iter__(self) -> Iterator[Block]:
+        setup, size = self.setup, self.block_size
+        mechanism, the_plan, n = setup.mechanism, setup.plan, setup.positions
+        angle = setup.crank_angle
+        policy = Policy.empty(angle, len(mechanism.dyads))
+        started = time.perf_counter()
+        kin = None
+        for first, last in spans(n, size):
+            kin = setup.kinematics(first, last)
+            policy.keep(first, last, kin)
+            self._tick(last, n / FIRST_PASS)
+        first_pass = time.perf_counter() - started
+        kept = kin if n <= size else None  # one block: its kinematics computed once
+        notes: list[Note] = []
+        rows = self.rows = assembly(mechanism, policy, setup.allow_partial, notes)
+        well = bands(mechanism, policy, rows, notes)
+        if the_plan.friction:
+            self.coupling = friction_coupling(mechanism, angle, setup.speed,
+                                              setup.acceleration, size)
+        keep = Keep(setup, rows, well)
+        phases = {link: Continuous() for link in mechanism.moving_links}
+        for first, last in spans(n, size):
+            block = stages(setup, kept if kept is not None else setup.kinematics(first, last),
+                           first, last, self.coupling)
+            block.rows[:] = rows[first:last]
+            block.valid[:] = well[first:last]
+            tabulate(mechanism, block, phases)
+            keep.block(block)
+            self.positions += int(block.columns["angle_deg"].size)
+            yield block
+            # the second pass's time projected from its blocks so far, against the first's
+            ratio = (time.perf_counter() - started - first_pass) * n / (
+                last * max(first_pass, 1e-9))
+            self._tick(n + ratio * last, n * (1.0 + ratio))
+        self.outcome = keep.outcome(notes, policy.valid)
+
+
+class Keep:
+    """What a run keeps of every block for its notes, verdicts and clearance check."""
+
+    def __init__(self, setup: Setup, rows: FloatArray, well: FloatArray) -> None:
+        the_plan, n = setup.plan, setup.positions
+        self.setup, self.rows, self.well = setup, rows, well
+        self.implausible = {"kinematics": np.zeros(n, dtype=bool),
+                            "forces": np.zeros(n, dtype=bool)}
+        self.forces_valid = np.zeros(n, dtype=bool) if the_plan.kinetostatics else None
+        self.rubbing = Rubbing.empty(n) if the_plan.friction else None
+        run_up = setup.motion is not None and setup.motion.state == "run-up"
+        self.joints = the_plan.clearance if the_plan.clearance and not run_up else ()
+        self.forces = {name: np.empty((n, 2)) for name in self.joints}
+        """the clearance joints' forces [N] at every position"""
+
+    def block(self, block: Block) -> None:
+        first, last = block.first, block.last
+        for part, mask in block.implausible.items():
+            self.implausible[part][first:last] = mask
+        self.well[first:last] = block.valid
+        if block.forces is not None:
+            self.forces_valid[first:last] = block.forces.valid
+            for name in self.joints:
+                self.forces[name][first:last] = block.forces.revolute[name]
+        if block.friction is not None:
+            self.rubbing.keep(first, last, block.friction, block.locking)
+
+    def outcome(self, notes: list[Note], usable: FloatArray) -> Outcome:
+        """The notes of the whole sweep after those of its validity policy (``notes``),
+        its verdicts and clearance check; ``usable``: (n,) bool, the kinematics valid
+        (for the joints that never move)."""
+        setup, rows, well = self.setup, self.rows, self.well
+        mechanism, angle = setup.mechanism, setup.crank_angle
+        digits = decimals(angle)
+        forces_valid, rubbing = self.forces_valid, self.rubbing
+        invalid = None if forces_valid is None else well & ~forces_valid
+        locking = None
+        if rubbing is not None:
+            rubbing.finish(usable)
+            notes += rubbing.notes(mechanism, angle, rows)
+            invalid &= ~rubbing.blocked()  # those have notes of their own
+            locking = rubbing.locking(mechanism)
+        for part in ("kinematics", "forces"):
+            if self.implausible[part].any():
+                notes.append(Note(NoteKind.IMPLAUSIBLE, "",
+                                  tuple(ranges(angle, self.implausible[part])),
+                                  {"part": part, "limit": columns_.PLAUSIBLE,
+                                   "digits": digits}))
+        if invalid is not None and invalid.any():
+            notes.append(Note(NoteKind.FORCES_INVALID, "", tuple(ranges(angle, invalid)),
+                              {"digits": digits}))
+        if setup.motion is not None:
+            notes += motion_notes(setup.motion)
+        outcome = Outcome(mechanism, setup.plan, angle, rows, well, forces_valid, notes,
+                          rubbing, locking, setup.motion)
+        if setup.plan.clearance and not self.joints:
+            notes.append(Note(NoteKind.CLEARANCE_NOT_APPLICABLE, "", (), {"run_up": True}))
+        elif self.joints:
+            from dyade.linkage import joint_clearance
+
+            outcome.clearance = joint_clearance.check_mechanism(
+                mechanism, outcome, self.forces, self.joints)
+            for check in outcome.clearance:
+                if not check.applies:
+                    a, b = check.joint
+                    notes.append(Note(NoteKind.CLEARANCE_NOT_APPLICABLE, f"joint ({a},{b})",
+                                      (), {"joint": check.joint, "reason": check.reason}))
+        return outcome
+
+
+def motion_notes(motion: CrankMotion) -> list[Note]:
+    """A run-up that did not settle; a friction torque that did not settle."""
+    figures, out = motion.figures, []
+    if motion.state == "run-up" and not figures["settled"]:
+        out.append(Note(NoteKind.RUN_UP_NOT_SETTLED, "", (),
+                        {"revolutions": figures["revolutions"]}))
+    if not figures["friction_converged"]:
+        out.append(Note(NoteKind.FRICTION_NOT_CONVERGED, "", (),
+                        {"where": "drive", "passes": figures["passes"],
+                         "change": figures["friction_change"]}))
+    return out

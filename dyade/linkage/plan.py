@@ -1,0 +1,54 @@
+"""What a mechanism calls for: the stages of its sweep, decided from the data before
+anything runs (``plan``) and shown by ``describe``.
+
+masses, loads or springs → kinetostatics; a friction coefficient → friction solution and
+self-locking verdict; a slider with friction → its self-locking margin; clearance data →
+the clearance check; a ``[drive]`` table → the equation of motion. Stages the scene does
+not call for are not run.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from dyade.linkage.model import Mechanism
+
+
+@dataclass(frozen=True, slots=True)
+class Plan:
+    """The stages a sweep will run, decided from the data before anything runs
+    (``plan``): each is a tuple of the joints it concerns, or a flag."""
+
+    kinematics: bool = True
+    kinetostatics: bool = False
+    """masses, loads or springs present"""
+    friction: tuple[tuple[int, int], ...] = ()
+    """joints with μ > 0 (friction runs only with kinetostatics)"""
+    self_locking: tuple[tuple[int, int], ...] = ()
+    """sliders with μ > 0"""
+    clearance: tuple[tuple[int, int], ...] = ()
+    """revolute joints with clearance data in the file (peak-force check)"""
+    equation_of_motion: str = ""
+    """the motor of a [drive] table ('' without one): the crank's speed comes from the
+    equation of motion"""
+
+
+def plan(mechanism: Mechanism) -> Plan:
+    """Decide the stages from the data: only what the mechanism calls for.
+
+    >>> import dyade
+    >>> dyade.plan(dyade.read_mechanism("mechanisms/fourbar.toml")).kinetostatics
+    True
+    """
+    dynamics = mechanism.has_dynamics
+    rubbing = tuple(j.name for j in mechanism.joints if j.friction > 0.0) if dynamics else ()
+    locking = tuple(j.name for j in mechanism.friction_sliders) if dynamics else ()
+    gaps = tuple(j.name for j in mechanism.joints
+                 if getattr(j, "clearance", None) is not None) if dynamics else ()
+    motion = ""
+    if mechanism.drive is not None:
+        motion = mechanism.drive.motor.describe()
+        if mechanism.drive.flywheel_inertia:
+            motion += f", flywheel {mechanism.drive.flywheel_inertia:g} kg·m²"
+    return Plan(kinematics=True, kinetostatics=dynamics, friction=rubbing, self_locking=locking,
+                clearance=gaps, equation_of_motion=motion)

@@ -1,0 +1,40 @@
+"""The effects a sweep simulates, in words: what ``describe`` lists and the JSON
+summary names (``dyade.linkage.plan.Plan``)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from dyade.linkage.plan import Plan
+
+
+def effects(the_plan: Plan) -> list[str]:
+    """One line per effect a sweep of ``the_plan`` simulates."""
+    out = ["kinematics: positions, velocities, accelerations of every link, joint and point"]
+    if the_plan.kinetostatics:
+        out.append("kinetostatics: joint forces, driving torque, shaking force (d'Alembert, "
+                   "backward dyad by dyad)")
+    if the_plan.friction:
+        out.append("Coulomb friction (solved per dyad) in joints "
+                   + ", ".join(f"({a},{b})" for a, b in the_plan.friction)
+                   + "; self-locking (friction dead centres) of their dyads")
+    if the_plan.self_locking:
+        out.append("self-locking margin of sliders "
+                   + ", ".join(f"({a},{b})" for a, b in the_plan.self_locking))
+    if the_plan.clearance:
+        out.append("clearance peak check (Dresig–Thümmel) in joints "
+                   + ", ".join(f"({a},{b})" for a, b in the_plan.clearance))
+    if the_plan.equation_of_motion:
+        out.append(f"equation of motion J(φ)·φ̈ + ½·J′(φ)·φ̇² = M_M(φ̇) + M_L(φ) − M_F with "
+                   f"the motor: {the_plan.equation_of_motion}; its periodic steady state "
+                   f"(shooting over one revolution), or the run-up from rest when asked; "
+                   f"then kinematics and forces at the real crank speed and acceleration")
+    return out
+
+
+def with_effects(summary: dict[str, Any], the_plan: Plan) -> dict[str, Any]:
+    """A sweep's summary (``Result.summary``) with its ``effects`` after the mechanism's
+    name and positions, as the JSON document gives it."""
+    first = {key: summary[key] for key in ("mechanism", "positions")}
+    rest = {key: value for key, value in summary.items() if key not in first}
+    return {**first, "effects": effects(the_plan), **rest}
