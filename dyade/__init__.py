@@ -46,6 +46,8 @@ This module imports nothing heavy (``import dyade`` loads no numpy), so that
 from __future__ import annotations
 
 __version__ = "0.1.0"
+"""the one place the version is written: pyproject.toml reads it from here (setuptools
+``dynamic``), the installed metadata and ``dyade --version`` say the same"""
 
 _EXPORTS = {
     "read_mechanism": "dyade.files.mechanism",
