@@ -3,15 +3,16 @@
 A linkage is assembled from two-link groups (dyads) in assembly order and swept over
 the crank angle, as in DYADE (Thümmel & Kretzschmar, 1987; its dynamics published by
 Thümmel & Bartke, Technische Mechanik 8, 1987). Around it: the peak force in a revolute
-joint with clearance (Dresig & Thümmel) and the torsional resonance of a stiff coupling
-(Strümpfel).
+joint with clearance (Dresig & Thümmel), the torsional resonance of a stiff coupling
+(Strümpfel) and the vibration of multistage gear drives as rigid finite elements
+(Berczyński, Maćkowiak & Marchelek).
 
 The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``,
 ``dyade.vibration``, ``dyade.machine``), with the everyday functions re-exported here:
 
 - ``read_mechanism(path, overrides=None)``, ``build_mechanism(data)`` -> ``Mechanism``
 - ``plan(mechanism)`` -> ``Plan``; ``analyse(mechanism, ...)`` -> ``Result`` with
-  ``.columns()``, ``.summary()``, ``.notes``, ``.to_pandas()``;
+  ``.columns()``, ``.summary()``, ``.notes`` (``Note``), ``.to_pandas()``;
   ``analyse_in_blocks(mechanism, block_size=...)`` -> a ``Stream`` whose ``.blocks()``
   give the same columns block by block, in bounded memory
 - ``check_clearance(mechanism, ...)``, ``clearance_speed_study(mechanism, speeds, ...)``,
@@ -23,6 +24,11 @@ The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``
   ``read_torque_curve(path, *, speed)``, ``size_flywheel(curve, fluctuation)``,
   ``speed_fluctuation(curve, inertia)``: the flywheel (``dyade.machine``)
 - ``balance(mechanism, *, links, radius)``: counterweights against the shaking force
+- ``read_gears(path, overrides=None)``, ``build_gears(data)`` -> ``GearDrive``;
+  ``gear_modes(drive)`` -> ``Modes``, ``campbell(drive, speeds_rpm, ...)``,
+  ``gear_response(drive, frequencies, ...)``, ``gear_statics(drive, torques, ...)``,
+  ``check_elimination(drive, modes=None)``: gear drives as rigid finite elements
+  (``dyade.vibration.gears``)
 - ``DyadeError``, ``InputError``, ``AssemblyError``
 
 Everything is in SI units (m, rad, s, kg, N); mechanism files may use mm and degrees.
@@ -40,6 +46,8 @@ This module imports nothing heavy (``import dyade`` loads no numpy), so that
 from __future__ import annotations
 
 __version__ = "0.1.0"
+"""the one place the version is written: pyproject.toml reads it from here (setuptools
+``dynamic``), the installed metadata and ``dyade --version`` say the same"""
 
 _EXPORTS = {
     "read_mechanism": "dyade.files.mechanism",

@@ -42,3 +42,10 @@ def test_the_api_has_examples():
             continue
         doc = getattr(dyade, name).__doc__ or ""
         assert len(doc) > 40, name
+
+
+def test_the_package_docstring_names_every_export():
+    """``help(dyade)`` lists the whole re-exported API (the gear API was once left out)."""
+    missing = [name for name in dyade.__all__
+               if not name.startswith("__") and f"``{name}" not in dyade.__doc__]
+    assert not missing, f"dyade/__init__.py exports these without naming them: {missing}"

@@ -250,13 +250,6 @@ class Modes:
             out["lateral"] = out["axial"] = np.full(self.frequencies.size, np.nan)
         return out
 
-    def by_owner(self) -> dict[str, FloatArray]:
-        """Strain-energy shares per shaft, bearing, element and elastic mesh."""
-        out: dict[str, FloatArray] = {}
-        for (owner, _), share in self.strain.items():
-            out[owner] = out.get(owner, 0.0) + share
-        return out
-
     def dominant(self) -> list[tuple[str, str, float]]:
         """Per mode, the (owner, motion) that holds the largest strain-energy share."""
         keys = list(self.strain)
