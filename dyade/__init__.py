@@ -12,9 +12,10 @@ The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``
 
 - ``read_mechanism(path, overrides=None)``, ``build_mechanism(data)`` -> ``Mechanism``
 - ``plan(mechanism)`` -> ``Plan``; ``analyse(mechanism, ...)`` -> ``Result`` with
-  ``.columns()``, ``.summary()``, ``.notes`` (``Note``), ``.to_pandas()``;
-  ``analyse_in_blocks(mechanism, block_size=...)`` -> a ``Stream`` whose ``.blocks()``
-  give the same columns block by block, in bounded memory
+  ``.columns()``, ``.summary()``, ``.notes`` (``Note``: its ``NoteKind``, subject,
+  crank-angle ranges and figures; ``dyade.report.notes.say`` words it), ``.to_pandas()``;
+  ``analyse_in_blocks(mechanism, block_size=...)`` -> a run whose blocks give the same
+  columns block by block, in bounded memory
 - ``check_clearance(mechanism, ...)``, ``clearance_speed_study(mechanism, speeds, ...)``,
   ``peak_force(mass, stiffness, *, clearance, slope)``, ``simulate_clearance(...)``
 - ``Coupling``, ``read_coupling(path)``, ``coupling_response(coupling, eta)``,

@@ -8,17 +8,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from typing import TYPE_CHECKING
-
+from dyade.linkage.block import Block, Columns
 from dyade.linkage.kinematics import joint_point
 from dyade.linkage.model import CRANK, FloatArray, Mechanism, Prismatic, Revolute
 from dyade.linkage.motion import travel
 from dyade.linkage.reduced import reduced
 
-if TYPE_CHECKING:
-    from dyade.linkage.pipeline import Block
-
-Columns = dict[str, FloatArray]
 
 UNITS = {"kinematics": "1/0", "angle_deg": "°", "phi": "°", "omega": "rad/s",
          "alpha": "rad/s²", "x": "m", "y": "m",

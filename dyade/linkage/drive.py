@@ -200,7 +200,7 @@ def _torque_scale(tables: equation.Tables) -> float:
 def _guess(motor: Motor, tables: equation.Tables, sense: float, nominal: float) -> float:
     """A starting speed [rad/s] for the shooting: where the motor's torque meets the mean
     load, else the crank's nominal speed."""
-    need = sense * equation._cycle_mean(tables.friction - tables.load)
+    need = sense * equation.cycle_mean(tables.friction - tables.load)
     if isinstance(motor, Asynchronous):
         speed = motor.synchronous_speed - need / motor.stiffness
         return speed if speed > 0.0 else nominal

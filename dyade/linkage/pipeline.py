@@ -34,6 +34,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dyade.linkage import columns as columns_, kinematics, kinetostatics
+from dyade.linkage.block import Block
 from dyade.linkage.blocks import friction_coupling, spans
 from dyade.linkage.columns import Columns, Continuous
 from dyade.linkage.model import FloatArray, Mechanism
@@ -108,37 +109,6 @@ def prepare(mechanism: Mechanism, the_plan: Plan, *, allow_partial: bool = False
     return Setup(mechanism, the_plan, np.asarray(angle, dtype=np.float64),
                  _per_position(crank_speed), _per_position(crank_acceleration), motion,
                  allow_partial)
-
-
-@dataclass(slots=True, eq=False)
-class Block:
-    """One block of positions through every stage the plan calls for (SI units)."""
-
-    first: int
-    """its first position in the sweep"""
-    last: int
-    """one past its last position"""
-    kinematics: kinematics.Kinematics
-    forces: kinetostatics.Forces | None
-    """joint forces and drive torque (``forces.valid``: given); None without
-    kinetostatics"""
-    friction: friction.FrictionResult | None
-    """friction loads, determinants and verdicts; None without friction"""
-    locking: dict | None
-    """joint -> ``self_locking.Locking``: every slider with friction and every joint
-    that self-locks in the block; None without"""
-    rows: FloatArray
-    """(m,) bool: the positions reported"""
-    valid: FloatArray
-    """(m,) bool: the kinematics is given (closes, outside the dead-centre band,
-    plausible)"""
-    drive: CrankMotion | None = None
-    """the crank's motion at the block's positions; None at constant speed"""
-    columns: Columns = field(default_factory=dict)
-    """the reported positions as named columns (``columns.columns``)"""
-    implausible: dict[str, FloatArray] = field(default_factory=dict)
-    """"kinematics"/"forces" -> (m,) bool: the positions taken out for a value beyond
-    ``columns.PLAUSIBLE``"""
 
 
 def stages(setup: Setup, kin: kinematics.Kinematics, first: int, last: int,

@@ -15,7 +15,8 @@ from dyade.errors import InputError
 from dyade.linkage.blocks import BLOCK_SIZE
 from dyade.linkage.columns import Columns
 from dyade.linkage.model import FloatArray, Mechanism, Revolute, Sweep, sweep_problem
-from dyade.linkage.pipeline import Block, Run, prepare, stages
+from dyade.linkage.block import Block
+from dyade.linkage.pipeline import Run, prepare, stages
 from dyade.linkage.pipeline import Setup
 from dyade.linkage.plan import Plan
 from dyade.linkage.plan import plan as infer_plan

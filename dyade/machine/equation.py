@@ -371,7 +371,7 @@ def periodic(tables: Tables, motor: Motor, sense: float, steps: int, guess: floa
     h = 2.0 * math.pi / steps
     constant = isinstance(motor, ConstantTorque)
     if constant and motor.torque is None:  # balance the cycle with it
-        motor = ConstantTorque(sense * _cycle_mean(tables.friction - tables.load))
+        motor = ConstantTorque(sense * cycle_mean(tables.friction - tables.load))
     energy0 = 0.5 * tables.inertia[0] * guess * guess
     for iteration in range(1, NEWTON_MAX_ITER + 1):
         try:
@@ -395,7 +395,7 @@ def periodic(tables: Tables, motor: Motor, sense: float, steps: int, guess: floa
                      f"{guess * 30.0 / math.pi:.4g} rpm.")
 
 
-def _cycle_mean(values: FloatArray) -> float:
+def cycle_mean(values: FloatArray) -> float:
     """Mean over a revolution of a table at the half steps (Simpson's rule, the
     quadrature the RK4 steps apply to a function of φ alone)."""
     nodes, middle = values[0::2], values[1::2]
@@ -408,7 +408,7 @@ def _neutral(tables, motor, sense, steps, energy, slope, miss, tol, mean_speed) 
     h = 2.0 * math.pi / steps
     gain = np.asarray(energy) - energy[0]  # W(φ) = ∫ (M_M + M_L − M_F) dφ
     if abs(miss) > tol * max(np.max(np.abs(gain)), 1e-300) * 10.0:
-        balance = sense * _cycle_mean(tables.friction - tables.load)
+        balance = sense * cycle_mean(tables.friction - tables.load)
         raise DyadeError(f"no periodic steady state: the motor's constant torque "
                          f"{motor.torque:g} N·m does not balance the machine (it would need "
                          f"{balance:.6g} N·m); the kinetic energy changes by {miss:.4g} J every "
