@@ -40,7 +40,7 @@ class Law:
 
     def __init__(self, k: int, joint: Joint, group: Group, offset, coefficient: FloatArray,
                  motion):
-        self.k, self.joint, self.name = k, joint, joint.name
+        self.k, self.name = k, joint.name
         self.side = -1.0 if k == 2 else 1.0  # s_k: W_k = s_k·W_B + q_k
         self.offset = offset  # q_k (3, n) or None
         self.c = coefficient  # μ·sign(r) (n,)

@@ -34,7 +34,6 @@ class Rub:
         self.signs: dict[tuple[int, int], FloatArray] = {}
         self.determinant: dict[int, FloatArray] = {}
         self.locks: dict[tuple[int, int], FloatArray] = {}
-        self.lock_dyad: dict[tuple[int, int], int] = {}
         self.locked = np.zeros(n, dtype=bool)
         self.unsolved = np.zeros(n, dtype=bool)
         self.near: dict[int, FloatArray] = {}
@@ -149,5 +148,5 @@ def run(kind, mechanism: Mechanism, kin: Kinematics, tol: float | None,
         at_rest[name] = np.zeros(n, dtype=bool)
     return FrictionResult(forces, moments, friction_forces, power, rub.iterations,
                           rub.residual, rub.converged, at_rest, never, rub.determinant,
-                          rub.locks, rub.lock_dyad, rub.locked, rub.unsolved, rub.near,
+                          rub.locks, rub.locked, rub.unsolved, rub.near,
                           Coupling(rub.speed, rub.floors))

@@ -39,8 +39,6 @@ class FrictionResult:
     locks: dict[tuple[int, int], FloatArray]
     """joint -> (n,) bool: its dyad self-locks there and this joint's friction is the
     cause (direct solution only)"""
-    lock_dyad: dict[tuple[int, int], int]
-    """joint in ``locks`` -> number of its dyad"""
     locked: FloatArray
     """(n,) bool: some dyad self-locks (the first one met in the backward pass)"""
     unsolved: FloatArray

@@ -353,7 +353,6 @@ class _Direct(Rub):
                     mask = locked & (cause == k)
                     if mask.any():
                         self.locks[law.name] = mask
-                        self.lock_dyad[law.name] = number
                 determinant[locked] = out.lowest[locked]
             self.locked |= locked
             self.unsolved |= unsolved
