@@ -31,6 +31,7 @@ EDGE = 3.0  # [-] sum of the edge pressures of a linear distribution over L: 3·
 
 
 def has_friction(joint: Joint) -> bool:
+    """The joint has a Coulomb law: μ > 0."""
     return joint.friction > 0.0
 
 
