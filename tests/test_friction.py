@@ -15,6 +15,7 @@ from dyade.files import mechanism as toml_input
 from dyade.report.notes import say
 from dyade.cli import main
 from dyade.linkage.model import Prismatic
+from tests import fixed_point
 from tests.conftest import SHIPPED
 from tests.helpers import TEMPLATES, shipped
 from tests.test_kinetostatics import applied_power, kinetic_energy_rate, with_masses
@@ -36,7 +37,7 @@ def loaded(path, mu, gravity=(0.0, -9.81)):
     return with_friction(with_masses(toml_input.read_mechanism(path), gravity=gravity), mu)
 
 
-@pytest.mark.parametrize("method", [friction.solve, friction.iterate], ids=["direct", "fixed-point"])
+@pytest.mark.parametrize("method", [friction.solve, fixed_point.iterate], ids=["direct", "fixed-point"])
 def test_zero_friction_is_the_frictionless_solution_exactly(method):
     mechanism = loaded(shipped("dyade-16.toml"), 0.0)
     kin = kinematics.sweep(mechanism)
@@ -191,7 +192,7 @@ def test_iterations_grow_as_the_tolerance_shrinks():
     kin = kinematics.sweep(mechanism)
     counts, torques = [], []
     for tol in (1e-3, 1e-6, 1e-9, 1e-12):
-        result = friction.iterate(mechanism, kin, tol=tol, max_iter=200)
+        result = fixed_point.iterate(mechanism, kin, tol=tol, max_iter=200)
         assert result.converged.all()
         assert np.max(result.residual) <= tol
         counts.append(result.iterations.mean())
@@ -208,7 +209,7 @@ def test_direct_solution_converges_quadratically():
     mechanism = loaded(shipped("dyade-16.toml"), 0.1)
     kin = kinematics.sweep(mechanism)
     passes = [friction.solve(mechanism, kin, tol=tol).iterations.max() for tol in (1e-6, 1e-12)]
-    steps = [friction.iterate(mechanism, kin, tol=tol, max_iter=200).iterations.max()
+    steps = [fixed_point.iterate(mechanism, kin, tol=tol, max_iter=200).iterations.max()
              for tol in (1e-6, 1e-12)]
     assert passes[0] <= 4 and passes[1] - passes[0] <= 2
     assert steps[1] - steps[0] >= 4
@@ -234,7 +235,7 @@ def test_fixed_point_iteration_agrees_with_the_direct_solution(label, mechanism)
     # they agree
     kin = kinematics.sweep(mechanism)
     direct = friction.solve(mechanism, kin, tol=1e-13)
-    fixed = friction.iterate(mechanism, kin, tol=1e-14, max_iter=400)
+    fixed = fixed_point.iterate(mechanism, kin, tol=1e-14, max_iter=400)
     both = fixed.converged & direct.converged & kin.valid
     assert both.sum() > 0.3 * both.size
     for name, (link, wrench) in direct.forces.wrenches.items():
@@ -261,7 +262,6 @@ def test_no_friction_no_friction_stage(monkeypatch):
         raise AssertionError("a stage ran that the file does not call for")
 
     monkeypatch.setattr(friction, "solve", must_not_run)
-    monkeypatch.setattr(friction, "iterate", must_not_run)
     monkeypatch.setattr(self_locking, "test", must_not_run)
     result = analysis.analyse(toml_input.read_mechanism(shipped("dyade-16.toml")))
     assert result.forces is not None and result.friction is None
@@ -308,11 +308,11 @@ def test_edge_friction_is_a_file_key():
 
 
 def test_the_force_floor_median_is_numpys():
-    """friction._median replaces np.median (whose first call imports numpy.ma): the
-    same value to the bit, for odd and even counts."""
-    from dyade.linkage.friction import _median
+    """friction.scales.median replaces np.median (whose first call imports numpy.ma):
+    the same value to the bit, for odd and even counts."""
+    from dyade.linkage.friction.scales import median
 
     rng = np.random.default_rng(7)
     for size in range(1, 120):
         values = rng.random(size) * 10.0 ** rng.integers(-5, 5, size)
-        assert _median(values) == float(np.median(values)), size
+        assert median(values) == float(np.median(values)), size

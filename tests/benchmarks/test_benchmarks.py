@@ -19,6 +19,7 @@ from dyade import clearance
 from dyade.vibration import coupling
 from dyade.files import mechanism as toml_input
 from dyade.linkage.model import Prismatic
+from tests import fixed_point
 from tests.benchmarks.yardstick import fourbar, slider_crank
 from tests.helpers import shipped
 
@@ -94,17 +95,16 @@ def test_fourbar_engine_cost_per_position(benchmark, count):
 
 
 @pytest.mark.parametrize("edges", [True, False], ids=["edge-friction", "no-edge-friction"])
-@pytest.mark.parametrize("method", ["solve", "iterate"])
+@pytest.mark.parametrize("method", [friction.solve, fixed_point.iterate], ids=["solve", "iterate"])
 def test_dyade16_with_friction_3600(benchmark, method, edges):
     """The direct solution (with the self-locking verdict) and the fixed-point iteration
     in one run, on the same friction model, at tolerance 1e-9."""
     mechanism = _with_friction(toml_input.read_mechanism(shipped("dyade-16.toml")), edges=edges)
     angles = _angles(3600)
-    run = getattr(friction, method)
 
     def engine():
         kin = kinematics.sweep(mechanism, angles)
-        return run(mechanism, kin)
+        return method(mechanism, kin)
 
     result = benchmark(engine)
     assert result.converged.all()
