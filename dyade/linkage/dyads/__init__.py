@@ -32,7 +32,7 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from dyade.linkage.motion import Motion, cross, dot, perp
+from dyade.linkage.motion import Motion
 from dyade.linkage.model import CRANK, FRAME, FloatArray, Prismatic, Revolute, Vec
 
 SINGULAR_SIN = 1e-10  # [-] |sin μ| below this: the closure Jacobian is singular
@@ -113,16 +113,6 @@ class Closure:
             self.conditioning = np.abs(np.sin(self.transmission))
 
 
-def angle_between(u: FloatArray, v: FloatArray) -> FloatArray:
-    """Angle between two vectors in [0, π] [rad]."""
-    return np.arctan2(np.abs(cross(u, v)), dot(u, v))
-
-
-def polar_angle(v: FloatArray | Vec) -> FloatArray:
-    v = np.asarray(v, dtype=np.float64)
-    return np.arctan2(v[..., 1], v[..., 0])
-
-
 def pin_xy(joint: Revolute, unknown: int, motion: Motion) -> tuple[tuple, Vec]:
     """Components of a revolute joint's world position, from its known side (plain
     numbers when that is the frame), and its local point on the ``unknown`` link."""
@@ -174,7 +164,8 @@ def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: Float
 def same_pins(joints: dict) -> dict:
     """The pins a closure passes on: joint index -> (joint, unknown link, world (x, y)
     found from the known side) for those whose twist would be computed from that side
-    anyway (``dyade.linkage.motion.screw`` uses the joint's first link)."""
+    anyway (a revolute joint's unit twist, ``dyade.linkage.kinematics``, takes its
+    position from the joint's first link)."""
     return {k: xy for k, (joint, unknown, xy) in joints.items() if joint.links[0] != unknown}
 
 
