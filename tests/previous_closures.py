@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.linkage.dyads import SINGULAR_SIN, orient
+from dyade.linkage.dyads.closure import SINGULAR_SIN, orient
 from dyade.linkage.motion import cross, dot, perp, rotate
 
 

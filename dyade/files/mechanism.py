@@ -2,15 +2,16 @@
 
 Every error names the file, the key path, what was expected (with its unit) and what
 was found; unknown keys get a "Did you mean" (``mechanisms/README.md`` documents every
-key). Each dyad kind reads its own keys and builds its middle joint
-(``dyade.linkage.dyads``); the primitives are the shared schema (``dyade.files.schema``).
+key). The keys of each dyad kind and its middle joint B are read here (``MIDDLE``): the
+kinds themselves (``dyade.linkage.dyads``) know geometry and mechanics only. The
+primitives are the shared schema (``dyade.files.schema``).
 """
 
 from __future__ import annotations
 
 import math
 import os
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
 
@@ -26,7 +27,7 @@ from dyade.linkage.model import (
     ClearanceData,
     Crank,
     Dyad,
-    Joint,
+    DyadKind,
     Link,
     Load,
     Mechanism,
@@ -400,7 +401,8 @@ class Reader(UnitReader):
         if not isinstance(table, dict):
             raise self.fail(key, f"must be a table, got {_show(table)}.")
         kind = self.kind(self.required(table, "kind", key), f"{key}.kind")
-        self.keys(table, key, DYAD_KEYS_COMMON | kind.keys)
+        keys, middle = MIDDLE[kind.name]
+        self.keys(table, key, DYAD_KEYS_COMMON | keys)
         links = self.required(table, "links", key)
         if (not isinstance(links, list) or len(links) != 2
                 or any(isinstance(v, bool) or not isinstance(v, int) for v in links)):
@@ -441,11 +443,11 @@ class Reader(UnitReader):
         else:
             h, joint_c = self.outer_prismatic(table["C"], f"{key}.C", j)
         b_table = table.get("B", {})
-        joint_b = kind.middle(self, b_table, f"{key}.B", i, j, table, key)
+        joint_b = middle(self, b_table, f"{key}.B", i, j, table, key)
         self.placed.extend((i, j))
         return Dyad(number, kind, (i, j), (g, h), (joint_a, joint_b, joint_c), variant)
 
-    def kind(self, value: Any, key: str) -> dyad_kinds.DyadKind:
+    def kind(self, value: Any, key: str) -> DyadKind:
         kind = dyad_kinds.named(value)
         if kind is None:
             names = ", ".join(name.upper() for name in dyad_kinds.REGISTRY)
@@ -638,3 +640,73 @@ def _list(value: Any, key: str, reader: Reader) -> list[Any]:
     if not isinstance(value, list):
         raise reader.fail(key, f"must be an array of tables [[{key}]], got {_show(value)}.")
     return value
+
+
+# -- the kinds' own keys and joint B ----------------------------------------------------
+# middle(reader, table, key, i, j, dyad_table, dyad_key) -> Joint: joint B of a dyad of
+# links i and j from its table ``B`` (key path ``key``) and the dyad's table (``dyad_key``),
+# in the link frames of the kind (``DyadKind.frames``, ``mechanisms/README.md``)
+def rrr_middle(reader: Reader, table: Any, key: str, i: int, j: int,
+               dyad_table: dict[str, Any], dyad_key: str) -> Revolute:
+    """Joint B from ``lengths = [|AB|, |CB|]``: at (|AB|, 0) on link i, (|CB|, 0) on j."""
+    friction = reader.middle_revolute(table, key)
+    lengths = reader.required(dyad_table, "lengths", dyad_key)
+    if not isinstance(lengths, list) or len(lengths) != 2:
+        raise reader.fail(f"{dyad_key}.lengths", f"must be [|AB|, |CB|] [{reader.length_unit}], "
+                                                 f"got {_show(lengths)}.", lengths)
+    l_i = reader.length_of(lengths[0], f"{dyad_key}.lengths.1", positive=True)
+    l_j = reader.length_of(lengths[1], f"{dyad_key}.lengths.2", positive=True)
+    return Revolute((i, j), ((l_i, 0.0), (l_j, 0.0)), **friction)
+
+
+def rrp_middle(reader: Reader, table: Any, key: str, i: int, j: int,
+               dyad_table: dict[str, Any], dyad_key: str) -> Revolute:
+    """Joint B from ``length = |AB|``: at (|AB|, 0) on link i, the origin of link j."""
+    friction = reader.middle_revolute(table, key)
+    l_i = reader.length_of(reader.required(dyad_table, "length", dyad_key), f"{dyad_key}.length",
+                           positive=True)
+    return Revolute((i, j), ((l_i, 0.0), (0.0, 0.0)), **friction)
+
+
+def rpr_middle(reader: Reader, table: Any, key: str, i: int, j: int,
+               dyad_table: dict[str, Any], dyad_key: str) -> Prismatic:
+    """Joint B: the guide along the ξ axis of its carrier (link j unless ``guide`` says
+    otherwise), the slider point at the other link's origin, ``offset`` to its left."""
+    offset, extra = reader.middle_prismatic(table, key, point=False)
+    guide = reader.guide(table, key, (i, j), j)
+    slider = i if guide == j else j
+    return Prismatic.through(guide, (0.0, 0.0), 0.0, offset, slider, (0.0, 0.0), 0.0, **extra)
+
+
+def prp_middle(reader: Reader, table: Any, key: str, i: int, j: int,
+               dyad_table: dict[str, Any], dyad_key: str) -> Revolute:
+    """Joint B: the pin at the origins of both links."""
+    return Revolute((i, j), ((0.0, 0.0), (0.0, 0.0)), **reader.middle_revolute(table, key))
+
+
+def ppr_middle(reader: Reader, table: Any, key: str, i: int, j: int,
+               dyad_table: dict[str, Any], dyad_key: str) -> Prismatic:
+    """Joint B: a guide through ``point`` of link i at ``angle`` to guide A (90° unless
+    given; not parallel to it), or on link j with ``guide = j``."""
+    offset, extra = reader.middle_prismatic(table, key, point=True)
+    theta = reader.angle_of(table.get("angle", 90.0 * math.pi / 180.0 / reader.angle),
+                            f"{key}.angle")
+    point = reader.point_on(i, table.get("point", [0.0, 0.0]), f"{key}.point")
+    if abs(math.sin(theta)) < 1e-9:
+        raise reader.fail(f"{key}.angle", "makes guide B parallel to guide A: a PPR dyad is "
+                                          "then blocked in every position. Use an angle that "
+                                          "is not 0° or 180°.", theta)
+    if reader.guide(table, key, (i, j), i) == i:
+        return Prismatic.through(i, point, theta, offset, j, (0.0, 0.0), theta, **extra)
+    return Prismatic.through(j, (0.0, 0.0), 0.0, offset, i, point, -theta, **extra)
+
+
+MIDDLE: dict[str, tuple[frozenset, Callable[..., Revolute | Prismatic]]] = {
+    "RRR": (frozenset({"lengths"}), rrr_middle),
+    "RRP": (frozenset({"length"}), rrp_middle),
+    "RPR": (frozenset(), rpr_middle),
+    "PRP": (frozenset(), prp_middle),
+    "PPR": (frozenset(), ppr_middle),
+}
+"""kind name -> (keys of its [[dyad]] table beyond the common ones, the reader of its
+joint B); one entry per kind of ``dyade.linkage.dyads.REGISTRY``"""

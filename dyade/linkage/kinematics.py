@@ -34,8 +34,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.linkage import dyads as dyad_kinds
-from dyade.linkage.dyads import is_zero, minus, plus, times
+from dyade.linkage.components import is_zero, minus, plus, times
+from dyade.linkage.dyads.closure import SINGULAR_SIN
 from dyade.linkage.motion import Motion, Screw, guide_direction
 from dyade.linkage.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
 
@@ -269,7 +269,7 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
             conditioning[col, ~ok] = np.nan
             for link in dyad.links:
                 motion.invalidate(link, ~ok)
-        usable = ok & ~(closure.conditioning < dyad_kinds.SINGULAR_SIN)
+        usable = ok & ~(closure.conditioning < SINGULAR_SIN)
         closes[col] = closure.closes
         group = _derivatives(dyad, closure, motion, twists, changes, usable)
         np.logical_and(ok, ~group.usable, out=singular[col])

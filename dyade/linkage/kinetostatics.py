@@ -28,9 +28,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dyade.linkage.components import (direction_xy, is_zero, minus, plus, pose, rotate_xy,
+                                      times)
 from dyade.linkage.motion import Motion, Screw
-from dyade.linkage.dyads import (direction_xy, is_zero, minus, plus, pose, rotate_xy,
-                                  times)
 from dyade.linkage.kinematics import Kinematics, crank_screw
 from dyade.linkage.model import CRANK, FRAME, FloatArray, Mechanism, Revolute, toward_higher
 
