@@ -9,7 +9,12 @@ from __future__ import annotations
 import numpy as np
 
 from dyade.linkage.dyads.closure import SINGULAR_SIN, orient
-from dyade.linkage.motion import cross, dot, perp, rotate
+from dyade.linkage.motion import dot, perp, rotate
+
+
+def cross(a, b):
+    """z component of a × b."""
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 def angle_between(u, v):

@@ -3,10 +3,10 @@
 A component is an (n,) array over the sweep, or a plain number where it is the same at
 every position (the frame's pose, a guide on the frame, a crank turning about a fixed
 pivot): the arithmetic below works on both and skips what is known to be zero. The sums
-are written in the order of the vector forms they replace (``dot``, ``cross``,
-``Motion.point`` of ``dyade.linkage.motion``), so the results are the same to the bit.
-The dyad closures (``dyade.linkage.dyads``), the kinematics and the kinetostatics share
-them.
+are written in the order of the vector forms they replace (dot and cross products,
+``Motion.point``; ``tests/previous_closures.py`` keeps those forms), so the results are
+the same to the bit. The dyad closures (``dyade.linkage.dyads``), the kinematics and the
+kinetostatics share them.
 """
 
 from __future__ import annotations

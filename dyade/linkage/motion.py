@@ -135,11 +135,6 @@ def perp(v: FloatArray) -> FloatArray:
     return np.stack((-v[..., 1], v[..., 0]), axis=-1)
 
 
-def cross(a: FloatArray, b: FloatArray) -> FloatArray:
-    """z component of a × b."""
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
-
-
 def dot(a: FloatArray, b: FloatArray) -> FloatArray:
     return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
 
