@@ -8,8 +8,23 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.linkage.dyads import SINGULAR_SIN, angle_between, orient, polar_angle
-from dyade.linkage.motion import cross, dot, perp, rotate
+from dyade.linkage.dyads.closure import SINGULAR_SIN, orient
+from dyade.linkage.motion import dot, perp, rotate
+
+
+def cross(a, b):
+    """z component of a × b."""
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def angle_between(u, v):
+    """Angle between two vectors in [0, π] [rad]."""
+    return np.arctan2(np.abs(cross(u, v)), dot(u, v))
+
+
+def polar_angle(v):
+    v = np.asarray(v, dtype=np.float64)
+    return np.arctan2(v[..., 1], v[..., 0])
 
 
 def _pin(joint, unknown, motion):

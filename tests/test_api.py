@@ -173,3 +173,11 @@ def test_the_registry_describes_every_kind():
     assert [k.has_variant for k in kinds] == [True, True, True, False, False]
     assert all(dyads.named(k.name.lower()) is k and dyads.named(k.number) is k for k in kinds)
     assert dyads.named("RRX") is None and dyads.named(True) is None
+
+
+def test_the_mechanism_reader_reads_every_kind():
+    # the kinds' file syntax (dyade.files) and their geometry (dyade.linkage) list the same kinds
+    from dyade.files.mechanism.dyads import MIDDLE
+    from dyade.linkage import dyads
+
+    assert list(MIDDLE) == [dyads.kind(k).name for k in range(1, len(dyads.REGISTRY) + 1)]

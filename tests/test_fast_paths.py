@@ -1,6 +1,6 @@
 """The component forms of the closures and of the loop solve (issue 17) against what
 they replaced: the vector closures of RRP, RPR, PRP and PPR (``tests/previous_closures``)
-and the general 3×3 inverse of the loop matrix (``kinematics.inverse3``), to the bit;
+and the general 3×3 inverse of the loop matrix (``inverse3`` below), to the bit;
 the forces of each kind against one global solve per position.
 
 Closure residuals and central differences of every kind are checked in test_dyads.py
@@ -14,7 +14,7 @@ from hypothesis import assume, given, reject
 from hypothesis import strategies as st
 
 from dyade.errors import InputError
-from dyade.linkage import kinematics, kinetostatics
+from dyade.linkage import kinetostatics
 from dyade.linkage.motion import Motion
 from tests import previous_closures
 from tests.helpers import kinematics_at, mechanism_from, shipped
@@ -103,6 +103,64 @@ def test_middle_pin_off_the_origins_is_the_vector_closure(kind):
     check()
 
 
+# -- the general inverse of the loop matrix the components replaced (issue 17) -------
+def _comb(p, a, q, b):
+    """p·a − q·b for constants p, q (the ω parts of screws, mostly 0 or ±1)."""
+    if q == 0.0:
+        return 0.0 if p == 0.0 else (a if p == 1.0 else p * a)
+    if p == 0.0:
+        return -b if q == 1.0 else -q * b
+    if p == 1.0 and q == 1.0:
+        return a - b
+    return p * a - q * b
+
+
+def inverse3(c0, c1, c2, usable):
+    """Rows (3, 3, n) of the inverse of the loop matrix [c0, c1, −c2] of three screws;
+    NaN where not ``usable``. The rows of [c0, c1, c2]⁻¹ are c1×c2, c2×c0, c0×c1 over
+    the determinant; the sign of c2 flips the last row."""
+    (x0, y0, w0), (x1, y1, w1), (x2, y2, w2) = c0, c1, c2
+    rows = np.empty((3, 3, x0.shape[0]))
+    rows[0, 0], rows[0, 1] = _comb(w2, y1, w1, y2), _comb(w1, x2, w2, x1)
+    rows[1, 0], rows[1, 1] = _comb(w0, y2, w2, y0), _comb(w2, x0, w0, x2)
+    rows[2, 0], rows[2, 1] = _comb(w1, y0, w0, y1), _comb(w0, x1, w1, x0)
+    rows[0, 2] = x1 * y2 - y1 * x2
+    rows[1, 2] = x2 * y0 - y2 * x0
+    rows[2, 2] = x0 * y1 - y0 * x1
+    det = x0 * rows[0, 0] + y0 * rows[0, 1]
+    if w0 != 0.0:
+        det += w0 * rows[0, 2]
+    # singular rows become NaN below; a determinant below 1e-308 overflows to inf
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        scale = 1.0 / det
+    if not usable.all():
+        scale[~usable] = np.nan
+    rows[:2] *= scale
+    rows[2] *= -scale
+    return rows
+
+
+def solve_rows(inverse, rhs, rows=(0, 1, 2)):
+    """Rows of M⁻¹·rhs; ``rhs`` has three components, a plain 0.0 for a zero one."""
+    out = []
+    for k in rows:
+        total = None
+        for col in range(3):
+            if isinstance(rhs[col], float) and rhs[col] == 0.0:
+                continue
+            term = inverse[k, col] * rhs[col]
+            total = term if total is None else np.add(total, term, out=total)
+        out.append(np.zeros_like(inverse[k, 0]) if total is None else total)
+    return out
+
+
+def solve_transposed(inverse, rhs0, rhs2):
+    """M⁻ᵀ·(rhs0, 0, rhs2) with the rows (3, 3, n) of M⁻¹."""
+    out = inverse[0] * rhs0
+    out += inverse[2] * rhs2
+    return out
+
+
 def _same_solves(mechanism) -> None:
     """Rates, the inverse and the force stage's solve of every dyad against the general
     inverse of its loop matrix: the same numbers to the bit."""
@@ -110,18 +168,18 @@ def _same_solves(mechanism) -> None:
     rng = np.random.default_rng(7)
     for group in kin.groups:
         with np.errstate(all="ignore"):  # a determinant below 1e-308 overflows there
-            general = kinematics.inverse3(*group.screws, group.usable)
+            general = inverse3(*group.screws, group.usable)
         # where the general inverse is not finite (|det M| < TINY_DET) the rows are NaN
         finite = np.isfinite(general).all(axis=(0, 1))
         assert np.isnan(group.inverse[:, :, ~finite]).all()
         np.testing.assert_array_equal(group.inverse[:, :, finite], general[:, :, finite])
         for k in range(3):
             np.testing.assert_array_equal(
-                group.rate(k)[finite], kinematics.solve_rows(general, group.loop, (k,))[0][finite])
+                group.rate(k)[finite], solve_rows(general, group.loop, (k,))[0][finite])
         rhs0, rhs2 = rng.normal(size=(2, ANGLES.size))
         np.testing.assert_array_equal(
             group.reaction(rhs0, rhs2)[:, finite],
-            kinetostatics.solve_transposed(general, rhs0, rhs2)[:, finite])
+            solve_transposed(general, rhs0, rhs2)[:, finite])
 
 
 @given(data=dyad_files())

@@ -251,12 +251,17 @@ ENTRY_POINT = "dyade.__main__"
 
 BASE_EXCEPTIONS = {
     # the mechanism reader builds the model it reads into: Mechanism, links, joints
-    # (dyade.linkage.model) and the dyad kinds whose file keys it validates
-    # (dyade.linkage.dyads); it imports nothing that computes
+    # (dyade.linkage.model), and finds the dyad kinds (dyade.linkage.dyads: the registry)
+    # whose file keys it reads; it imports nothing that computes
     ("dyade.files.mechanism", "dyade.linkage.model"): "anywhere",
-    ("dyade.files.mechanism", "dyade.linkage.dyads"): "anywhere",
+    ("dyade.files.mechanism.reader", "dyade.linkage.model"): "anywhere",
+    ("dyade.files.mechanism.links", "dyade.linkage.model"): "anywhere",
+    ("dyade.files.mechanism.dyads", "dyade.linkage.model"): "anywhere",
+    ("dyade.files.mechanism.loads", "dyade.linkage.model"): "anywhere",
+    ("dyade.files.mechanism.friction", "dyade.linkage.model"): "anywhere",
+    ("dyade.files.mechanism.dyads", "dyade.linkage.dyads"): "anywhere",
     # ... and the drive of its [drive] table (dyade.machine.motor: dataclasses only)
-    ("dyade.files.mechanism", "dyade.machine.motor"): "anywhere",
+    ("dyade.files.mechanism.drive", "dyade.machine.motor"): "anywhere",
     # the coupling reader returns the Coupling model; it imports it in read_coupling only,
     # so that reading the file's keys (load_data) does not load the model's numpy
     ("dyade.files.coupling", "dyade.vibration.coupling"): "in a function",
@@ -298,6 +303,11 @@ RULES = {
         lambda name, imp: (within(imp.target, *PLOT) and within(name, *REPORT)
                            or within(imp.target, *REPORT) and within(name, *PLOT)),
         "is in report or plot and imports the other (both read the API's results)"),
+    "the dyad kinds know no file syntax": (
+        lambda name: within(name, "dyade.linkage.dyads"),
+        lambda name, imp: within(imp.target, "dyade.files"),
+        "is a dyad kind (geometry and mechanics) and imports dyade.files; the keys of a "
+        "kind are read by dyade.files.mechanism.dyads"),
     "files, units, errors, arrays import no layer above": (
         # every dyade module outside the base is above it: the package facade, the API,
         # dyade.parallel and any module added later alike
@@ -337,7 +347,7 @@ def test_the_reader_sees_every_kind_of_import():
     # the rules above pass vacuously if the reader misses imports: pin what it must find
     found = {name: {imp.target for imp in module.imports} for name, module in MODULES.items()}
     assert "click" in found["dyade.cli"]                                   # import x
-    assert "dyade.linkage.dyads" in found["dyade.files.mechanism"]        # from pkg import module
+    assert "dyade.linkage.dyads" in found["dyade.files.mechanism.dyads"]  # from pkg import module
     assert "rich.progress" in found["dyade.cli.output"]                    # inside a function
     assert "matplotlib.figure" in found["dyade.plot.polar"]                # a plot module
     assert "dyade.cli" in found["dyade.cli"]                               # importlib f-string

@@ -17,8 +17,6 @@ from typing import Any, NamedTuple
 from dyade.errors import InputError
 from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS
 
-CHECKS = {"": None, "positive": "must be positive", "non_negative": "must not be negative"}
-
 
 class Field(NamedTuple):
     """One key of a flat file."""

@@ -34,8 +34,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.linkage import dyads as dyad_kinds
-from dyade.linkage.dyads import is_zero, minus, plus, times
+from dyade.linkage.components import is_zero, minus, plus, times
+from dyade.linkage.dyads.closure import SINGULAR_SIN
 from dyade.linkage.motion import Motion, Screw, guide_direction
 from dyade.linkage.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
 
@@ -66,7 +66,8 @@ class Group:
     and is not singular; ``loop``, V_h − V_g (components); ``rates``, the joint rates
     a, b, c (n,) along S_A, S_B, S_C [rad/s or m/s], on demand (``rate``);
     ``entries``, the entries (k, c) of M⁻¹, (n,) arrays or plain zeros, NaN where the
-    dyad is not usable, each formed as ``inverse3`` forms it.
+    dyad is not usable, each formed as the general 3×3 inverse forms it (to the bit:
+    ``tests/test_fast_paths.py``).
     """
 
     __slots__ = ("links", "known", "joints", "on", "units", "usable", "loop", "rates",
@@ -80,7 +81,7 @@ class Group:
         self.loop = (0.0, 0.0, 0.0)
         self.rates = [None, None, None]
         self._inverse = None
-        # the rows of adj [S_A, S_B, S_C] are S_B × S_C, S_C × S_A, S_A × S_B (``inverse3``)
+        # the rows of adj [S_A, S_B, S_C] are S_B × S_C, S_C × S_A, S_A × S_B
         (x0, y0, w0), (x1, y1, w1), (x2, y2, w2) = units
         rows = ((_comb(w2, y1, w1, y2), _comb(w1, x2, w2, x1), _cross((x1, y1), (x2, y2))),
                 (_comb(w0, y2, w2, y0), _comb(w2, x0, w0, x2), _cross((x2, y2), (x0, y0))),
@@ -102,7 +103,7 @@ class Group:
                         [_scaled(value, flipped, scale) for value in rows[2]]]
 
     def solve(self, rhs: tuple, k: int) -> FloatArray:
-        """Row k of M⁻¹·rhs (``solve_rows``); ``rhs`` in components (x, y, ω)."""
+        """Row k of M⁻¹·rhs; ``rhs`` in components (x, y, ω)."""
         total, given = None, False
         for entry, part in zip(self.entries[k], rhs):
             if type(part) is float and part == 0.0:
@@ -122,8 +123,7 @@ class Group:
         return self.rates[k]
 
     def reaction(self, rhs0: FloatArray, rhs2: FloatArray) -> FloatArray:
-        """(3, n) M⁻ᵀ·(rhs0, 0, rhs2) (``kinetostatics.solve_transposed``): the load W_B
-        of the force stage."""
+        """(3, n) M⁻ᵀ·(rhs0, 0, rhs2): the load W_B of the force stage."""
         out = np.empty((3, self.usable.shape[0]))
         for row, first, second in zip(out, self.entries[0], self.entries[2]):
             if type(first) is float:
@@ -225,45 +225,6 @@ def _comb(p: float, a: FloatArray, q: float, b: FloatArray):
     return p * a - q * b
 
 
-def inverse3(c0: Screw, c1: Screw, c2: Screw, usable: FloatArray) -> FloatArray:
-    """Rows (3, 3, n) of the inverse of the loop matrix [c0, c1, −c2] of three screws;
-    NaN where not ``usable``. The rows of [c0, c1, c2]⁻¹ are c1×c2, c2×c0, c0×c1 over
-    the determinant; the sign of c2 flips the last row."""
-    (x0, y0, w0), (x1, y1, w1), (x2, y2, w2) = c0, c1, c2
-    rows = np.empty((3, 3, x0.shape[0]))
-    rows[0, 0], rows[0, 1] = _comb(w2, y1, w1, y2), _comb(w1, x2, w2, x1)
-    rows[1, 0], rows[1, 1] = _comb(w0, y2, w2, y0), _comb(w2, x0, w0, x2)
-    rows[2, 0], rows[2, 1] = _comb(w1, y0, w0, y1), _comb(w0, x1, w1, x0)
-    rows[0, 2] = x1 * y2 - y1 * x2
-    rows[1, 2] = x2 * y0 - y2 * x0
-    rows[2, 2] = x0 * y1 - y0 * x1
-    det = x0 * rows[0, 0] + y0 * rows[0, 1]
-    if w0 != 0.0:
-        det += w0 * rows[0, 2]
-    # singular rows become NaN below; a determinant below 1e-308 overflows to inf
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        scale = 1.0 / det
-    if not usable.all():
-        scale[~usable] = np.nan
-    rows[:2] *= scale
-    rows[2] *= -scale
-    return rows
-
-
-def solve_rows(inverse: FloatArray, rhs, rows=(0, 1, 2)) -> list[FloatArray]:
-    """Rows of M⁻¹·rhs; ``rhs`` has three components, a plain 0.0 for a zero one."""
-    out = []
-    for k in rows:
-        total = None
-        for col in range(3):
-            if isinstance(rhs[col], float) and rhs[col] == 0.0:
-                continue
-            term = inverse[k, col] * rhs[col]
-            total = term if total is None else np.add(total, term, out=total)
-        out.append(np.zeros_like(inverse[k, 0]) if total is None else total)
-    return out
-
-
 def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
           crank_speed: FloatArray | float | None = None,
           crank_acceleration: FloatArray | float | None = None) -> Kinematics:
@@ -308,7 +269,7 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
             conditioning[col, ~ok] = np.nan
             for link in dyad.links:
                 motion.invalidate(link, ~ok)
-        usable = ok & ~(closure.conditioning < dyad_kinds.SINGULAR_SIN)
+        usable = ok & ~(closure.conditioning < SINGULAR_SIN)
         closes[col] = closure.closes
         group = _derivatives(dyad, closure, motion, twists, changes, usable)
         np.logical_and(ok, ~group.usable, out=singular[col])
@@ -319,8 +280,11 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
 
 
 def _unit(joint: Joint, motion: Motion, on: int, closure, k: int) -> tuple:
-    """Unit twist of joint k of a dyad (``dyade.linkage.motion.screw``) in components,
-    from the closure's pin or guide where it found one."""
+    """Unit twist of joint k of a dyad in components (``dyade.linkage.motion``): a
+    revolute joint's ω part is +1, a prismatic joint's translation is along +d, the
+    carrier's guide direction, for the slider and along −d for the carrier; a revolute
+    joint's position from the closure's pin, a guide's direction from the closure's
+    guide where it found one."""
     if isinstance(joint, Revolute):
         x, y = closure.pins[k] if k in closure.pins else motion.point_xy(joint.links[0],
                                                                          joint.points[0])

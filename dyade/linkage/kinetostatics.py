@@ -28,9 +28,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.linkage.motion import Motion, Screw, guide_direction
-from dyade.linkage.dyads import (direction_xy, is_zero, minus, plus, pose, rotate_xy,
-                                  times)
+from dyade.linkage.components import (direction_xy, is_zero, minus, plus, pose, rotate_xy,
+                                      times)
+from dyade.linkage.motion import Motion, Screw
 from dyade.linkage.kinematics import Kinematics, crank_screw
 from dyade.linkage.model import CRANK, FRAME, FloatArray, Mechanism, Revolute, toward_higher
 
@@ -143,15 +143,10 @@ def add_force(wrench: FloatArray, point: FloatArray, force: FloatArray) -> None:
     wrench[2] += point[:, 0] * force[:, 1] - point[:, 1] * force[:, 0]
 
 
-def dot3(unit: Screw, wrench: FloatArray) -> FloatArray:
-    """Power pairing of a unit twist (components, ``dyade.linkage.kinematics``) and a
-    wrench (3, n); a new array."""
-    out = _power(unit, wrench)
-    return out.copy() if np.shares_memory(out, wrench) else out
-
-
 def _power(unit: Screw, wrench: FloatArray) -> FloatArray:
-    """``dot3``, or one of the wrench's rows itself where the twist is a unit vector."""
+    """Power pairing S·W of a unit twist (components, ``dyade.linkage.kinematics``) and a
+    wrench (3, n): one of the wrench's rows itself (not a copy) where the twist is a unit
+    vector."""
     x, y, w = unit
     out = None
     for part, load in ((x, wrench[0]), (y, wrench[1])):
@@ -166,13 +161,6 @@ def _power(unit: Screw, wrench: FloatArray) -> FloatArray:
         term = wrench[2] if w == 1.0 else w * wrench[2]
         out = term if out is None else out + term
     return np.zeros_like(wrench[0]) if out is None else out
-
-
-def solve_transposed(inverse: FloatArray, rhs0: FloatArray, rhs2: FloatArray) -> FloatArray:
-    """M⁻ᵀ·(rhs0, 0, rhs2) with the rows (3, 3, n) of M⁻¹."""
-    out = inverse[0] * rhs0
-    out += inverse[2] * rhs2
-    return out
 
 
 def solve(mechanism: Mechanism, kin: Kinematics) -> Forces:

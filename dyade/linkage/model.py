@@ -5,22 +5,21 @@ Bartke 1987); every joint is stated in the frames of the two links it joins. The
 reader (``dyade.files.mechanism``) turns the designer's per-kind description into these
 objects, so the engine never needs to know which link of a prismatic pair was written
 as guide and which as slider. The link frames of the two links a dyad places are part
-of its kind's description (``DyadKind.frames``, ``dyade.linkage.dyads``; documented in
-``mechanisms/README.md``).
+of its kind's description (``DyadKind.frames``; the kinds are in ``dyade.linkage.dyads``,
+documented in ``mechanisms/README.md``).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Union
+from typing import TYPE_CHECKING, Callable, NamedTuple, Union
 
 import numpy as np
 
 from dyade.arrays import FloatArray, Vec
 
 if TYPE_CHECKING:
-    from dyade.linkage.dyads import DyadKind
     from dyade.machine.motor import Drive
 
 FRAME = 1  # link number of the frame
@@ -177,6 +176,34 @@ class Link:
     @property
     def has_mass(self) -> bool:
         return self.mass > 0.0 or self.inertia > 0.0
+
+
+class DyadKind(NamedTuple):
+    """What dyade knows of a dyad kind: its geometry and mechanics (one per kind module
+    of ``dyade.linkage.dyads``, ``KIND``; the keys a mechanism file gives for it are read
+    by ``dyade.files.mechanism.dyads``)."""
+
+    number: int
+    """the paper's kind number ("Art") 1-5"""
+    name: str
+    """the joint pattern A-B-C: RRR, RRP, RPR, PRP, PPR"""
+    has_variant: bool
+    """two closures, chosen by the assembly variant ±1 (else one, variant 0)"""
+    variant_rule: str
+    """what variant +1 means (empty without a variant)"""
+    frames: tuple[str, str]
+    """the link frames of links i and j (origin, ξ axis)"""
+    transmission: str
+    """the two directions whose angle is the transmission angle μ"""
+    singular: str
+    """what μ = 0° or 180° is called: "dead centre" or "blocked position" """
+    close: Callable
+    """close(dyad, motion) -> Closure (``dyade.linkage.dyads.closure``)"""
+
+    @property
+    def cannot_close(self) -> str:
+        """How a failed closure is said."""
+        return "is blocked" if self.singular == "blocked position" else "cannot close"
 
 
 @dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality

@@ -135,11 +135,6 @@ def perp(v: FloatArray) -> FloatArray:
     return np.stack((-v[..., 1], v[..., 0]), axis=-1)
 
 
-def cross(a: FloatArray, b: FloatArray) -> FloatArray:
-    """z component of a × b."""
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
-
-
 def dot(a: FloatArray, b: FloatArray) -> FloatArray:
     return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
 
@@ -147,23 +142,6 @@ def dot(a: FloatArray, b: FloatArray) -> FloatArray:
 Screw = tuple[FloatArray, FloatArray, float]
 """A unit twist as (v_x (n,), v_y (n,), ω): ω is a constant, 1 or 0, and the
 arithmetic uses that (``dyade.linkage.kinematics``)."""
-
-
-def screw(joint: Joint, motion: Motion, on: int, at=None) -> Screw:
-    """Unit twist of the motion ``joint`` allows link ``on`` relative to the other link
-    (see the module docstring): a revolute joint's ω part is +1, a prismatic joint's
-    translation is along +d, the carrier's guide direction, for the slider and along −d
-    for the carrier. ``at``: a revolute joint's world position (x, y) when already known."""
-    if isinstance(joint, Revolute):
-        x, y = motion.point_xy(joint.links[0], joint.points[0]) if at is None else at
-        if np.ndim(x) == 0:  # a frame point, known as plain numbers
-            n = motion.angle.shape[0]
-            x, y = np.full(n, float(x)), np.full(n, float(y))
-        return y, -x, 1.0
-    dx, dy = guide_direction(joint, motion)
-    if on == joint.slider:
-        return dx, dy, 0.0
-    return -dx, -dy, 0.0
 
 
 def guide_direction(joint: Prismatic, motion: Motion) -> tuple[FloatArray, FloatArray]:

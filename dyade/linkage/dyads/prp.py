@@ -5,38 +5,35 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.linkage import dyads
+from dyade.linkage.components import full
+from dyade.linkage.dyads.closure import (Closure, SINGULAR_SIN, carry, crossing, ends, guide_line,
+                                         place_origin, shift_line)
 from dyade.linkage.motion import Motion
-from dyade.linkage.model import Dyad, Revolute
+from dyade.linkage.model import Dyad, DyadKind
 
 
-def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
+def close(dyad: Dyad, motion: Motion) -> Closure:
     """Both links translate (their angles follow g and h); the pin B is where the guide
     lines of A and C, carried to B, cross."""
     i, j = dyad.links
     g, h = dyad.known
     joint_a, joint_b, joint_c = dyad.joints
-    b_i, b_j = dyads.ends(joint_b, i)
-    c_i, s_i = dyads.carry(joint_a, g, i, motion)
-    c_j, s_j = dyads.carry(joint_c, h, j, motion)
-    (dax, day), e_a = dyads.guide_line(joint_a, i, motion, c_i, s_i)
-    (dcx, dcy), e_c = dyads.guide_line(joint_c, j, motion, c_j, s_j)
-    e_a = dyads.shift_line(e_a, dax, day, c_i, s_i, b_i)  # now n_a·B = e_a
-    e_c = dyads.shift_line(e_c, dcx, dcy, c_j, s_j, b_j)
-    bx, by, det = dyads.crossing(-day, dax, e_a, -dcy, dcx, e_c, motion)
-    dyads.place_origin(motion, i, bx, by, c_i, s_i, b_i)
-    dyads.place_origin(motion, j, bx, by, c_j, s_j, b_j)
+    b_i, b_j = ends(joint_b, i)
+    c_i, s_i = carry(joint_a, g, i, motion)
+    c_j, s_j = carry(joint_c, h, j, motion)
+    (dax, day), e_a = guide_line(joint_a, i, motion, c_i, s_i)
+    (dcx, dcy), e_c = guide_line(joint_c, j, motion, c_j, s_j)
+    e_a = shift_line(e_a, dax, day, c_i, s_i, b_i)  # now n_a·B = e_a
+    e_c = shift_line(e_c, dcx, dcy, c_j, s_j, b_j)
+    bx, by, det = crossing(-day, dax, e_a, -dcy, dcx, e_c, motion)
+    place_origin(motion, i, bx, by, c_i, s_i, b_i)
+    place_origin(motion, j, bx, by, c_j, s_j, b_j)
     sin = np.abs(det)  # μ between the guide directions d_a and d_c, |d| = 1
-    transmission = np.arctan2(sin, dyads.full(motion, dax * dcx + day * dcy))
-    return dyads.Closure(sin >= dyads.SINGULAR_SIN, transmission, sin, {},
-                         {0: (dax, day), 2: (dcx, dcy)})
+    transmission = np.arctan2(sin, full(motion, dax * dcx + day * dcy))
+    return Closure(sin >= SINGULAR_SIN, transmission, sin, {},
+                   {0: (dax, day), 2: (dcx, dcy)})
 
 
-def middle(reader, table, key: str, i: int, j: int, dyad_table, dyad_key: str) -> Revolute:
-    """Joint B: the pin at the origins of both links."""
-    return Revolute((i, j), ((0.0, 0.0), (0.0, 0.0)), **reader.middle_revolute(table, key))
-
-
-KIND = dyads.DyadKind(
+KIND = DyadKind(
     4, "PRP", False, "", ("origin B, ξ along the guide at A", "origin B, ξ along the guide at C"),
-    "guide A and guide C", "blocked position", frozenset(), middle, close)
+    "guide A and guide C", "blocked position", close)

@@ -10,13 +10,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.linkage import dyads
+from dyade.linkage.components import direction_xy, full
+from dyade.linkage.dyads.closure import Closure, pin, place_origin, same_pins, turn
 from dyade.linkage.motion import Motion, rotate
-from dyade.linkage.model import Dyad, Prismatic
+from dyade.linkage.model import Dyad, DyadKind
 
 
-
-def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
+def close(dyad: Dyad, motion: Motion) -> Closure:
     """The guide through the carrier's pivot O_c passes at distance c0 from the slider's
     pivot O_s: with D = O_s − O_c and ρ = |D|, its angle is ψ = atan2(D) − asin(c0/ρ)
     (variant +1, towards O_s) or atan2(D) − π + asin(c0/ρ), and the lever arm is
@@ -25,14 +25,14 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     results stay the same to the bit.)"""
     i, j = dyad.links
     joint_a, joint_b, joint_c = dyad.joints
-    pins = {i: dyads.pin(joint_a, i, motion), j: dyads.pin(joint_c, j, motion)}
+    pins = {i: pin(joint_a, i, motion), j: pin(joint_c, j, motion)}
     c, s = joint_b.carrier, joint_b.slider
     ((ocx, ocy), p_c), ((osx, osy), p_s) = pins[c], pins[s]
     theta, kappa = joint_b.guide_angle, joint_b.relative_angle
     n_local = np.array([-np.sin(theta), np.cos(theta)])
     slider_arm = rotate(np.array(kappa), np.subtract(joint_b.slider_point, p_s))
     c0 = float(n_local @ np.subtract(joint_b.guide_point, p_c) - n_local @ slider_arm)
-    dx, dy = dyads.full(motion, osx - ocx), dyads.full(motion, osy - ocy)
+    dx, dy = full(motion, osx - ocx), full(motion, osy - ocy)
     rho = np.hypot(dx, dy)
     # pivots on top of each other (or a subnormal distance apart): no closure
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -53,9 +53,9 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     # the carrier's frame is the guide turned back by θ, the slider's turned on by κ
     motion.set_angle(c, psi - theta)
     cos_c, sin_c = motion.cos[:, c], motion.sin[:, c]
-    dyads.place_origin(motion, c, ocx, ocy, cos_c, sin_c, p_c)
-    cos_s, sin_s = dyads.turn(motion, s, c, kappa)
-    dyads.place_origin(motion, s, osx, osy, cos_s, sin_s, p_s)
+    place_origin(motion, c, ocx, ocy, cos_c, sin_c, p_c)
+    cos_s, sin_s = turn(motion, s, c, kappa)
+    place_origin(motion, s, osx, osy, cos_s, sin_s, p_s)
     # μ: angle between the guide normal and the pivot line, cos μ = c0/ρ, sin μ = arm/ρ.
     # The closure's determinant is the lever arm itself: with zero offset μ stays 90°
     # while the arm (= ρ) goes to 0 as the pivots approach each other, so the quality is
@@ -63,23 +63,13 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     # combined in ``dyade.linkage.kinematics``), at each position on its own.
     with np.errstate(invalid="ignore"):  # ρ = 0: no closure, NaN
         sin_mu = arm / rho
-    pins = dyads.same_pins({0: (joint_a, i, pins[i][0]), 2: (joint_c, j, pins[j][0])})
-    return dyads.Closure(closes, np.arctan2(arm, c0), sin_mu, pins,
-                         {1: dyads.direction_xy(joint_b, cos_c, sin_c)}, lever=rho)
+    pins = same_pins({0: (joint_a, i, pins[i][0]), 2: (joint_c, j, pins[j][0])})
+    return Closure(closes, np.arctan2(arm, c0), sin_mu, pins,
+                   {1: direction_xy(joint_b, cos_c, sin_c)}, lever=rho)
 
 
-def middle(reader, table, key: str, i: int, j: int, dyad_table, dyad_key: str) -> Prismatic:
-    """Joint B: the guide along the ξ axis of its carrier (link j unless ``guide`` says
-    otherwise), the slider point at the other link's origin, ``offset`` to its left."""
-    offset, extra = reader.middle_prismatic(table, key, point=False)
-    guide = reader.guide(table, key, (i, j), j)
-    slider = i if guide == j else j
-    return Prismatic.through(guide, (0.0, 0.0), 0.0, offset, slider, (0.0, 0.0), 0.0, **extra)
-
-
-KIND = dyads.DyadKind(
+KIND = DyadKind(
     3, "RPR", True, "the guide direction points from the guide link's pivot towards the other "
                     "link's pivot",
     ("origin A, ξ along the guide at B", "origin C, ξ along the guide at B"),
-    "the normal of guide B and the line between the pivots", "dead centre", frozenset(),
-    middle, close)
+    "the normal of guide B and the line between the pivots", "dead centre", close)

@@ -5,22 +5,20 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.linkage import dyads
+from dyade.linkage.dyads.closure import Closure, ends, orient, pin_xy
 from dyade.linkage.motion import Motion
-from dyade.files.schema import show
-from dyade.linkage.model import Dyad, Revolute
+from dyade.linkage.model import Dyad, DyadKind
 
 
-
-def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
+def close(dyad: Dyad, motion: Motion) -> Closure:
     """Place links i and j: B = A + l_i·e(φ_i) = C + l_j·e(φ_j)."""
     i, j = dyad.links
     joint_a, joint_b, joint_c = dyad.joints
-    (ax, ay), a_i = dyads.pin_xy(joint_a, i, motion)
-    (cx, cy), c_j = dyads.pin_xy(joint_c, j, motion)
+    (ax, ay), a_i = pin_xy(joint_a, i, motion)
+    (cx, cy), c_j = pin_xy(joint_c, j, motion)
     if np.ndim(ax) == 0 and np.ndim(cx) == 0:  # both on the frame: a fixed group
         ax, ay = np.full(motion.angle.shape[0], ax), np.full(motion.angle.shape[0], ay)
-    b_i, b_j = dyads.ends(joint_b, i)
+    b_i, b_j = ends(joint_b, i)
     arm_i = np.subtract(b_i, a_i)
     arm_j = np.subtract(b_j, c_j)
     l_i, l_j = float(np.hypot(*arm_i)), float(np.hypot(*arm_j))
@@ -41,28 +39,15 @@ def close(dyad: Dyad, motion: Motion) -> dyads.Closure:
     # B − A = along·u + side·E·u and B − C
     bax, bay = along * ux - side * uy, along * uy + side * ux
     bcx, bcy = (ax - cx) + bax, (ay - cy) + bay
-    dyads.orient(motion, i, bax, bay, arm_i, l_i, ax, ay, a_i)
-    dyads.orient(motion, j, bcx, bcy, arm_j, l_j, cx, cy, c_j)
+    orient(motion, i, bax, bay, arm_i, l_i, ax, ay, a_i)
+    orient(motion, j, bcx, bcy, arm_j, l_j, cx, cy, c_j)
     sin = bax * bcy - bay * bcx
     transmission = np.arctan2(np.abs(sin), bax * bcx + bay * bcy)
     pins = {0: (ax, ay), 1: (ax + bax, ay + bay), 2: (cx, cy)}
-    return dyads.Closure(closes, transmission, np.abs(sin) / (l_i * l_j), pins)
+    return Closure(closes, transmission, np.abs(sin) / (l_i * l_j), pins)
 
 
-def middle(reader, table, key: str, i: int, j: int, dyad_table, dyad_key: str) -> Revolute:
-    """Joint B from ``lengths = [|AB|, |CB|]``: at (|AB|, 0) on link i, (|CB|, 0) on j."""
-    friction = reader.middle_revolute(table, key)
-    lengths = reader.required(dyad_table, "lengths", dyad_key)
-    if not isinstance(lengths, list) or len(lengths) != 2:
-        raise reader.fail(f"{dyad_key}.lengths", f"must be [|AB|, |CB|] [{reader.length_unit}], "
-                                                 f"got {show(lengths)}.", lengths)
-    l_i = reader.length_of(lengths[0], f"{dyad_key}.lengths.1", positive=True)
-    l_j = reader.length_of(lengths[1], f"{dyad_key}.lengths.2", positive=True)
-    return Revolute((i, j), ((l_i, 0.0), (l_j, 0.0)), **friction)
-
-
-KIND = dyads.DyadKind(
+KIND = DyadKind(
     1, "RRR", True, "B left of the directed line A→C",
     ("origin A, ξ towards B", "origin C, ξ towards B"),
-    "B−A and B−C (link i and link j at B)", "dead centre", frozenset({"lengths"}),
-    middle, close)
+    "B−A and B−C (link i and link j at B)", "dead centre", close)

@@ -1,0 +1,61 @@
+"""Read a mechanism file (TOML), validate it, and convert it to SI model objects.
+
+Every error names the file, the key path, what was expected (with its unit) and what
+was found; unknown keys get a "Did you mean" (``mechanisms/README.md`` documents every
+key). The primitives are the shared schema (``dyade.files.schema``); one module per
+part of the file:
+
+``reader``    the whole file: top-level keys, [units], [sweep], the order of the parts
+``links``     links and their points, the crank, the outer joints A and C of dyads
+``dyads``     the [[dyad]] tables: each kind's keys and its middle joint B
+``loads``     [gravity], [[load]] and [[spring]]
+``friction``  [friction] defaults, each joint's friction and clearance data
+``drive``     the [drive] table: motor, flywheel, equation-of-motion settings
+``editing``   the TOML: ``--set`` overrides, ``--save-as`` text, data written as TOML
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+from dyade.errors import InputError
+from dyade.files.mechanism.editing import NUMBERING, dumps, edited, load_data
+from dyade.files.mechanism.reader import Reader
+from dyade.files.schema import set_dotted
+from dyade.linkage.model import Mechanism
+
+__all__ = ["NUMBERING", "InputError", "Reader", "build", "dumps", "edited", "load_data",
+           "read_mechanism", "set_dotted"]
+
+
+def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = None
+                   ) -> Mechanism:
+    """Read and validate a mechanism file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The TOML file (``mechanisms/README.md`` documents every key).
+    overrides : dict, optional
+        Dotted key path -> value, replacing keys of the file as ``--set`` does
+        (``{"crank.speed_rpm": 600}``; array entries by 1-based index).
+
+    Returns
+    -------
+    Mechanism
+        In SI units, validated.
+
+    Raises
+    ------
+    InputError
+        Naming the file and the key path, what was expected and what was found.
+    """
+    return build(load_data(path, overrides), path)
+
+
+def build(data: dict[str, Any], path: str | os.PathLike | None = None) -> Mechanism:
+    """Validate mechanism data (the parsed TOML of a mechanism file, or the same
+    structure written in Python) and build the mechanism; errors name ``path``."""
+    path = os.fspath(path) if path else None
+    return Reader(os.path.basename(path) if path else "mechanism", path).mechanism(data)
