@@ -460,11 +460,8 @@ def private_offences(modules: dict[str, Reader], root: Path = ROOT) -> dict[str,
 PACKAGES = sorted(name for name, path in FILES.items() if path.name == "__init__.py")
 CIRCLES = circle_offences(MODULES)
 PRIVATES = private_offences(MODULES)
-UNTIL_THE_MERGE = pytest.mark.xfail(strict=False, raises=AssertionError,
-                                    reason="issue 25: cleared by the pipeline merge")
 
 
-@UNTIL_THE_MERGE
 @pytest.mark.parametrize("package", PACKAGES)
 def test_no_circle_inside_a_package(package):
     found = CIRCLES.get(package, [])
@@ -472,7 +469,6 @@ def test_no_circle_inside_a_package(package):
                        "(a module that two need goes below both):\n  " + "\n  ".join(found))
 
 
-@UNTIL_THE_MERGE
 @pytest.mark.parametrize("package", PACKAGES)
 def test_no_private_import_across_modules(package):
     found = PRIVATES.get(package, [])
