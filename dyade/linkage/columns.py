@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from dyade.linkage.block import Block, Columns
-from dyade.linkage.kinematics import joint_point
+from dyade.linkage.kinematics import joint_anchor
 from dyade.linkage.model import CRANK, FloatArray, Mechanism, Prismatic, Revolute
 from dyade.linkage.motion import travel
 from dyade.linkage.reduced import reduced
@@ -21,6 +21,10 @@ UNITS = {"kinematics": "1/0", "angle_deg": "°", "phi": "°", "omega": "rad/s",
          "a": "m/s²", "mu": "°", "Fx": "N", "Fy": "N", "F": "N", "FN": "N", "M": "N·m",
          "P": "W", "forces": "1/0", "MR": "N·m", "FR": "N", "lock": "-", "friction": "-",
          "J": "kg·m²", "dJ": "kg·m²/rad", "t": "s"}
+
+
+POINT = ("x", "y", "vx", "vy", "ax", "ay")
+"""the columns of a point, in contract order (``Motion.point_motion``)"""
 
 
 def _tag(name: tuple[int, int]) -> str:
@@ -41,23 +45,19 @@ def kinematic_columns(mech: Mechanism, block: Block, phases: dict[int, Continuou
     for joint in mech.joints:
         tag = _tag(joint.name)
         if isinstance(joint, Revolute):
-            pos, vel, acc = joint_point(joint, motion)
-            for prefix, value in (("x", pos[:, 0]), ("y", pos[:, 1]), ("vx", vel[:, 0]),
-                                  ("vy", vel[:, 1]), ("ax", acc[:, 0]), ("ay", acc[:, 1])):
+            for prefix, value in zip(POINT, motion.point_motion(*joint_anchor(joint))):
                 out[f"{prefix}_{tag}"] = value
         elif isinstance(joint, Prismatic):
             s, v, a = travel(joint, motion)
             out[f"s_{tag}"], out[f"v_{tag}"], out[f"a_{tag}"] = s, v, a
     for name, link, local in mech.named_points:
-        pos = motion.point(link, local)
-        vel = motion.point_velocity(link, local)
-        acc = motion.point_acceleration(link, local)
-        for prefix, value in (("x", pos[:, 0]), ("y", pos[:, 1]), ("vx", vel[:, 0]),
-                              ("vy", vel[:, 1]), ("ax", acc[:, 0]), ("ay", acc[:, 1])):
+        for prefix, value in zip(POINT, motion.point_motion(link, local)):
             out[f"{prefix}_{name}"] = value
     for col, dyad in enumerate(mech.dyads):
         out[f"mu_{dyad.number}_deg"] = np.rad2deg(kin.transmission[:, col])
-    out = {key: value if key.startswith("phi_") else value[rows] for key, value in out.items()}
+    if not rows.all():  # (the link angles are of the reported rows already)
+        out = {key: value if key.startswith("phi_") else value[rows]
+               for key, value in out.items()}
     valid = block.valid[rows]
     if not valid.all():  # nothing of an invalid row but its crank and transmission angles
         out = {key: value if key == "angle_deg" or key.startswith("mu_")
@@ -142,27 +142,35 @@ def force_columns(mech: Mechanism, block: Block) -> Columns:
             out[f"FR_{_tag(name)}"] = value
         out["P_friction"] = rubbing.power
     invalid = ~(forces.valid & block.valid)
-    out = {key: np.where(invalid, np.nan, value) for key, value in out.items()}
+    if invalid.any():
+        out = {key: np.where(invalid, np.nan, value) for key, value in out.items()}
     # the self-locking figures stay where friction is what makes the forces invalid
     dead = invalid & ~rubbing.blocked if rubbing is not None else invalid
     for name, lock in (block.locking or {}).items():
         if lock.margin is not None:
-            out[f"lock_margin_{_tag(name)}"] = np.where(dead, np.nan, lock.margin)
+            out[f"lock_margin_{_tag(name)}"] = _blank(dead, lock.margin)
     if rubbing is not None:
         out["friction_iterations"] = rubbing.iterations
     out["forces_valid"] = (forces.valid & block.valid).astype(np.float64)
     if rubbing is not None:
         for number, det in sorted(rubbing.determinant.items()):
-            out[f"friction_det_{number}"] = np.where(dead, np.nan, det)
+            out[f"friction_det_{number}"] = _blank(dead, det)
     machine = reduced(mech, block.kinematics)
-    given = block.valid  # from the kinematics: not given where it is not
-    out["J_red"], out["dJ_red"], out["M_load"] = (np.where(given, machine.inertia, np.nan),
-                                                  np.where(given, machine.slope, np.nan),
-                                                  np.where(given, machine.load, np.nan))
+    missing = ~block.valid  # from the kinematics: not given where it is not
+    out["J_red"], out["dJ_red"], out["M_load"] = (_blank(missing, machine.inertia),
+                                                  _blank(missing, machine.slope),
+                                                  _blank(missing, machine.load))
     if block.drive is not None:
         out["t"], out["M_motor"] = (block.drive.time,
-                                    np.where(given, block.drive.motor_torque, np.nan))
+                                    _blank(missing, block.drive.motor_torque))
+    if block.rows.all():
+        return out
     return {key: value[block.rows] for key, value in out.items()}
+
+
+def _blank(mask: FloatArray, values: FloatArray) -> FloatArray:
+    """``values`` with NaN where ``mask`` (the very array where nothing is masked)."""
+    return np.where(mask, np.nan, values) if mask.any() else values
 
 
 def columns(mech: Mechanism, block: Block, phases: dict[int, Continuous]) -> Columns:
@@ -179,10 +187,13 @@ KINEMATIC_EXEMPT = ("kinematics_valid",)
 
 def implausible(cols: Columns, names) -> FloatArray:
     """(rows,) bool: a value of the named columns beyond ``PLAUSIBLE`` in magnitude."""
-    out = None
-    for name in names:
-        big = np.abs(cols[name]) > PLAUSIBLE  # NaN compares False
-        out = big if out is None else out | big
+    names = list(names)
+    size = np.abs(cols[names[0]])
+    out = size > PLAUSIBLE  # NaN compares False
+    big = np.empty_like(out)
+    for name in names[1:]:
+        np.abs(cols[name], out=size)
+        np.logical_or(out, np.greater(size, PLAUSIBLE, out=big), out=out)
     return out
 
 

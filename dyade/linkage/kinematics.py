@@ -37,7 +37,7 @@ import numpy as np
 from dyade.linkage.components import is_zero, minus, plus, times
 from dyade.linkage.dyads.closure import SINGULAR_SIN
 from dyade.linkage.motion import Motion, Screw, guide_direction
-from dyade.linkage.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
+from dyade.linkage.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute, Vec
 
 
 def _cross(u, v):
@@ -367,11 +367,17 @@ def _frame_motion(motion: Motion, link: int, twist: tuple, change: tuple) -> Non
 
 
 # -- derived quantities the reports use --------------------------------------------
+def joint_anchor(joint: Revolute) -> tuple[int, Vec]:
+    """The link and local point a revolute joint's motion is taken on: its first link's,
+    or its second's where the first is the frame."""
+    if joint.links[0] == FRAME:
+        return joint.links[1], joint.points[1]
+    return joint.links[0], joint.points[0]
+
+
 def joint_point(joint: Revolute, motion: Motion) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Position, velocity, acceleration of a revolute joint (on its first link)."""
-    link, local = joint.links[0], joint.points[0]
-    if link == FRAME:
-        link, local = joint.links[1], joint.points[1]
+    link, local = joint_anchor(joint)
     return (motion.point(link, local), motion.point_velocity(link, local),
             motion.point_acceleration(link, local))
 

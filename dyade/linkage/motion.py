@@ -100,6 +100,18 @@ class Motion:
         x, y = self.rotated_xy(link, local)
         return self.origin[:, link, 0] + x, self.origin[:, link, 1] + y
 
+    def point_motion(self, link: int, local: Vec) -> tuple[FloatArray, ...]:
+        """A link point's x, y [m], vx, vy [m/s] and ax, ay [m/s²], one array each (the
+        numbers of ``point``, ``point_velocity`` and ``point_acceleration`` to the bit,
+        without their (n, 2) stacks)."""
+        rx, ry = self.rotated_xy(link, local)
+        omega, alpha = self.omega[:, link], self.alpha[:, link]
+        square = omega ** 2
+        return (self.origin[:, link, 0] + rx, self.origin[:, link, 1] + ry,
+                self.velocity[:, link, 0] - omega * ry, self.velocity[:, link, 1] + omega * rx,
+                self.acceleration[:, link, 0] - alpha * ry - square * rx,
+                self.acceleration[:, link, 1] + alpha * rx - square * ry)
+
     def rotated(self, link: int, local: Vec) -> FloatArray:
         """R(φ_link)·u over the sweep, shape (n, 2)."""
         return np.stack(self.rotated_xy(link, local), axis=-1)

@@ -68,10 +68,9 @@ def reduced(mechanism: Mechanism, kin: kinematics.Kinematics) -> Reduced:
             continue
         w, a = motion.omega[:, number], motion.alpha[:, number]
         if link.mass:
-            v = motion.point_velocity(number, link.centre)
-            acc = motion.point_acceleration(number, link.centre)
-            energy += link.mass * (v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1])
-            rate += link.mass * (v[:, 0] * acc[:, 0] + v[:, 1] * acc[:, 1])
+            _, _, vx, vy, ax, ay = motion.point_motion(number, link.centre)
+            energy += link.mass * (vx * vx + vy * vy)
+            rate += link.mass * (vx * ax + vy * ay)
             if gravity.any():
                 weight = np.broadcast_to(link.mass * gravity, (n, 2))
                 add_force(external[number], motion.point(number, link.centre), weight)
