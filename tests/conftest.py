@@ -24,3 +24,15 @@ SHIPPED = sorted(MECHANISMS.glob("*.toml"))
 @pytest.fixture
 def mechanisms_dir() -> Path:
     return MECHANISMS
+
+
+BENCHMARKS = Path(__file__).resolve().parent / "benchmarks"
+
+
+def pytest_collection_modifyitems(config, items):
+    """Everything under tests/benchmarks is a benchmark: out of the default run
+    (``-m "not slow and not benchmark"`` in pyproject.toml), run by CI once with
+    ``--benchmark-disable`` (``pytest -m "slow or benchmark"``)."""
+    for item in items:
+        if BENCHMARKS in Path(str(item.fspath)).parents:
+            item.add_marker(pytest.mark.benchmark)

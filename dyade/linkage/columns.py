@@ -187,13 +187,16 @@ KINEMATIC_EXEMPT = ("kinematics_valid",)
 
 def implausible(cols: Columns, names) -> FloatArray:
     """(rows,) bool: a value of the named columns beyond ``PLAUSIBLE`` in magnitude."""
-    names = list(names)
-    size = np.abs(cols[names[0]])
-    out = size > PLAUSIBLE  # NaN compares False
-    big = np.empty_like(out)
-    for name in names[1:]:
-        np.abs(cols[name], out=size)
-        np.logical_or(out, np.greater(size, PLAUSIBLE, out=big), out=out)
+    out = None
+    for name in names:
+        values = cols[name]
+        # the extremes first (NaN left aside): a mask only for a column that has one
+        if values.size and (np.fmax.reduce(values) > PLAUSIBLE
+                            or np.fmin.reduce(values) < -PLAUSIBLE):
+            big = np.abs(values) > PLAUSIBLE  # NaN compares False
+            out = big if out is None else out | big
+    if out is None:
+        out = np.zeros(next(iter(cols.values())).shape, dtype=bool)
     return out
 
 

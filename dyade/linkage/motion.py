@@ -176,17 +176,18 @@ def residual(joint: Joint, motion: Motion) -> FloatArray:
 
 
 def travel(joint: Prismatic, motion: Motion) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Slider travel s = (S − G)·d and its first two time derivatives [m, m/s, m/s²]."""
+    """Slider travel s = (S − G)·d and its first two time derivatives [m, m/s, m/s²],
+    in components (w = S − G, d the guide's direction, ḋ = ω·E·d, d̈ = α·E·d − ω²·d)."""
     c, s = joint.carrier, joint.slider
-    d = motion.direction(c, joint.guide_angle)
-    om = motion.omega[:, c][:, None]
-    al = motion.alpha[:, c][:, None]
-    w = motion.point(s, joint.slider_point) - motion.point(c, joint.guide_point)
-    w_dot = (motion.point_velocity(s, joint.slider_point)
-             - motion.point_velocity(c, joint.guide_point))
-    w_ddot = (motion.point_acceleration(s, joint.slider_point)
-              - motion.point_acceleration(c, joint.guide_point))
-    d_dot = om * perp(d)
-    d_ddot = al * perp(d) - om ** 2 * d
-    return (dot(w, d), dot(w_dot, d) + dot(w, d_dot),
-            dot(w_ddot, d) + 2.0 * dot(w_dot, d_dot) + dot(w, d_ddot))
+    angle = joint.guide_angle
+    dx, dy = motion.rotated_xy(c, (np.cos(angle), np.sin(angle)))
+    xs, ys, vxs, vys, axs, ays = motion.point_motion(s, joint.slider_point)
+    xc, yc, vxc, vyc, axc, ayc = motion.point_motion(c, joint.guide_point)
+    wx, wy, vx, vy, ax, ay = xs - xc, ys - yc, vxs - vxc, vys - vyc, axs - axc, ays - ayc
+    om, al = motion.omega[:, c], motion.alpha[:, c]
+    square = om ** 2
+    turn_x, turn_y = om * -dy, om * dx  # ḋ
+    bend_x, bend_y = al * -dy - square * dx, al * dx - square * dy  # d̈
+    return (wx * dx + wy * dy, vx * dx + vy * dy + (wx * turn_x + wy * turn_y),
+            ax * dx + ay * dy + 2.0 * (vx * turn_x + vy * turn_y)
+            + (wx * bend_x + wy * bend_y))

@@ -139,9 +139,10 @@ def tabulate(mechanism: Mechanism, block: Block, phases: dict[int, Continuous]) 
     """The block's columns, with the rows that hold a value beyond ``PLAUSIBLE`` taken
     out (``block.valid``, ``forces.valid`` updated, ``block.implausible`` set)."""
     cols = columns_.columns(mechanism, block, phases)
-    kinematic = [name for name in cols if name in columns_.KINEMATIC_EXEMPT
-                 or not name.startswith(columns_.FORCE_PREFIXES)]
-    for part, names in (("kinematics", [n for n in kinematic if n != "angle_deg"]),
+    kinematic = {name for name in cols if name in columns_.KINEMATIC_EXEMPT
+                 or not name.startswith(columns_.FORCE_PREFIXES)}
+    for part, names in (("kinematics", [n for n in cols if n in kinematic
+                                        and n != "angle_deg"]),
                         ("forces", [n for n in cols if n not in kinematic])):
         if not names:
             continue

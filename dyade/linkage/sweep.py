@@ -133,8 +133,9 @@ BYTES_PER_VALUE = 90  # [B] per column and position: arrays, the table and its C
 peak at 84-86 B per column and position in `dyade analyse --format csv`"""
 
 
-def memory_estimate(mechanism: Mechanism, positions: int) -> int:
-    """What a sweep of ``positions`` will take [B], from its column count."""
+def column_count(mechanism: Mechanism) -> int:
+    """How many columns a sweep of ``mechanism`` gives (about: the friction determinants
+    and lock margins are not counted)."""
     revolute = sum(isinstance(j, Revolute) for j in mechanism.joints)
     prismatic = len(mechanism.joints) - revolute
     columns = (1 + 3 * len(mechanism.moving_links) + 6 * revolute + 3 * prismatic
@@ -142,7 +143,23 @@ def memory_estimate(mechanism: Mechanism, positions: int) -> int:
     if mechanism.has_dynamics:
         rubbing = sum(j.friction > 0.0 for j in mechanism.joints)
         columns += 3 * revolute + 2 * prismatic + 6 + 2 * rubbing + (2 if rubbing else 0)
-    return BYTES_PER_VALUE * columns * positions + (50 << 20)
+    return columns
+
+
+def memory_estimate(mechanism: Mechanism, positions: int) -> int:
+    """What a sweep of ``positions`` in one block will take [B], from its column count."""
+    return BYTES_PER_VALUE * column_count(mechanism) * positions + (50 << 20)
+
+
+def collect_estimate(block_size: int):
+    """What ``analyse`` needs [B] in blocks of ``block_size`` positions, as
+    ``configure``'s ``estimate``: its columns (8 B per value) and one block."""
+    def estimate(mechanism: Mechanism, positions: int) -> int:
+        if positions <= block_size:
+            return memory_estimate(mechanism, positions)
+        return 8 * column_count(mechanism) * positions + memory_estimate(mechanism, block_size)
+
+    return estimate
 
 
 def check_size(mechanism: Mechanism, positions: int, max_memory: float | None,
@@ -221,7 +238,7 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
         The stages to run (default: ``plan(mechanism)``).
     max_memory : float, optional
         Refuse, before allocating anything, a sweep estimated to take more memory [B]
-        (default ``MAX_MEMORY``, 4 GiB).
+        (default ``MAX_MEMORY``, 4 GiB): its columns, 8 B per value, and one block.
     dead_centre, transmission_warning : float, optional
         The validity policy's hard and soft bands [rad] (defaults: the mechanism's,
         2° and 40°): within ``dead_centre`` of a dead centre nothing is given; below
@@ -264,20 +281,21 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
     >>> round(float(torque[0]), 4)
     0.0378
     """
+    size = _block_size(block_size, COLLECT_BLOCK)
     mechanism, the_plan = configure(
         mechanism, start=start, stop=stop, step=step, positions=None if crank_angle is None
         else np.size(crank_angle), friction_tol=friction_tol,
         friction_max_iter=friction_max_iter, plan=plan, max_memory=max_memory,
         dead_centre=dead_centre, transmission_warning=transmission_warning,
         given_speed=crank_speed is not None or crank_acceleration is not None,
-        constant_speed=constant_speed, run_up=run_up)
+        constant_speed=constant_speed, run_up=run_up, estimate=collect_estimate(size))
     for name, value in (("crank_speed", crank_speed), ("crank_acceleration", crank_acceleration)):
         if value is not None and not np.all(np.isfinite(value)):
             raise InputError.parameter(name, "must be finite.", value=value)
     setup = prepare(mechanism, the_plan, allow_partial=allow_partial, crank_angle=crank_angle,
                     crank_speed=crank_speed, crank_acceleration=crank_acceleration,
                     run_up=run_up)
-    return collect(Run(setup, _block_size(block_size, COLLECT_BLOCK)))
+    return collect(Run(setup, size))
 
 
 def collect(run: Run) -> Result:
