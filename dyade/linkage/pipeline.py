@@ -112,10 +112,12 @@ def prepare(mechanism: Mechanism, the_plan: Plan, *, allow_partial: bool = False
 
 
 def stages(setup: Setup, kin: kinematics.Kinematics, first: int, last: int,
-           coupling: friction.Coupling | None) -> Block:
+           coupling: friction.Coupling | None, rows: FloatArray, valid: FloatArray) -> Block:
     """The stages after the kinematics (``kin``, of positions first..last−1): the
     forces, with friction its solution and the self-locking verdicts. ``coupling``: the
-    sweep's friction coupling (None when the block is the whole sweep)."""
+    sweep's friction coupling (None when the block is the whole sweep); ``rows``,
+    ``valid``: (m,) bool, the block's positions reported and with their kinematics
+    given (copied)."""
     mechanism, the_plan = setup.mechanism, setup.plan
     forces = rubbing = locking = None
     if the_plan.friction:
@@ -130,9 +132,8 @@ def stages(setup: Setup, kin: kinematics.Kinematics, first: int, last: int,
     motion = None
     if setup.motion is not None:
         motion = setup.motion.part(first, last)
-    m = last - first
-    return Block(first, last, kin, forces, rubbing, locking, np.ones(m, dtype=bool),
-                 np.ones(m, dtype=bool), motion)
+    return Block(first, last, kin, forces, rubbing, locking, rows.copy(), valid.copy(),
+                 motion)
 
 
 def tabulate(mechanism: Mechanism, block: Block, phases: dict[int, Continuous]) -> None:
@@ -215,9 +216,7 @@ class Run:
         phases = {link: Continuous() for link in mechanism.moving_links}
         for first, last in spans(n, size):
             block = stages(setup, kept if kept is not None else setup.kinematics(first, last),
-                           first, last, self.coupling)
-            block.rows[:] = rows[first:last]
-            block.valid[:] = well[first:last]
+                           first, last, self.coupling, rows[first:last], well[first:last])
             tabulate(mechanism, block, phases)
             keep.block(block)
             self.positions += int(block.columns["angle_deg"].size)

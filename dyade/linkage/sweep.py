@@ -77,8 +77,7 @@ class Result(Outcome):
         as its blocks had; ``forces.valid`` is ``forces_valid``)."""
         if self.block is None:
             setup, n = self.setup, self.setup.positions
-            block = stages(setup, setup.kinematics(0, n), 0, n, None)
-            block.rows, block.valid = self.rows, self.valid
+            block = stages(setup, setup.kinematics(0, n), 0, n, None, self.rows, self.valid)
             if block.forces is not None:
                 block.forces.valid = self.forces_valid.copy()
             self.block = block
