@@ -262,7 +262,7 @@ def infer_format(output: str | None) -> str:
 def batch(paths, directory: str, run_one, suffix: str, jobs: int = 1,
           modules: tuple[str, ...] = ()) -> list[tuple[str, str]]:
     """Run ``run_one(path, target, None)`` for every path, on ``jobs`` processes (0: all
-    cores; this one included, see ``dyade.parallel``); a progress bar on stderr when it
+    cores; see ``dyade.parallel``); a progress bar on stderr when it
     is a terminal; returns the failures (path, reason) instead of stopping. With several
     processes each file's warnings are kept and printed in the order of the files, as in
     a serial run, and ``modules`` (those every file needs) are imported once, before the
@@ -271,7 +271,7 @@ def batch(paths, directory: str, run_one, suffix: str, jobs: int = 1,
 
     targets = _targets(paths, directory, suffix)
     workers = min(workers_for(jobs), len(paths))
-    capture = workers > 1 and parallel.available()
+    capture = workers > 1
     if capture:
         import importlib
 
