@@ -30,9 +30,6 @@ def accuracy(mechanism_file: Path, assignments, repeats: int, fmt: str, output) 
     friction tolerance.
     With clearance data: the closed form against the direct simulation.
     """
-    from dyade.cli.memory import keep_freed_memory
-
-    keep_freed_memory()  # every study repeats sweeps: keep the freed arrays' pages
     import dyade
     from dyade.report import accuracy as report
 

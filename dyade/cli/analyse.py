@@ -279,9 +279,6 @@ def batch(paths, directory: str, run_one, suffix: str, jobs: int = 1,
             importlib.import_module(name)
 
     def one(task):
-        from dyade.cli.memory import keep_freed_memory
-
-        keep_freed_memory()  # many sweeps in each process: keep the freed arrays' pages
         path, target = task
         return attempt(run_one, path, target, capture)
 
