@@ -16,7 +16,7 @@ import click
 
 from dyade import __version__
 
-SUBCOMMANDS = {"describe": "analyse", "analyse": "analyse", "init": "analyse",
+SUBCOMMANDS = {"describe": "describe", "analyse": "analyse", "init": "init",
                "clearance": "clearance", "coupling": "coupling", "accuracy": "accuracy",
                "flywheel": "machine", "balance": "machine",
                "plot": "plot", "gears": "gears"}

@@ -7,7 +7,8 @@ from pathlib import Path
 import click
 
 from dyade.cli import main
-from dyade.cli.analyse import MECHANISM_FILE, load, set_option
+from dyade.cli.common import load
+from dyade.cli.options import MECHANISM_FILE, set_option
 from dyade.cli.output import progress, show, write_json, write_rows
 
 
