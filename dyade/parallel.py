@@ -71,6 +71,7 @@ def _results(function, items: list, workers: int, lost) -> Iterator:
     """index -> the finished future of an item done by a pool that then broke"""
     start = 0
     while start < len(items):
+        begun = start
         pool = _Pool(function, items, workers)
         clean = False
         try:
@@ -93,14 +94,20 @@ def _results(function, items: list, workers: int, lost) -> Iterator:
             clean = True
         finally:
             pool.end(clean)
-        suspects = []
+        if start == len(items):
+            return
+        suspects, done = [], 0
         for index, future in futures.items():
             if index < start or future.cancelled():
                 continue
             if future.done() and not isinstance(future.exception(), BrokenProcessPool):
                 finished[index] = future  # its result, or its own exception
+                done += 1
             elif pool.started[index]:
                 suspects.append(index)
+        if start == begun and not (suspects or done):  # no worker took up an item
+            raise ChildProcessError(f"the worker processes ended before any item: "
+                                    f"{pool.ending()}")
         for index in suspects:  # each alone: a second break names its item
             finished[index] = _alone(function, items, index, lost)
 

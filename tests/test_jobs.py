@@ -153,6 +153,17 @@ def test_ordered_map_closed_early_ends_its_workers():
     assert not multiprocessing.active_children()
 
 
+@fork_only
+def test_ordered_map_says_so_when_no_worker_lives_to_take_an_item(monkeypatch):
+    import os
+
+    from dyade import parallel
+
+    monkeypatch.setattr(parallel, "_install", lambda *task: os._exit(3))
+    with pytest.raises(ChildProcessError, match="ended before any item: .* with code 3"):
+        list(parallel.ordered_map(abs, [1, -2, 3], workers=2))
+
+
 def test_ordered_map_with_many_items():
     from dyade.parallel import ordered_map
 
