@@ -1,27 +1,20 @@
 """A function over items on several processes, the results in the items' order.
 
-``ordered_map(function, items, workers)`` is ``map(function, items)`` on ``workers``
-processes: this one and ``workers − 1`` forked children. Every process takes the next
-item from one queue as soon as it is free (so a slow item does not hold the others
-back) and the results come back in the items' order, each as soon as it and all before
-it are done. Nothing is pickled but the results: ``function`` may be a closure.
+``ordered_map(function, items, workers)`` is ``map(function, items)`` on a
+``concurrent.futures.ProcessPoolExecutor`` of ``workers`` processes: every process takes
+the next item as soon as it is free (so a slow item does not hold the others back), and
+the results come back in the items' order, each as soon as it and all before it are
+done. One worker (or one item): the items run here, one after another, without a pool.
 
-Why not ``concurrent.futures.ProcessPoolExecutor``: for a batch of small sweeps (the 8
-shipped mechanisms at 5 speeds each take about half a second in all) its costs decide
-the gain: the calling process waits idle while its workers compute, every item and
-result crosses a pickling queue served by a thread, and the workers fork from a
-process whose helper threads are already running. Here the caller is one of the
-workers, the queue is a pipe of 4-byte item numbers, and the children fork before
-anything else runs.
+On Linux the workers are forked (the ``fork`` start method): ``function`` and the items
+are inherited, not pickled, so ``function`` may be a closure; only each item's number
+goes out and its result comes back. Elsewhere (the platform's start method, ``spawn`` on
+macOS and Windows) ``function`` and the items must pickle.
 
-The queue: the item numbers are written into a pipe in slices of at most ``PIPE_BUF``
-bytes (so each write is atomic) and every process reads exactly 4 bytes per item: the
-kernel hands each number to one reader. Results (pickled, with their item number) come
-back on one pipe per child. A child that ends without a result (killed, out of memory)
-is noticed at the end of its pipe; its item gets ``lost(item, reason)``.
-
-Where ``os.fork`` does not exist (Windows), or for one worker, the items run here one
-after another.
+A worker that ends without a result (killed, out of memory) breaks the executor, which
+ends the other workers too. The items then running are run again, each alone in a pool
+of its own: one that ends its worker again gets ``lost(item, reason)``; the items not
+yet started go on in a new pool.
 
 Examples
 --------
@@ -31,233 +24,190 @@ Examples
 
 from __future__ import annotations
 
+import multiprocessing
 import os
-import pickle
-import select
 import signal
-import struct
+import sys
 from collections.abc import Callable, Iterable, Iterator
+from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from typing import Any, TypeVar
 
 Item = TypeVar("Item")
 Result = TypeVar("Result")
 
-_NUMBER = struct.Struct("=I")
-_HEADER = struct.Struct("=IQ")
-"""a result's item number and the length of its pickle"""
-_SLICE = 1024
-"""item numbers per write: 4 kB, at most PIPE_BUF on Linux and macOS (atomic)"""
-
-
-def available() -> bool:
-    """Whether items can run on several processes here (``os.fork`` exists)."""
-    return hasattr(os, "fork")
-
 
 def ordered_map(function: Callable[[Item], Result], items: Iterable[Item], workers: int,
                 lost: Callable[[Item, str], Result] | None = None) -> Iterator[Result]:
-    """``function(item)`` for every item, on ``workers`` processes (this one included),
-    yielded in the items' order.
+    """``function(item)`` for every item, on ``workers`` processes, yielded in the items'
+    order.
 
     Parameters
     ----------
     function
-        Called once per item, in this process or in a forked child; its result must
-        pickle. An exception in a child is raised here, at that item's place.
+        Called once per item, in a worker process; its result must pickle. An exception
+        it raises is raised here, at that item's place.
     items
         The items (read at once).
     workers
-        Processes in all, this one included; 1 (or no ``os.fork``): one after another.
+        Processes; 1: the items run in this process, one after another.
     lost
-        ``lost(item, reason)`` gives the result for an item whose child ended without
+        ``lost(item, reason)`` gives the result for an item whose worker ended without
         one (killed by a signal, out of memory); ``None``: raise ``ChildProcessError``.
 
-    The children are forked on the first ``next()``, before anything else runs; they
-    are ended when the iterator is closed or garbage-collected.
+    The workers start on the first ``next()``; they are ended when the iterator is
+    closed or garbage-collected before its end.
     """
     items = list(items)
     workers = min(workers, len(items))
-    if workers <= 1 or not available():
+    if workers <= 1:
         return map(function, items)
-    return _Pool(function, items, workers, lost).results()
+    return _results(function, items, workers, lost)
+
+
+def _results(function, items: list, workers: int, lost) -> Iterator:
+    """The pools' results in order; after a break, its suspects alone, then a new pool."""
+    finished: dict[int, Future] = {}
+    """index -> the finished future of an item done by a pool that then broke"""
+    start = 0
+    while start < len(items):
+        begun = start
+        pool = _Pool(function, items, workers)
+        clean = False
+        try:
+            try:
+                futures = {index: pool.submit(index) for index in range(start, len(items))
+                           if index not in finished}
+            except OSError:  # no process can be started (a process limit): work here
+                for index in range(start, len(items)):
+                    future = finished.pop(index, None)
+                    yield future.result() if future else function(items[index])
+                return  # (not clean: a worker started before the refusal is ended)
+            for index in range(start, len(items)):
+                future = finished.pop(index, None) or futures[index]
+                try:
+                    value = future.result()
+                except BrokenProcessPool:
+                    break
+                yield value
+                start = index + 1
+            clean = True
+        finally:
+            pool.end(clean)
+        if start == len(items):
+            return
+        suspects, done = [], 0
+        for index, future in futures.items():
+            if index < start or future.cancelled():
+                continue
+            if future.done() and not isinstance(future.exception(), BrokenProcessPool):
+                finished[index] = future  # its result, or its own exception
+                done += 1
+            elif pool.started[index]:
+                suspects.append(index)
+        if start == begun and not (suspects or done):  # no worker took up an item
+            raise ChildProcessError(f"the worker processes ended before any item: "
+                                    f"{pool.ending()}")
+        for index in suspects:  # each alone: a second break names its item
+            finished[index] = _alone(function, items, index, lost)
+
+
+def _alone(function, items: list, index: int, lost) -> Future:
+    """Item ``index`` in a pool of one process: its finished future, or one holding the
+    ``lost`` verdict (or ``ChildProcessError``) when its worker ended without a result."""
+    pool = _Pool(function, items, 1)
+    try:
+        future = pool.submit(index)
+        try:
+            future.result()
+            return future
+        except BrokenProcessPool:
+            pass
+        except Exception:  # its own exception, raised at its place
+            return future
+    finally:
+        pool.end(True)
+    outcome: Future = Future()
+    reason = pool.ending()
+    if lost is None:
+        outcome.set_exception(ChildProcessError(f"item {index}: {reason} without a result"))
+    else:
+        outcome.set_result(lost(items[index], reason))
+    return outcome
 
 
 class _Pool:
-    def __init__(self, function, items: list, workers: int, lost) -> None:
-        self.function = function
-        self.items = items
-        self.workers = workers
-        self.lost = lost
-        self.done: dict[int, tuple[bool, Any]] = {}
-        self.children: dict[int, tuple[int, bytearray]] = {}
-        """result pipe's read end -> (pid, bytes received and not yet taken)"""
-        self.queued = 0
-        """item numbers written into the queue so far"""
-        self.ended = "its worker process ended"
-        """how the last child that ended did (for the items it took with it)"""
+    """A ``ProcessPoolExecutor`` whose workers know ``function`` and the items, and mark
+    in ``started`` (by their pid) the items they took up."""
 
-    def results(self) -> Iterator:
-        self.queue_r, self.queue_w = os.pipe()
-        try:
-            self._fork()
-            os.set_blocking(self.queue_w, False)
-            os.set_blocking(self.queue_r, False)  # shared with the children: they wait in select
-            self._fill()
-            for index in range(len(self.items)):
-                while index not in self.done:
-                    self._step()
-                ok, value = self.done.pop(index)
-                if not ok:
-                    raise value
-                yield value
-        finally:
-            self._end()
+    def __init__(self, function, items: list, workers: int) -> None:
+        self.context = _context()
+        self.started = self.context.RawArray("l", len(items))
+        self.executor = ProcessPoolExecutor(workers, mp_context=self.context,
+                                            initializer=_install,
+                                            initargs=(function, items, self.started))
 
-    def _fork(self) -> None:
-        for _ in range(self.workers - 1):
-            result_r, result_w = os.pipe()
-            try:
-                pid = os.fork()
-            except OSError:  # no more processes allowed: work with those there are
-                os.close(result_r)
-                os.close(result_w)
-                break
-            if pid == 0:  # the child
-                os.close(result_r)
-                os.close(self.queue_w)
-                for fd in self.children:
-                    os.close(fd)
-                _child(self.function, self.items, self.queue_r, result_w)
-            os.close(result_w)
-            self.children[result_r] = (pid, bytearray())
+    def submit(self, index: int) -> Future:
+        return self.executor.submit(_call, index)
 
-    def _fill(self) -> None:
-        """Write as many item numbers into the queue as it takes (without waiting); close
-        it after the last, so that readers see its end."""
-        while self.queued < len(self.items):
-            stop = min(self.queued + _SLICE, len(self.items))
-            data = b"".join(_NUMBER.pack(k) for k in range(self.queued, stop))
-            try:
-                os.write(self.queue_w, data)
-            except BlockingIOError:
-                return
-            self.queued = stop
-        if self.queue_w >= 0:
-            os.close(self.queue_w)
-            self.queue_w = -1
-
-    def _step(self) -> None:
-        """Take in what the children sent; then do the next item here, or (the queue
-        ended) wait for a child."""
-        self._receive(timeout=0.0)
-        self._fill()
-        number = _take(self.queue_r, wait=False)
-        if number is not None:
-            try:
-                self.done[number] = (True, self.function(self.items[number]))
-            except Exception as err:
-                self.done[number] = (False, err)
-        elif self.children:
-            self._receive(timeout=None)
-        elif self.queue_w < 0:  # everything queued and taken, no child left
-            self._mark_lost()
-
-    def _receive(self, timeout: float | None) -> None:
-        if not self.children:
+    def end(self, clean: bool) -> None:
+        """Shut the executor down: ``clean``, waiting for its workers to end; else (the
+        iterator closed early, an error, Ctrl-C) terminating those still busy."""
+        if clean:
+            self.executor.shutdown(wait=True)
             return
-        ready, _, _ = select.select(list(self.children), [], [], timeout)
-        for fd in ready:
-            pid, data = self.children[fd]
-            chunk = os.read(fd, 1 << 16)
-            if not chunk:  # the child ended
-                os.close(fd)
-                del self.children[fd]
-                self.ended = _ending(pid)
-                continue
-            data += chunk
-            while len(data) >= _HEADER.size:
-                index, size = _HEADER.unpack_from(data)
-                if len(data) < _HEADER.size + size:
-                    break
-                self.done[index] = pickle.loads(bytes(data[_HEADER.size:_HEADER.size + size]))
-                del data[:_HEADER.size + size]
+        self.executor.shutdown(wait=False, cancel_futures=True)
+        for process in self.context.processes:
+            if process.pid is not None and process.exitcode is None:  # started, running
+                process.terminate()
 
-    def _mark_lost(self) -> None:
-        """No child is left and the queue has ended: the first item without a result was
-        taken by a child that ended (so are the others: one at a time)."""
-        reason = self.ended
-        for index in range(len(self.items)):
-            if index not in self.done:
-                if self.lost is None:
-                    self.done[index] = (False, ChildProcessError(
-                        f"item {index}: {reason} without a result"))
-                else:
-                    self.done[index] = (True, self.lost(self.items[index], reason))
-                break
-
-    def _end(self) -> None:
-        """Close the pipes; stop and reap the children still running."""
-        for fd in (self.queue_r, self.queue_w):
-            if fd >= 0:
-                os.close(fd)
-        self.queue_r = self.queue_w = -1
-        for fd, (pid, _) in self.children.items():
-            os.close(fd)
-            try:
-                os.kill(pid, signal.SIGTERM)
-            except ProcessLookupError:
-                pass
-            _ending(pid)
-        self.children.clear()
+    def ending(self) -> str:
+        """How a worker that ended without a result did, in words."""
+        codes = [p.exitcode for p in self.context.processes if p.exitcode]
+        if not codes:
+            return "its worker process ended"
+        if codes[0] < 0:
+            number = -codes[0]
+            return f"its worker process was killed by signal {number} ({signal.strsignal(number)})"
+        return f"its worker process ended with code {codes[0]}"
 
 
-def _ending(pid: int) -> str:
-    """Reap a child; how it ended, in words."""
-    try:
-        _, status = os.waitpid(pid, 0)
-    except ChildProcessError:
-        return "its worker process ended"
-    if os.WIFSIGNALED(status):
-        number = os.WTERMSIG(status)
-        return f"its worker process was killed by signal {number} ({signal.strsignal(number)})"
-    return f"its worker process ended with code {os.waitstatus_to_exitcode(status)}"
+def _context():
+    """The start method's context (``fork`` on Linux, else the platform's), keeping the
+    processes it starts: how a worker ended is read from its exit code."""
+    method = ("fork" if sys.platform == "linux" else
+              multiprocessing.get_start_method(allow_none=True)
+              or multiprocessing.get_all_start_methods()[0])
+    base = type(multiprocessing.get_context(method))
+
+    class Keeping(base):  # type: ignore[misc,valid-type]
+        def __init__(self) -> None:
+            self.processes: list = []
+
+        def Process(self, *args, **kwargs):  # noqa: N802 - the context's name
+            process = base.Process(*args, **kwargs)
+            self.processes.append(process)
+            return process
+
+    return Keeping()
 
 
-def _take(queue_r: int, wait: bool) -> int | None:
-    """The next item number from the queue (non-blocking for everyone); None when the
-    queue has ended, or (``wait`` false) has nothing right now."""
-    while True:
-        try:
-            number = os.read(queue_r, 4)
-        except BlockingIOError:
-            if not wait:
-                return None
-            select.select([queue_r], [], [])
-            continue
-        return _NUMBER.unpack(number)[0] if number else None
+_task: tuple[Callable, list, Any] | None = None
+"""in a worker: (function, items, started) of its pool"""
 
 
-def _child(function, items: list, queue_r: int, result_w: int) -> None:
-    """A child's life: the next item number from the queue, its result back, until the
-    queue ends; then ``os._exit``: nothing of the parent's clean-up runs here, and what
-    the parent had buffered for its standard streams is not written twice."""
-    code = 1
-    try:
-        signal.signal(signal.SIGTERM, signal.SIG_DFL)
-        while (index := _take(queue_r, wait=True)) is not None:
-            try:
-                outcome: tuple[bool, Any] = (True, function(items[index]))
-            except Exception as err:
-                outcome = (False, err)
-            try:
-                data = pickle.dumps(outcome, pickle.HIGHEST_PROTOCOL)
-            except Exception as err:
-                data = pickle.dumps((False, RuntimeError(
-                    f"item {index}: its result could not be sent back: {err!r}")))
-            message = _HEADER.pack(index, len(data)) + data
-            view = memoryview(message)
-            while view:
-                view = view[os.write(result_w, view):]
-        code = 0
-    finally:
-        os._exit(code)
+def _install(function, items: list, started) -> None:
+    """A worker's start: its pool's function and items; SIGTERM ends it (the command's
+    handler, inherited by fork, would unwind it) and Ctrl-C is the calling process's to
+    handle (it ends the workers)."""
+    global _task
+    _task = (function, items, started)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _call(index: int):
+    """In a worker: the result of item ``index``."""
+    function, items, started = _task
+    started[index] = os.getpid()
+    return function(items[index])

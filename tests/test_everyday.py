@@ -388,10 +388,10 @@ def test_a_full_disk_is_an_error_not_a_traceback(args):
     assert done.stderr.strip() == "Error: could not write the output: No space left on device."
 
 
-def test_the_command_ends_at_once_with_its_output_and_exit_status_intact(tmp_path):
-    """``dyade.cli.run`` (the console script, ``python -m dyade``) skips Python's
-    teardown after flushing: the bytes and the exit status are those of ``main``
-    (standard output buffered, as it is unless PYTHONUNBUFFERED is set)."""
+def test_the_command_in_a_process_has_the_output_and_exit_status_of_main(tmp_path):
+    """``python -m dyade`` (as the console script, ``dyade.cli:main``): the bytes and the
+    exit status are those of ``main`` run in this process (standard output buffered, as
+    it is unless PYTHONUNBUFFERED is set)."""
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     cases = [(["analyse", "mechanisms/dyade-16.toml", "--format", "csv"], 0),
              (["analyse", "mechanisms/missing.toml"], 2),

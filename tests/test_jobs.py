@@ -3,6 +3,8 @@ messages of the serial run, in the same order; failures stay per file."""
 
 from __future__ import annotations
 
+import sys
+
 import pytest
 from click.testing import CliRunner
 
@@ -52,34 +54,64 @@ def test_clearance_batch_and_speed_range_on_two_processes(tmp_path):
     assert outcomes[1] == outcomes[0]
 
 
-# dyade.parallel: the pool under the batches and speed ranges
+# dyade.parallel: the pool under the batches and speed ranges (forked workers on Linux: the
+# functions below are closures, and the barriers and events they share are inherited)
 
-def test_ordered_map_gives_the_results_in_order_from_every_process():
+fork_only = pytest.mark.skipif(sys.platform != "linux", reason="closures need forked workers")
+WAIT = 30.0  # [s] a barrier or event not reached by then: the test fails (never reached
+#               when the code is right; only a hung pool would take this long)
+
+
+@fork_only
+def test_ordered_map_gives_the_results_in_order_from_as_many_processes():
+    """Three workers: items 0-2 wait at a barrier of three, which only three processes
+    computing at once can pass (it used to count the processes that happened to take
+    an item from a shared queue: one started late could find none left)."""
+    import multiprocessing
     import os
     import time
 
     from dyade.parallel import ordered_map
 
-    parent = os.getpid()
+    barrier = multiprocessing.get_context("fork").Barrier(3, timeout=WAIT)
 
-    def slow_square(x):  # a closure: nothing but the results is pickled
-        time.sleep(0.02 if x % 3 else 0.0)
+    def square(x):
+        if x < 3:
+            barrier.wait()  # BrokenBarrierError (raised here) with fewer processes
+        time.sleep(0.01 if x % 3 else 0.0)
         return x * x, os.getpid()
 
-    out = list(ordered_map(slow_square, range(12), workers=3))
-    assert [square for square, _ in out] == [x * x for x in range(12)]
-    pids = {pid for _, pid in out}
-    assert parent in pids and len(pids) == 3  # the caller works too
+    out = list(ordered_map(square, range(12), workers=3))
+    assert [value for value, _ in out] == [x * x for x in range(12)]
+    assert len({pid for _, pid in out[:3]}) == 3
+    assert os.getpid() not in {pid for _, pid in out}
 
 
+@fork_only
+def test_ordered_map_gives_each_result_as_soon_as_those_before_are_done():
+    """The last item waits until the first result has arrived here: results come as
+    they are done, not after the last."""
+    import multiprocessing
+
+    from dyade.parallel import ordered_map
+
+    first_seen = multiprocessing.get_context("fork").Event()
+
+    def item(x):
+        return first_seen.wait(WAIT) if x == 5 else x
+
+    results = ordered_map(item, range(6), workers=2)
+    assert next(results) == 0
+    first_seen.set()
+    assert list(results) == [1, 2, 3, 4, True]
+
+
+@fork_only
 def test_ordered_map_raises_an_error_at_its_place_and_names_a_killed_worker():
     import os
     import signal
-    import time
 
     from dyade.parallel import ordered_map
-
-    parent = os.getpid()
 
     def fragile(x):
         if x == 2:
@@ -92,26 +124,54 @@ def test_ordered_map_raises_an_error_at_its_place_and_names_a_killed_worker():
             seen.append(value)
     assert seen == [0, 1]
 
-    def killed(x):  # every child dies on its first item
-        time.sleep(0.05)
-        if os.getpid() != parent:
+    def killed(x):  # item 3 ends its worker; the others (run again if need be) do not
+        if x == 3:
             os.kill(os.getpid(), signal.SIGKILL)
         return x
 
     out = list(ordered_map(killed, range(8), workers=2, lost=lambda x, why: (x, why)))
-    lost = [value for value in out if isinstance(value, tuple)]
-    assert len(lost) == 1 and "killed by signal 9" in lost[0][1]
-    assert out == [lost[0] if x == lost[0][0] else x for x in range(8)]
+    assert out == [0, 1, 2, (3, "its worker process was killed by signal 9 (Killed)"),
+                   4, 5, 6, 7]
+    with pytest.raises(ChildProcessError, match="item 3: its worker process was killed"):
+        list(ordered_map(killed, range(8), workers=2))
 
 
-def test_ordered_map_with_more_items_than_the_queue_holds():
+@fork_only
+def test_ordered_map_closed_early_ends_its_workers():
+    import multiprocessing
+    import time
+
     from dyade.parallel import ordered_map
 
-    count = 40_000  # 160 kB of item numbers: the queue (a pipe) is refilled as it drains
-    assert list(ordered_map(lambda x: x, range(count), workers=2)) == list(range(count))
+    results = ordered_map(lambda x: time.sleep(WAIT) if x else x, range(3), workers=2)
+    assert next(results) == 0
+    assert multiprocessing.active_children()  # the workers, one still busy
+    results.close()
+    deadline = time.monotonic() + 10.0
+    while multiprocessing.active_children() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert not multiprocessing.active_children()
 
 
-def test_ordered_map_works_on_when_no_process_can_be_forked():
+@fork_only
+def test_ordered_map_says_so_when_no_worker_lives_to_take_an_item(monkeypatch):
+    import os
+
+    from dyade import parallel
+
+    monkeypatch.setattr(parallel, "_install", lambda *task: os._exit(3))
+    with pytest.raises(ChildProcessError, match="ended before any item: .* with code 3"):
+        list(parallel.ordered_map(abs, [1, -2, 3], workers=2))
+
+
+def test_ordered_map_with_many_items():
+    from dyade.parallel import ordered_map
+
+    count = 2_000
+    assert list(ordered_map(abs, range(-count, 0), workers=2)) == list(range(count, 0, -1))
+
+
+def test_ordered_map_works_on_when_no_process_can_be_started():
     """fork refused (a process limit): the calling process does every item itself."""
     from unittest import mock
 

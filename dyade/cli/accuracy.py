@@ -7,7 +7,8 @@ from pathlib import Path
 import click
 
 from dyade.cli import main
-from dyade.cli.analyse import MECHANISM_FILE, load, set_option
+from dyade.cli.common import load
+from dyade.cli.options import MECHANISM_FILE, set_option
 from dyade.cli.output import progress, show, write_json, write_rows
 
 
@@ -30,9 +31,6 @@ def accuracy(mechanism_file: Path, assignments, repeats: int, fmt: str, output) 
     friction tolerance.
     With clearance data: the closed form against the direct simulation.
     """
-    from dyade.cli.memory import keep_freed_memory
-
-    keep_freed_memory()  # every study repeats sweeps: keep the freed arrays' pages
     import dyade
     from dyade.report import accuracy as report
 

@@ -1,124 +1,17 @@
-"""``dyade analyse``, ``dyade describe`` and ``dyade init``."""
+"""``dyade analyse``: the crank sweep of one or several mechanism files."""
 
 from __future__ import annotations
 
-import itertools
 import math
 import os
-import sys
-from collections.abc import Mapping
-from typing import Any, NamedTuple
+from typing import NamedTuple
 
 import click
 
-from dyade.cli import main
-from dyade.cli.options import FINITE, POSITIVE
-from dyade.cli.output import atomic, console, flags, progress, show, write_json
-
-# paths stay strings on the way of `dyade analyse`: pathlib alone costs 5 ms of start-up
-MECHANISM_FILE = click.Path(exists=True, dir_okay=False, allow_dash=True)
-SUFFIX = {"csv": ".csv", "json": ".json", "table": ".txt"}
-FLAGS = {"friction_tol": "--friction-tol", "friction_max_iter": "--friction-max-iter",
-         "start": "--start", "stop": "--stop", "step": "--step",
-         "sweep": "the sweep (--start, --stop, --step)", "max_memory": "--max-memory",
-         "dead_centre": "--dead-centre", "transmission_warning": "--transmission-warning",
-         "run_up": "--run-up", "block_size": "--block-size"}
-"""API parameter -> the flag it comes from"""
-
-set_option = click.option(
-    "--set", "assignments", multiple=True, metavar="KEY=VALUE",
-    help="Override a key of the file without editing it, with its dotted path as in the file "
-         "(repeatable): --set crank.speed_rpm=600 --set dyad.2.lengths=[200,150]. Validated "
-         "like the file.")
-
-
-jobs_option = click.option(
-    "-j", "--jobs", type=click.IntRange(min=0), default=1, show_default=True, metavar="N",
-    help="Analyse several files (or speeds) on N processes at once (0: all cores); the "
-         "output is that of a serial run, in the same order.")
-
-
-class SweepOptions(NamedTuple):
-    """--start/--stop/--step [°], None where not given. (Option bundles are NamedTuples:
-    each is 0.4 ms cheaper to create at start-up than a frozen dataclass.)"""
-
-    start: float | None = None
-    stop: float | None = None
-    step: float | None = None
-
-
-class Loaded(NamedTuple):
-    """A mechanism as read, with what --save-as needs to write it again."""
-
-    mechanism: Any
-    text: str
-    """the file's text as read (or standard input's)"""
-    overrides: dict[str, Any]
-    """--set key -> value"""
-    label: str
-
-
-def read_input(path: str) -> tuple[str, str]:
-    """The text of an input file, or of standard input for "-"; and its name."""
-    from dyade.files import schema
-
-    if path == "-":
-        return sys.stdin.read(), "<stdin>"
-    return schema.read_text(path), path
-
-
-def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = SweepOptions()
-         ) -> Loaded:
-    """Read a mechanism ("-": standard input) with --set overrides and
-    --start/--stop/--step [°]."""
-    from dyade.files import mechanism as reader
-    from dyade.files import schema
-    from dyade.linkage.sweep import with_sweep
-
-    overrides = dict(schema.parse_assignment(a) for a in assignments)
-    text, label = read_input(path)
-    data = reader.load_data(label, overrides, "--set", text)
-    mechanism = reader.build(data, label)
-    if sweep.start is None and sweep.stop is None and sweep.step is None:
-        return Loaded(mechanism, text, overrides, label)
-    current = mechanism.sweep  # the sweep options are in degrees whatever the file's unit
-    start = math.radians(sweep.start) if sweep.start is not None else current.start
-    stop = (math.radians(sweep.stop) if sweep.stop is not None
-            else (start + 2 * math.pi if sweep.start is not None else current.stop))
-    step = math.radians(sweep.step) if sweep.step is not None else current.step
-    if step <= 0:
-        raise click.BadParameter(f"must be positive, got {sweep.step:g}.", param_hint="--step")
-    if stop < start:
-        raise click.BadParameter(f"must not be below the start angle, got {sweep.stop:g}.",
-                                 param_hint="--stop")
-    with flags(FLAGS):
-        return Loaded(with_sweep(mechanism, start, stop, step), text, overrides, label)
-
-
-def save_as(loaded: Loaded, path: str) -> None:
-    """Write the effective mechanism (after --set) as TOML, atomically: the input's text
-    with the overridden values replaced, its comments and layout kept."""
-    from dyade.files.mechanism import edited
-
-    text = edited(loaded.text, loaded.overrides, os.path.basename(loaded.label), "--set")
-    with atomic(path) as handle:
-        handle.write("# written by dyade --save-as: the effective mechanism after --set\n")
-        handle.write(text)
-
-
-@main.command()
-@click.argument("mechanism_file", type=MECHANISM_FILE)
-@set_option
-def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
-    """Show MECHANISM_FILE in assembly order: crank, dyads, joints, link points, mobility,
-    and which effects an analysis will simulate."""
-    from dyade.linkage.plan import plan
-    from dyade.report import describe as report
-    from dyade.report import tables
-
-    mechanism = load(mechanism_file, assignments).mechanism
-    the_plan = plan(mechanism)
-    show([report.describe(mechanism, the_plan, tables.skipped(the_plan))])
+from dyade.cli import main, writers
+from dyade.cli.batch import SUFFIX, SWEEP, batch
+from dyade.cli.common import SweepOptions, infer_format, load, save_as
+from dyade.cli.options import FINITE, MECHANISM_FILE, POSITIVE, jobs_option, set_option
 
 
 @main.command()
@@ -239,113 +132,12 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
         raise DyadeError(f"{len(failures)} of {len(mechanism_files)} files failed:\n{lines}")
 
 
-FORMATS = {".csv": "csv", ".json": "json", ".txt": "table", "": "csv"}
-"""suffix of -o -> format (no suffix, or a directory: csv)"""
-
-
-def infer_format(output: str | None) -> str:
-    """table on stdout; with -o, from the suffix (.csv, .json, .txt); an unknown suffix
-    is an error that lists the formats."""
-    if output is None or output == "-":
-        return "table"
-    if os.path.isdir(output):
-        return "csv"
-    suffix = os.path.splitext(output)[1].lower()
-    if suffix not in FORMATS:
-        raise click.BadParameter(f"{output}: dyade does not write {suffix} files. It writes "
-                                 f".csv (the sweep), .json (columns, units, summary, warnings) "
-                                 f"and .txt (the summary table); or give --format "
-                                 f"table|csv|json.", param_hint="-o")
-    return FORMATS[suffix]
-
-
-def batch(paths, directory: str, run_one, suffix: str, jobs: int = 1,
-          modules: tuple[str, ...] = ()) -> list[tuple[str, str]]:
-    """Run ``run_one(path, target, None)`` for every path, on ``jobs`` processes (0: all
-    cores; this one included, see ``dyade.parallel``); a progress bar on stderr when it
-    is a terminal; returns the failures (path, reason) instead of stopping. With several
-    processes each file's warnings are kept and printed in the order of the files, as in
-    a serial run, and ``modules`` (those every file needs) are imported once, before the
-    other processes are forked, instead of once in each."""
-    from dyade import parallel
-
-    targets = _targets(paths, directory, suffix)
-    workers = min(workers_for(jobs), len(paths))
-    capture = workers > 1 and parallel.available()
-    if capture:
-        import importlib
-
-        for name in modules:
-            importlib.import_module(name)
-
-    def one(task):
-        from dyade.cli.memory import keep_freed_memory
-
-        keep_freed_memory()  # many sweeps in each process: keep the freed arrays' pages
-        path, target = task
-        return attempt(run_one, path, target, capture)
-
-    def lost(task, reason):
-        return f"{reason} before {task[0]} was done (rerun it alone)", ""
-
-    failures = []
-    outcomes = parallel.ordered_map(one, list(zip(paths, targets)), workers, lost)
-    with progress("analysing", total=len(paths)) as tick:
-        for done, (path, (failure, said)) in enumerate(zip(paths, outcomes), start=1):
-            if said:
-                sys.stderr.write(said)
-            if failure is not None:
-                failures.append((path, failure))
-            tick(done)
-    return failures
-
-
-SWEEP = ("dyade.files.mechanism", "dyade.linkage.sweep", "dyade.linkage.kinetostatics",
-         "dyade.linkage.reduced", "dyade.linkage.columns", "dyade.linkage.dyads.rrr",
-         "dyade.linkage.dyads.rrp", "dyade.linkage.dyads.rpr", "dyade.linkage.dyads.prp",
-         "dyade.linkage.dyads.ppr")
-"""what every sweep of a mechanism file imports (friction only where a file has it)"""
 NEEDS = {"csv": SWEEP + ("dyade.report.csv_rows",),
          "json": SWEEP + ("dyade.linkage.summary", "dyade.report.document",
-                          "dyade.report.spool", "dyade.report.notes"),
+                          "dyade.report.spool", "dyade.report.notes", "dyade.report.effects"),
          "table": SWEEP + ("dyade.linkage.summary", "dyade.report.tables",
                            "dyade.report.spool", "dyade.report.notes")}
 """modules ``analyse`` needs for every file, by output format"""
-
-
-def workers_for(jobs: int) -> int:
-    """Processes for -j N: N, or every core for 0."""
-    return jobs if jobs > 0 else (os.cpu_count() or 1)
-
-
-def attempt(run_one, path, target, capture: bool) -> tuple[str | None, str]:
-    """``run_one(path, target, None)``: (None or the reason it failed, what it wrote on
-    stderr when ``capture``)."""
-    import contextlib
-    import io
-
-    from dyade.errors import DyadeError
-
-    said = io.StringIO()
-    with contextlib.redirect_stderr(said) if capture else contextlib.nullcontext():
-        try:
-            run_one(path, target, None)
-        except (DyadeError, click.ClickException) as err:
-            return (err.format_message() if isinstance(err, click.ClickException)
-                    else str(err)), said.getvalue()
-    return None, said.getvalue()
-
-
-def _targets(paths, directory: str, suffix: str) -> list[str]:
-    """One output name per input: the stem, made unique when two inputs share it."""
-    seen: dict[str, int] = {}
-    out = []
-    for path in paths:
-        stem = os.path.splitext(os.path.basename(path))[0]
-        seen[stem] = seen.get(stem, 0) + 1
-        name = stem if seen[stem] == 1 else f"{stem}-{seen[stem]}"
-        out.append(os.path.join(directory, f"{name}{suffix}"))
-    return out
 
 
 class Job(NamedTuple):
@@ -371,72 +163,18 @@ class Job(NamedTuple):
     run_up: bool = False
     constant_speed: bool = False
     block_size: int | None = None
-    """positions per block of a streamed CSV (None: the default, 0: the whole sweep)"""
+    """positions per block (None: the default, 0: the whole sweep as one)"""
 
     def run(self, path: str, output: str | None, save_as_path: str | None) -> None:
-        """The sweep of one file, block by block (``dyade.analyse_in_blocks``): CSV rows
-        written as soon as they are computed; for JSON and the tables the blocks go to a
-        ``Spool`` on disk, from which the summary and the JSON arrays take one column at
-        a time."""
-        from dyade.linkage.sweep import analyse_in_blocks
-        from dyade.report import csv_rows
-
         output = None if output == "-" else output  # -o -: standard output
         loaded = load(path, self.assignments, self.sweep)
-        mechanism = loaded.mechanism
         if save_as_path:
             save_as(loaded, save_as_path)
-        with options_named():
-            run = analyse_in_blocks(mechanism, block_size=sys.maxsize if self.block_size == 0
-                                    else self.block_size,
-                                    allow_partial=self.allow_partial,
-                                    friction_tol=self.friction_tol,
-                                    friction_max_iter=self.friction_max_iter,
-                                    max_memory=self.max_memory, dead_centre=self.dead_centre,
-                                    transmission_warning=self.transmission_warning,
-                                    constant_speed=self.constant_speed, run_up=self.run_up)
-            blocks = (block.columns for block in run)
-            with progress(f"{os.path.basename(path)}: checking the sweep",
-                          show=long_run(run)) as tick:
-                run.progress = tick
-                first = next(blocks)  # the assembly check fails here, before any output
-        names = list(self.chosen(first))  # a wrong --columns fails before any output
-
-        def analysing():
-            return progress(f"{os.path.basename(path)}: analysing", show=long_run(run))
-
-        def emit(handle) -> None:
-            writer = csv_rows.Writer(names, handle)
-            writer.header()
-            with analysing() as tick:
-                run.progress = tick
-                writer.rows(first)
-                for cols in blocks:
-                    writer.rows(cols)
-            writer.close()
-
-        if self.fmt != "csv":
-            from dyade.report.spool import Spool
-
-            with analysing() as tick:
-                run.progress = tick
-                spool = Spool(itertools.chain([first], blocks))
-            with spool:
-                from dyade.linkage.summary import summary
-
-                outcome = run.outcome
-                cols = Chosen(spool, names) if self.columns else spool
-                self.write(outcome, spool, cols, output, loaded, lambda: summary(outcome, spool))
-        elif output:
-            with atomic(output) as handle:
-                emit(handle)
-        else:
-            emit(sys.stdout)
-        warn(run.outcome.notes, mechanism, f"{os.path.basename(path)}: " if output else "")
-        self.check_locks(run.outcome)
+        writers.streamed(self, loaded.mechanism, loaded, path, output)
 
     def check_locks(self, outcome) -> None:
-        """--fail-on-lock: exit status 1 when the mechanism self-locks somewhere."""
+        """--fail-on-lock: exit status 1 when the mechanism self-locks somewhere (a
+        sweep's ``outcome``)."""
         from dyade.errors import DyadeError
 
         locks = any(lock.locks[outcome.rows].any() for lock in (outcome.locking or {}).values())
@@ -456,163 +194,4 @@ class Job(NamedTuple):
                                      f"columns are {', '.join(list(every)[:12])}, … "
                                      f"(mechanisms/README.md lists them).",
                                      param_hint="--columns")
-        return Chosen(every, names)
-
-    def write(self, result, every, cols, output: str | None, loaded, summarise) -> None:
-        """The CSV, the JSON document or the tables of a sweep's ``outcome`` (``result``):
-        ``every`` its columns, ``cols`` those chosen, ``summarise()`` its summary (of
-        every column)."""
-        mechanism = result.mechanism
-        if self.fmt == "csv":
-            from dyade.report import csv_rows
-
-            if output:
-                with atomic(output) as handle:
-                    csv_rows.write(cols, handle)
-            else:
-                csv_rows.write(cols, sys.stdout)
-        elif self.fmt == "json":
-            from dyade.linkage.columns import unit_of
-            from dyade.report.document import document
-            from dyade.report.effects import with_effects
-            from dyade.report.notes import say
-
-            write_json(document("analyse", cols, {name: unit_of(name) for name in cols},
-                                selected_summary(with_effects(summarise(), result.plan), cols),
-                                [say(note, mechanism) for note in result.notes],
-                                mechanism=mechanism.name, source=loaded.label,
-                                positions=int(every["angle_deg"].size)), output)
-        else:
-            from dyade.report import tables
-
-            unit = mechanism.units[0] if self.units == "file" else "m"
-            summary = summarise() if result.drive is not None or not (
-                self.columns or self.show_all) else None
-            motion = (tables.motion_table(result, summary) if result.drive is not None
-                      else None)
-            if self.columns:
-                parts = [tables.sweep_summary(result, cols, unit)]
-            elif self.show_all:
-                parts = [tables.sweep_summary(result, cols, unit),
-                         tables.force_summary(result, cols), motion,
-                         tables.clearance_summary(result)]
-            else:
-                parts = [tables.key_results(result, cols, summary, unit), motion]
-            show(parts, output)
-
-
-class Chosen(Mapping):
-    """Some of a mapping's columns, in their order (the others are not read)."""
-
-    def __init__(self, columns, names: list[str]) -> None:
-        self.columns, self.names = columns, names
-        self.float_columns = getattr(columns, "float_columns", False)
-
-    def __getitem__(self, name: str):
-        if name not in self.names:
-            raise KeyError(name)
-        return self.columns[name]
-
-    def __iter__(self):
-        return iter(self.names)
-
-    def __len__(self) -> int:
-        return len(self.names)
-
-
-def selected_summary(summary: dict, cols) -> dict:
-    """The summary of the whole sweep with the extremes of the chosen columns only."""
-    return {**summary, "columns": {name: extremes for name, extremes in
-                                   summary["columns"].items() if name in cols}}
-
-
-SECOND = 8e6
-"""values (positions × columns) a streamed CSV computes and writes in about a second"""
-
-
-def long_run(run) -> bool:
-    """A sweep (``pipeline.Run``) expected to take more than about a second."""
-    from dyade.linkage.sweep import BYTES_PER_VALUE, memory_estimate
-
-    values = (memory_estimate(run.setup.mechanism, run.setup.positions) - (50 << 20)) \
-        / BYTES_PER_VALUE
-    return values > SECOND
-
-
-class options_named:
-    """Errors of the API named as the options give them: flags for parameters, and a
-    partial closure suggests --allow-partial."""
-
-    def __enter__(self) -> None:
-        pass
-
-    def __exit__(self, exc_type, exc, tb) -> bool:
-        from dyade.errors import AssemblyError, InputError
-
-        if isinstance(exc, InputError):
-            raise exc.naming(FLAGS) from None
-        if isinstance(exc, AssemblyError) and exc.partial:
-            raise AssemblyError("; ".join(exc.problems) + ". Change the dimensions or the "
-                                "sweep, or use --allow-partial to analyse only where it "
-                                "closes.", exc.problems, exc.partial) from None
-        return False
-
-
-def sweep(mechanism, allow_partial: bool, friction_tol: float | None = None,
-          friction_max_iter: int | None = None, **options):
-    """``dyade.analyse`` with the options' names in its errors (a partial closure
-    suggests --allow-partial); ``options``: its other keywords."""
-    from dyade.linkage.sweep import analyse
-
-    with options_named():
-        return analyse(mechanism, allow_partial=allow_partial, friction_tol=friction_tol,
-                       friction_max_iter=friction_max_iter, **options)
-
-
-def warn(notes, mechanism, prefix: str = "") -> None:
-    """A sweep's notes (of ``mechanism``) on stderr, each a warning: one line each, as
-    they are, into a pipe or a file (or a batch worker's capture); through rich on a
-    terminal, which wraps them (rich is loaded only then: about 20 ms of every batch
-    worker's start)."""
-    if not notes:
-        return
-    from dyade.report.notes import say
-
-    notes = [say(note, mechanism) for note in notes]
-    if not sys.stderr.isatty():
-        sys.stderr.write("".join(f"warning: {prefix}{note}\n" for note in notes))
-        return
-    err = console(stderr=True)
-    for note in notes:
-        err.print(f"warning: {prefix}{note}", markup=False)
-
-
-TEMPLATES = {"fourbar": "RRR", "slider-crank": "RRP", "slotted-lever": "RPR",
-             "tangent-drive": "PRP", "scotch-yoke": "PPR"}
-KIND_ALIASES = {"rrr": "fourbar", "four-bar": "fourbar", "rrp": "slider-crank",
-                "rpr": "slotted-lever", "prp": "tangent-drive", "ppr": "scotch-yoke"}
-
-
-@main.command()
-@click.argument("kind", type=click.Choice(sorted(TEMPLATES) + sorted(KIND_ALIASES),
-                                          case_sensitive=False))
-@click.argument("file", type=click.Path(dir_okay=False, writable=True, allow_dash=True))
-@click.option("--force", is_flag=True, help="Overwrite FILE if it exists.")
-def init(kind: str, file: str, force: bool) -> None:
-    """Write a commented starting mechanism FILE for KIND: fourbar (RRR), slider-crank
-    (RRP), slotted-lever (RPR), tangent-drive (PRP) or scotch-yoke (PPR). The file is
-    valid and analysable as written: edit the numbers, then `dyade analyse FILE`.
-    FILE "-" prints the template."""
-    from importlib.resources import files
-
-    name = KIND_ALIASES.get(kind.lower(), kind.lower())
-    text = files("dyade").joinpath("templates", f"{name}.toml").read_text(encoding="utf-8")
-    if file == "-":
-        click.echo(text, nl=False)
-        return
-    if os.path.exists(file) and not force:
-        raise click.UsageError(f"{file} exists; give --force to overwrite it.")
-    with atomic(file) as handle:
-        handle.write(text)
-    console(stderr=True).print(f"wrote {file} ({name}, dyad kind {TEMPLATES[name]}); next: "
-                               f"dyade describe {file}")
+        return writers.Chosen(every, names)

@@ -9,8 +9,8 @@ from typing import NamedTuple
 import click
 
 from dyade.cli import main
-from dyade.cli.analyse import MECHANISM_FILE, SUFFIX, SWEEP, batch, jobs_option, workers_for
-from dyade.cli.options import FINITE, Number, value_range
+from dyade.cli.batch import SUFFIX, SWEEP, batch, workers_for
+from dyade.cli.options import FINITE, MECHANISM_FILE, Number, jobs_option, value_range
 from dyade.cli.output import console, flags, progress, show, write_json, write_rows
 
 FLAGS = {"mass": "--mass", "stiffness": "--stiffness", "clearance": "--clearance",
@@ -237,9 +237,8 @@ def _standalone(given: Inputs, fmt, output):
 
 def _over_mechanism(path, given: Inputs, fmt, output, jobs: int = 1):
     import dyade
+    from dyade.cli.common import load
     from dyade.report import clearance as report
-
-    from dyade.cli.analyse import load
 
     mechanism = load(path).mechanism
     with flags(FLAGS):

@@ -8,7 +8,8 @@ import os
 import click
 
 from dyade.cli import main
-from dyade.cli.analyse import MECHANISM_FILE, infer_format, load, set_option
+from dyade.cli.common import infer_format, load
+from dyade.cli.options import MECHANISM_FILE, set_option
 from dyade.cli.output import atomic, flags, show, write_json, write_rows
 
 FORMAT = click.Choice(["table", "csv", "json"])

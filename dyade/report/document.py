@@ -26,7 +26,7 @@ CHUNK = 1 << 16
 """values formatted and written at a time"""
 
 
-def json_numbers(values) -> list[str]:
+def json_numbers(values, writer: JsonNumbers | None = None) -> list[str]:
     """float64 values as JSON numbers, exactly as ``json.dumps`` writes
     ``float(f"{v + 0.0:.15g}")`` (and null for NaN and ±inf), a block at a time.
 
@@ -40,21 +40,38 @@ def json_numbers(values) -> list[str]:
     >>> import numpy as np
     >>> json_numbers(np.array([90.0, -0.0, 0.1 + 0.2, 1.5e15, 2e-7, np.nan, -np.inf]))
     ['90.0', '0.0', '0.3', '1500000000000000.0', '2e-07', 'null', 'null']
+
+    ``writer``: a ``JsonNumbers`` to reuse (the columns of one document): its work
+    arrays (about 2 MB) are then allocated once, not once per column.
     """
-    import io
-
-    import numpy as np
-
-    from dyade.report import csv_rows
-
-    buffer = io.StringIO()
-    writer = csv_rows.Writer(["value"], buffer)
-    writer.rows(np.asarray(values, dtype=np.float64).reshape(-1, 1))
-    lines = buffer.getvalue().split("\n")
-    lines.pop()
+    lines = (writer or JsonNumbers()).lines(values)
     return [text if ("." in text or "e" in text) and "e+15" not in text
             and "e+308" not in text and "e-3" not in text else _number(text)
             for text in lines]
+
+
+class JsonNumbers:
+    """The CSV writer of ``json_numbers``, one value a line, its work arrays kept from one
+    call to the next."""
+
+    def __init__(self) -> None:
+        import io
+
+        from dyade.report import csv_rows
+
+        self.buffer = io.StringIO()
+        self.writer = csv_rows.Writer(["value"], self.buffer)
+
+    def lines(self, values) -> list[str]:
+        """The CSV writer's text of each value (NaN: empty)."""
+        import numpy as np
+
+        self.buffer.seek(0)
+        self.buffer.truncate()
+        self.writer.rows(np.asarray(values, dtype=np.float64).reshape(-1, 1))
+        lines = self.buffer.getvalue().split("\n")
+        lines.pop()
+        return lines
 
 
 def _number(text: str) -> str:
@@ -83,6 +100,7 @@ def write_columns(columns, handle) -> None:
         handle.write(' "columns": {}')
         return
     handle.write(' "columns": {\n')
+    numbers = JsonNumbers()
     for k, name in enumerate(names):
         values = np.asarray(columns[name], dtype=np.float64)
         handle.write(f"  {json.dumps(name, ensure_ascii=False)}: ")
@@ -93,7 +111,7 @@ def write_columns(columns, handle) -> None:
             for first in range(0, values.size, CHUNK):
                 if first:
                     handle.write(",\n   ")
-                handle.write(",\n   ".join(json_numbers(values[first:first + CHUNK])))
+                handle.write(",\n   ".join(json_numbers(values[first:first + CHUNK], numbers)))
             handle.write("\n  ]")
         handle.write(",\n" if k < len(names) - 1 else "\n")
     handle.write(" }")

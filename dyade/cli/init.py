@@ -1,0 +1,41 @@
+"""``dyade init``: a commented starting mechanism file for a dyad kind."""
+
+from __future__ import annotations
+
+import os
+
+import click
+
+from dyade.cli import main
+from dyade.cli.output import atomic, console
+
+
+TEMPLATES = {"fourbar": "RRR", "slider-crank": "RRP", "slotted-lever": "RPR",
+             "tangent-drive": "PRP", "scotch-yoke": "PPR"}
+KIND_ALIASES = {"rrr": "fourbar", "four-bar": "fourbar", "rrp": "slider-crank",
+                "rpr": "slotted-lever", "prp": "tangent-drive", "ppr": "scotch-yoke"}
+
+
+@main.command()
+@click.argument("kind", type=click.Choice(sorted(TEMPLATES) + sorted(KIND_ALIASES),
+                                          case_sensitive=False))
+@click.argument("file", type=click.Path(dir_okay=False, writable=True, allow_dash=True))
+@click.option("--force", is_flag=True, help="Overwrite FILE if it exists.")
+def init(kind: str, file: str, force: bool) -> None:
+    """Write a commented starting mechanism FILE for KIND: fourbar (RRR), slider-crank
+    (RRP), slotted-lever (RPR), tangent-drive (PRP) or scotch-yoke (PPR). The file is
+    valid and analysable as written: edit the numbers, then `dyade analyse FILE`.
+    FILE "-" prints the template."""
+    from importlib.resources import files
+
+    name = KIND_ALIASES.get(kind.lower(), kind.lower())
+    text = files("dyade").joinpath("templates", f"{name}.toml").read_text(encoding="utf-8")
+    if file == "-":
+        click.echo(text, nl=False)
+        return
+    if os.path.exists(file) and not force:
+        raise click.UsageError(f"{file} exists; give --force to overwrite it.")
+    with atomic(file) as handle:
+        handle.write(text)
+    console(stderr=True).print(f"wrote {file} ({name}, dyad kind {TEMPLATES[name]}); next: "
+                               f"dyade describe {file}")
