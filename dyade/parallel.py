@@ -75,16 +75,22 @@ def _results(function, items: list, workers: int, lost) -> Iterator:
         pool = _Pool(function, items, workers)
         clean = False
         try:
+            futures: dict[int, Future] = {}
             try:
-                futures = {index: pool.submit(index) for index in range(start, len(items))
-                           if index not in finished}
+                for index in range(start, len(items)):
+                    if index not in finished:
+                        futures[index] = pool.submit(index)
             except OSError:  # no process can be started (a process limit): work here
                 for index in range(start, len(items)):
                     future = finished.pop(index, None)
                     yield future.result() if future else function(items[index])
                 return  # (not clean: a worker started before the refusal is ended)
+            except BrokenProcessPool:  # broken while the items were handed out: the
+                pass  # rest wait for the next pool
             for index in range(start, len(items)):
-                future = finished.pop(index, None) or futures[index]
+                future = finished.pop(index, None) or futures.get(index)
+                if future is None:  # not handed out before the break
+                    break
                 try:
                     value = future.result()
                 except BrokenProcessPool:
