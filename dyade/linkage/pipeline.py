@@ -209,6 +209,8 @@ class Run:
         notes: list[Note] = []
         rows = self.rows = assembly(mechanism, policy, setup.allow_partial, notes)
         well = bands(mechanism, policy, rows, notes)
+        usable = policy.valid  # (for the joints that never move; the rest is let go)
+        del policy, kin
         if the_plan.friction:
             self.coupling = friction_coupling(mechanism, angle, setup.speed,
                                               setup.acceleration, size)
@@ -225,7 +227,7 @@ class Run:
             ratio = (time.perf_counter() - started - first_pass) * n / (
                 last * max(first_pass, 1e-9))
             self._tick(n + ratio * last, n * (1.0 + ratio))
-        self.outcome = keep.outcome(notes, policy.valid)
+        self.outcome = keep.outcome(notes, usable)
 
 
 class Keep:
