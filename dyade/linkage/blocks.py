@@ -22,7 +22,7 @@ if TYPE_CHECKING:  # imported where used: a sweep without friction never loads i
     from dyade.linkage import friction
 
 BLOCK_SIZE = 2048
-"""positions per block of a streamed sweep (``--block-size``): a block's arrays
+"""positions per block of a sweep in blocks (``--block-size``): a block's arrays
 (kinematics, forces, its columns: a few kB per position for dyade-16's 270 columns) stay
 within a few MB, near the cache; larger blocks gain nothing measurable when every block
 is written out at once (tests/benchmarks)"""

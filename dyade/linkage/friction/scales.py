@@ -21,7 +21,7 @@ SAMPLE = 256  # the force floors are taken from about this many positions of the
 class Coupling:
     """What the friction solution takes from the whole sweep rather than from each
     position: given to ``solve`` for a block of positions, the block is solved exactly
-    as within the whole sweep (``dyade.linkage.stream``; ``coupling`` computes it from
+    as within the whole sweep (``dyade.linkage.pipeline``; ``coupling`` computes it from
     the sample positions alone)."""
 
     speed: float
