@@ -183,7 +183,7 @@ def test_an_absurd_sweep_is_refused_before_anything_is_allocated():
     assert result.exit_code == 2
     assert "3,600,000,001 positions" in result.output and "TB" in result.output
     import dyade
-    from dyade.linkage.sweep import memory_estimate
+    from dyade.linkage.options import memory_estimate
 
     mechanism = dyade.read_mechanism(shipped("dyade-16.toml"))
     with pytest.raises(dyade.InputError, match="max_memory"):

@@ -21,7 +21,7 @@ from dyade.cli import main
 from dyade.errors import AssemblyError
 from dyade.files import mechanism as toml_input
 from dyade.linkage import blocks, friction, kinematics, pipeline
-from dyade.linkage.sweep import with_sweep
+from dyade.linkage.options import with_sweep
 from tests.benchmarks.test_benchmarks import FRICTION, _with_friction
 from tests.conftest import MECHANISMS, SHIPPED
 from tests.helpers import mechanism_from, shipped

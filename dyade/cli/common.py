@@ -56,7 +56,7 @@ def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = Swe
     --start/--stop/--step [°]."""
     from dyade.files import mechanism as reader
     from dyade.files import schema
-    from dyade.linkage.sweep import with_sweep
+    from dyade.linkage.options import with_sweep
 
     overrides = dict(schema.parse_assignment(a) for a in assignments)
     text, label = read_input(path)

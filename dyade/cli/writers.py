@@ -144,7 +144,7 @@ SECOND = 8e6
 
 def long_run(run) -> bool:
     """A sweep (``pipeline.Run``) expected to take more than about a second."""
-    from dyade.linkage.sweep import BYTES_PER_VALUE, memory_estimate
+    from dyade.linkage.options import BYTES_PER_VALUE, memory_estimate
 
     values = (memory_estimate(run.setup.mechanism, run.setup.positions) - (50 << 20)) \
         / BYTES_PER_VALUE

@@ -1,12 +1,11 @@
-"""The sweep of a mechanism, whole (``analyse``) or in blocks (``analyse_in_blocks``):
-its options checked and applied (``configure``), then run by the one pipeline
-(``dyade.linkage.pipeline``).
+"""The sweep of a mechanism, collected into one ``Result`` (``analyse``) or block by
+block (``analyse_in_blocks``): its options checked and applied
+(``dyade.linkage.options``), then run by the one pipeline (``dyade.linkage.pipeline``).
 """
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -14,12 +13,12 @@ import numpy as np
 from dyade.errors import InputError
 from dyade.linkage.blocks import BLOCK_SIZE
 from dyade.linkage.columns import Columns
-from dyade.linkage.model import FloatArray, Mechanism, Revolute, Sweep, sweep_problem
+from dyade.linkage.model import FloatArray, Mechanism
+from dyade.linkage.options import collect_estimate, configure, stream_estimate
 from dyade.linkage.block import Block
 from dyade.linkage.pipeline import Run, prepare, stages
 from dyade.linkage.pipeline import Setup
 from dyade.linkage.plan import Plan
-from dyade.linkage.plan import plan as infer_plan
 from dyade.linkage.verdicts import Outcome
 
 if TYPE_CHECKING:
@@ -97,111 +96,6 @@ class Result(Outcome):
     def friction(self) -> friction.FrictionResult | None:
         """Friction loads, determinants and verdicts; None without friction."""
         return self.whole().friction
-
-
-def with_sweep(mechanism: Mechanism, start: float | None = None, stop: float | None = None,
-               step: float | None = None) -> Mechanism:
-    """The mechanism with its sweep changed [rad]; ``stop`` defaults to one revolution
-    after a given ``start`` (else the mechanism's own)."""
-    if start is None and stop is None and step is None:
-        return mechanism
-    current = mechanism.sweep
-    for name, value in (("start", start), ("stop", stop), ("step", step)):
-        if value is not None and not math.isfinite(value):
-            raise InputError.parameter(name, f"must be a finite angle [rad], got {value}.",
-                                       value=value, unit="rad")
-    if stop is None:
-        stop = current.stop if start is None else start + 2 * math.pi
-    start = current.start if start is None else start
-    step = current.step if step is None else step
-    if step <= 0:
-        raise InputError.parameter("step", f"must be positive [rad], got {step:g}.", value=step,
-                                   unit="rad")
-    if stop < start:
-        raise InputError.parameter("stop", f"must not be below the start angle [rad], got "
-                                           f"{stop:g}.", value=stop, unit="rad")
-    problem = sweep_problem(start, stop, step)
-    if problem:
-        raise InputError.parameter("sweep", f"{problem}.", unit="rad")
-    return replace(mechanism, sweep=Sweep(start, stop, step))
-
-
-MAX_MEMORY = 4 << 30  # [B] default bound on what a sweep may take (overridable)
-BYTES_PER_VALUE = 90  # [B] per column and position: arrays, the table and its CSV text
-"""measured: dyade-16 (269 columns) and the four-bar (59) at 3 600 and 36 000 positions
-peak at 84-86 B per column and position in `dyade analyse --format csv`"""
-
-
-def column_count(mechanism: Mechanism) -> int:
-    """How many columns a sweep of ``mechanism`` gives (about: the friction determinants
-    and lock margins are not counted)."""
-    revolute = sum(isinstance(j, Revolute) for j in mechanism.joints)
-    prismatic = len(mechanism.joints) - revolute
-    columns = (1 + 3 * len(mechanism.moving_links) + 6 * revolute + 3 * prismatic
-               + 6 * len(mechanism.named_points) + len(mechanism.dyads))
-    if mechanism.has_dynamics:
-        rubbing = sum(j.friction > 0.0 for j in mechanism.joints)
-        columns += 3 * revolute + 2 * prismatic + 6 + 2 * rubbing + (2 if rubbing else 0)
-    return columns
-
-
-def memory_estimate(mechanism: Mechanism, positions: int) -> int:
-    """What a sweep of ``positions`` in one block will take [B], from its column count."""
-    return BYTES_PER_VALUE * column_count(mechanism) * positions + (50 << 20)
-
-
-def collect_estimate(block_size: int):
-    """What ``analyse`` needs [B] in blocks of ``block_size`` positions, as
-    ``configure``'s ``estimate``: its columns (8 B per value) and one block."""
-    def estimate(mechanism: Mechanism, positions: int) -> int:
-        if positions <= block_size:
-            return memory_estimate(mechanism, positions)
-        return 8 * column_count(mechanism) * positions + memory_estimate(mechanism, block_size)
-
-    return estimate
-
-
-def check_size(mechanism: Mechanism, positions: int, max_memory: float | None,
-               estimate=None) -> None:
-    """Refuse a sweep that would take more than ``max_memory`` [B], before allocating;
-    ``estimate(mechanism, positions)`` [B] (default ``memory_estimate``)."""
-    bound = MAX_MEMORY if max_memory is None else max_memory
-    need = (estimate or memory_estimate)(mechanism, positions)
-    if need > bound:
-        raise InputError.parameter(
-            "max_memory", f"is {_size(bound)}, and this sweep of {positions:,} positions would "
-                          f"take about {_size(need)}. Use a coarser step or a shorter range, or "
-                          f"raise the bound.", value=bound, unit="B")
-
-
-def _size(nbytes: float) -> str:
-    for unit in ("B", "kB", "MB", "GB", "TB", "PB"):
-        if nbytes < 1000 or unit == "PB":
-            return f"{nbytes:.3g} {unit}"
-        nbytes /= 1000
-
-
-def stream_estimate(block_size: int):
-    """What a sweep in blocks of ``block_size`` positions needs [B] besides its output,
-    as ``configure``'s ``estimate``: one block's columns and arrays, and the
-    per-position arrays kept for the whole sweep."""
-    def estimate(mechanism: Mechanism, positions: int) -> int:
-        if positions <= block_size:  # one block: the whole sweep in memory
-            return memory_estimate(mechanism, positions)
-        per_position = 17 * len(mechanism.dyads) + KEPT_PER_POSITION + 16 * sum(
-            isinstance(j, Revolute) for j in mechanism.joints)
-        if mechanism.has_dynamics and any(j.friction > 0.0 for j in mechanism.joints):
-            # the residual; not solved, locked; near per dyad; at rest and locks per joint
-            per_position += 10 + len(mechanism.dyads) + 2 * len(mechanism.joints)
-        block = memory_estimate(mechanism, min(positions, block_size)) - (50 << 20)
-        return 2 * block + per_position * positions + (60 << 20)
-
-    return estimate
-
-
-KEPT_PER_POSITION = 64
-"""[B] what a sweep in blocks keeps per position besides the per-dyad arrays: crank
-angle, speed and acceleration, masks, the clearance joints' forces"""
 
 
 def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | None = None,
@@ -357,48 +251,3 @@ def _block_size(size, default: int) -> int:
     return int(size)
 
 
-def configure(mechanism: Mechanism, *, start: float | None = None, stop: float | None = None,
-              step: float | None = None, positions: int | None = None,
-              friction_tol: float | None = None, friction_max_iter: int | None = None,
-              plan: Plan | None = None, max_memory: float | None = None,
-              dead_centre: float | None = None, transmission_warning: float | None = None,
-              given_speed: bool = False, constant_speed: bool = False, run_up: bool = False,
-              estimate=None) -> tuple[Mechanism, Plan]:
-    """``analyse``'s options checked and applied: the mechanism to sweep and its plan.
-    ``positions``: how many crank angles are given (default: the sweep's); ``estimate``:
-    the memory the sweep needs [B] as a function of (mechanism, positions) (default
-    ``memory_estimate``)."""
-    mechanism = with_sweep(mechanism, start, stop, step)
-    if friction_tol is not None:
-        if not (math.isfinite(friction_tol) and friction_tol > 0):
-            raise InputError.parameter("friction_tol", f"must be a positive number [-], got "
-                                                       f"{friction_tol}.", value=friction_tol)
-        mechanism = replace(mechanism, friction_tol=friction_tol)
-    if friction_max_iter is not None:
-        if friction_max_iter < 1:
-            raise InputError.parameter("friction_max_iter", f"must be at least 1, got "
-                                                            f"{friction_max_iter}.",
-                                       value=friction_max_iter)
-        mechanism = replace(mechanism, friction_max_iter=friction_max_iter)
-    if dead_centre is not None or transmission_warning is not None:
-        hard = mechanism.dead_centre_angle if dead_centre is None else dead_centre
-        soft = mechanism.transmission_warning if transmission_warning is None else transmission_warning
-        if not (math.isfinite(hard) and math.isfinite(soft) and 0.0 <= hard < soft <= np.pi / 2):
-            raise InputError.parameter(("dead_centre", "transmission_warning"),
-                                       f"must satisfy 0 ≤ the dead-centre band < the warning angle ≤ "
-                                       f"90°, got {np.rad2deg(hard):g}° and {np.rad2deg(soft):g}°.")
-        mechanism = replace(mechanism, dead_centre_angle=hard, transmission_warning=soft)
-    positions = mechanism.sweep.count if positions is None else positions
-    check_size(mechanism, positions, max_memory, estimate)
-    the_plan = plan if plan is not None else infer_plan(mechanism)
-    if constant_speed and the_plan.equation_of_motion:
-        the_plan = replace(the_plan, equation_of_motion="")
-    if run_up and not the_plan.equation_of_motion:
-        raise InputError.parameter("run_up", "needs a [drive] table in the mechanism (a motor "
-                                             "to run it up with).", value=run_up)
-    if the_plan.equation_of_motion and given_speed:
-        raise InputError.parameter(("crank_speed", "crank_acceleration"),
-                                   "cannot be given with a [drive] table: its equation of "
-                                   "motion sets the crank's speed (analyse at constant speed "
-                                   "to give them).")
-    return mechanism, the_plan
