@@ -376,3 +376,33 @@ def test_the_benchmark_friction_model_in_blocks():
     finer step, block boundaries anywhere."""
     mechanism = _with_friction(dyade.read_mechanism(MECHANISMS / "slider-crank.toml"))
     _check(mechanism, 333, step=np.deg2rad(0.1))
+
+
+def test_what_analyse_hands_out_is_the_callers_in_any_block_size():
+    """What ``analyse`` hands out is the caller's, and the same for
+    any block size."""
+    sl = dyade.read_mechanism(MECHANISMS / "self-locking.toml")
+    for size in (None, 1):
+        result = dyade.analyse(sl, step=np.pi, block_size=size)
+        assert result.friction.never_moves == [(1, 4)]
+        assert not result.friction.at_rest[(1, 4)].any()
+    fourbar = dyade.read_mechanism(MECHANISMS / "fourbar.toml")
+    result = dyade.analyse(fourbar)
+    torque = result.forces.drive_torque.copy()
+    result.columns()["M_drive"][:] = 0.0
+    assert np.array_equal(result.forces.drive_torque, torque)
+    slider = dyade.read_mechanism(MECHANISMS / "slider-crank.toml")
+    angle, speed = np.linspace(0.0, 1.0, 20), np.full(20, 10.0)
+    for size in (None, 7):
+        result = dyade.analyse(slider, crank_angle=angle.copy(), crank_speed=[10.0],
+                               block_size=size)
+        assert np.array_equal(dyade.analyse(slider, crank_angle=angle,
+                                            crank_speed=np.array(10.0)).columns()["M_drive"],
+                              result.columns()["M_drive"])
+        given = dyade.analyse(slider, crank_angle=angle, crank_speed=speed, block_size=size)
+        torque = given.columns()["M_drive"].copy()
+        speed[:] = 99.0
+        assert np.array_equal(given.forces.drive_torque, torque)
+        speed[:] = 10.0
+    empty = dyade.analyse(slider, crank_angle=[], block_size=7).columns()
+    assert "M_drive" in empty and empty["angle_deg"].size == 0

@@ -29,7 +29,11 @@ is written out at once (tests/benchmarks)"""
 
 
 def spans(positions: int, size: int) -> Iterator[tuple[int, int]]:
-    """(first, last) of the blocks of ``size`` positions that cover ``positions``."""
+    """(first, last) of the blocks of ``size`` positions that cover ``positions`` (one
+    empty block for an empty sweep: its columns are there, with no rows)."""
+    if positions == 0:
+        yield 0, 0
+        return
     for first in range(0, positions, size):
         yield first, min(positions, first + size)
 

@@ -84,10 +84,16 @@ def _part(value, first: int, last: int):
     return value[first:last] if isinstance(value, np.ndarray) else value
 
 
-def _per_position(value) -> FloatArray | float | None:
-    if value is None or np.ndim(value) == 0:
-        return value
-    return np.asarray(value, dtype=np.float64)
+def _per_position(value, n: int) -> FloatArray | float | None:
+    """None, one value (a float), or one per position: an (n,) array of the Setup's own
+    (a copy, broadcast from one value given as a list: blocks slice it; a caller's later
+    change of its array changes no result that is computed on demand)."""
+    if value is None:
+        return None
+    array = np.asarray(value, dtype=np.float64)
+    if array.ndim == 0:
+        return float(array)
+    return np.array(np.broadcast_to(array, (n,)))
 
 
 def prepare(mechanism: Mechanism, the_plan: Plan, *, allow_partial: bool = False,
@@ -106,9 +112,9 @@ def prepare(mechanism: Mechanism, the_plan: Plan, *, allow_partial: bool = False
         crank_angle, crank_speed = motion.crank_angle, motion.speed
         crank_acceleration = motion.acceleration
     angle = mechanism.sweep.angles() if crank_angle is None else crank_angle
-    return Setup(mechanism, the_plan, np.asarray(angle, dtype=np.float64),
-                 _per_position(crank_speed), _per_position(crank_acceleration), motion,
-                 allow_partial)
+    angle = np.array(angle, dtype=np.float64)  # the Setup's own: whole() reads it later
+    return Setup(mechanism, the_plan, angle, _per_position(crank_speed, angle.shape[0]),
+                 _per_position(crank_acceleration, angle.shape[0]), motion, allow_partial)
 
 
 def stages(setup: Setup, kin: kinematics.Kinematics, first: int, last: int,
@@ -189,7 +195,7 @@ class Run:
     def _tick(self, done: float, total: float) -> None:
         """Report ``done`` of ``total``, never a smaller share than before (the second
         pass's projection may grow)."""
-        if self.progress is not None:
+        if self.progress is not None and total > 0:
             self._shown = max(self._shown, done / total)
             self.progress(self._shown * total, total)
 
@@ -225,7 +231,7 @@ class Run:
             yield block
             # the second pass's time projected from its blocks so far, against the first's
             ratio = (time.perf_counter() - started - first_pass) * n / (
-                last * max(first_pass, 1e-9))
+                max(last, 1) * max(first_pass, 1e-9))
             self._tick(n + ratio * last, n * (1.0 + ratio))
         self.outcome = keep.outcome(notes, usable)
 

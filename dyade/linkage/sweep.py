@@ -79,7 +79,7 @@ class Result(Outcome):
             block = stages(setup, setup.kinematics(0, n), 0, n, None, self.rows, self.valid)
             if block.forces is not None:
                 block.forces.valid = self.forces_valid.copy()
-            self.block = block
+            self.block = _decided(block, self.rubbing)
         return self.block
 
     @property
@@ -96,6 +96,16 @@ class Result(Outcome):
     def friction(self) -> friction.FrictionResult | None:
         """Friction loads, determinants and verdicts; None without friction."""
         return self.whole().friction
+
+
+def _decided(block: Block, rubbing) -> Block:
+    """The whole sweep's block with what only the whole sweep decides: the joints that
+    never move (``Rubbing.finish``), their at-rest masks cleared."""
+    if block.friction is not None and rubbing is not None:
+        block.friction.never_moves = list(rubbing.never_moves)
+        for name in rubbing.never_moves:
+            block.friction.at_rest[name] = rubbing.at_rest[name].copy()
+    return block
 
 
 def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | None = None,
@@ -200,8 +210,9 @@ def collect(run: Run) -> Result:
     kept = None
     row = 0
     for block in run:
-        if whole:
-            kept, table = block, block.columns
+        if whole:  # its columns the caller's own: no view of the block's arrays
+            table = {name: values.copy() for name, values in block.columns.items()}
+            kept, block.columns = block, table
             continue
         if not table:
             total = int(run.rows.sum())
@@ -212,7 +223,8 @@ def collect(run: Run) -> Result:
         row += count
     outcome = run.outcome
     return Result(*(getattr(outcome, f.name) for f in fields(Outcome)), setup=setup,
-                  table=table, block=kept)
+                  table=table,
+                  block=None if kept is None else _decided(kept, outcome.rubbing))
 
 
 def analyse_in_blocks(mechanism: Mechanism, *, block_size: int | None = None,
