@@ -406,3 +406,37 @@ def test_what_analyse_hands_out_is_the_callers_in_any_block_size():
         speed[:] = 10.0
     empty = dyade.analyse(slider, crank_angle=[], block_size=7).columns()
     assert "M_drive" in empty and empty["angle_deg"].size == 0
+
+
+def _unwrapped(angle):
+    """The reference: ``np.unwrap`` of the finite values, the first brought into
+    (−π, π], NaN left in place."""
+    finite = np.isfinite(angle)
+    out = np.full(angle.shape, np.nan)
+    if finite.any():
+        values = np.unwrap(angle[finite])
+        turns = np.ceil((values[0] - np.pi) / (2.0 * np.pi))
+        out[finite] = values - 2.0 * np.pi * turns if turns else values
+    return out
+
+
+def test_link_angles_unwrap_as_np_unwrap_in_any_block_size():
+    """``columns.Continuous`` carries the unwrapping from block to block: the same bits
+    (signs of zero included) as ``np.unwrap`` of the whole, with jumps, NaN and none."""
+    from dyade.linkage.columns import Continuous
+
+    rng = np.random.default_rng(7)
+    for _ in range(500):
+        n = int(rng.integers(1, 60))
+        angle = np.cumsum(rng.normal(0.0, rng.choice([0.1, 1.0, 3.0]), n)) + rng.normal(0, 5)
+        if rng.random() < 0.5:
+            angle = np.angle(np.exp(1j * angle))  # wrapped into (−π, π]
+        if rng.random() < 0.3:
+            angle[rng.random(n) < 0.3] = np.nan
+        size, phase, parts = int(rng.integers(1, 20)), Continuous(), []
+        for first in range(0, n, size):
+            parts.append(phase(angle[first:first + size].copy()))
+            phase.commit()
+        got, want = np.concatenate(parts), _unwrapped(angle)
+        assert np.array_equal(got, want, equal_nan=True)
+        assert np.array_equal(np.signbit(got), np.signbit(want))

@@ -80,25 +80,33 @@ class Continuous:
 
     def __call__(self, angle: FloatArray) -> FloatArray:
         finite = np.isfinite(angle)
-        if not finite.any():
+        whole = finite.all()
+        if not whole and not finite.any():
             self.pending = self.state
             return angle
-        p = angle[finite]
+        p = angle if whole else angle[finite]
         ext = p if self.state is None else np.concatenate(([self.state[0]], p))
         dd = np.diff(ext)
-        ddmod = np.mod(dd + np.pi, 2 * np.pi) - np.pi  # np.unwrap with period 2π
-        np.copyto(ddmod, np.pi, where=(ddmod == -np.pi) & (dd > 0))
-        correction = ddmod - dd
-        np.copyto(correction, 0, where=abs(dd) < np.pi)
+        correction = None  # zero everywhere where no step jumps by π or more
+        if (abs(dd) >= np.pi).any():
+            ddmod = np.mod(dd + np.pi, 2 * np.pi) - np.pi  # np.unwrap with period 2π
+            np.copyto(ddmod, np.pi, where=(ddmod == -np.pi) & (dd > 0))
+            correction = ddmod - dd
+            np.copyto(correction, 0, where=abs(dd) < np.pi)
         if self.state is None:
             values = p.copy()
             carry = 0.0
-            if p.size > 1:
+            if p.size > 1 and correction is None:
+                values[1:] = p[1:] + 0.0  # the running sum of zero corrections
+            elif p.size > 1:
                 running = correction.cumsum()
                 values[1:] = p[1:] + running
                 carry = running[-1]
             first = values[0]
             turns = np.ceil((first - np.pi) / (2.0 * np.pi))
+        elif correction is None:
+            carry, turns = self.state[1] + 0.0, self.state[2]
+            values = p + carry
         else:
             running = np.concatenate(([self.state[1]], correction)).cumsum()[1:]
             values = p + running
@@ -106,6 +114,8 @@ class Continuous:
         if turns:
             values = values - 2.0 * np.pi * turns
         self.pending = (p[-1], carry, turns)
+        if whole:
+            return values
         out = np.full(angle.shape, np.nan)
         out[finite] = values
         return out
