@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade.linkage import kinematics
-from dyade.linkage.kinetostatics import add_force, add_loads_and_springs
+from dyade.linkage.kinetostatics import add_loads_and_springs
 from dyade.linkage.model import CRANK, FRAME, FloatArray, Mechanism
 
 
@@ -63,25 +63,31 @@ def reduced(mechanism: Mechanism, kin: kinematics.Kinematics) -> Reduced:
     energy, rate = np.zeros(n), np.zeros(n)
     external = np.zeros((mechanism.max_link + 1, 3, n))
     gravity = np.asarray(mechanism.gravity)
+    # each term computed once (the centre's position from point_motion serves the
+    # weight's moment, J_S·ω both sums), with the operations of add_force: the same bits
     for number, link in mechanism.links.items():
         if number == FRAME or not link.has_mass:
             continue
         w, a = motion.omega[:, number], motion.alpha[:, number]
         if link.mass:
-            _, _, vx, vy, ax, ay = motion.point_motion(number, link.centre)
+            x, y, vx, vy, ax, ay = motion.point_motion(number, link.centre)
             energy += link.mass * (vx * vx + vy * vy)
             rate += link.mass * (vx * ax + vy * ay)
-            if gravity.any():
-                weight = np.broadcast_to(link.mass * gravity, (n, 2))
-                add_force(external[number], motion.point(number, link.centre), weight)
+            if gravity.any():  # the weight m·g at the centre
+                weight_x, weight_y = link.mass * gravity
+                fx, fy, moment = external[number]
+                fx += weight_x
+                fy += weight_y
+                moment += x * weight_y - y * weight_x
         if link.inertia:
-            energy += link.inertia * w * w
-            rate += link.inertia * w * a
+            spin = link.inertia * w
+            energy += spin * w
+            rate += spin * a
     add_loads_and_springs(external, mechanism, kin)
     power = np.zeros(n)
+    origin, velocity, spins = motion.origin.T, motion.velocity.T, motion.omega.T  # link-major
     for number in mechanism.moving_links:
         fx, fy, moment = external[number]
-        w = motion.omega[:, number]
-        (x, y), (vx, vy) = motion.origin[:, number].T, motion.velocity[:, number].T
+        (x, y), (vx, vy), w = origin[:, number], velocity[:, number], spins[number]
         power += fx * (vx + w * y) + fy * (vy - w * x) + moment * w  # wrench · twist
     return Reduced(energy / omega ** 2, 2.0 * rate / omega ** 3, power / omega)
