@@ -80,10 +80,10 @@ class Continuous:
 
     def __call__(self, angle: FloatArray) -> FloatArray:
         finite = np.isfinite(angle)
-        whole = finite.all()
-        if not whole and not finite.any():
+        if not finite.any():  # (an empty block too)
             self.pending = self.state
             return angle
+        whole = finite.all()
         p = angle if whole else angle[finite]
         ext = p if self.state is None else np.concatenate(([self.state[0]], p))
         dd = np.diff(ext)
