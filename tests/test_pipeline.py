@@ -378,6 +378,28 @@ def test_the_benchmark_friction_model_in_blocks():
     _check(mechanism, 333, step=np.deg2rad(0.1))
 
 
+def _arrays(thing, seen=None) -> list:
+    """Every numpy array a block holds, however deep (dataclasses, dicts, tuples)."""
+    import dataclasses
+
+    seen = set() if seen is None else seen
+    if id(thing) in seen:
+        return []
+    seen.add(id(thing))
+    if isinstance(thing, np.ndarray):
+        return [thing]
+    if dataclasses.is_dataclass(thing) and not isinstance(thing, type):
+        parts = [getattr(thing, f.name) for f in dataclasses.fields(thing)
+                 if f.name != "columns"]
+    elif isinstance(thing, dict):
+        parts = list(thing.values())
+    elif isinstance(thing, (list, tuple)):
+        parts = list(thing)
+    else:
+        return []
+    return [array for part in parts for array in _arrays(part, seen)]
+
+
 def test_what_analyse_hands_out_is_the_callers_in_any_block_size():
     """What ``analyse`` hands out is the caller's, and the same for
     any block size."""
@@ -391,6 +413,11 @@ def test_what_analyse_hands_out_is_the_callers_in_any_block_size():
     torque = result.forces.drive_torque.copy()
     result.columns()["M_drive"][:] = 0.0
     assert np.array_equal(result.forces.drive_torque, torque)
+    for result in (dyade.analyse(_friction_case("self-locking")),
+                   dyade.analyse(_friction_case("dyade-16"))):
+        engine = _arrays(result.block)
+        for name, values in result.columns().items():
+            assert not any(np.shares_memory(values, array) for array in engine), name
     slider = dyade.read_mechanism(MECHANISMS / "slider-crank.toml")
     angle, speed = np.linspace(0.0, 1.0, 20), np.full(20, 10.0)
     for size in (None, 7):

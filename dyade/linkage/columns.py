@@ -40,8 +40,8 @@ def kinematic_columns(mech: Mechanism, block: Block, phases: dict[int, Continuou
     out: Columns = {"angle_deg": np.rad2deg(kin.crank_angle)}
     for link in mech.moving_links:
         out[f"phi_{link}_deg"] = np.rad2deg(phases[link](motion.angle[rows, link]))
-        out[f"omega_{link}"] = motion.omega[:, link]
-        out[f"alpha_{link}"] = motion.alpha[:, link]
+        out[f"omega_{link}"] = motion.omega[:, link].copy()  # the columns' own
+        out[f"alpha_{link}"] = motion.alpha[:, link].copy()
     for joint in mech.joints:
         tag = _tag(joint.name)
         if isinstance(joint, Revolute):
@@ -152,35 +152,37 @@ def force_columns(mech: Mechanism, block: Block) -> Columns:
             out[f"FR_{_tag(name)}"] = value
         out["P_friction"] = rubbing.power
     invalid = ~(forces.valid & block.valid)
-    if invalid.any():
-        out = {key: np.where(invalid, np.nan, value) for key, value in out.items()}
+    out = {key: _blank(invalid, value) for key, value in out.items()}
     # the self-locking figures stay where friction is what makes the forces invalid
     dead = invalid & ~rubbing.blocked if rubbing is not None else invalid
     for name, lock in (block.locking or {}).items():
         if lock.margin is not None:
             out[f"lock_margin_{_tag(name)}"] = _blank(dead, lock.margin)
     if rubbing is not None:
-        out["friction_iterations"] = rubbing.iterations
+        out["friction_iterations"] = rubbing.iterations.copy()
     out["forces_valid"] = (forces.valid & block.valid).astype(np.float64)
     if rubbing is not None:
         for number, det in sorted(rubbing.determinant.items()):
             out[f"friction_det_{number}"] = _blank(dead, det)
     machine = reduced(mech, block.kinematics)
     missing = ~block.valid  # from the kinematics: not given where it is not
-    out["J_red"], out["dJ_red"], out["M_load"] = (_blank(missing, machine.inertia),
-                                                  _blank(missing, machine.slope),
-                                                  _blank(missing, machine.load))
+    out["J_red"], out["dJ_red"], out["M_load"] = (_blank(missing, machine.inertia, True),
+                                                  _blank(missing, machine.slope, True),
+                                                  _blank(missing, machine.load, True))
     if block.drive is not None:
-        out["t"], out["M_motor"] = (block.drive.time,
+        out["t"], out["M_motor"] = (block.drive.time.copy(),
                                     _blank(missing, block.drive.motor_torque))
     if block.rows.all():
         return out
     return {key: value[block.rows] for key, value in out.items()}
 
 
-def _blank(mask: FloatArray, values: FloatArray) -> FloatArray:
-    """``values`` with NaN where ``mask`` (the very array where nothing is masked)."""
-    return np.where(mask, np.nan, values) if mask.any() else values
+def _blank(mask: FloatArray, values: FloatArray, fresh: bool = False) -> FloatArray:
+    """``values`` with NaN where ``mask``: a copy (the columns are their own, not views of
+    the block's forces, friction or motion) unless ``fresh`` (nothing else holds them)."""
+    if mask.any():
+        return np.where(mask, np.nan, values)
+    return values if fresh else values.copy()
 
 
 def columns(mech: Mechanism, block: Block, phases: dict[int, Continuous]) -> Columns:

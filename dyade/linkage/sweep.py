@@ -210,9 +210,8 @@ def collect(run: Run) -> Result:
     kept = None
     row = 0
     for block in run:
-        if whole:  # its columns the caller's own: no view of the block's arrays
-            table = {name: values.copy() for name, values in block.columns.items()}
-            kept, block.columns = block, table
+        if whole:
+            kept, table = block, block.columns
             continue
         if not table:
             total = int(run.rows.sum())
