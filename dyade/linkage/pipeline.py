@@ -38,7 +38,7 @@ from dyade.linkage.block import Block
 from dyade.linkage.blocks import friction_coupling, spans
 from dyade.linkage.columns import Columns, Continuous
 from dyade.linkage.model import FloatArray, Mechanism
-from dyade.linkage.notes import Note, NoteKind, decimals, ranges
+from dyade.linkage.notes import Note, NoteKind, ranges
 from dyade.linkage.plan import Plan
 from dyade.linkage.validity import Policy, assembly, bands
 from dyade.linkage.verdicts import Outcome, Rubbing
@@ -215,7 +215,7 @@ class Run:
         notes: list[Note] = []
         rows = self.rows = assembly(mechanism, policy, setup.allow_partial, notes)
         well = bands(mechanism, policy, rows, notes)
-        usable = policy.valid  # (for the joints that never move; the rest is let go)
+        usable, digits = policy.valid, policy.digits  # (the rest is let go)
         del policy, kin
         if the_plan.friction:
             self.coupling = friction_coupling(mechanism, angle, setup.speed,
@@ -233,7 +233,7 @@ class Run:
             ratio = (time.perf_counter() - started - first_pass) * n / (
                 max(last, 1) * max(first_pass, 1e-9))
             self._tick(n + ratio * last, n * (1.0 + ratio))
-        self.outcome = keep.outcome(notes, usable)
+        self.outcome = keep.outcome(notes, usable, digits)
 
 
 class Keep:
@@ -263,20 +263,19 @@ class Keep:
         if block.friction is not None:
             self.rubbing.keep(first, last, block.friction, block.locking)
 
-    def outcome(self, notes: list[Note], usable: FloatArray) -> Outcome:
+    def outcome(self, notes: list[Note], usable: FloatArray, digits: int) -> Outcome:
         """The notes of the whole sweep after those of its validity policy (``notes``),
         its verdicts and clearance check; ``usable``: (n,) bool, the kinematics valid
-        (for the joints that never move)."""
+        (for the joints that never move); ``digits``: the decimals [°] of its ranges."""
         setup, rows, well = self.setup, self.rows, self.well
         mechanism, angle = setup.mechanism, setup.crank_angle
-        digits = decimals(angle)
         forces_valid, rubbing = self.forces_valid, self.rubbing
         invalid = None if forces_valid is None else well & ~forces_valid
         locking = None
         if rubbing is not None:
             rubbing.finish(usable)
-            notes += rubbing.notes(mechanism, angle, rows)
-            invalid &= ~rubbing.blocked()  # those have notes of their own
+            notes += rubbing.notes(mechanism, angle, rows, digits)
+            invalid &= ~rubbing.blocked  # those have notes of their own
             locking = rubbing.locking(mechanism)
         for part in ("kinematics", "forces"):
             if self.implausible[part].any():

@@ -32,12 +32,14 @@ class Policy:
     """(n, dyads) distance from a dead centre in [0, 1]"""
     valid: FloatArray
     """(n,) bool: every dyad closes and none is singular"""
+    digits: int
+    """the decimals [°] that tell the sweep's positions apart (``notes.decimals``)"""
 
     @classmethod
     def empty(cls, crank_angle: FloatArray, dyads: int) -> Policy:
         n = crank_angle.shape[0]
         return cls(crank_angle, np.empty((n, dyads), dtype=bool), np.empty((n, dyads)),
-                   np.empty((n, dyads)), np.empty(n, dtype=bool))
+                   np.empty((n, dyads)), np.empty(n, dtype=bool), decimals(crank_angle))
 
     def keep(self, first: int, last: int, kin: Kinematics) -> None:
         """Take over a block's kinematics at positions first..last−1."""
@@ -50,8 +52,7 @@ def assembly(mechanism: Mechanism, policy: Policy, allow_partial: bool,
     """(n,) bool: the positions where every dyad closes (the rows reported); an
     ``AssemblyError`` naming the dyads and ranges where some does not, unless
     ``allow_partial`` (then a note)."""
-    angle, closes = policy.crank_angle, policy.closes
-    digits = decimals(angle)
+    angle, closes, digits = policy.crank_angle, policy.closes, policy.digits
     upstream = np.ones(angle.shape[0], dtype=bool)
     problems, failing = [], []
     for col, dyad in enumerate(mechanism.dyads):
@@ -88,10 +89,9 @@ def bands(mechanism: Mechanism, policy: Policy, rows: FloatArray,
     given; in the soft band (transmission angle below ``transmission_warning``, the
     designers' rule) results are given with a note naming the dyad, the ranges and the
     smallest transmission angle."""
-    angle = policy.crank_angle
+    angle, digits = policy.crank_angle, policy.digits
     hard = np.sin(mechanism.dead_centre_angle)
     soft = np.sin(mechanism.transmission_warning)
-    digits = decimals(angle)
     well = rows & policy.valid
     for col, dyad in enumerate(mechanism.dyads):
         quality = policy.conditioning[:, col]

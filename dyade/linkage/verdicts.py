@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dyade.linkage.model import FloatArray, Mechanism
-from dyade.linkage.notes import Note, NoteKind, decimals, ranges
+from dyade.linkage.notes import Note, NoteKind, ranges
 from dyade.linkage.plan import Plan
 
 if TYPE_CHECKING:  # imported where used: a sweep without friction never loads it
@@ -98,12 +98,12 @@ class Rubbing:
                if joint.name in self.locks}
         return out or None
 
-    def notes(self, mechanism: Mechanism, angle: FloatArray, rows: FloatArray
+    def notes(self, mechanism: Mechanism, angle: FloatArray, rows: FloatArray, digits: int
               ) -> list[Note]:
-        """The friction and self-locking notes of the sweep (once ``finish``ed)."""
+        """The friction and self-locking notes of the sweep (once ``finish``ed), its
+        crank-angle ranges told apart to ``digits`` decimals [°]."""
         from dyade.linkage.friction import RESTART_PASSES
 
-        digits = decimals(angle)
         out = []
         for dyad in mechanism.dyads:
             near = rows & self.near.get(dyad.number, np.zeros_like(rows))
@@ -140,13 +140,13 @@ class Rubbing:
                              "dyad": lock.dyad, "digits": digits}))
         return out
 
+    @property
     def blocked(self) -> FloatArray:
         """(n,) bool: positions where friction keeps the forces from being given
         (self-locking, not solved, near self-locking): they have notes of their own."""
-        out = self.locked | self.unsolved
-        for mask in self.near.values():
-            out = out | mask
-        return out
+        from dyade.linkage import friction
+
+        return friction.blocked(self.locked, self.unsolved, self.near)
 
 
 @dataclass(slots=True, eq=False)

@@ -17,9 +17,9 @@ The paper's fixed-point iteration is the tests' independent check (``tests/fixed
 from __future__ import annotations
 
 from dyade.linkage.friction.laws import AT_REST_RTOL, EDGE
-from dyade.linkage.friction.result import FrictionResult, never_moves
+from dyade.linkage.friction.result import FrictionResult, blocked, never_moves
 from dyade.linkage.friction.scales import Coupling, sample, top_speed
 from dyade.linkage.friction.solver import RESTART_PASSES, coupling, solve
 
-__all__ = ["AT_REST_RTOL", "EDGE", "RESTART_PASSES", "Coupling", "FrictionResult", "coupling",
-           "never_moves", "sample", "solve", "top_speed"]
+__all__ = ["AT_REST_RTOL", "EDGE", "RESTART_PASSES", "Coupling", "FrictionResult", "blocked",
+           "coupling", "never_moves", "sample", "solve", "top_speed"]

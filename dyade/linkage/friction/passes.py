@@ -9,7 +9,7 @@ import numpy as np
 
 from dyade.linkage import kinetostatics
 from dyade.linkage.friction.laws import AT_REST_RTOL, Law, has_friction
-from dyade.linkage.friction.result import FrictionResult, never_moves
+from dyade.linkage.friction.result import FrictionResult, blocked, never_moves
 from dyade.linkage.friction.scales import Coupling, force_floor, sample, top_speed
 from dyade.linkage.kinematics import Group, Kinematics
 from dyade.linkage.model import CRANK, FloatArray, Joint, Mechanism, Revolute, toward_higher
@@ -121,10 +121,7 @@ def run(kind, mechanism: Mechanism, kin: Kinematics, tol: float | None,
     for masks in (rub.locks, rub.near):
         for key in masks:
             masks[key] = masks[key] & valid
-    blocked = rub.locked | rub.unsolved
-    for mask in rub.near.values():
-        blocked = blocked | mask
-    forces.valid = valid & ~blocked
+    forces.valid = valid & ~blocked(rub.locked, rub.unsolved, rub.near)
     n = kin.crank_angle.shape[0]
     usable = kin.valid
     moments, friction_forces = {}, {}

@@ -52,10 +52,18 @@ class FrictionResult:
     @property
     def blocked(self) -> FloatArray:
         """(n,) bool: forces not given because of friction (locked, unsolved or near)."""
-        out = self.locked | self.unsolved
-        for mask in self.near.values():
-            out = out | mask
-        return out
+        return blocked(self.locked, self.unsolved, self.near)
+
+
+def blocked(locked: FloatArray, unsolved: FloatArray, near: dict[int, FloatArray]
+            ) -> FloatArray:
+    """(n,) bool: where friction keeps the forces from being given: some dyad self-locks
+    (``locked``), no solution was found (``unsolved``), or a dyad is near self-locking
+    (``near``: dyad number -> (n,) bool)."""
+    out = locked | unsolved
+    for mask in near.values():
+        out = out | mask
+    return out
 
 
 def never_moves(at_rest: dict[tuple[int, int], FloatArray], usable: FloatArray

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Golden comparison: run the golden commands on TREE and diff them against the baseline.
-#   python3 tools/golden/run.py OLD_TREE $GOLDEN/before     # once: the baseline
-#   bash tools/golden/compare.sh TREE
+#   python3 tests/golden/run.py OLD_TREE $GOLDEN/before     # once: the baseline
+#   bash tests/golden/compare.sh TREE
 # GOLDEN (default /tmp/dyade-golden) holds the runs. Writes $GOLDEN/after-$(basename TREE)
 # (emptied first), compares it with $GOLDEN/before, prints the number of files compared
 # and every file that differs or exists on one side only. Exit status 0: byte-identical;

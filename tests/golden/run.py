@@ -3,7 +3,7 @@
 record each command's stdout, stderr and exit code, normalised so that two runs of the
 same tree are byte-identical.
 
-    python3 tools/golden/run.py TREE OUTDIR      (tools/golden/compare.sh: against a baseline)
+    python3 tests/golden/run.py TREE OUTDIR      (tests/golden/compare.sh: against a baseline)
 
 TREE is a dyade checkout (the directory holding dyade/ and mechanisms/); nothing is
 installed: each command runs as `PYTHON -m dyade ...` with cwd=TREE and PYTHONPATH=TREE.
@@ -33,7 +33,10 @@ Normalisation (mask_times / normalise below), found by diffing two runs of the b
       the same keys in JSON ("time_ms": [...] / number -> "<T>").
     In tables the masked field keeps its width ("spaces + number" becomes a run of the
     same length ending in <T>), so alignment is still compared.
-Everything else must be byte-identical. A per-command wall-time list goes to
+Everything else must be byte-identical.
+
+The hostile cases are written out here, not imported from tests/test_hostile.py: the run
+must give the same commands to an old tree and a new one, whatever their tests say. A per-command wall-time list goes to
 OUTDIR.timings.tsv (beside OUTDIR, not in it).
 """
 
