@@ -30,6 +30,8 @@ The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``
   ``gear_response(drive, frequencies, ...)``, ``gear_statics(drive, torques, ...)``,
   ``check_elimination(drive, modes=None)``: gear drives as rigid finite elements
   (``dyade.vibration.gears``)
+- ``study(file, *, jobs, executor, output, resume)`` -> ``Study``: a design study, one
+  row per variant (``dyade.study``; ``Study.columns()``, ``.to_pandas()``)
 - ``DyadeError``, ``InputError``, ``AssemblyError``
 
 Everything is in SI units (m, rad, s, kg, N); mechanism files may use mm and degrees.
@@ -89,7 +91,8 @@ _EXPORTS = {
     "AssemblyError": "dyade.errors",
 }
 
-_SUBMODULES = {"clearance", "errors", "files", "linkage", "machine", "units", "vibration"}
+_SUBMODULES = {"clearance", "errors", "files", "linkage", "machine", "study", "units",
+               "vibration"}
 """packages of the API, loaded on first attribute access (``dyade.clearance``)"""
 
 __all__ = sorted(_EXPORTS) + ["__version__"]

@@ -18,6 +18,8 @@ number of workers.
 from __future__ import annotations
 
 import os
+import sys
+import types
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -27,6 +29,17 @@ from dyade.errors import InputError
 from dyade.study.spec import Parameter, Spec, parse, read
 
 __all__ = ["Parameter", "Spec", "Study", "needs", "parse", "read", "study"]
+
+
+class _Package(types.ModuleType):
+    """``dyade.study(...)`` is ``dyade.study.study(...)``: the package is the function's
+    name too (importing a subpackage sets the parent's attribute to the module)."""
+
+    def __call__(self, *args, **kwargs) -> Study:
+        return study(*args, **kwargs)
+
+
+sys.modules[__name__].__class__ = _Package
 
 
 def needs(module: str, what: str, extra: str = "study") -> None:
@@ -107,8 +120,7 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
         ``Client(address).get_executor()``; the evaluator and the blocks must pickle.
     output : str or os.PathLike, optional
         A CSV file the rows stream to, block by block, as they are computed (for
-        another format the caller writes the table; the rows then stream to
-        OUTPUT.part.csv).
+        another format, write the table from ``columns()`` afterwards).
     resume : bool
         Keep the rows already in ``output`` and compute only the others.
     block_size : int, optional
@@ -135,7 +147,8 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
     evaluator = run.evaluator_for(spec)
     params = [p.key for p in spec.parameters]
     nominal = [p.nominal for p in spec.parameters]
-    units = {"variant": "", "status": "", "reason": "", **{k: _file_unit(k) for k in params}}
+    units = {"variant": "", "status": "", "reason": "",
+             **{k: _file_unit(k, evaluator.data.get("units", {})) for k in params}}
     if spec.plan == "optimise":
         return _optimise(spec, evaluator, params, units, jobs, executor)
     matrix = plans.variants(spec)
@@ -143,8 +156,7 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
         raise InputError(f"{spec.label}: the plan gives no variant.", source=spec.label)
     outputs, cost = run.probe(evaluator, matrix, nominal)
     units.update({name: unit(name) for name in outputs})
-    target = None if output is None else os.fspath(output)
-    path, temporary = run.journal_path(target)
+    path = run.journal_path(None if output is None else os.fspath(output))
     try:
         table, evaluated = run.execute(spec, evaluator, matrix, outputs, path, jobs=jobs,
                                        executor=executor, resume=resume, size=block_size,
@@ -163,7 +175,6 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
     if spec.question == "optimise":  # several objectives over a sampled plan
         result.pareto = questions.pareto(table, spec.optimise["objectives"],
                                          spec.optimise["bounds"])
-    result.journal = path if temporary and output is not None else None
     return result
 
 
@@ -199,6 +210,22 @@ def _optimise(spec, evaluator, params, units, jobs, executor) -> Study:
                  optimum["evaluations"], optimum=optimum, units=units)
 
 
-def _file_unit(key: str) -> str:
-    """A parameter's unit, as the mechanism file gives it (its [units])."""
-    return "file units"
+LENGTHS = {"length", "lengths", "centre", "points", "slider_length", "slider_height",
+           "pin_radius", "slider_point", "point", "gap", "A0", "B0"}
+ANGLES = {"angle", "start", "stop", "step", "dead_centre", "transmission_warning"}
+OTHER = {"mass": "kg", "inertia": "kg·m²", "speed_rpm": "rpm", "friction": "-",
+         "coefficient": "-", "stiffness": "N/m", "variant": "-"}
+
+
+def _file_unit(key: str, units: dict) -> str:
+    """A parameter's unit, as the mechanism file takes it (its ``[units]``): lengths and
+    angles in the file's units, the rest in SI (""; unknown)."""
+    parts = [part for part in key.split(".") if not part.isdigit()]
+    names = set(parts[-2:])
+    if parts and parts[-1] in OTHER:
+        return OTHER[parts[-1]]
+    if names & ANGLES:
+        return units.get("angle", "rad") if isinstance(units, dict) else "rad"
+    if names & LENGTHS or (parts and parts[0] == "frame"):
+        return units.get("length", "m") if isinstance(units, dict) else "m"
+    return ""

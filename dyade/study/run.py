@@ -130,16 +130,12 @@ def _lost(block, reason: str):
     return [(first + i, FAILED, f"{reason} (rerun it alone)", {}) for i in range(len(values))]
 
 
-def journal_path(output: str | None, directory: str | None = None) -> tuple[str, bool]:
-    """Where the rows stream to: the CSV output itself, else a ``.part.csv`` beside the
-    output (removed once it is written); a temporary file without an output. (path,
-    whether it is temporary)."""
-    if output is None:
-        import tempfile
+def journal_path(output: str | None) -> str:
+    """Where the rows stream to: ``output`` (CSV), else a temporary file."""
+    if output is not None:
+        return output
+    import tempfile
 
-        handle, path = tempfile.mkstemp(suffix=".csv", prefix="dyade-study-", dir=directory)
-        os.close(handle)
-        return path, True
-    if output.endswith(".csv"):
-        return output, False
-    return output + ".part.csv", True
+    handle, path = tempfile.mkstemp(suffix=".csv", prefix="dyade-study-")
+    os.close(handle)
+    return path

@@ -146,4 +146,10 @@ def write_parquet(columns, units: dict[str, str], path: str,
     meta = {"dyade.units": json.dumps({n: units.get(n, "") for n in columns})}
     meta.update(metadata or {})
     table = pa.Table.from_arrays(arrays, schema=pa.schema(fields, metadata=meta))
-    pq.write_table(table, path)
+    partial = f"{path}.partial"
+    try:
+        pq.write_table(table, partial)
+        os.replace(partial, path)
+    finally:
+        if os.path.exists(partial):
+            os.unlink(partial)
