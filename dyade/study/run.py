@@ -33,11 +33,16 @@ def evaluator_for(spec: Spec) -> Evaluator:
     nominal = [p.nominal for p in spec.parameters]
     try:
         evaluator.mechanism(nominal)
-    except InputError as err:
-        raise InputError(f"{spec.label}: the nominal variant ("
-                         + ", ".join(f"{p.key} = {p.nominal:g}" for p in spec.parameters)
-                         + f") is refused: {err}", source=spec.label) from None
+    except InputError as err:  # a key path that is not there; a value is the rows' to say
+        text = str(err)
+        if any(words in text for words in KEY_PROBLEMS):
+            raise InputError(f"{spec.label}: [parameters]: {text}", source=spec.label,
+                             key=err.key) from None
     return evaluator
+
+
+KEY_PROBLEMS = ("unknown key", "are numbered", "is a value, not a table")
+"""what the reader and ``set_dotted`` say of a key path that is wrong (not of a value)"""
 
 
 def probe(evaluator: Evaluator, matrix: np.ndarray, nominal) -> tuple[list[str], float]:
