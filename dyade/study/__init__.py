@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from dyade.errors import InputError
-from dyade.study.spec import Parameter, Spec, parse, read
+from dyade.study.spec import Parameter, Spec, needs, parse, read
 
 __all__ = ["Parameter", "Spec", "Study", "needs", "parse", "read", "study"]
 
@@ -40,15 +40,6 @@ class _Package(types.ModuleType):
 
 
 sys.modules[__name__].__class__ = _Package
-
-
-def needs(module: str, what: str, extra: str = "study") -> None:
-    """Refuse, with the extra to install, when an optional module is missing."""
-    import importlib.util
-
-    if importlib.util.find_spec(module) is None:
-        raise InputError(f"{what} needs {module}, which is not installed: "
-                         f"pip install \"dyade[{extra}]\".")
 
 
 @dataclass(eq=False)

@@ -32,7 +32,7 @@ def variants(spec: Spec) -> np.ndarray:
     if spec.plan == "monte-carlo":
         u = np.random.default_rng(spec.seed).random((spec.samples, len(params)))
     else:  # latin-hypercube: one sample in each of n equal strata of every parameter
-        from dyade.study import needs
+        from dyade.study.spec import needs
 
         needs("scipy", "a latin-hypercube plan")
         from scipy.stats import qmc

@@ -107,7 +107,7 @@ def optimise(spec: Spec, evaluator: Evaluator, workers=1) -> dict[str, Any]:
     """Minimise (or maximise) one output over the parameters' ranges with
     ``scipy.optimize.differential_evolution`` (seeded; ``workers``: a map-like callable
     or 1), polished locally by L-BFGS-B when ``polish``."""
-    from dyade.study import needs
+    from dyade.study.spec import needs
 
     needs("scipy", "optimise")
     from scipy.optimize import differential_evolution

@@ -90,6 +90,15 @@ class Spec:
     optimise: dict[str, Any] = field(default_factory=dict)
 
 
+def needs(module: str, what: str, extra: str = "study") -> None:
+    """Refuse, with the extra to install, when an optional module is missing."""
+    import importlib.util
+
+    if importlib.util.find_spec(module) is None:
+        raise InputError(f"{what} needs {module}, which is not installed: "
+                         f"pip install \"dyade[{extra}]\".")
+
+
 def fail(label: str, key: str, message: str) -> InputError:
     return InputError(f"{label}: `{key}` {message}", source=label, key=key)
 

@@ -131,7 +131,7 @@ def write_parquet(columns, units: dict[str, str], path: str,
     """Named columns as a Parquet file (the ``parquet`` extra, pyarrow): each column's
     unit in its field's metadata (``unit``) and all of them, as JSON, in the schema's
     (``dyade.units``)."""
-    from dyade.study import needs
+    from dyade.study.spec import needs
 
     needs("pyarrow", "Parquet tables", extra="parquet")
     import pyarrow as pa
