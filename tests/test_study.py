@@ -367,3 +367,19 @@ def test_optimise_finds_the_complete_force_balance(tmp_path):
     balanced = dyade.balance(dyade.read_mechanism(shipped("fourbar.toml"), {
         "links.2.mass": 0.6, "links.2.centre": [0, 0]}))
     assert balanced is not None
+
+
+def test_plot_study_figures(tmp_path):
+    pytest.importorskip("matplotlib")
+    grid = study_file(tmp_path, "fourbar.toml", {"dyad.2.lengths.1": "[80, 190, 200]",
+                                                 "dyad.2.lengths.2": "[150, 155]"})
+    runner = CliRunner()
+    for args in (["--x", "dyad.2.lengths.1"], ["--x", "dyad.2.lengths.1", "--y",
+                                                "dyad.2.lengths.2"]):
+        target = tmp_path / f"figure{len(args)}.png"
+        out = runner.invoke(main, ["plot", "study", grid, "-o", str(target), *args])
+        assert out.exit_code == 0, out.output
+        assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    out = runner.invoke(main, ["plot", "study", grid, "--show-output", "M_drvie_rms",
+                               "-o", str(tmp_path / "x.png")])
+    assert out.exit_code == 2 and "Did you mean `M_drive_rms`" in out.output

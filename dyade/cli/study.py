@@ -108,11 +108,32 @@ def connect(address: str):
     from distributed import Client
 
     logging.getLogger("distributed").setLevel(logging.CRITICAL)
+    reachable(address)
     try:
         return Client(address, timeout="5s")
     except (OSError, TimeoutError, ValueError) as err:
         raise click.BadParameter(f"no Dask scheduler answers at {address} ({err}).",
                                  param_hint="--scheduler") from None
+
+
+def reachable(address: str, timeout: float = 3.0) -> None:
+    """Refuse at once a tcp:// address where nothing listens (Dask's client would try
+    again until its timeout)."""
+    import socket
+
+    if not address.startswith("tcp://"):
+        return
+    host, _, port = address[len("tcp://"):].rpartition(":")
+    try:
+        number = int(port.strip("/"))
+    except ValueError:
+        raise click.BadParameter(f"{address}: give tcp://HOST:PORT.",
+                                 param_hint="--scheduler") from None
+    try:
+        socket.create_connection((host.strip("[]"), number), timeout=timeout).close()
+    except OSError as err:
+        raise click.BadParameter(f"no Dask scheduler answers at {address} "
+                                 f"({err.strerror or err}).", param_hint="--scheduler") from None
 
 
 def bar():
