@@ -105,13 +105,15 @@ def _extreme(angle, values) -> dict[str, Any]:
     return {"min": values[lo], "min_at_deg": angle[lo], "max": values[hi], "max_at_deg": angle[hi]}
 
 
-def summary(result: Outcome, cols: Columns) -> dict[str, Any]:
-    """Per column min/max and where; drive, friction, self-locking, clearance figures."""
+def summary(result: Outcome, cols: Columns, extremes: bool = True) -> dict[str, Any]:
+    """Per column min/max and where (unless not ``extremes``); drive, friction,
+    self-locking, clearance figures."""
     angle = cols["angle_deg"]
     out: dict[str, Any] = {"mechanism": result.mechanism.name, "positions": int(angle.size),
-                           **motion_figures(result, cols),
-                           "columns": {name: _extreme(angle, values)
-                                       for name, values in cols.items() if name != "angle_deg"}}
+                           **motion_figures(result, cols)}
+    if extremes:
+        out["columns"] = {name: _extreme(angle, values)
+                          for name, values in cols.items() if name != "angle_deg"}
     if result.forces_valid is not None:
         torque = cols["M_drive"]
         given = torque[np.isfinite(torque)]  # none where the forces are nowhere given

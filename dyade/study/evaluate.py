@@ -46,10 +46,10 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
     moment, and ``extras`` (``flywheel``: the inertia for ``fluctuation``;
     ``clearance``: the peak force and amplification per clearance joint). NaN where the
     summary gives no value (a time ratio of an output that does not swing once)."""
-    from dyade.linkage.summary import cycle_mean
+    from dyade.linkage.summary import cycle_mean, summary
 
     cols = result.columns()
-    s = result.summary()
+    s = summary(result, cols, extremes=False)
     out: dict[str, float] = {}
     for dyad, figures in s["transmission"].items():
         out[f"mu_{dyad}_min_deg"] = figures["min_deg"]
