@@ -145,7 +145,8 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
     matrix = plans.variants(spec)
     if not len(matrix):
         raise InputError(f"{spec.label}: the plan gives no variant.", source=spec.label)
-    outputs, cost = run.probe(evaluator, matrix, nominal)
+    outputs, cost = run.probe(evaluator, matrix, nominal,
+                              precise=(jobs > 1 or executor is not None) and block_size is None)
     units.update({name: unit(name) for name in outputs})
     path = run.journal_path(None if output is None else os.fspath(output))
     try:

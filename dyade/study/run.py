@@ -45,15 +45,20 @@ KEY_PROBLEMS = ("unknown key", "are numbered", "is a value, not a table")
 """what the reader and ``set_dotted`` say of a key path that is wrong (not of a value)"""
 
 
-def probe(evaluator: Evaluator, matrix: np.ndarray, nominal) -> tuple[list[str], float]:
+def probe(evaluator: Evaluator, matrix: np.ndarray, nominal, precise: bool = True
+          ) -> tuple[list[str], float]:
     """The output names (of the nominal variant, else of the first that gives outputs)
-    and the time one variant takes [s] (its second evaluation: the first loads
-    modules)."""
-    status, _, out = evaluator.one(nominal)
+    and the time one variant takes [s]: with ``precise``, of a second evaluation (the
+    first loads modules), for the block size of parallel runs."""
     started = time.perf_counter()
-    evaluator.one(nominal)
+    status, _, out = evaluator.one(nominal)
     cost = time.perf_counter() - started
-    evaluator.calls -= 2
+    evaluator.calls -= 1
+    if precise:
+        started = time.perf_counter()
+        evaluator.one(nominal)
+        cost = time.perf_counter() - started
+        evaluator.calls -= 1
     for row in matrix[:5] if not out else ():
         _, _, out = evaluator.one(row)
         evaluator.calls -= 1
