@@ -156,6 +156,8 @@ def test_sensitivity_equals_central_differences_of_single_runs(tmp_path):
         assert row["normalised"] == pytest.approx(
             derivative * nominal[key] / centre["drive"]["M_rms"], rel=1e-9)
     assert rows[("links.4.mass", "M_drive_rms")]["derivative"] != 0.0
+    # the mean drive power of a machine without losses is 0 (1e-16 W): no % per %
+    assert math.isnan(rows[("links.4.mass", "P_drive_mean")]["normalised"])
 
 
 def test_failing_variants_are_rows_and_the_study_goes_on(tmp_path):
@@ -363,10 +365,12 @@ def test_optimise_finds_the_complete_force_balance(tmp_path):
         "links.2.mass": 0.6, "links.2.centre": [0, 0]}))
     force = np.hypot(unbalanced.columns()["Fx_shake"], unbalanced.columns()["Fy_shake"])
     assert result.optimum["value"] < 1e-6 * np.sqrt(np.mean(force ** 2))
-    # dyade balance: the counterweights' first moments put the centres there
+    # dyade balance: the same first moments m·c of crank and rocker, by least squares
     balanced = dyade.balance(dyade.read_mechanism(shipped("fourbar.toml"), {
-        "links.2.mass": 0.6, "links.2.centre": [0, 0]}))
-    assert balanced is not None
+        "links.2.mass": 0.6, "links.2.centre": [0, 0]})).after.mechanism.links
+    for link, mass, (cx, cy) in ((2, 0.6, x[:2]), (4, 0.9, x[2:])):
+        moment = balanced[link].mass * np.array(balanced[link].centre)
+        assert mass * np.array([cx, cy]) / 1000 == pytest.approx(moment, abs=1e-4 * mass)
 
 
 def test_plot_study_figures(tmp_path):
@@ -383,3 +387,25 @@ def test_plot_study_figures(tmp_path):
     out = runner.invoke(main, ["plot", "study", grid, "--show-output", "M_drvie_rms",
                                "-o", str(tmp_path / "x.png")])
     assert out.exit_code == 2 and "Did you mean `M_drive_rms`" in out.output
+
+
+def test_progress_bar_on_a_terminal_only(monkeypatch):
+    import io
+    import sys
+
+    from dyade.cli.study import bar
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    with bar() as tick:  # a pipe (pytest's capture): no bar
+        assert tick is None
+    screen = Terminal()
+    monkeypatch.setattr(sys, "stderr", screen)
+    with bar() as tick:
+        for done in (0, 10, 20):
+            tick(done, 40)
+            time.sleep(0.05)
+    shown = screen.getvalue()
+    assert "20/40" in shown and "variants/s" in shown

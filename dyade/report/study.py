@@ -18,9 +18,9 @@ def tables(result) -> list:
     """The tables of a ``Study`` for the terminal."""
     cols, out = result.columns(), []
     counts = Counter(cols["status"].tolist())
-    summary = Table(title=f"Study {result.spec.label}: {len(cols['variant'])} variants of "
-                          f"{result.spec.mechanism.rsplit('/', 1)[-1]} ({result.spec.plan})",
-                    title_justify="left")
+    title = (f"Study {result.spec.label}: {len(cols['variant'])} variants of "
+             f"{result.spec.mechanism.rsplit('/', 1)[-1]} ({result.spec.plan})")
+    summary = Table(title=title, title_justify="left", min_width=len(title))
     summary.add_column("status")
     summary.add_column("variants", justify="right")
     for status, count in counts.most_common():

@@ -13,11 +13,15 @@ from dyade.study.evaluate import LOCKS, OK, OPEN, REFUSED, Evaluator
 from dyade.study.spec import Spec
 
 PERCENTILES = (1, 5, 50, 95, 99)
+ZERO = 1e-9
+"""an output below this in its unit (SI, degrees) is numerically zero (the mean drive
+power of a machine without losses comes out at 1e-16 W): no normalised sensitivity"""
 
 
 def sensitivity(columns: dict, spec: Spec, outputs: list[str], h: np.ndarray) -> list[dict]:
     """d output / d parameter by central differences (the rows −h, +h of each
-    parameter after the nominal row), and normalised: (dy/y)/(dx/x) [% per %]."""
+    parameter after the nominal row), and normalised: (dy/y)/(dx/x) [% per %]; NaN where
+    the output is numerically zero (below ``ZERO``)."""
     rows = []
     y0 = {name: columns[name][0] for name in outputs}
     for j, p in enumerate(spec.parameters):
@@ -25,7 +29,7 @@ def sensitivity(columns: dict, spec: Spec, outputs: list[str], h: np.ndarray) ->
         for name in outputs:
             derivative = (columns[name][plus] - columns[name][minus]) / (2.0 * h[j])
             normalised = (derivative * p.nominal / y0[name]
-                          if y0[name] != 0 and np.isfinite(y0[name]) else math.nan)
+                          if abs(y0[name]) > ZERO and np.isfinite(y0[name]) else math.nan)
             rows.append({"parameter": p.key, "output": name, "nominal": p.nominal,
                          "step": float(h[j]), "value": float(y0[name]),
                          "derivative": float(derivative), "normalised": float(normalised)})
