@@ -120,11 +120,14 @@ def test_same_seed_same_table_on_any_number_of_processes(tmp_path):
                       {"dyad.2.lengths.1": "{ nominal = 200, sd = 2 }",
                        "links.4.mass": "{ uniform = [0.8, 1.0] }"},
                       "kind = \"latin-hypercube\"\nsamples = 12\nseed = 7")
+    from concurrent.futures import ThreadPoolExecutor
+
     one = dyade.study(path, jobs=1).columns()
     two = dyade.study(path, jobs=2, block_size=2).columns()
-    again = dyade.study(path, jobs=1).columns()
+    with ThreadPoolExecutor(3) as executor:  # any concurrent.futures.Executor
+        threads = dyade.study(path, executor=executor, block_size=5).columns()
     for name in one:
-        assert np.array_equal(one[name], two[name]) and np.array_equal(one[name], again[name])
+        assert np.array_equal(one[name], two[name]) and np.array_equal(one[name], threads[name])
     assert len(np.unique(one["dyad.2.lengths.1"])) == 12
 
 
