@@ -91,7 +91,7 @@ def execute(spec: Spec, evaluator: Evaluator, matrix: np.ndarray, outputs: list[
         if index >= len(matrix) or any(
                 float(row[1 + j]) != matrix[index, j] for j in range(len(params))):
             journal.close()
-            raise InputError(f"{spec.label}: --resume: variant {index} of {journal_path} has "
+            raise InputError(f"{spec.label}: resuming: variant {index} of {journal_path} has "
                              f"other parameter values than this plan gives (its seed, "
                              f"samples or parameters changed); remove the file or write "
                              f"elsewhere.", source=journal_path)

@@ -71,7 +71,7 @@ def _read_rows(path: str, names: list[str], label: str) -> dict[int, list[str]]:
     except StopIteration:
         return {}
     if first != names:
-        raise InputError(f"{label}: --resume: {path} holds other columns than this study "
+        raise InputError(f"{label}: resuming: {path} holds other columns than this study "
                          f"gives (another study, or the study file changed); remove it or "
                          f"write elsewhere.", source=path)
     done = {}
