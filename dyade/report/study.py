@@ -23,8 +23,12 @@ def tables(result) -> list:
     summary = Table(title=title, title_justify="left", min_width=len(title))
     summary.add_column("status")
     summary.add_column("variants", justify="right")
+    summary.add_column("first reason")
     for status, count in counts.most_common():
-        summary.add_row(status, str(count))
+        first = int(np.flatnonzero(cols["status"] == status)[0])
+        summary.add_row(status, str(count),
+                        f"variant {cols['variant'][first]}: {cols['reason'][first]}"
+                        if cols["reason"][first] else "")
     out.append(summary)
     if result.sensitivity is not None:
         table = Table(title="Sensitivity (central differences; normalised: % output per % "

@@ -78,7 +78,7 @@ def test_dyade16_friction_single_runs(benchmark):
 
 @pytest.mark.parametrize("jobs", [1, 2])
 def test_study_jobs(benchmark, tmp_path, jobs):
-    path = _fourbar_study(tmp_path, 4000)  # about 10 s on one core
+    path = _fourbar_study(tmp_path, 8000)  # about 11 s on one core
     result = benchmark.pedantic(dyade.study, args=(path,), kwargs={"jobs": jobs}, rounds=1,
                                 iterations=1)
-    assert len(result.columns()["variant"]) == 4000
+    assert len(result.columns()["variant"]) == 8000
