@@ -294,6 +294,7 @@ def test_json_and_table_outputs(tmp_path):
     ({"dyad.2.lengths.1": "{ nominal = 20, tol = 30 }"}, "kind = \"monte-carlo\"\nsamples = 2",
      "must stay positive"),
     ({"dyad.2.lengths.1": "{ uniform = [190, 210] }"}, "", "a grid needs a list or a range"),
+    ({"dyad.2.lengths.1": "{ range = [190, 210] }"}, "", "a grid needs its values"),
     ({"links.4.mass": "[1]"}, "kind = \"monte-karlo\"", "Did you mean `monte-carlo`"),
 ])
 def test_bad_study_files_exit_2(tmp_path, parameters, plan, message):
@@ -354,7 +355,7 @@ def test_dask_local_cluster_gives_the_same_table(tmp_path):
 @pytest.mark.slow
 def test_optimise_finds_the_complete_force_balance(tmp_path):
     pytest.importorskip("scipy")
-    bounds = "{ range = [-200, 200], count = 2 }"
+    bounds = "{ range = [-200, 200] }"
     path = study_file(tmp_path, "fourbar.toml",
                       {"links.2.centre.1": bounds, "links.2.centre.2": bounds,
                        "links.4.centre.1": bounds, "links.4.centre.2": bounds},

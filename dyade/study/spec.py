@@ -151,9 +151,11 @@ def parameter(label: str, key: str, value: Any, rel_step: float) -> Parameter:
     elif isinstance(value, dict) and "range" in value:
         _keys(label, value, where, {"range", "count", "step"})
         low, high = _pair(label, f"{where}.range", value["range"])
-        if ("count" in value) == ("step" in value):
-            raise fail(label, where, "needs one of count (values from low to high) or step.")
-        if "count" in value:
+        if "count" in value and "step" in value:
+            raise fail(label, where, "takes count (values from low to high) or step, not both.")
+        if "count" not in value and "step" not in value:  # bounds only (sampled, optimised)
+            out = Parameter(key, "range", (), low, high, 0.5 * (low + high))
+        elif "count" in value:
             count = value["count"]
             if isinstance(count, bool) or not isinstance(count, int) or count < 2:
                 raise fail(label, f"{where}.count", f"must be a whole number ≥ 2, got {count!r}.")
@@ -166,10 +168,11 @@ def parameter(label: str, key: str, value: Any, rel_step: float) -> Parameter:
                 raise fail(label, f"{where}.step", f"{grid_step:g} is larger than the range "
                                                    f"[{low:g}, {high:g}]: one value only.")
             high = low + (count - 1) * grid_step
-        import numpy as np
+        if "count" in value or "step" in value:
+            import numpy as np
 
-        values = tuple(np.linspace(low, high, count).tolist())
-        out = Parameter(key, "range", values, low, high, 0.5 * (low + high))
+            values = tuple(np.linspace(low, high, count).tolist())
+            out = Parameter(key, "range", values, low, high, 0.5 * (low + high))
     elif isinstance(value, dict) and "uniform" in value:
         _keys(label, value, where, {"uniform"})
         low, high = _pair(label, f"{where}.uniform", value["uniform"])
@@ -285,6 +288,9 @@ def parse(data: dict[str, Any], label: str = "study", directory: str = ".") -> S
                 raise fail(label, f"parameters.{p.key}", f"is a distribution ({p.kind}); a grid "
                                                          f"needs a list or a range (or plan.kind = "
                                                          f"\"monte-carlo\").")
+            if not p.values:
+                raise fail(label, f"parameters.{p.key}", "is a range without count or step: a "
+                                                         "grid needs its values.")
         count = math.prod(len(p.values) for p in params)
         if count > MAX_VARIANTS:
             raise fail(label, "parameters", f"make a grid of {count:,} variants; at most "
