@@ -413,3 +413,37 @@ def test_progress_bar_on_a_terminal_only(monkeypatch):
             time.sleep(0.05)
     shown = screen.getvalue()
     assert "20/40" in shown and "variants/s" in shown
+
+
+@pytest.mark.slow
+def test_a_killed_study_resumes(tmp_path):
+    import os
+    import signal
+    import subprocess
+    import sys
+
+    from tests.helpers import ROOT
+
+    path = study_file(tmp_path, "fourbar.toml", {"links.4.mass": "{ uniform = [0.8, 1] }"},
+                      "kind = \"monte-carlo\"\nsamples = 400\nseed = 9")
+    output = tmp_path / "out.csv"
+    process = subprocess.Popen([sys.executable, "-m", "dyade", "study", path, "-o", str(output),
+                                "--block-size", "10"], cwd=ROOT, stderr=subprocess.DEVNULL)
+    deadline = time.time() + 60
+    while time.time() < deadline:
+        if output.exists() and output.read_text().count("\n") > 60:
+            break
+        time.sleep(0.05)
+    os.kill(process.pid, signal.SIGKILL)
+    process.wait()
+    done = output.read_text().count("\n") - 1
+    assert 0 < done < 400
+    out = subprocess.run([sys.executable, "-m", "dyade", "study", path, "-o", str(output),
+                          "--resume"], cwd=ROOT, capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    computed = int(out.stderr.split("(")[1].split(" computed")[0])
+    assert 400 - done <= computed < 400 - done + 10  # a line cut short is computed again
+    whole = dyade.study(path).columns()
+    read = tables.read_csv(str(output))
+    for name in whole:
+        assert np.array_equal(read[name], whole[name]), name

@@ -67,6 +67,14 @@ def study(study_file: str, output: str | None, fmt: str | None, resume: bool, jo
                  (output + ".part.csv" if output else None), resume, jobs, scheduler,
                  block_size)
     write(result, output, fmt)
+    if output:
+        from dyade.cli.output import console
+
+        total = len(result.columns()["variant"])
+        kept = total - result.evaluations
+        console(stderr=True).print(f"wrote {output}: {total} variants"
+                                   + (f" ({result.evaluations} computed, {kept} kept from the "
+                                      f"interrupted run)" if resume else ""))
 
 
 def _format(output: str | None) -> str:
