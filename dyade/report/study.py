@@ -49,7 +49,7 @@ def tables(result) -> list:
                           *(_g(stats[k]) for k in ("mean", "sd", "p1", "p5", "p50", "p95", "p99")))
         out.append(table)
         failures = Table(title="Probability of failure (share of all variants)",
-                         title_justify="left")
+                         title_justify="left", min_width=48)
         failures.add_column("failure")
         failures.add_column("probability", justify="right")
         for name, p in tol["probability"].items():
