@@ -7,7 +7,6 @@ import os
 import click
 
 from dyade.cli import main
-from dyade.cli.options import jobs_option
 
 FORMATS = ("table", "csv", "json", "parquet")
 
@@ -15,7 +14,10 @@ FORMATS = ("table", "csv", "json", "parquet")
 def study_options(command):
     """The options ``dyade study`` and ``dyade plot study`` share."""
     for option in reversed([
-            jobs_option,
+            click.option("-j", "--jobs", type=click.IntRange(min=0), default=1,
+                         show_default=True, metavar="N",
+                         help="Run the variants on N processes (0: all cores); the same "
+                              "table as one process gives."),
             click.option("--scheduler", metavar="ADDRESS",
                          help="Run the blocks on a Dask distributed cluster instead "
                               "(tcp://host:8786; needs pip install \"dyade[dask]\")."),

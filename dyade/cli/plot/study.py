@@ -30,7 +30,9 @@ def study_figure(study_file, table, x, y, outputs, jobs, scheduler, block_size, 
     several objectives with the chosen design; otherwise an output against one
     parameter (--x) or a map over two (--x, --y).
 
-        dyade plot study study.toml --table study.csv --x dyad.2.lengths.1 -o map.png
+    \b
+        dyade plot study study.toml --table study.csv -o study.png \\
+            --x dyad.2.lengths.1 --y dyad.2.lengths.2
     """
     name = f"{os.path.splitext(os.path.basename(study_file))[0]}-study"
     target, announce = single_target(output, fmt, show, dpi, name)
