@@ -95,8 +95,10 @@ def needs(module: str, what: str, extra: str = "study") -> None:
     import importlib.util
 
     if importlib.util.find_spec(module) is None:
-        raise InputError(f"{what} needs {module}, which is not installed: "
-                         f"pip install \"dyade[{extra}]\".")
+        from dyade.errors import MissingExtra
+
+        raise MissingExtra(f"{what} needs {module}, which is not installed: "
+                           f"pip install \"dyade[{extra}]\".")
 
 
 def fail(label: str, key: str, message: str) -> InputError:
