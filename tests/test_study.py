@@ -192,11 +192,27 @@ def test_self_locking_probability_equals_the_single_runs(tmp_path):
     assert 0 < sum(locks) < 8  # the sample straddles the locking coefficient
     assert result.tolerance["probability"]["self_locks"] == pytest.approx(np.mean(locks))
     assert list(cols["status"] == "locks") == locks
+    # the smallest coefficient at which the nominal slide locks, by bisection of single runs
+    def locks(mu):
+        result = dyade.analyse(dyade.read_mechanism(shipped("self-locking.toml"),
+                                                    {"friction.coefficient": mu}))
+        return any(v["locks"] for v in result.summary().get("self_locking", {}).values())
+
+    low, high = 0.05, 0.3
+    assert not locks(low) and locks(high)
+    while high - low > 2e-3:
+        middle = 0.5 * (low + high)
+        low, high = (low, middle) if locks(middle) else (middle, high)
     fixed = study_file(tmp_path, "self-locking.toml",
-                       {"friction.coefficient": "{ uniform = [0.02, 0.1] }"},
-                       "kind = \"monte-carlo\"\nsamples = 4\nseed = 3",
+                       {"friction.coefficient": f"{{ uniform = [0.02, {low}] }}"},
+                       "kind = \"monte-carlo\"\nsamples = 6\nseed = 3",
                        extra="[tolerance]\n")
     assert dyade.study(fixed).tolerance["probability"]["self_locks"] == 0.0
+    above = study_file(tmp_path, "self-locking.toml",
+                       {"friction.coefficient": f"{{ uniform = [{high}, 0.3] }}"},
+                       "kind = \"monte-carlo\"\nsamples = 3\nseed = 3",
+                       extra="[tolerance]\n")
+    assert dyade.study(above).tolerance["probability"]["self_locks"] == 1.0
 
 
 def test_resume_computes_no_finished_block(tmp_path):
