@@ -463,3 +463,19 @@ def test_a_killed_study_resumes(tmp_path):
     read = tables.read_csv(str(output))
     for name in whole:
         assert np.array_equal(read[name], whole[name]), name
+
+
+def test_pareto_front_keeps_the_non_dominated_within_bounds():
+    from dyade.study.questions import pareto
+
+    columns = {"status": np.array(["ok", "ok", "ok", "ok", "locks", "does not close"],
+                                  dtype=object),
+               "a": np.array([1.0, 2, 3, 2, 0.5, np.nan]),
+               "b": np.array([3.0, 2, 1, 3, 0.5, np.nan]),
+               "c": np.array([0.0, 0, 0, 0, 9, 0])}
+    front = pareto(columns, [("a", 1.0), ("b", 1.0)])
+    assert list(np.flatnonzero(front)) == [4]  # (0.5, 0.5) beats every other
+    front = pareto(columns, [("a", 1.0), ("b", 1.0)], {"c": (-1.0, 1.0)})
+    assert list(np.flatnonzero(front)) == [0, 1, 2]
+    front = pareto(columns, [("a", 1.0), ("b", -1.0)], {"c": (-1.0, 1.0)})  # max b
+    assert list(np.flatnonzero(front)) == [0]
