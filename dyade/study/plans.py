@@ -37,8 +37,11 @@ def variants(spec: Spec) -> np.ndarray:
         needs("scipy", "a latin-hypercube plan")
         from scipy.stats import qmc
 
-        u = qmc.LatinHypercube(d=len(params), rng=np.random.default_rng(spec.seed)
-                               ).random(spec.samples)
+        try:
+            sampler = qmc.LatinHypercube(d=len(params), rng=np.random.default_rng(spec.seed))
+        except TypeError:  # scipy before 1.15 names it seed
+            sampler = qmc.LatinHypercube(d=len(params), seed=np.random.default_rng(spec.seed))
+        u = sampler.random(spec.samples)
     return np.column_stack([p.quantile(u[:, j]) for j, p in enumerate(params)])
 
 
