@@ -86,12 +86,26 @@ def style() -> Iterator[None]:
         yield
 
 
+class Drawing(Figure):
+    """A matplotlib ``Figure`` that shows itself in a notebook: IPython's rich display
+    takes its PNG (``_repr_png_``), without pyplot or a ``%matplotlib`` magic, as the
+    figures are built with the object API.
+
+    >>> png = Drawing(figsize=(1, 1))._repr_png_()
+    >>> png[:4]
+    b'\\x89PNG'
+    """
+
+    def _repr_png_(self) -> bytes:
+        return render(self, "png")
+
+
 def new(width: float, height: float, fig: Figure | None = None,
         layout: str | None = "constrained") -> Figure:
     """A figure of ``width`` × ``height`` [in], laid out by the constrained engine (or
     by hand: ``layout=None``); ``fig`` (a window's figure) is reused when given."""
     if fig is None:
-        return Figure(figsize=(width, height), layout=layout)
+        return Drawing(figsize=(width, height), layout=layout)
     fig.set_size_inches(width, height)
     fig.set_layout_engine(layout or "none")
     return fig
