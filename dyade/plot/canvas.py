@@ -175,8 +175,30 @@ def render(fig: Figure, fmt: str, dpi: int = 100) -> bytes:
 
 
 def save(fig: Figure, path: str, dpi: int = 100) -> None:
-    """Write the figure in the format of the path's suffix (.png, .svg, .pdf): to a
-    temporary file beside it, renamed when complete."""
+    """Write the figure in the format of the path's suffix: to a temporary file beside
+    it, renamed when complete. The same figure gives the same bytes (no dates or
+    versions in the file).
+
+    Parameters
+    ----------
+    fig : Figure
+        From one of ``dyade.plot``'s ``figure`` functions.
+    path : str
+        The file: .png, .svg or .pdf.
+    dpi : int
+        Dots per inch (PNG).
+
+    Examples
+    --------
+    >>> import tempfile, dyade
+    >>> from pathlib import Path
+    >>> from dyade.plot import canvas, curves
+    >>> fig = curves.figure(dyade.analyse(dyade.read_mechanism("mechanisms/fourbar.toml")))
+    >>> path = Path(tempfile.mkdtemp()) / "fourbar.svg"
+    >>> canvas.save(fig, str(path))
+    >>> "<svg" in path.read_text()
+    True
+    """
     data = render(fig, suffix(path), dpi)
     with _atomic(path) as temporary:
         with open(temporary, "wb") as handle:
