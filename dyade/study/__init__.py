@@ -51,6 +51,17 @@ class Study:
     the mechanism file's units, as ``--set`` takes them); ``sensitivity``,
     ``tolerance``, ``pareto`` and ``optimum``: the answers to the study file's
     question (None where not asked).
+
+    Examples
+    --------
+    >>> import dyade
+    >>> spec = dyade.study.parse({"mechanism": "mechanisms/fourbar.toml",
+    ...                           "parameters": {"dyad.2.lengths.1": [190, 210]}})
+    >>> result = dyade.study(spec)
+    >>> list(result.columns())[:4], result.units["dyad.2.lengths.1"]
+    (['variant', 'dyad.2.lengths.1', 'status', 'reason'], 'mm')
+    >>> result.columns()["mu_2_min_deg"].round(2).tolist()
+    [56.57, 65.03]
     """
 
     spec: Spec
@@ -127,6 +138,17 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
     ------
     InputError
         The study file or a key path is wrong (naming the file and the key).
+
+    Examples
+    --------
+    A grid over the four-bar's coupler length (a study file gives the same as a dict
+    to ``dyade.study.parse``; mechanism paths relative to the study file's directory):
+
+    >>> import dyade
+    >>> spec = dyade.study.parse({"mechanism": "mechanisms/fourbar.toml",
+    ...                           "parameters": {"dyad.2.lengths.1": [190, 210]}})
+    >>> dyade.study(spec).columns()["M_drive_rms"].round(4).tolist()
+    [1.0505, 1.0051]
     """
     from dyade.study import plans, questions, run
     from dyade.study.evaluate import unit

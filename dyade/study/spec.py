@@ -239,7 +239,30 @@ def _positive(label: str, p: Parameter) -> None:
 
 
 def read(path: str | os.PathLike) -> Spec:
-    """Read and check a study file."""
+    """Read and check a study file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The study file (TOML; docs/reference/study-file.md lists every key).
+
+    Returns
+    -------
+    Spec
+        The study as its file describes it, checked; ``dyade.study(spec)`` runs it.
+
+    Raises
+    ------
+    InputError
+        Naming the file and the key, what was expected and what was found.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> spec = dyade.study.read("mechanisms/studies/press-slide-tolerance.toml")
+    >>> spec.plan, spec.samples, [p.key for p in spec.parameters]
+    ('monte-carlo', 100, ['friction.coefficient', 'dyad.2.C.slider_length'])
+    """
     from dyade.files.schema import read_toml
 
     path = os.fspath(path)
@@ -249,8 +272,30 @@ def read(path: str | os.PathLike) -> Spec:
 
 
 def parse(data: dict[str, Any], label: str = "study", directory: str = ".") -> Spec:
-    """A study from its TOML data; ``directory``: where a relative mechanism path
-    starts."""
+    """A study from its TOML data (the same structure written in Python).
+
+    Parameters
+    ----------
+    data : dict
+        The keys of a study file.
+    label : str
+        Names the study in messages.
+    directory : str
+        Where a relative mechanism path starts (a study file's directory).
+
+    Returns
+    -------
+    Spec
+
+    Examples
+    --------
+    >>> import dyade
+    >>> spec = dyade.study.parse({"mechanism": "mechanisms/fourbar.toml",
+    ...                           "parameters": {"links.3.mass": {"nominal": 1.25, "tol": 0.25}},
+    ...                           "plan": {"kind": "monte-carlo", "samples": 3, "seed": 1}})
+    >>> spec.parameters[0].kind, spec.parameters[0].low, spec.parameters[0].high
+    ('uniform', 1.0, 1.5)
+    """
     _keys(label, data, "", TOP)
     mechanism = data.get("mechanism")
     if not isinstance(mechanism, str):
