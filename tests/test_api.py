@@ -86,12 +86,12 @@ def test_notes_are_structured():
     lock, = [note for note in result.notes if note.kind == "self_locking"]
     assert lock.subject == "slider (1,4)"
     (first, last), = lock.ranges
-    assert np.rad2deg([first, last]) == pytest.approx([270.0, 332.0])
+    assert np.rad2deg([first, last]) == pytest.approx([90.0, 179.0])
     assert lock.figures["joint"] == (1, 4) and lock.figures["slider"]
     from dyade.report.notes import say
 
     assert say(lock, result.mechanism).startswith("slider (1,4) locks (self-locking) at crank "
-                                                  "angles 270.0°–332.0°")
+                                                  "angles 90.0°–179.0°")
 
 
 def test_to_pandas_without_pandas_says_how_to_get_it(monkeypatch):

@@ -99,7 +99,9 @@ class Prismatic:
     friction: float = 0.0
     """Coulomb friction coefficient μ [-]."""
     edge_friction: bool = True
-    """Friction of the edge pressures 3·|M'|/L that the tilting moment causes (with μ > 0)."""
+    """The block's tilting moment M' enters its friction (with μ > 0): μ times the total
+    pressure of a linear distribution over L (``dyade.linkage.friction.laws``); False:
+    point contact, μ·|FN|."""
 
     @classmethod
     def through(cls, carrier: int, point: Vec, theta: float, offset: float, slider: int,
