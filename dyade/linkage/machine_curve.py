@@ -7,10 +7,11 @@ import math
 
 import numpy as np
 
+from dyade.cycle import mean as cycle_mean
 from dyade.errors import DyadeError, InputError
 from dyade.linkage.model import Mechanism
 from dyade.linkage.sweep import analyse
-from dyade.machine.flywheel import TorqueCurve, cycle_mean, machine_curve
+from dyade.machine.flywheel import TorqueCurve, machine_curve
 
 FINE_STEP = math.radians(0.1)  # [rad] largest default step of a torque curve
 

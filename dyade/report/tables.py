@@ -9,7 +9,7 @@ from dyade.linkage.plan import Plan
 from dyade.linkage.verdicts import Outcome as Result
 from dyade.linkage.model import FRAME, Mechanism, Prismatic, Revolute
 from dyade.linkage.columns import Columns, unit_of
-from dyade.linkage.summary import cycle_mean
+from dyade import cycle
 from dyade.units import LENGTH_FACTORS
 
 
@@ -189,11 +189,11 @@ def force_summary(result: Result, cols: Columns) -> Table | None:
         lo, hi = int(np.nanargmin(torque)), int(np.nanargmax(torque))
         table.add_row("M_drive max", "N·m", f"{torque[hi]:.6g}", f"{angle[hi]:.1f}")
         table.add_row("M_drive min", "N·m", f"{torque[lo]:.6g}", f"{angle[lo]:.1f}")
-        rms = np.sqrt(cycle_mean(angle, torque ** 2))
+        rms = cycle.rms(np.deg2rad(angle), torque)
         table.add_row("M_drive RMS", "N·m", f"{rms:.6g}", "")
-        table.add_row("P_drive mean", "W", f"{cycle_mean(angle, cols['P_drive']):.6g}", "")
+        table.add_row("P_drive mean", "W", f"{cycle.mean(np.deg2rad(angle), cols['P_drive']):.6g}", "")
     if rubbing is not None:
-        table.add_row("P_friction mean", "W", f"{cycle_mean(angle, cols['P_friction']):.6g}", "")
+        table.add_row("P_friction mean", "W", f"{cycle.mean(np.deg2rad(angle), cols['P_friction']):.6g}", "")
         its = cols["friction_iterations"]
         rows = result.rows & result.forces_valid
         worst = float(np.max(rubbing.residual[rows], initial=0.0))
