@@ -25,6 +25,7 @@ import math
 import numpy as np
 
 from dyade.arrays import FloatArray
+from dyade.roundoff import clean
 
 TURN = 2.0 * math.pi
 CLOSE_RTOL = 1e-9  # [-] a last angle this close to the first plus 2π repeats it
@@ -67,10 +68,17 @@ def mean(angle: FloatArray, values: FloatArray) -> float:
     """The mean of ``values`` over the crank angle ``angle`` [rad]: over the revolution
     if the sweep covers one (each position once), else over the sweep's span (trapezoid
     rule); finite values only (where some are not, the trapezoid rule over those given).
-    NaN if none is."""
+    NaN if none is; 0 where it is round-off of the values (``dyade.roundoff``)."""
     angle = np.asarray(angle, dtype=np.float64)
     values = np.asarray(values, dtype=np.float64)
     keep = np.isfinite(values)
+    if not keep.any():
+        return float("nan")
+    return clean(_mean(angle, values, keep), float(np.max(np.abs(values[keep]))))
+
+
+def _mean(angle: FloatArray, values: FloatArray, keep: FloatArray) -> float:
+    """``mean`` before the round-off rule."""
     if not keep.all():
         angle, values = angle[keep], values[keep]
     else:

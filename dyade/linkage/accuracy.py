@@ -15,11 +15,11 @@ import numpy as np
 from dyade.linkage.plan import plan
 from dyade.linkage.sweep import Result, analyse
 from dyade.linkage.model import Mechanism, Revolute
+from dyade.roundoff import clean
 
 STEPS_DEG = (5.0, 2.0, 1.0, 0.5, 0.1, 0.05)  # [°] crank steps, the last one is the reference
 FRICTION_TOLS = (1e-3, 1e-6, 1e-9, 1e-12)  # [-], the last one is the reference
 SIM_STEPS = (25, 100, 400, 1600)  # RK4 steps per contact period
-NOISE = 1e-12  # [-] a joint force below this share of the largest is round-off (0)
 
 
 @dataclass(frozen=True, slots=True)
@@ -64,8 +64,8 @@ def _peaks(mechanism: Mechanism, forces, rows, clearance=None) -> dict[str, floa
                                                   initial=0.0))
     largest = max((v for k, v in out.items() if k != "|M_drive| max"), default=0.0)
     for key, value in out.items():  # a joint that carries nothing: round-off is no peak
-        if key != "|M_drive| max" and value <= NOISE * largest:
-            out[key] = 0.0
+        if key != "|M_drive| max":
+            out[key] = clean(value, largest)
     for check in clearance or []:
         if check.reversals:
             a, b = check.joint
