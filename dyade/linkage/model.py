@@ -191,8 +191,8 @@ class DyadKind(NamedTuple):
     """the joint pattern A-B-C: RRR, RRP, RPR, PRP, PPR"""
     has_variant: bool
     """two closures, chosen by the assembly variant ±1 (else one, variant 0)"""
-    variant_rule: str
-    """what variant +1 means (empty without a variant)"""
+    variant_rules: tuple[str, str]
+    """what variant +1 and what variant −1 mean (empty without a variant)"""
     frames: tuple[str, str]
     """the link frames of links i and j (origin, ξ axis)"""
     transmission: str
@@ -201,6 +201,10 @@ class DyadKind(NamedTuple):
     """what μ = 0° or 180° is called: "dead centre" or "blocked position" """
     close: Callable
     """close(dyad, motion) -> Closure (``dyade.linkage.dyads.closure``)"""
+
+    def variant_rule(self, variant: int) -> str:
+        """What assembly variant ``variant`` (±1) means ("" without a variant)."""
+        return self.variant_rules[0 if variant > 0 else 1] if variant else ""
 
     @property
     def cannot_close(self) -> str:
