@@ -14,6 +14,7 @@ from hypothesis import given, strategies as st
 from scipy import optimize
 
 import dyade
+from dyade.linkage.sweep import analyse_si
 from dyade.cli import main
 from dyade.errors import DyadeError
 from dyade.files import mechanism as toml_input
@@ -84,7 +85,7 @@ def test_pushed_block_locks_at_the_closed_form_jam_angle():
     mechanism = pushed_block("cw")
     onset = crank_angle_at(jam, up)
     angles = np.deg2rad(onset + np.linspace(-0.05, 0.05, 201))
-    result = dyade.analyse(mechanism, crank_angle=angles)
+    result = analyse_si(mechanism, crank_angle=angles)
     locks = result.locking[(1, 4)].locks
     assert locks.any() and not locks.all()
     first = int(np.argmax(locks))  # |β| grows with φ in the window: the lock starts
@@ -96,7 +97,7 @@ def test_pushed_block_locks_at_the_closed_form_jam_angle():
     margin = cols["lock_margin_1_4"]
     assert np.all(margin[locks] <= 0.0) and np.all(margin <= cols["friction_det_2"] + 1e-12)
     # and it runs the whole range where the rod is steeper than the jam angle
-    whole = dyade.analyse(mechanism, step=math.radians(0.25))
+    whole = dyade.analyse(mechanism, step_deg=0.25)
     locked = np.rad2deg(whole.crank_angle[whole.locking[(1, 4)].locks])
     lo, hi = onset, 180.0 - onset
     assert locked.min() == pytest.approx(lo, abs=0.25) and locked.max() == pytest.approx(hi, abs=0.25)
@@ -109,7 +110,7 @@ def test_pushed_block_determinant_and_margin_in_closed_form(up):
     # 1 − μ·∫|p| dx per unit push along the guide, and the lock margin the paper's
     # bound 1 − μ·(|FN| + 3·|M'|/L): both read off the rod's angle β
     mechanism = pushed_block("ccw" if up else "cw")
-    result = dyade.analyse(mechanism, step=math.radians(1.0))
+    result = dyade.analyse(mechanism, step_deg=1.0)
     cols = result.columns()
     t = np.tan(np.deg2rad(np.abs(cols["phi_3_deg"])))
     m = tilt_per_push(t, up)
