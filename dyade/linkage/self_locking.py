@@ -15,8 +15,9 @@ slider through its frictionless dyad (row k of M⁻¹, the kinematics' inverse) 
 other load. FN and M are then the joint's reactions to that push alone. For a block
 pushed by a two-force member (a rod pinned at both ends) the push runs along the rod, at
 the angle β to the guide and with its line of action at the lever e about the block, and
-the inequality is exactly the condition under which any push, however large, moves the
-block (README, "Friction and self-locking"). Everything is proportional to F_η, so
+the inequality is the condition under which any push moves the block, with the bound
+|FN| + 3·|M'|/L in place of the block's pressure (docs/guide/friction.md). Everything is
+proportional to F_η, so
 
     lock_margin = 1 − μ·(|FN| + 3·|M + ½·FN·H·μ·sign ṡ|/L) / |F_η|      [-]
 
