@@ -405,3 +405,23 @@ def test_slider_crank_with_its_own_friction_offset_has_point_contact_friction(le
     more = np.abs(short.friction.friction_forces[(1, 4)][moving])
     assert np.all(more >= mu * np.abs(short.forces.normal[(1, 4)][moving]) * (1 - 1e-12))
     assert np.any(more > 1.01 * mu * np.abs(short.forces.normal[(1, 4)][moving]))
+
+
+@pytest.mark.parametrize("path", [p for p in SHIPPED if "friction" in p.read_text()],
+                         ids=lambda p: p.stem)
+def test_energy_and_coulomb_laws_hold_on_the_shipped_files_with_friction(path):
+    # as shipped (the press slide: μ = 0.25, a block tilting in its guide), not loaded
+    mechanism = replace(toml_input.read_mechanism(path), friction_tol=1e-13)
+    kin = kinematics.sweep(mechanism)
+    result = friction.solve(mechanism, kin)
+    valid = result.forces.valid
+    assert valid.sum() > 0.3 * valid.size
+    balance = (result.forces.drive_torque * mechanism.crank.speed
+               - kinetic_energy_rate(mechanism, kin.motion)
+               + applied_power(mechanism, kin.motion, kin.crank_angle))
+    scale = np.max(np.abs(result.forces.drive_torque[valid] * mechanism.crank.speed))
+    assert np.allclose(balance[valid], result.power[valid], rtol=1e-8, atol=1e-8 * scale)
+    assert np.all(result.power[valid] >= 0.0)
+    for name, (error, wrong_sense) in coulomb_law_errors(mechanism, kin, result).items():
+        assert error < 1e-9, name
+        assert not wrong_sense, name
