@@ -134,12 +134,12 @@ class Law:
 
     def choices(self) -> list[tuple[float, ...]]:
         """Every pattern a restart may force (``gradient``): the sense of a pin's force
-        relative to the one measured; the sign of a slider's FN and, with edges, that of
-        M' in the bound |FN| + 3·|M'|/L or 0 for |FN| alone (starts for Newton: a slider
-        whose pressure changes sign has no constant gradient)."""
+        relative to the one measured; the signs of a slider's FN and, with edges, of M'
+        in the bound |FN| + 3·|M'|/L (starts for Newton, which then follows the law's own
+        gradient: a block whose pressure changes sign has no constant one)."""
         if self.revolute or not self.edge:
             return [(1.0,), (-1.0,)]
-        return [(sn, st) for sn in (1.0, -1.0) for st in (0.0, 1.0, -1.0)]
+        return [(sn, st) for sn in (1.0, -1.0) for st in (1.0, -1.0)]
 
     def gradient(self, parts: tuple, forced: tuple | None = None, factor=1.0) -> tuple:
         """``factor``·a, with g = a·W_k at the pattern of ``parts``, or at the ``forced``
