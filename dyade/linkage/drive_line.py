@@ -1,0 +1,416 @@
+"""A linkage driven through an elastic drive line (``[drive_line]``): what a designer asks.
+
+The linkage enters as the crank shaft of the line (``dyade.machine.drive_line``): its
+reduced inertia J(φ), the slope J′(φ) and the load torque M_L(φ) from the kinematics at
+unit crank speed (``dyade.linkage.reduced``), on the integration grid. The motor is the
+``[drive]`` motor with the rotor inertia of the ``[drive_line]`` table, or, without a
+``[drive]`` table, an ideal motor at the crank's constant speed. Joint friction is not
+part of the drive line's model (a note says so where the file has it).
+
+- ``natural_frequency``: ω̄ (the lowest natural frequency with the mean inertia J̄), its
+  range over the cycle from J(φ), the ratio Ω/ω̄ and the VDI 2149 check (Ω/ω̄ ≤ 0.1);
+- ``steady_state``: the periodic motion at the operating speed next to the rigid drive's;
+- ``resonance_curve``: peak shaft torque, twist amplitude, speed fluctuation and the
+  largest Floquet multiplier over a range of speeds of an ideal motor;
+- ``stability_map``: the largest Floquet multiplier over speed × stiffness or damping;
+- ``run_up``: from rest under the motor's characteristic, in time.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from dyade.errors import DyadeError, InputError
+from dyade.linkage.drive import machine_tables
+from dyade.linkage.model import FloatArray, Mechanism
+from dyade.machine import drive_line as engine
+from dyade.machine.motor import Asynchronous, ConstantTorque, Motor, TorqueSpeedTable
+
+VDI_2149_RATIO = 0.1  # [-] largest Ω/ω̄ for which the rigid model holds (VDI 2149 Part 1)
+RPM = 30.0 / math.pi  # rpm per rad/s
+HARMONIC_SHARE = 1e-3  # [-] harmonics of J or M_L above this share of the largest are labelled
+
+
+def _data(mechanism: Mechanism):
+    if mechanism.drive_line is None:
+        raise InputError(f"{mechanism.name}: no [drive_line] table: give the elastic element "
+                         f"between motor and crank (`drive_line.stiffness` [N·m/rad], or "
+                         f"`drive_line.coupling` = a coupling file), see mechanisms/README.md.",
+                         key="drive_line")
+    return mechanism.drive_line
+
+
+def line_of(mechanism: Mechanism, *, ideal: bool = False) -> engine.Line:
+    """The drive line of ``mechanism``: its ``[drive]`` motor (or an ideal motor when the
+    file has none, or with ``ideal``)."""
+    data = _data(mechanism)
+    motor = None if ideal or mechanism.drive is None else mechanism.drive.motor
+    return data.line(motor)
+
+
+def crank_tables(mechanism: Mechanism, steps: int) -> engine.Tables:
+    """J, dJ/du, s·M_L at the half steps of ``steps`` steps per revolution from the
+    sweep's start in the running direction (no friction: not part of this model)."""
+    sense = _sense(mechanism)
+    grid = mechanism.sweep.start + sense * math.pi / steps * np.arange(2 * steps)
+    machine = machine_tables(mechanism, grid)
+    tables = engine.Tables(machine.inertia, sense * machine.slope, sense * machine.load,
+                           np.zeros(2 * steps))
+    engine.check_tables(tables)
+    return tables
+
+
+def _sense(mechanism: Mechanism) -> float:
+    return 1.0 if mechanism.crank.speed > 0 else -1.0
+
+
+def _steps(mechanism: Mechanism, line: engine.Line, speed_min: float,
+           stiffness_max: FloatArray | None = None) -> tuple[int, engine.Tables]:
+    data = _data(mechanism)
+    coarse = crank_tables(mechanism, engine.MIN_STEPS)
+    steps = data.steps or engine.steps_for(line, float(np.min(coarse.inertia)), speed_min,
+                                           stiffness_max)
+    return steps, (coarse if steps == engine.MIN_STEPS else crank_tables(mechanism, steps))
+
+
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class NaturalFrequency:
+    """The natural frequencies of the drive line and the VDI 2149 check."""
+
+    omega_bar: float
+    """ω̄ [rad/s]: the lowest natural frequency with the linkage's mean reduced inertia J̄"""
+    omega_min: float
+    """the lowest natural frequency's smallest value over the cycle (J(φ) largest) [rad/s]"""
+    omega_max: float
+    """… and its largest (J(φ) smallest) [rad/s]"""
+    inertia_mean: float
+    """J̄ [kg·m²]"""
+    speed: float
+    """the crank's operating speed |Ω| [rad/s]"""
+    crank_angle: FloatArray
+    """(n,) [rad]"""
+    frequency: FloatArray
+    """(n,) the lowest natural frequency with J frozen at J(φ) [rad/s]"""
+
+    @property
+    def ratio(self) -> float:
+        """η = Ω/ω̄ [-]"""
+        return self.speed / self.omega_bar
+
+    @property
+    def vdi_2149(self) -> bool:
+        """True when Ω/ω̄ ≤ 0.1: the rigid model of the drive holds (VDI 2149 Part 1)."""
+        return self.ratio <= VDI_2149_RATIO
+
+
+def natural_frequency(mechanism: Mechanism) -> NaturalFrequency:
+    """ω̄, the range of the lowest natural frequency over the cycle, and Ω/ω̄.
+
+    >>> import dyade
+    >>> m = dyade.read_mechanism("mechanisms/slider-crank.toml",
+    ...                          {"drive_line.stiffness": 2.0})
+    >>> f = natural_frequency(m)
+    >>> round(f.omega_bar, 3), round(f.ratio, 4), f.vdi_2149
+    (41.964, 0.2495, False)
+    """
+    line = line_of(mechanism)
+    tables = crank_tables(mechanism, engine.MIN_STEPS)
+    inertia = tables.inertia[0::2]
+    mean = float(np.mean(tables.inertia))
+    every = engine.natural_frequencies(line, np.concatenate(([mean], inertia)))[:, 0]
+    angle = mechanism.sweep.start + _sense(mechanism) * 2.0 * math.pi / engine.MIN_STEPS * \
+        np.arange(engine.MIN_STEPS)
+    return NaturalFrequency(float(every[0]), float(np.min(every[1:])), float(np.max(every[1:])),
+                            mean, abs(mechanism.crank.speed), angle, every[1:])
+
+
+def resonances(mechanism: Mechanism, omega_bar: float, low: float, high: float
+               ) -> list[tuple[int, float, str]]:
+    """The speeds [rad/s] within [low, high] where resonances are to be expected: forced
+    at Ω = ω̄/k for each harmonic k present in J(φ) or M_L(φ), parametric at Ω = 2ω̄/k
+    for each harmonic k of J(φ). (k, speed, "forced" | "parametric"), by speed."""
+    tables = crank_tables(mechanism, engine.MIN_STEPS)
+    out = []
+    for values, kinds in ((tables.inertia, ("forced", "parametric")),
+                          (tables.load, ("forced",))):
+        spectrum = np.abs(np.fft.rfft(values[0::2]))[1:]
+        if not spectrum.size or spectrum.max() == 0.0:
+            continue
+        present = np.flatnonzero(spectrum > HARMONIC_SHARE * spectrum.max()) + 1
+        for k in present:
+            for kind in kinds:
+                speed = omega_bar * (2.0 if kind == "parametric" else 1.0) / k
+                if low <= speed <= high and (int(k), kind) not in {(a, c) for a, _, c in out}:
+                    out.append((int(k), speed, kind))
+    return sorted(out, key=lambda row: row[1])
+
+
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class SteadyState:
+    """The periodic steady state of the drive line over one revolution, and the rigid
+    drive's at the same speed. Torques and speeds in the running direction of the crank."""
+
+    crank_angle: FloatArray
+    """(n,) φ [rad] at the grid nodes of one revolution"""
+    shaft_torque: FloatArray
+    """(n,) T: the torque the elastic element puts into the crank shaft [N·m]"""
+    crank_speed: FloatArray
+    """(n,) |φ̇| [rad/s]"""
+    crank_acceleration: FloatArray
+    """(n,) φ̈ in the running direction [rad/s²]"""
+    twist: FloatArray
+    """(n,) twist of the line, motor side against crank, reduced to the crank [rad]"""
+    rigid_torque: FloatArray
+    """(n,) the drive torque of the rigid drive at the same mean speed [N·m]"""
+    rigid_speed: FloatArray
+    """(n,) |φ̇| of the rigid drive [rad/s]"""
+    rigid_acceleration: FloatArray
+    """(n,) φ̈ of the rigid drive [rad/s²]"""
+    multipliers: FloatArray
+    """(d,) the Floquet multipliers (complex), largest modulus first"""
+    figures: dict = field(default_factory=dict)
+    """mean speed, ω̄, η, works over the period, accuracy, iterations"""
+
+    @property
+    def stable(self) -> bool:
+        return bool(np.abs(self.multipliers[0]) <= 1.0 + engine.UNSTABLE_MARGIN)
+
+
+def _reference_speed(mechanism: Mechanism, motor: Motor | None, tables: engine.Tables) -> float:
+    nominal = abs(mechanism.crank.speed)
+    if motor is None:
+        return nominal
+    need = float(np.mean(tables.friction - tables.load))
+    if isinstance(motor, Asynchronous):
+        speed = motor.synchronous_speed - need / motor.stiffness
+        return speed if speed > 0.0 else nominal
+    if isinstance(motor, TorqueSpeedTable):
+        w, m = motor.speeds, motor.values
+        crossing = np.flatnonzero((m[:-1] - need) * (m[1:] - need) <= 0.0)
+        if crossing.size and m[crossing[-1] + 1] != m[crossing[-1]]:
+            k = crossing[-1]
+            return float(w[k] + (need - m[k]) * (w[k + 1] - w[k]) / (m[k + 1] - m[k]))
+        return nominal
+    raise DyadeError("a constant-torque motor has no definite steady speed on an elastic drive "
+                     "line (its speed drifts until the damping balances the torque): give an "
+                     "asynchronous motor or a torque-speed table, or leave out [drive] for an "
+                     "ideal motor at the crank's speed. A run-up works with it.")
+
+
+def _solve(line: engine.Line, tables: engine.Tables, lanes: engine.Lanes) -> engine.Periodic:
+    return engine.periodic(line, tables, lanes, engine.linear_guess(line, tables, lanes))
+
+
+def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
+                 steps: int | None = None, accuracy: bool = True) -> SteadyState:
+    """The periodic steady state at the operating speed (the ideal motor's speed
+    ``speed_rpm``, default the crank's), by shooting, next to the rigid drive's.
+
+    With ``accuracy`` the state is solved again with half the steps and the largest
+    change of the shaft torque, relative to its largest value, is reported as
+    ``figures["accuracy"]`` (RK4: the error of the finer solution is about a fifteenth).
+
+    Raises
+    ------
+    DyadeError
+        No periodic state (the crank would stop or turn back in the cycle, or the
+        shooting does not converge).
+    """
+    line = line_of(mechanism)
+    if speed_rpm is not None and not line.ideal:
+        raise InputError.parameter("speed_rpm", "is for an ideal motor; a [drive] motor finds "
+                                                "its own speed.")
+    probe = crank_tables(mechanism, engine.MIN_STEPS)
+    speed = _reference_speed(mechanism, line.motor, probe) if speed_rpm is None else abs(
+        speed_rpm) / RPM
+    if not speed > 0.0:
+        raise InputError.parameter("speed_rpm", f"must be a positive speed, got {speed_rpm}.")
+    n = steps or _data(mechanism).steps or engine.steps_for(line, float(np.min(probe.inertia)),
+                                                            speed)
+    tables = crank_tables(mechanism, n)
+    lanes = engine.Lanes.of(line, [speed])
+    solution = _solve(line, tables, lanes)
+    if not solution.converged[0]:
+        raise DyadeError(f"no periodic steady state of the drive line at {speed * RPM:.5g} rpm: "
+                         f"the crank would stop or turn back within the cycle, or the shooting "
+                         f"did not converge (scaled residual {solution.residual[0]:.2g}); the "
+                         f"model does not describe that motion.")
+    orbit = engine.integrate(line, tables, lanes, solution.start)
+    out = _steady(mechanism, line, tables, lanes, orbit, solution)
+    if accuracy:
+        coarse_tables = crank_tables(mechanism, max(n // 2, 36))
+        coarse = _solve(line, coarse_tables, lanes)
+        if coarse.converged[0]:
+            coarse_orbit = engine.integrate(line, coarse_tables, lanes, coarse.start)
+            fine = orbit.torque[::2, 0, -1] if n % 2 == 0 else None
+            if fine is not None and fine.size == coarse_orbit.torque.shape[0]:
+                scale = float(np.max(np.abs(orbit.torque[:, 0, -1]))) or 1.0
+                out.figures["accuracy"] = float(np.max(np.abs(
+                    fine - coarse_orbit.torque[:, 0, -1]))) / scale
+    return out
+
+
+def _steady(mechanism, line, tables, lanes, orbit, solution) -> SteadyState:
+    sense = _sense(mechanism)
+    steps = tables.steps
+    u = orbit.step * np.arange(steps + 1)
+    speed = lanes.speed[0] + orbit.state[:, 0, 0]
+    m = line.elements
+    twist = np.sum(orbit.state[:, 0, 1:1 + m][:, :1], axis=1)  # motor node against crank
+    period = float(orbit.quadratures[-1, 0, 0])
+    mean = 2.0 * math.pi / period
+    # the rigid drive: constant speed for an ideal motor, else the rigid equation of
+    # motion with the rotor's inertia on the crank
+    inertia, slope, load = tables.inertia[0::2], tables.slope[0::2], tables.load[0::2]
+    if line.ideal:
+        rigid_speed = np.full(steps + 1, lanes.speed[0])
+        rigid_accel = np.zeros(steps + 1)
+    else:
+        from dyade.machine import equation
+
+        rotor = line.inertias[0] + sum(line.inertias[1:])
+        eq = equation.Tables(tables.inertia + rotor, tables.load, tables.friction, tables.slope)
+        path = equation.periodic(eq, line.motor, 1.0, steps, mean, 1e-12, mean)
+        rigid_speed = path.speed
+        g = path.slope
+        rigid_accel = (g - 0.5 * np.append(slope, slope[0]) * rigid_speed ** 2) / (
+            np.append(inertia, inertia[0]) + rotor)
+    close = np.append(np.arange(steps), 0)
+    rigid_torque = (inertia[close] * rigid_accel + 0.5 * slope[close] * rigid_speed ** 2
+                    - load[close])
+    quad = orbit.quadratures[-1, 0]
+    figures = {"speed_mean": mean, "period": period,
+               "fluctuation": float((speed.max() - speed.min()) / mean),
+               "rigid_fluctuation": float((rigid_speed.max() - rigid_speed.min()) / mean),
+               "work_motor": float(quad[1]), "work_load": float(quad[2]),
+               "work_friction": float(quad[3]), "work_damping": float(quad[4]),
+               "iterations": solution.iterations, "steps_per_revolution": steps,
+               "stability": float(np.abs(solution.multipliers[0, 0]))}
+    freq = natural_frequency(mechanism)
+    figures.update({"omega_bar": freq.omega_bar, "eta": mean / freq.omega_bar})
+    return SteadyState(mechanism.sweep.start + sense * u, orbit.torque[:, 0, -1], speed,
+                       orbit.acceleration[:, 0], twist, rigid_torque, rigid_speed, rigid_accel,
+                       solution.multipliers[0], figures)
+
+
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class ResonanceCurve:
+    """The periodic states of the line with an ideal motor over a range of speeds."""
+
+    speed: FloatArray
+    """(s,) Ω [rad/s]"""
+    eta: FloatArray
+    """(s,) Ω/ω̄ [-]"""
+    peak_torque: FloatArray
+    """(s,) largest |shaft torque| over the cycle [N·m]; NaN where no periodic state"""
+    rigid_peak_torque: FloatArray
+    """(s,) largest |drive torque| of the rigid drive at that speed [N·m]"""
+    twist_amplitude: FloatArray
+    """(s,) (max − min)/2 of the twist [rad]"""
+    fluctuation: FloatArray
+    """(s,) (max − min)/mean of the crank speed [-]"""
+    stability: FloatArray
+    """(s,) the largest |Floquet multiplier| [-]"""
+    converged: FloatArray
+    """(s,) bool"""
+    omega_bar: float
+    """ω̄ [rad/s]"""
+    resonances: list
+    """(k, speed [rad/s], "forced" | "parametric") expected in the range"""
+    steps: int
+    """RK4 steps per revolution"""
+
+    @property
+    def unstable(self) -> FloatArray:
+        return self.stability > 1.0 + engine.UNSTABLE_MARGIN
+
+
+def _speeds(speeds_rpm) -> FloatArray:
+    speeds = np.atleast_1d(np.asarray(speeds_rpm, dtype=np.float64))
+    if speeds.size == 0 or not np.all(np.isfinite(speeds)):
+        raise InputError.parameter("speeds_rpm", "must be finite crank speeds [rpm].")
+    if np.any(speeds <= 0.0) and np.any(speeds >= 0.0) or np.any(speeds == 0.0):
+        raise InputError.parameter("speeds_rpm", f"must not run through 0 rpm (from "
+                                                 f"{speeds.min():g} to {speeds.max():g}): the "
+                                                 f"periodic motion needs the crank turning.",
+                                   unit="rpm")
+    return np.abs(speeds) / RPM
+
+
+def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None
+                    ) -> ResonanceCurve:
+    """The resonance curve and the Floquet multipliers over the ideal motor's speeds
+    ``speeds_rpm`` [rpm] (vectorised over speeds): peak shaft torque, twist amplitude,
+    speed fluctuation against speed, and the resonances to be expected in the range.
+    A ``[drive]`` motor is replaced by an ideal one (the speed is what is scanned)."""
+    speeds = _speeds(speeds_rpm)
+    line = line_of(mechanism, ideal=True)
+    n, tables = (steps, crank_tables(mechanism, steps)) if steps else _steps(
+        mechanism, line, float(speeds.min()))
+    lanes = engine.Lanes.of(line, speeds)
+    solution = _solve(line, tables, lanes)
+    orbit = engine.integrate(line, tables, lanes, solution.start)
+    ok = solution.converged
+    torque = orbit.torque[:, :, -1]
+    twist = orbit.state[:, :, 1]
+    speed = speeds[None, :] + orbit.state[:, :, 0]
+    nan = np.where(ok, 1.0, np.nan)
+    rigid = 0.5 * tables.slope[0::2, None] * speeds[None, :] ** 2 - tables.load[0::2, None]
+    omega_bar = natural_frequency(mechanism).omega_bar
+    return ResonanceCurve(speeds, speeds / omega_bar, np.max(np.abs(torque), axis=0) * nan,
+                          np.max(np.abs(rigid), axis=0),
+                          0.5 * (twist.max(axis=0) - twist.min(axis=0)) * nan,
+                          (speed.max(axis=0) - speed.min(axis=0)) / speeds * nan,
+                          solution.stability, ok, omega_bar,
+                          resonances(mechanism, omega_bar, speeds.min(), speeds.max()), n)
+
+
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class StabilityMap:
+    """The largest Floquet multiplier over speed × a parameter of the line."""
+
+    speed: FloatArray
+    """(s,) Ω [rad/s]"""
+    parameter: str
+    """"stiffness" [N·m/rad] or "damping" [N·m·s/rad]"""
+    values: FloatArray
+    """(p,) the parameter's values"""
+    stability: FloatArray
+    """(p, s) the largest |μ| [-]; NaN where no periodic state was found"""
+
+    @property
+    def unstable(self) -> FloatArray:
+        return self.stability > 1.0 + engine.UNSTABLE_MARGIN
+
+
+def stability_map(mechanism: Mechanism, speeds_rpm, *, stiffness=None, damping=None,
+                  steps: int | None = None) -> StabilityMap:
+    """The largest Floquet multiplier over the ideal motor's speeds ``speeds_rpm`` [rpm]
+    and the shaft's ``stiffness`` [N·m/rad] or ``damping`` [N·m·s/rad] values (one of
+    the two), all lanes in one integration."""
+    if (stiffness is None) == (damping is None):
+        raise InputError.parameter(("stiffness", "damping"), "give one of the two to map.")
+    speeds = _speeds(speeds_rpm)
+    line = line_of(mechanism, ideal=True)
+    if line.elements != 1:
+        raise InputError.parameter("stiffness", "maps only a shaft, not a coupling, over "
+                                                "its stiffness or damping.")
+    name = "stiffness" if stiffness is not None else "damping"
+    values = np.atleast_1d(np.asarray(stiffness if stiffness is not None else damping,
+                                      dtype=np.float64))
+    bad = ~np.isfinite(values) | (values <= 0.0 if name == "stiffness" else values < 0.0)
+    if bad.any():
+        raise InputError.parameter(name, f"must be {'positive' if name == 'stiffness' else 'zero or more'}, "
+                                         f"got {values[bad][0]:g}.")
+    grid_speed = np.tile(speeds, values.size)
+    grid_value = np.repeat(values, speeds.size)
+    k = grid_value if name == "stiffness" else np.full(grid_value.size, line.stiffness[0])
+    b = grid_value if name == "damping" else np.full(grid_value.size, line.damping[0])
+    n, tables = (steps, crank_tables(mechanism, steps)) if steps else _steps(
+        mechanism, line, float(speeds.min()), np.array([k.max()]))
+    lanes = engine.Lanes.of(line, grid_speed, k[:, None], b[:, None])
+    solution = _solve(line, tables, lanes)
+    return StabilityMap(speeds, name, values, solution.stability.reshape(values.size, -1))
