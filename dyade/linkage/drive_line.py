@@ -414,3 +414,73 @@ def stability_map(mechanism: Mechanism, speeds_rpm, *, stiffness=None, damping=N
     lanes = engine.Lanes.of(line, grid_speed, k[:, None], b[:, None])
     solution = _solve(line, tables, lanes)
     return StabilityMap(speeds, name, values, solution.stability.reshape(values.size, -1))
+
+
+RUN_UP_TOL = 1e-5  # [-] change of the mean speed from one revolution to the next: at speed
+STEPS_PER_VIBRATION_IN_TIME = 40  # RK4 time steps per period of the highest natural frequency
+
+
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class RunUp:
+    """The run-up from rest through the resonances under the motor's characteristic."""
+
+    time: FloatArray
+    """(K,) t [s]"""
+    crank_angle: FloatArray
+    """(K,) φ [rad] (unwrapped)"""
+    crank_speed: FloatArray
+    """(K,) crank speed in the running direction [rad/s]"""
+    motor_speed: FloatArray
+    """(K,) motor speed reduced to the crank shaft [rad/s]"""
+    shaft_torque: FloatArray
+    """(K,) torque of the elastic element into the crank shaft [N·m]"""
+    twist: FloatArray
+    """(K,) twist of the line [rad]"""
+    figures: dict
+    """largest |shaft torque|, when and at which speed; the time to speed; revolutions"""
+
+
+def run_up(mechanism: Mechanism, *, steps: int | None = None) -> RunUp:
+    """The run-up from rest at the sweep's start angle (the line untwisted) with the
+    ``[drive]`` motor, in time, until the mean speed over a revolution settles; the
+    largest shaft torque on the way.
+
+    Raises
+    ------
+    InputError
+        No ``[drive]`` motor (an ideal motor has no run-up).
+    DyadeError
+        The machine never reaches speed within ``[drive] max_revolutions`` (or the time
+        they would take at half the steady speed): the motor cannot bring it up.
+    """
+    if mechanism.drive is None:
+        raise InputError(f"{mechanism.name}: a run-up needs the motor's characteristic: add a "
+                         f"[drive] table (and `drive_line.rotor_inertia`).", key="drive")
+    line = line_of(mechanism)
+    if isinstance(line.motor, ConstantTorque) and line.motor.torque is None:
+        raise InputError("a run-up needs the torque of the constant-torque motor: give "
+                         "`drive.torque` [N·m].", key="drive.torque")
+    n = steps or _data(mechanism).steps or engine.MIN_STEPS
+    tables = crank_tables(mechanism, n)
+    top = float(engine.natural_frequencies(line, np.array([np.min(tables.inertia)]))[0, -1])
+    dt = 2.0 * math.pi / (STEPS_PER_VIBRATION_IN_TIME * top)
+    reference = (abs(mechanism.crank.speed) if isinstance(line.motor, ConstantTorque)
+                 else _reference_speed(mechanism, line.motor, tables))
+    revolutions = mechanism.drive.max_revolutions
+    t_max = 2.0 * revolutions * 2.0 * math.pi / reference
+    path = engine.run_up(line, tables, dt=dt, t_max=t_max, tol=RUN_UP_TOL,
+                         max_revolutions=revolutions)
+    sense = _sense(mechanism)
+    if not path.settled:
+        raise DyadeError(f"the machine does not reach speed: after {path.time[-1]:.4g} s and "
+                         f"{path.revolutions} revolutions its speed still changes (top crank "
+                         f"speed {np.max(path.crank_speed) * RPM:.5g} rpm); the motor cannot "
+                         f"bring it up, or give `drive.max_revolutions` more.")
+    peak = int(np.argmax(np.abs(path.shaft_torque)))
+    figures = {"peak_torque": float(path.shaft_torque[peak]), "peak_time": float(path.time[peak]),
+               "peak_speed": float(path.crank_speed[peak]), "duration": float(path.time[-1]),
+               "revolutions": path.revolutions, "final_speed": float(path.crank_speed[-1]),
+               "time_step": dt,
+               "omega_bar": natural_frequency(mechanism).omega_bar}
+    return RunUp(path.time, mechanism.sweep.start + sense * path.path, path.crank_speed,
+                 path.motor_speed, path.shaft_torque, path.twist, figures)

@@ -562,3 +562,121 @@ class DriveLineData:
         if self.ratio != 1.0:
             text += f", ratio {self.ratio:g}"
         return text
+
+
+class Periodic1D:
+    """A table over one revolution (uniform samples from u = 0) as its Fourier series,
+    evaluated at any u [rad]: exact for trigonometric polynomials of the grid's order."""
+
+    def __init__(self, values: FloatArray, share: float = 1e-13) -> None:
+        spectrum = np.fft.rfft(values) / values.size
+        keep = np.abs(spectrum) > share * max(float(np.max(np.abs(spectrum))), 1e-300)
+        keep[0] = True
+        self.orders = np.flatnonzero(keep)
+        weights = np.where(self.orders == 0, 1.0, 2.0)
+        if values.size % 2 == 0:
+            weights = np.where(self.orders == values.size // 2, 1.0, weights)
+        self.coefficients = spectrum[self.orders] * weights
+
+    def __call__(self, u: float) -> float:
+        return float(np.dot(self.coefficients, np.exp(1j * self.orders * u)).real)
+
+
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class RunUp:
+    """A run-up from rest in time."""
+
+    time: FloatArray
+    """(K,) t [s]"""
+    path: FloatArray
+    """(K,) u: the crank's angle travelled in the running direction [rad]"""
+    crank_speed: FloatArray
+    """(K,) v [rad/s]"""
+    motor_speed: FloatArray
+    """(K,) w_0 [rad/s]"""
+    shaft_torque: FloatArray
+    """(K,) torque of the last element into the crank shaft [N·m]"""
+    twist: FloatArray
+    """(K,) θ_0 − u [rad]"""
+    settled: bool
+    """True when the mean speed over a revolution stopped changing (to ``tol``)"""
+    revolutions: int
+    """revolutions completed"""
+
+
+def run_up(line: Line, tables: Tables, *, dt: float, t_max: float, tol: float = 1e-6,
+           max_revolutions: int = 500) -> RunUp:
+    """The run-up from rest (everything at rest and untwisted at u = 0) under the motor's
+    characteristic, by RK4 in time with the step ``dt`` [s], until the mean speed over a
+    revolution changes by less than ``tol`` from one to the next (relative), or up to
+    ``t_max`` [s] or ``max_revolutions``. The tables enter as Fourier series in u; the
+    friction torque, a table for forward motion, acts against the crank's motion."""
+    if line.ideal:
+        raise InputError.parameter("motor", "a run-up needs a motor with a characteristic "
+                                            "(a [drive] table), not an ideal motor.")
+    m = line.elements
+    inertia, slope = Periodic1D(tables.inertia), Periodic1D(tables.slope)
+    load, rub = Periodic1D(tables.load), Periodic1D(tables.friction)
+    k, b = np.asarray(line.stiffness), np.asarray(line.damping)
+    nodes = np.asarray(line.inertias)
+    torques = line.motor.torques
+
+    def rates(y: FloatArray) -> tuple[FloatArray, float]:
+        u, v = y[0], y[1]
+        theta, w = y[2:2 + m], y[2 + m:]
+        angles = np.append(theta, u)
+        speeds = np.append(w, v)
+        element = k * (angles[:-1] - angles[1:]) + b * (speeds[:-1] - speeds[1:])
+        drive = float(torques(np.array([w[0]]))[0])
+        before = np.concatenate(([drive], element[:-1]))
+        friction = rub(u) * np.tanh(v / FRICTION_SPEED)
+        accel = (element[-1] + load(u) - friction - 0.5 * slope(u) * v * v) / inertia(u)
+        return np.concatenate(([v, accel], w, (before - element) / nodes)), float(element[-1])
+
+    y = np.zeros(2 + 2 * m)
+    rows = [(0.0, *y[:2], y[2 + m], rates(y)[1], 0.0)]
+    t, turn, last_mark, last_mean, settled = 0.0, 1, 0.0, None, False
+    while t < t_max:
+        k1, torque = rates(y)
+        k2, _ = rates(y + 0.5 * dt * k1)
+        k3, _ = rates(y + 0.5 * dt * k2)
+        k4, _ = rates(y + dt * k3)
+        before = y
+        y = y + dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+        t += dt
+        rows.append((t, y[0], y[1], y[2 + m], rates(y)[1], y[2] - y[0]))
+        if y[0] >= 2.0 * math.pi * turn:  # a revolution completed: when, to O(dt⁴)
+            mark = t - dt + dt * _crossing(before[0], y[0], dt * before[1], dt * y[1],
+                                           2.0 * math.pi * turn)
+            mean = 2.0 * math.pi / (mark - last_mark)
+            if turn > 1 and last_mean is not None and abs(mean - last_mean) <= tol * mean:
+                settled = True
+                break
+            last_mark, last_mean, turn = mark, mean, turn + 1
+            if turn > max_revolutions:
+                break
+    data = np.array(rows)
+    return RunUp(data[:, 0], data[:, 1], data[:, 2], data[:, 3], data[:, 4], data[:, 5],
+                 settled, turn - 1)
+
+
+def _crossing(u0: float, u1: float, d0: float, d1: float, target: float) -> float:
+    """x ∈ [0, 1] where the cubic Hermite through (u0, d0), (u1, d1) (slopes per unit x)
+    reaches ``target`` (Newton from the linear estimate)."""
+    x = (target - u0) / (u1 - u0) if u1 != u0 else 1.0
+    for _ in range(20):
+        x2, x3 = x * x, x * x * x
+        value = ((2 * x3 - 3 * x2 + 1) * u0 + (x3 - 2 * x2 + x) * d0 + (3 * x2 - 2 * x3) * u1
+                 + (x3 - x2) * d1)
+        change = ((6 * x2 - 6 * x) * u0 + (3 * x2 - 4 * x + 1) * d0 + (6 * x - 6 * x2) * u1
+                  + (3 * x2 - 2 * x) * d1)
+        if change <= 0.0:
+            break
+        step = (value - target) / change
+        x = min(max(x - step, 0.0), 1.0)
+        if abs(step) < 1e-15:
+            break
+    return x
+
+
+FRICTION_SPEED = 1e-3  # [rad/s] the friction torque's sign is smoothed below this crank speed
