@@ -95,3 +95,102 @@ def test_damping_shrinks_the_region_and_removes_it_above_the_theory():
         1.0 - math.sqrt((epsilon / 2) ** 2 - (epsilon / 4) ** 2))
     assert abs(np.diff(damped)[0] - width) <= epsilon ** 2
     assert edges(epsilon, damping_ratio=epsilon / 4.0 * 1.2).size == 0
+
+
+# -- the linkage on the line ----------------------------------------------------------
+
+from click.testing import CliRunner  # noqa: E402
+
+import dyade  # noqa: E402
+from dyade.cli import main  # noqa: E402
+from dyade.linkage import drive_line as api  # noqa: E402
+from tests.helpers import shipped  # noqa: E402
+
+SLIDER = {"drive_line.stiffness": 1000.0, "drive_line.damping": 0.05, "links.2.inertia": 0.01}
+"""the shipped slider-crank with a flywheel on the crank (J̄ = 0.011 kg·m²) on a shaft:
+ω̄ = 300.8 rad/s (2872 rpm), Ω/ω̄ = 0.52 at its 1500 rpm"""
+MOTOR = {"drive_line.rotor_inertia": 0.005, "drive.motor": "asynchronous",
+         "drive.rated_torque": 5.0, "drive.rated_speed_rpm": 1450.0,
+         "drive.synchronous_speed_rpm": 1500.0}
+
+
+def run(*args):
+    return CliRunner().invoke(main, [str(a) for a in args], catch_exceptions=False)
+
+
+def test_energy_balance_over_one_period():
+    """Over one period of the steady state the motor's work equals the work of the load,
+    friction and damping (the kinetic and spring energies repeat), 1e-8 relative."""
+    mechanism = dyade.read_mechanism(shipped("slider-crank.toml"), SLIDER | MOTOR)
+    state = api.steady_state(mechanism, steps=1440, accuracy=False)
+    f = state.figures
+    spent = f["work_load"] + f["work_friction"] + f["work_damping"]
+    assert f["work_damping"] > 0.0
+    assert abs(f["work_motor"] - spent) <= 1e-8 * f["work_motor"]
+
+
+def test_natural_frequency_and_the_vdi_note():
+    """ω̄ = √(k/J̄) for an ideal motor; the range over the cycle from J(φ); analyse
+    notes Ω/ω̄ > 0.1 only when the file has a drive line."""
+    mechanism = dyade.read_mechanism(shipped("slider-crank.toml"), SLIDER)
+    freq = api.natural_frequency(mechanism)
+    assert freq.omega_bar == pytest.approx(math.sqrt(1000.0 / freq.inertia_mean), rel=1e-12)
+    assert freq.omega_min < freq.omega_bar < freq.omega_max
+    assert freq.ratio == pytest.approx(1500 * math.pi / 30 / freq.omega_bar)
+    notes = dyade.analyse(mechanism).notes
+    assert [n.kind for n in notes] == ["drive_line_soft"]
+    stiff = dyade.read_mechanism(shipped("slider-crank.toml"), SLIDER | {
+        "drive_line.stiffness": 1e6})
+    assert dyade.analyse(stiff).notes == []
+
+
+def test_no_drive_line_no_stage(monkeypatch):
+    """Without [drive_line] neither describe nor analyse touches the drive line."""
+    def boom(*args, **kwargs):
+        raise AssertionError("the drive line ran")
+
+    monkeypatch.setattr(api, "natural_frequency", boom)
+    mechanism = dyade.read_mechanism(shipped("slider-crank.toml"))
+    assert dyade.plan(mechanism).drive_line == ""
+    dyade.analyse(mechanism)
+    assert "drive line" not in run("describe", shipped("slider-crank.toml")).output
+
+
+@pytest.mark.parametrize("assignment, key", [
+    ("drive_line.stiffness=0", "drive_line.stiffness"),
+    ("drive_line.stiffness=-5", "drive_line.stiffness"),
+    ("drive_line.damping=-1", "drive_line.damping"),
+    ("drive.motor=\"asynchronous\"", "drive_line.rotor_inertia"),
+])
+def test_bad_line_exits_2_naming_the_key(assignment, key):
+    extra = ["--set", "drive.rated_torque=5", "--set", "drive.rated_speed_rpm=1450",
+             "--set", "drive.synchronous_speed_rpm=1500"] if "motor" in assignment else []
+    result = run("driveline", shipped("slider-crank.toml"), "--set", "drive_line.stiffness=1000",
+                 "--set", assignment, *extra)
+    assert result.exit_code == 2
+    assert key in result.output
+
+
+def test_speed_range_through_zero_and_a_bad_coupling_file(tmp_path):
+    result = run("driveline", shipped("slider-crank.toml"), "--set",
+                 "drive_line.stiffness=1000", "--analysis", "resonance",
+                 "--speeds-rpm", "-100:100:50")
+    assert result.exit_code == 2 and "--speeds-rpm" in result.output
+    bad = tmp_path / "coupling.toml"
+    bad.write_text("J = 0.01\nc1 = \n")
+    text = shipped("slider-crank.toml").read_text() + f'\n[drive_line]\ncoupling = "{bad}"\n'
+    mech = tmp_path / "m.toml"
+    mech.write_text(text)
+    result = run("driveline", mech)
+    assert result.exit_code == 2 and "drive_line.coupling" in result.output
+
+
+def test_run_up_that_never_reaches_speed_exits_1():
+    """A weak motor (rated 0.05 N·m) that is still far from its speed after
+    ``drive.max_revolutions`` = 3 revolutions: exit 1, saying so."""
+    result = run("driveline", shipped("slider-crank.toml"), *sum(
+        (["--set", f'{k}="{v}"' if isinstance(v, str) else f"{k}={v}"] for k, v in (
+            SLIDER | MOTOR | {"drive.rated_torque": 0.05, "drive.max_revolutions": 3}).items()),
+        []), "--analysis", "run-up")
+    assert result.exit_code == 1
+    assert "does not reach speed" in result.output

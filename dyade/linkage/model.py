@@ -21,7 +21,7 @@ from dyade.arrays import FloatArray, Vec
 
 if TYPE_CHECKING:
     from dyade.machine.motor import Drive
-    from dyade.machine.drive_line import DriveLineData
+    from dyade.machine.motor import DriveLineData
 
 FRAME = 1  # link number of the frame
 CRANK = 2  # link number of the crank

@@ -45,7 +45,7 @@ import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.errors import DyadeError, InputError
-from dyade.machine.motor import Motor
+from dyade.machine.motor import DriveLineData, Motor
 
 NEWTON_MAX_ITER = 40  # most shooting iterations
 NEWTON_TOL = 1e-11  # [-] scaled residual of the revolution map that counts as periodic
@@ -512,56 +512,20 @@ def check_tables(tables: Tables) -> None:
                          "inertia is zero or undefined somewhere in the cycle.")
 
 
-@dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
-class DriveLineData:
-    """The ``[drive_line]`` table of a mechanism file (SI): the elastic element between
-    the motor and the crank shaft. Stiffness and damping are those the crank shaft
-    sees (behind the gear); the rotor's inertia is on the motor shaft and enters reduced
-    by ratio²; a ``[drive]`` motor's characteristic is on the crank shaft, as without a
-    drive line."""
-
-    stiffness: float | None
-    """k [N·m/rad] of a shaft; None with a coupling"""
-    damping: float = 0.0
-    """b [N·m·s/rad]"""
-    ratio: float = 1.0
-    """i = motor speed / crank speed [-]"""
-    rotor_inertia: float | None = None
-    """J_rotor [kg·m²] on the motor shaft (needed with a ``[drive]`` motor)"""
-    coupling: object | None = None
-    """a ``dyade.vibration.coupling.Coupling`` in the line instead of the shaft: its
-    primary side (c1, b1), where Strümpfel's exciting moment acts, faces the linkage,
-    its secondary side (c2, b2) the motor"""
-    coupling_file: str | None = None
-    """the coupling file as the mechanism file names it"""
-    steps: int | None = None
-    """RK4 steps per revolution (None: 64 per period of the highest natural frequency,
-    at least 720)"""
-
-    def line(self, motor: Motor | None) -> Line:
-        """The line with ``motor`` (None: an ideal motor at constant speed)."""
-        rotor = (self.rotor_inertia or 0.0) * self.ratio ** 2
-        if motor is not None and not self.rotor_inertia:
-            raise InputError("the drive line with a [drive] motor needs the motor's rotor "
-                             "inertia: give `drive_line.rotor_inertia` [kg·m²] (without "
-                             "[drive] the motor is ideal and turns at constant speed).",
-                             key="drive_line.rotor_inertia")
-        labels = ("drive_line.stiffness", "drive_line.damping", "drive_line.rotor_inertia")
-        if self.coupling is not None:
-            c = self.coupling
-            return Line((rotor, c.inertia), (c.c2, c.c1), (c.b2, c.b1), motor, labels)
-        return Line((rotor,), (self.stiffness,), (self.damping,), motor, labels)
-
-    def describe(self) -> str:
-        if self.coupling is not None:
-            text = f"coupling {self.coupling_file}"
-        else:
-            text = f"shaft {self.stiffness:g} N·m/rad, damping {self.damping:g} N·m·s/rad"
-        if self.rotor_inertia:
-            text += f", rotor {self.rotor_inertia:g} kg·m²"
-        if self.ratio != 1.0:
-            text += f", ratio {self.ratio:g}"
-        return text
+def line_from(data: DriveLineData, motor: Motor | None) -> Line:
+    """The line of a ``[drive_line]`` table with ``motor`` (None: an ideal motor at
+    constant speed)."""
+    rotor = (data.rotor_inertia or 0.0) * data.ratio ** 2
+    if motor is not None and not data.rotor_inertia:
+        raise InputError("the drive line with a [drive] motor needs the motor's rotor "
+                         "inertia: give `drive_line.rotor_inertia` [kg·m²] (without "
+                         "[drive] the motor is ideal and turns at constant speed).",
+                         key="drive_line.rotor_inertia")
+    labels = ("drive_line.stiffness", "drive_line.damping", "drive_line.rotor_inertia")
+    if data.coupling is not None:
+        c = data.coupling
+        return Line((rotor, c.inertia), (c.c2, c.c1), (c.b2, c.b1), motor, labels)
+    return Line((rotor,), (data.stiffness,), (data.damping,), motor, labels)
 
 
 class Periodic1D:
