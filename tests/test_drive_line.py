@@ -194,3 +194,42 @@ def test_run_up_that_never_reaches_speed_exits_1():
         []), "--analysis", "run-up")
     assert result.exit_code == 1
     assert "does not reach speed" in result.output
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name, settings, inside, outside", [
+    ("dyade-16.toml", {"drive_line.stiffness": 1000.0, "drive_line.damping": 0.04},
+     3575.0, 3450.0),
+    ("slider-crank.toml", {"drive_line.stiffness": 1000.0, "drive_line.damping": 0.005,
+                           "links.2.inertia": 0.004}, 8500.0, 8300.0),
+])
+def test_floquet_multipliers_against_long_integration(name, settings, inside, outside):
+    """Near Ω = 2ω̄ (the first harmonic of J(φ)'s region) on an ideal motor: dyade-16 on a
+    shaft of 1000 N·m/rad and 0.04 N·m·s/rad (ω̄ = 187.0 rad/s, D = 0.0037: unstable
+    3525–3625 rpm); the shipped slider-crank with a flywheel of 0.004 kg·m² on its crank
+    on 1000 N·m/rad and 0.005 N·m·s/rad (ω̄ = 444.9 rad/s: unstable 8450–8550 rpm). A
+    small disturbance of the periodic motion, integrated over 70 revolutions, grows inside
+    the region and dies out outside, at the rate per revolution of the largest Floquet
+    multiplier from the linearisation about the periodic solution."""
+    mechanism = dyade.read_mechanism(shipped(name), settings)
+    line = api.line_of(mechanism)
+    tables = api.crank_tables(mechanism, 720)
+    lanes = engine.Lanes.of(line, np.array([inside, outside]) / api.RPM)
+    solution = engine.periodic(line, tables, lanes, engine.linear_guess(line, tables, lanes))
+    assert solution.converged.all()
+    mu = np.abs(solution.multipliers[:, 0])
+    assert mu[0] > 1.01 and mu[1] < 1.0
+    scale = engine.scales(line, tables, lanes)
+    x = solution.start + 1e-7 * scale * np.array([1.0, -0.5])
+    deviations = [x - solution.start]
+    for _ in range(40):  # revolution by revolution, the disturbance at each u = 0
+        x = engine.integrate(line, tables, lanes, x, keep=False)
+        deviations.append(x - solution.start)
+    d = np.array(deviations) / scale  # (41, lanes, dim)
+    size = np.max(np.abs(d), axis=2)
+    assert size[-1, 0] > 1.5 * size[0, 0]  # inside: it grows
+    assert size[-10:, 1].max() < 0.9 * size[:10, 1].max()  # outside: it dies out
+    for lane in range(2):  # the revolution map the long run shows: d_{n+1} = A·d_n
+        a = np.linalg.lstsq(d[:-1, lane], d[1:, lane], rcond=None)[0].T
+        seen = np.sort(np.abs(np.linalg.eigvals(a)))[::-1]
+        assert seen == pytest.approx(np.abs(solution.multipliers[lane]), abs=1e-4)
