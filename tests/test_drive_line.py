@@ -233,3 +233,66 @@ def test_floquet_multipliers_against_long_integration(name, settings, inside, ou
         a = np.linalg.lstsq(d[:-1, lane], d[1:, lane], rcond=None)[0].T
         seen = np.sort(np.abs(np.linalg.eigvals(a)))[::-1]
         assert seen == pytest.approx(np.abs(solution.multipliers[lane]), abs=1e-4)
+
+
+@pytest.mark.slow
+def test_stiff_line_tends_to_the_rigid_drive():
+    """Stiffness → ∞: the crank speed, acceleration and shaft torque tend to the rigid
+    [drive] solution (the rotor's inertia on the crank shaft), the error ∝ 1/stiffness."""
+    errors = []
+    for k in (1e5, 4e5):
+        mechanism = dyade.read_mechanism(shipped("slider-crank.toml"), SLIDER | MOTOR | {
+            "drive_line.stiffness": k, "drive_line.damping": 2.0})
+        state = api.steady_state(mechanism, accuracy=False)
+        errors.append([np.max(np.abs(state.crank_speed - state.rigid_speed)),
+                       np.max(np.abs(state.shaft_torque - state.rigid_torque))])
+    ratio = np.array(errors[0]) / np.array(errors[1])
+    assert ratio == pytest.approx([4.0, 4.0], rel=0.15)
+
+
+def _phasor(t: np.ndarray, y: np.ndarray, omega: float) -> complex:
+    """Y with y(t) ≈ a + Im(Y·e^{iΩt}) (least squares over one period)."""
+    basis = np.column_stack((np.ones_like(t), np.cos(omega * t), np.sin(omega * t)))
+    _, b, c = np.linalg.lstsq(basis, y, rcond=None)[0]
+    return complex(c, b)
+
+
+@pytest.mark.slow
+def test_coupling_in_the_line_is_strumpfels_in_the_limit():
+    """The shipped stiff coupling in the line of an ideal motor (its secondary side c2, b2
+    held by the motor's uniform rotation, as Strümpfel's is held still), its primary side
+    c1, b1 on a disc of inertia j loaded by M̂·sin φ (the exciting moment at the primary
+    node): as j → 0 the steady state's phasors of the coupling angle φ, the exciting-side
+    angle ψ and the counter-moment M_Q equal ``dyade coupling``'s at the same tuning ratio
+    η = Ω/ω_t, the error ∝ j."""
+    coupling = dyade.read_coupling(shipped("coupling/stiff-coupling.toml"))
+    eta = np.array([0.6, 1.4])
+    omega = eta * coupling.natural_frequency
+    expected = dyade.coupling_response(coupling, eta).phasors
+    amplitude = 1e-6  # [N·m]: the load's dependence on the vibrating angle stays below 1e-9
+    errors = []
+    for share in (1e-2, 1e-3, 1e-4):
+        disc_inertia = share * coupling.inertia
+        line = engine.Line((0.0, coupling.inertia), (coupling.c2, coupling.c1),
+                           (coupling.b2, coupling.b1))
+        steps = engine.steps_for(line, disc_inertia, float(omega.min()))
+        u = math.pi / steps * np.arange(2 * steps)
+        tables = disc(steps, disc_inertia, amplitude * np.sin(u))
+        lanes = engine.Lanes.of(line, omega)
+        solution = engine.periodic(line, tables, lanes, engine.linear_guess(line, tables, lanes))
+        assert solution.converged.all()
+        orbit = engine.integrate(line, tables, lanes, solution.start)
+        worst = 0.0
+        for lane in range(2):
+            t = orbit.quadratures[:-1, lane, 0]
+            state = orbit.state[:-1, lane]
+            found = {"phi": _phasor(t, state[:, 2] - state[:, 1], omega[lane]),
+                     "psi": _phasor(t, -state[:, 1], omega[lane]),
+                     "q": _phasor(t, -orbit.torque[:-1, lane, 0], omega[lane])}
+            for name, value in found.items():
+                want = expected[name][lane] * amplitude
+                worst = max(worst, abs(value - want) / abs(want))
+        errors.append(worst)
+    assert errors[2] <= 5e-4  # found: 3.5e-2, 3.4e-3, 3.4e-4
+    assert errors[0] / errors[1] == pytest.approx(10.0, rel=0.3)
+    assert errors[1] / errors[2] == pytest.approx(10.0, rel=0.3)
