@@ -69,6 +69,33 @@ class InputError(DyadeError, ValueError):
     parameters: tuple[str, ...] = ()
     """the API parameters the error is about (empty for file errors)"""
 
+    @classmethod
+    def refuse_renamed(cls, function: str, given: dict[str, Any], renamed: dict[str, str]
+                       ) -> None:
+        """Refuse keyword arguments of ``function`` under a former name: an
+        ``InputError`` naming the new one (``renamed``: old -> new, with its unit), not a
+        Python warning; any other unknown keyword is the ``TypeError`` Python gives.
+
+        >>> InputError.refuse_renamed("analyse", {"step": 0.5}, {"step": "step_deg"})
+        Traceback (most recent call last):
+        ...
+        dyade.errors.InputError: analyse() takes step_deg (degrees), not step: angles at
+            the API carry their unit in the name (step_deg=0.5 is half a degree).
+        """
+        for name, value in given.items():
+            new = renamed.get(name)
+            if new is None:
+                raise TypeError(f"{function}() got an unexpected keyword argument {name!r}")
+            unit = "degrees" if new.endswith("_deg") else "rpm" if new.endswith("_rpm") else ""
+            example = {"degrees": f"{new}=0.5 is half a degree",
+                       "rpm": f"{new}=60 is one revolution per second"}.get(unit, "")
+            err = cls(f"{function}() takes {new}{f' ({unit})' if unit else ''}, not {name}: "
+                      f"angles at the API carry their unit in the name"
+                      f"{f' ({example})' if example else ''}.", key=name, value=value,
+                      reason=f"is now {new}")
+            err.parameters = (name,)
+            raise err
+
     def naming(self, names: dict[str, str]) -> InputError:
         """The same error with its parameters named as the user gave them: ``names`` maps
         a parameter to a flag (``--J``) or to a file key (``coupling.toml: `J```). Errors
@@ -79,6 +106,12 @@ class InputError(DyadeError, ValueError):
                          key=self.key, value=self.value, unit=self.unit, reason=self.reason)
         err.parameters = self.parameters
         return err
+
+
+class MissingExtra(InputError, ImportError):
+    """An optional extra is not installed (matplotlib for plots): the message names the
+    command that installs it. Both an ``InputError`` (the command line exits 2) and an
+    ``ImportError`` (what ``import`` of the module would raise)."""
 
 
 class AssemblyError(DyadeError):

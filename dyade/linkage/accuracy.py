@@ -13,7 +13,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from dyade.linkage.plan import plan
-from dyade.linkage.sweep import Result, analyse
+from dyade.linkage.sweep import Result, analyse, analyse_si
 from dyade.linkage.model import Mechanism, Revolute
 
 STEPS_DEG = (5.0, 2.0, 1.0, 0.5, 0.1, 0.05)  # [°] crank steps, the last one is the reference
@@ -91,7 +91,7 @@ def crank_step(mechanism: Mechanism, steps=STEPS_DEG, repeats: int = 3, tick=Non
     runs = []
     for step in steps:
         angles = mechanism.sweep.start + np.deg2rad(step) * np.arange(int(round(360 / step)) + 1)
-        seconds, result = _timed(lambda: analyse(mechanism, crank_angle=angles), repeats)
+        seconds, result = _timed(lambda: analyse_si(mechanism, crank_angle=angles), repeats)
         peaks = _peaks(mechanism, result.forces, result.rows, result.clearance)
         runs.append((f"{step:g}°", seconds, peaks or _kinematic_peaks(result),
                      f"{angles.size} positions"))

@@ -5,6 +5,10 @@ GIF through matplotlib's PillowWriter (``dyade.plot.canvas.save_frames``).
 
 from __future__ import annotations
 
+from dyade.plot import require
+
+require()  # before matplotlib: without the plot extra, the install hint
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -43,7 +47,7 @@ def animation(result, *, fig: Figure | None = None) -> Animation:
 
     >>> import dyade
     >>> from dyade.plot.animate import animation
-    >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/slotted-lever.toml"), step=0.5)
+    >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/slotted-lever.toml"), step_deg=30)
     >>> motion = animation(result)
     >>> motion.count, [artist.get_gid() for artist in motion.update(3)][:2]
     (13, ['link-2', None])

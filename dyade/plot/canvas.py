@@ -10,6 +10,10 @@ pyplot figure for a window); nothing touches pyplot's global state but ``window`
 
 from __future__ import annotations
 
+from dyade.plot import require
+
+require()  # before matplotlib: without the plot extra, the install hint
+
 import math
 import os
 from contextlib import contextmanager

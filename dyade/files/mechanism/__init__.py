@@ -39,7 +39,9 @@ def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = N
         The TOML file (``mechanisms/README.md`` documents every key).
     overrides : dict, optional
         Dotted key path -> value, replacing keys of the file as ``--set`` does
-        (``{"crank.speed_rpm": 600}``; array entries by 1-based index).
+        (``{"crank.speed_rpm": 600}``). Array entries go by their number: links and
+        loads from 1, dyads as in DYADE from 2 (the crank is dyad 1, the first
+        ``[[dyad]]`` table dyad 2): ``{"dyad.2.length": 0.2}``.
 
     Returns
     -------
@@ -50,6 +52,20 @@ def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = N
     ------
     InputError
         Naming the file and the key path, what was expected and what was found.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> fourbar = dyade.read_mechanism("mechanisms/fourbar.toml")
+    >>> fourbar.name, [dyad.number for dyad in fourbar.dyads]
+    ('Four-bar crank-rocker', [2])
+    >>> faster = dyade.read_mechanism("mechanisms/fourbar.toml", {"crank.speed_rpm": 600})
+    >>> round(faster.crank.speed, 3)     # [rad/s]
+    62.832
+    >>> longer = dyade.read_mechanism("mechanisms/slider-crank.toml", {"dyad.2.length": 200})
+    >>> stroke = dyade.analyse(longer).columns()["s_1_4"]     # [m]
+    >>> round(float(stroke.max() - stroke.min()), 4)
+    0.0801
     """
     return build(load_data(path, overrides), path)
 
