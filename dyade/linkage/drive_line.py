@@ -484,3 +484,18 @@ def run_up(mechanism: Mechanism, *, steps: int | None = None) -> RunUp:
                "omega_bar": natural_frequency(mechanism).omega_bar}
     return RunUp(path.time, mechanism.sweep.start + sense * path.path, path.crank_speed,
                  path.motor_speed, path.shaft_torque, path.twist, figures)
+
+
+def forces(mechanism: Mechanism, state: SteadyState, **options):
+    """The sweep of ``mechanism`` at the real crank motion of the drive line's steady
+    state: every joint force, the drive torque (which is then the shaft torque) and all
+    other columns, at the state's positions (one revolution, without its repeated end),
+    by ``dyade.analyse`` with the crank's speed and acceleration per position.
+    ``options`` go to ``dyade.analyse``."""
+    from dyade.linkage.sweep import analyse
+
+    sense = _sense(mechanism)
+    return analyse(mechanism, crank_angle_deg=np.degrees(state.crank_angle[:-1]),
+                   crank_speed=sense * state.crank_speed[:-1],
+                   crank_acceleration=sense * state.crank_acceleration[:-1],
+                   constant_speed=True, **options)

@@ -4,6 +4,10 @@ the rigid drive's, and the run-up."""
 
 from __future__ import annotations
 
+from dyade.plot import require
+
+require()  # before matplotlib: without the plot extra, the install hint
+
 import numpy as np
 from matplotlib.figure import Figure
 
