@@ -325,3 +325,15 @@ def test_joint_forces_at_the_real_crank_motion():
     drive = result.columns()["M_drive"]
     torque = state.shaft_torque[:-1]
     assert np.max(np.abs(drive - torque)) <= 1e-8 * np.max(np.abs(torque))
+
+
+@pytest.mark.slow
+def test_accuracy_studies_the_drive_line_only_when_the_file_has_one():
+    from dyade.linkage import accuracy
+
+    plain = dyade.read_mechanism(shipped("slider-crank.toml"))
+    assert "drive line steps" not in {r.study for r in accuracy.studies(plain, repeats=1)}
+    rows = accuracy.drive_line_steps(dyade.read_mechanism(shipped("slider-crank.toml"), SLIDER),
+                                     factors=(0.5, 1.0, 2.0))
+    errors = {r.setting: r.error for r in rows if r.quantity == "largest |mu|"}
+    assert errors["360 steps"] < 1e-6 and np.isnan(errors["1440 steps"])
