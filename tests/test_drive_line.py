@@ -337,3 +337,23 @@ def test_accuracy_studies_the_drive_line_only_when_the_file_has_one():
                                      factors=(0.5, 1.0, 2.0))
     errors = {r.setting: r.error for r in rows if r.quantity == "largest |mu|"}
     assert errors["360 steps"] < 1e-6 and np.isnan(errors["1440 steps"])
+
+
+def test_driveline_json_and_describe():
+    """`dyade driveline --format json`: the natural frequency, the steady state next to the
+    rigid drive, the VDI note; `describe` lists the stage."""
+    import json
+
+    sets = sum((["--set", f"{k}={v}"] for k, v in SLIDER.items()), [])
+    result = run("driveline", shipped("slider-crank.toml"), *sets, "--format", "json")
+    assert result.exit_code == 0, result.output
+    doc = json.loads(result.stdout)
+    frequency = doc["summary"]["natural_frequency"]
+    assert frequency["vdi_2149"] is False and frequency["ratio"] == pytest.approx(0.5222, abs=1e-4)
+    assert doc["summary"]["steady"]["accuracy"] < 1e-5
+    assert len(doc["columns"]["shaft_torque"]) == len(doc["columns"]["rigid_torque"])
+    assert any("VDI 2149" in w for w in doc["warnings"])
+    described = run("describe", shipped("slider-crank.toml"), *sets).output
+    assert "elastic drive line (shaft 1000 N·m/rad" in described
+    missing = run("driveline", shipped("slider-crank.toml"))
+    assert missing.exit_code == 2 and "[drive_line]" in missing.output
