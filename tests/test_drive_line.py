@@ -166,7 +166,9 @@ def test_no_drive_line_no_stage(monkeypatch):
     def boom(*args, **kwargs):
         raise AssertionError("the drive line ran")
 
-    monkeypatch.setattr(api, "natural_frequency", boom)
+    from dyade.linkage import line_model
+
+    monkeypatch.setattr(line_model, "natural_frequency", boom)
     mechanism = dyade.read_mechanism(shipped("slider-crank.toml"))
     assert dyade.plan(mechanism).drive_line == ""
     dyade.analyse(mechanism)

@@ -24,107 +24,23 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from dyade.errors import DyadeError, InputError
-from dyade.linkage.drive import machine_tables
+from dyade.linkage.line_model import (VDI_2149_RATIO, NaturalFrequency, crank_tables,  # noqa: F401
+                                     line_data, line_of, natural_frequency, sense_of)
 from dyade.linkage.model import FloatArray, Mechanism
 from dyade.machine import drive_line as engine
 from dyade.machine.motor import Asynchronous, ConstantTorque, Motor, TorqueSpeedTable
 
-VDI_2149_RATIO = 0.1  # [-] largest Ω/ω̄ for which the rigid model holds (VDI 2149 Part 1)
 RPM = 30.0 / math.pi  # rpm per rad/s
 HARMONIC_SHARE = 1e-3  # [-] harmonics of J or M_L above this share of the largest are labelled
 
 
-def _data(mechanism: Mechanism):
-    if mechanism.drive_line is None:
-        raise InputError(f"{mechanism.name}: no [drive_line] table: give the elastic element "
-                         f"between motor and crank (`drive_line.stiffness` [N·m/rad], or "
-                         f"`drive_line.coupling` = a coupling file), see mechanisms/README.md.",
-                         key="drive_line")
-    return mechanism.drive_line
-
-
-def line_of(mechanism: Mechanism, *, ideal: bool = False) -> engine.Line:
-    """The drive line of ``mechanism``: its ``[drive]`` motor (or an ideal motor when the
-    file has none, or with ``ideal``)."""
-    data = _data(mechanism)
-    motor = None if ideal or mechanism.drive is None else mechanism.drive.motor
-    return engine.line_from(data, motor)
-
-
-def crank_tables(mechanism: Mechanism, steps: int) -> engine.Tables:
-    """J, dJ/du, s·M_L at the half steps of ``steps`` steps per revolution from the
-    sweep's start in the running direction (no friction: not part of this model)."""
-    sense = _sense(mechanism)
-    grid = mechanism.sweep.start + sense * math.pi / steps * np.arange(2 * steps)
-    machine = machine_tables(mechanism, grid)
-    tables = engine.Tables(machine.inertia, sense * machine.slope, sense * machine.load,
-                           np.zeros(2 * steps))
-    engine.check_tables(tables)
-    return tables
-
-
-def _sense(mechanism: Mechanism) -> float:
-    return 1.0 if mechanism.crank.speed > 0 else -1.0
-
-
 def _steps(mechanism: Mechanism, line: engine.Line, speed_min: float,
            stiffness_max: FloatArray | None = None) -> tuple[int, engine.Tables]:
-    data = _data(mechanism)
+    data = line_data(mechanism)
     coarse = crank_tables(mechanism, engine.MIN_STEPS)
     steps = data.steps or engine.steps_for(line, float(np.min(coarse.inertia)), speed_min,
                                            stiffness_max)
     return steps, (coarse if steps == engine.MIN_STEPS else crank_tables(mechanism, steps))
-
-
-@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
-class NaturalFrequency:
-    """The natural frequencies of the drive line and the VDI 2149 check."""
-
-    omega_bar: float
-    """ω̄ [rad/s]: the lowest natural frequency with the linkage's mean reduced inertia J̄"""
-    omega_min: float
-    """the lowest natural frequency's smallest value over the cycle (J(φ) largest) [rad/s]"""
-    omega_max: float
-    """… and its largest (J(φ) smallest) [rad/s]"""
-    inertia_mean: float
-    """J̄ [kg·m²]"""
-    speed: float
-    """the crank's operating speed |Ω| [rad/s]"""
-    crank_angle: FloatArray
-    """(n,) [rad]"""
-    frequency: FloatArray
-    """(n,) the lowest natural frequency with J frozen at J(φ) [rad/s]"""
-
-    @property
-    def ratio(self) -> float:
-        """η = Ω/ω̄ [-]"""
-        return self.speed / self.omega_bar
-
-    @property
-    def vdi_2149(self) -> bool:
-        """True when Ω/ω̄ ≤ 0.1: the rigid model of the drive holds (VDI 2149 Part 1)."""
-        return self.ratio <= VDI_2149_RATIO
-
-
-def natural_frequency(mechanism: Mechanism) -> NaturalFrequency:
-    """ω̄, the range of the lowest natural frequency over the cycle, and Ω/ω̄.
-
-    >>> import dyade
-    >>> m = dyade.read_mechanism("mechanisms/slider-crank.toml",
-    ...                          {"drive_line.stiffness": 1000.0, "links.2.inertia": 0.01})
-    >>> f = natural_frequency(m)
-    >>> round(f.omega_bar, 2), round(f.ratio, 4), f.vdi_2149     # [rad/s], [-]
-    (300.8, 0.5222, False)
-    """
-    line = line_of(mechanism)
-    tables = crank_tables(mechanism, engine.MIN_STEPS)
-    inertia = tables.inertia[0::2]
-    mean = float(np.mean(tables.inertia))
-    every = engine.natural_frequencies(line, np.concatenate(([mean], inertia)))[:, 0]
-    angle = mechanism.sweep.start + _sense(mechanism) * 2.0 * math.pi / engine.MIN_STEPS * \
-        np.arange(engine.MIN_STEPS)
-    return NaturalFrequency(float(every[0]), float(np.min(every[1:])), float(np.max(every[1:])),
-                            mean, abs(mechanism.crank.speed), angle, every[1:])
 
 
 def resonances(mechanism: Mechanism, omega_bar: float, low: float, high: float
@@ -228,7 +144,7 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
         speed_rpm) / RPM
     if not speed > 0.0:
         raise InputError.parameter("speed_rpm", f"must be a positive speed, got {speed_rpm}.")
-    n = steps or _data(mechanism).steps or engine.steps_for(line, float(np.min(probe.inertia)),
+    n = steps or line_data(mechanism).steps or engine.steps_for(line, float(np.min(probe.inertia)),
                                                             speed)
     tables = crank_tables(mechanism, n)
     lanes = engine.Lanes.of(line, [speed])
@@ -254,7 +170,7 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
 
 
 def _steady(mechanism, line, tables, lanes, orbit, solution) -> SteadyState:
-    sense = _sense(mechanism)
+    sense = sense_of(mechanism)
     steps = tables.steps
     u = orbit.step * np.arange(steps + 1)
     speed = lanes.speed[0] + orbit.state[:, 0, 0]
@@ -460,7 +376,7 @@ def run_up(mechanism: Mechanism, *, steps: int | None = None) -> RunUp:
     if isinstance(line.motor, ConstantTorque) and line.motor.torque is None:
         raise InputError("a run-up needs the torque of the constant-torque motor: give "
                          "`drive.torque` [N·m].", key="drive.torque")
-    n = steps or _data(mechanism).steps or engine.MIN_STEPS
+    n = steps or line_data(mechanism).steps or engine.MIN_STEPS
     tables = crank_tables(mechanism, n)
     top = float(engine.natural_frequencies(line, np.array([np.min(tables.inertia)]))[0, -1])
     dt = 2.0 * math.pi / (STEPS_PER_VIBRATION_IN_TIME * top)
@@ -470,12 +386,14 @@ def run_up(mechanism: Mechanism, *, steps: int | None = None) -> RunUp:
     t_max = 2.0 * revolutions * 2.0 * math.pi / reference
     path = engine.run_up(line, tables, dt=dt, t_max=t_max, tol=RUN_UP_TOL,
                          max_revolutions=revolutions)
-    sense = _sense(mechanism)
+    sense = sense_of(mechanism)
     if not path.settled:
         raise DyadeError(f"the machine does not reach speed: after {path.time[-1]:.4g} s and "
                          f"{path.revolutions} revolutions its speed still changes (top crank "
-                         f"speed {np.max(path.crank_speed) * RPM:.5g} rpm); the motor cannot "
-                         f"bring it up, or give `drive.max_revolutions` more.")
+                         f"speed {np.max(path.crank_speed) * RPM:.5g} rpm): the motor cannot "
+                         f"bring it up, or nothing holds its speed (a constant torque against "
+                         f"loads that do not rise with speed), or it needs more than "
+                         f"`drive.max_revolutions`.")
     peak = int(np.argmax(np.abs(path.shaft_torque)))
     figures = {"peak_torque": float(path.shaft_torque[peak]), "peak_time": float(path.time[peak]),
                "peak_speed": float(path.crank_speed[peak]), "duration": float(path.time[-1]),
@@ -494,7 +412,7 @@ def forces(mechanism: Mechanism, state: SteadyState, **options):
     ``options`` go to ``dyade.analyse``."""
     from dyade.linkage.sweep import analyse
 
-    sense = _sense(mechanism)
+    sense = sense_of(mechanism)
     return analyse(mechanism, crank_angle_deg=np.degrees(state.crank_angle[:-1]),
                    crank_speed=sense * state.crank_speed[:-1],
                    crank_acceleration=sense * state.crank_acceleration[:-1],

@@ -289,7 +289,7 @@ class Keep:
         if setup.motion is not None:
             notes += motion_notes(setup.motion)
         if setup.plan.drive_line:
-            from dyade.linkage.drive_line import natural_frequency
+            from dyade.linkage.line_model import natural_frequency
 
             line = natural_frequency(mechanism)
             if not line.vdi_2149:
