@@ -317,7 +317,8 @@ def test_coupling_in_the_line_is_strumpfels_in_the_limit():
     assert errors[1] / errors[2] == pytest.approx(10.0, rel=0.3)
 
 
-@pytest.mark.parametrize("direction, sense", [("ccw", 1.0), ("cw", -1.0)])
+@pytest.mark.parametrize("direction, sense", [("ccw", 1.0),
+                                              pytest.param("cw", -1.0, marks=pytest.mark.slow)])
 def test_joint_forces_at_the_real_crank_motion(direction, sense):
     """The kinetostatics at the vibrating crank's speed and acceleration gives a drive
     torque equal to the shaft torque of the drive line (two independent paths: the
