@@ -363,3 +363,22 @@ def test_driveline_json_and_describe():
     assert "elastic drive line (shaft 1000 N·m/rad" in described
     missing = run("driveline", shipped("slider-crank.toml"))
     assert missing.exit_code == 2 and "[drive_line]" in missing.output
+
+
+@pytest.mark.slow
+def test_joint_friction_in_the_steady_state():
+    """With joint friction (μ = 0.1 in every joint of the slider-crank) the friction torque
+    comes from the kinetostatics with friction at the vibrating motion, by passes: the
+    energy balance holds with its work (1e-8), and the sweep at that motion gives a drive
+    torque equal to the shaft torque (to the friction tolerance)."""
+    mechanism = dyade.read_mechanism(shipped("slider-crank.toml"), SLIDER | {
+        "friction.coefficient": 0.1, "friction.pin_radius": 5.0,
+        "friction.slider_length": 30.0, "friction.slider_height": 20.0})
+    state = api.steady_state(mechanism, steps=1080, accuracy=False)
+    f = state.figures
+    assert f["work_friction"] > 0.5 * f["work_motor"] and f["friction_passes"] > 1
+    spent = f["work_load"] + f["work_friction"] + f["work_damping"]
+    assert abs(f["work_motor"] - spent) <= 1e-8 * f["work_motor"]
+    drive = api.forces(mechanism, state).columns()["M_drive"]
+    torque = state.shaft_torque[:-1]
+    assert np.max(np.abs(drive - torque)) <= 1e-8 * np.max(np.abs(torque))

@@ -89,8 +89,9 @@ def driveline(mechanism_file: str, what: str, speeds_rpm: str | None, speed_rpm:
         if not freq.vdi_2149:
             notes.append(f"Ω/ω̄ = {freq.ratio:.3g} exceeds 0.1 (VDI 2149 Part 1): the rigid "
                          f"drive's model does not hold for this line.")
-        if mechanism.has_dynamics and any(j.friction > 0.0 for j in mechanism.joints):
-            notes.append("joint friction is not part of the drive line's model: left out.")
+        if what != "steady" and api.has_friction(mechanism):
+            notes.append(f"joint friction is left out of the {what} (the steady state takes "
+                         f"it, by passes at the vibrating crank's motion).")
         speeds = None
         if what in ("resonance", "stability", "map"):
             if not speeds_rpm:

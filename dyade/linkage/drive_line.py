@@ -4,8 +4,10 @@ The linkage enters as the crank shaft of the line (``dyade.machine.drive_line``)
 reduced inertia J(φ), the slope J′(φ) and the load torque M_L(φ) from the kinematics at
 unit crank speed (``dyade.linkage.reduced``), on the integration grid. The motor is the
 ``[drive]`` motor with the rotor inertia of the ``[drive_line]`` table, or, without a
-``[drive]`` table, an ideal motor at the crank's constant speed. Joint friction is not
-part of the drive line's model (a note says so where the file has it).
+``[drive]`` table, an ideal motor at the crank's constant speed. Joint friction enters
+the steady state as the friction torque M_F(φ) from the kinetostatics with friction at
+the vibrating crank's motion, found by passes (as for the rigid ``[drive]``); the scans
+over speed and the run-up leave it out (the command line notes that).
 
 - ``natural_frequency``: ω̄ (the lowest natural frequency with the mean inertia J̄), its
   range over the cycle from J(φ), the ratio Ω/ω̄ and the VDI 2149 check (Ω/ω̄ ≤ 0.1);
@@ -148,17 +150,12 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
                                                             speed)
     tables = crank_tables(mechanism, n)
     lanes = engine.Lanes.of(line, [speed])
-    solution = _solve(line, tables, lanes)
-    if not solution.converged[0]:
-        raise DyadeError(f"no periodic steady state of the drive line at {speed * RPM:.5g} rpm: "
-                         f"the crank would stop or turn back within the cycle, or the shooting "
-                         f"did not converge (scaled residual {solution.residual[0]:.2g}); the "
-                         f"model does not describe that motion.")
-    orbit = engine.integrate(line, tables, lanes, solution.start)
+    solution, orbit, passes = _with_friction(mechanism, line, tables, lanes)
     out = _steady(mechanism, line, tables, lanes, orbit, solution)
+    out.figures.update(passes)
     if accuracy:
         coarse_tables = crank_tables(mechanism, max(n // 2, 36))
-        coarse = _solve(line, coarse_tables, lanes)
+        coarse, _, _ = _with_friction(mechanism, line, coarse_tables, lanes, strict=False)
         if coarse.converged[0]:
             coarse_orbit = engine.integrate(line, coarse_tables, lanes, coarse.start)
             fine = orbit.torque[::2, 0, -1] if n % 2 == 0 else None
@@ -167,6 +164,69 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
                 out.figures["accuracy"] = float(np.max(np.abs(
                     fine - coarse_orbit.torque[:, 0, -1]))) / scale
     return out
+
+
+def has_friction(mechanism: Mechanism) -> bool:
+    """True when the sweep of ``mechanism`` runs the friction solution."""
+    from dyade.linkage.plan import plan
+
+    return bool(plan(mechanism).friction)
+
+
+def _with_friction(mechanism: Mechanism, line: engine.Line, tables: engine.Tables,
+                   lanes: engine.Lanes, strict: bool = True
+                   ) -> tuple[engine.Periodic, engine.Orbit, dict]:
+    """The periodic state of one lane; with joint friction by passes, as for the rigid
+    [drive] (``dyade.linkage.drive``): solve with the friction torque M_F frozen (zero at
+    first), compute it anew from the kinetostatics with friction at the resulting crank
+    speed and acceleration, until it changes by less than ``[friction] tol`` of the
+    largest torque. ``tables.friction`` is left holding it."""
+    solution = _solve(line, tables, lanes)
+    if strict and not solution.converged[0]:
+        raise DyadeError(f"no periodic steady state of the drive line at "
+                         f"{lanes.speed[0] * RPM:.5g} rpm: the crank would stop or turn back "
+                         f"within the cycle, or the shooting did not converge (scaled residual "
+                         f"{solution.residual[0]:.2g}); the model does not describe that motion.")
+    orbit = engine.integrate(line, tables, lanes, solution.start)
+    if not has_friction(mechanism):
+        return solution, orbit, {}
+    change, count = math.inf, 0
+    for count in range(1, mechanism.friction_max_iter + 1):
+        speed = lanes.speed[0] + orbit.state[:-1, 0, 0]
+        new = engine.halves(friction_torque(mechanism, tables, speed, orbit.acceleration[:-1, 0]))
+        change = float(np.max(np.abs(new - tables.friction)))
+        scale = max(float(np.max(np.abs(new))), float(np.max(np.abs(orbit.torque[:, 0, -1]))))
+        tables.friction = new
+        solution = _solve(line, tables, lanes)
+        if not solution.converged[0]:
+            if strict:
+                raise DyadeError("no periodic steady state of the drive line with joint "
+                                 "friction: the shooting did not converge in a friction pass.")
+            break
+        orbit = engine.integrate(line, tables, lanes, solution.start)
+        if change <= mechanism.friction_tol * scale:
+            break
+    return solution, orbit, {"friction_passes": count, "friction_change": change}
+
+
+def friction_torque(mechanism: Mechanism, tables: engine.Tables, speed: FloatArray,
+                    acceleration: FloatArray) -> FloatArray:
+    """s·M_F [N·m] at the N grid nodes of a revolution: the drive torque of the
+    kinetostatics with friction at the crank's ``speed`` and ``acceleration`` (running
+    direction) less what inertia and loads ask, J·φ̈ + ½·J′·φ̇² − M_L."""
+    from dyade.linkage import friction, kinematics
+
+    sense = sense_of(mechanism)
+    steps = tables.steps
+    angle = mechanism.sweep.start + sense * 2.0 * math.pi / steps * np.arange(steps)
+    kin = kinematics.sweep(mechanism, angle, crank_speed=sense * speed,
+                           crank_acceleration=sense * acceleration)
+    drive = friction.solve(mechanism, kin).forces.drive_torque
+    if not np.all(np.isfinite(drive)):
+        raise DyadeError("the drive line with joint friction cannot be solved: the forces are "
+                         "undefined at a dead centre or a self-locking position of the cycle.")
+    inertia, slope, load = tables.inertia[0::2], tables.slope[0::2], tables.load[0::2]
+    return sense * drive - (inertia * acceleration + 0.5 * slope * speed ** 2 - load)
 
 
 def _steady(mechanism, line, tables, lanes, orbit, solution) -> SteadyState:
@@ -181,6 +241,9 @@ def _steady(mechanism, line, tables, lanes, orbit, solution) -> SteadyState:
     # the rigid drive: constant speed for an ideal motor, else the rigid equation of
     # motion with the rotor's inertia on the crank
     inertia, slope, load = tables.inertia[0::2], tables.slope[0::2], tables.load[0::2]
+    rub = np.zeros(steps)  # the rigid drive's friction: at constant speed
+    if has_friction(mechanism):
+        rub = friction_torque(mechanism, tables, np.full(steps, mean), np.zeros(steps))
     if line.ideal:
         rigid_speed = np.full(steps + 1, lanes.speed[0])
         rigid_accel = np.zeros(steps + 1)
@@ -188,7 +251,8 @@ def _steady(mechanism, line, tables, lanes, orbit, solution) -> SteadyState:
         from dyade.machine import equation
 
         rotor = line.inertias[0] + sum(line.inertias[1:])
-        eq = equation.Tables(tables.inertia + rotor, tables.load, tables.friction, tables.slope)
+        eq = equation.Tables(tables.inertia + rotor, tables.load, engine.halves(rub),
+                             tables.slope)
         path = equation.periodic(eq, line.motor, 1.0, steps, mean, 1e-12, mean)
         rigid_speed = path.speed
         g = path.slope
@@ -196,7 +260,7 @@ def _steady(mechanism, line, tables, lanes, orbit, solution) -> SteadyState:
             np.append(inertia, inertia[0]) + rotor)
     close = np.append(np.arange(steps), 0)
     rigid_torque = (inertia[close] * rigid_accel + 0.5 * slope[close] * rigid_speed ** 2
-                    - load[close])
+                    - load[close] + rub[close])
     quad = orbit.quadratures[-1, 0]
     figures = {"speed_mean": mean, "period": period,
                "fluctuation": float((speed.max() - speed.min()) / mean),

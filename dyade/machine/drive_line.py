@@ -545,6 +545,20 @@ class Periodic1D:
     def __call__(self, u: float) -> float:
         return float(np.dot(self.coefficients, np.exp(1j * self.orders * u)).real)
 
+    def at(self, u: FloatArray) -> FloatArray:
+        """The series at every u [rad] (vectorised)."""
+        return (np.exp(1j * np.outer(u, self.orders)) @ self.coefficients).real
+
+
+def halves(nodes: FloatArray) -> FloatArray:
+    """A table at the N nodes of a revolution extended to its 2N half steps, the
+    midpoints by its Fourier series."""
+    steps = nodes.size
+    out = np.empty(2 * steps)
+    out[0::2] = nodes
+    out[1::2] = Periodic1D(nodes).at(2.0 * math.pi / steps * (np.arange(steps) + 0.5))
+    return out
+
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class RunUp:
