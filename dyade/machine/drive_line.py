@@ -221,11 +221,12 @@ QUADRATURES = 5  # time, motor work, load work, friction work, damping work
 
 
 def _rates(line: Line, lanes: Lanes, x: FloatArray, inertia: float, slope: float, load: float,
-           friction: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+           friction: float, quadratures: bool = True
+           ) -> tuple[FloatArray, FloatArray | None, FloatArray]:
     """d/du of the state and the quadratures, and the torques, at one grid point for all
     lanes. x: (B, d). Differences of speeds are taken between their deviations from Ω_ref
     (and the motor's torque as its change from m(Ω_ref)), so a small vibration keeps its
-    digits."""
+    digits. Without ``quadratures`` (shooting) their rates are not computed (None)."""
     m = line.elements
     omega = lanes.speed
     dv = x[:, 0]
@@ -238,8 +239,7 @@ def _rates(line: Line, lanes: Lanes, x: FloatArray, inertia: float, slope: float
     dw_next = np.concatenate((dw[:, 1:], dv[:, None]), axis=1)
     q_next = np.concatenate((q[:, 1:], np.zeros((q.shape[0], 1))), axis=1)
     torque = lanes.stiffness * (q - q_next) + lanes.damping * (dw - dw_next)  # (B, m)
-    with np.errstate(divide="ignore", invalid="ignore"):  # v ≤ 0: the lane is lost (NaN)
-        slow = np.where(v > 0.0, 1.0 / v, np.nan)
+    slow = 1.0 / np.where(v > 0.0, v, np.nan)  # v ≤ 0: the lane is lost (NaN)
     accel = (torque[:, -1] + load - friction - 0.5 * slope * v * v) / inertia
     if line.ideal:
         drive = torque[:, 0]
@@ -254,6 +254,8 @@ def _rates(line: Line, lanes: Lanes, x: FloatArray, inertia: float, slope: float
     dx[:, 0] = accel * slow
     dx[:, 1:1 + m] = (dw - dv[:, None]) * slow[:, None]
     dx[:, 1 + m:] = (node_accel[:, 1:] if line.ideal else node_accel) * slow[:, None]
+    if not quadratures:
+        return dx, None, torque
     dissipation = np.sum(lanes.damping * (dw - dw_next) ** 2, axis=1)
     dquad = np.stack((slow, drive * (omega + dw[:, 0]) * slow, -load * np.ones_like(v),
                       friction * np.ones_like(v), dissipation * slow), axis=1)
@@ -312,18 +314,20 @@ def integrate(line: Line, tables: Tables, lanes: Lanes, x0: FloatArray, revoluti
         accels = np.empty((total + 1, x.shape[0]))
     for k in range(total):
         j = (2 * k) % period
-        args = (inertia[j], slope[j], load[j], rub[j])
+        args = (inertia[j], slope[j], load[j], rub[j], keep)
         k1, c1, t1 = _rates(line, lanes, x, *args)
         if keep:
             states[k], quads[k], torques[k] = x, quad, t1
             accels[k] = k1[:, 0] * (lanes.speed + x[:, 0])
-        mid = (inertia[j + 1], slope[j + 1], load[j + 1], rub[j + 1])
+        mid = (inertia[j + 1], slope[j + 1], load[j + 1], rub[j + 1], keep)
         k2, c2, _ = _rates(line, lanes, x + 0.5 * h * k1, *mid)
         k3, c3, _ = _rates(line, lanes, x + 0.5 * h * k2, *mid)
         j2 = (j + 2) % period
-        k4, c4, _ = _rates(line, lanes, x + h * k3, inertia[j2], slope[j2], load[j2], rub[j2])
+        k4, c4, _ = _rates(line, lanes, x + h * k3, inertia[j2], slope[j2], load[j2], rub[j2],
+                           keep)
         x = x + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
-        quad = quad + h / 6.0 * (c1 + 2.0 * c2 + 2.0 * c3 + c4)
+        if keep:
+            quad = quad + h / 6.0 * (c1 + 2.0 * c2 + 2.0 * c3 + c4)
     if not keep:
         return x
     k1, _, t1 = _rates(line, lanes, x, inertia[0], slope[0], load[0], rub[0])
