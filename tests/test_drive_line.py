@@ -382,3 +382,19 @@ def test_joint_friction_in_the_steady_state():
     drive = api.forces(mechanism, state).columns()["M_drive"]
     torque = state.shaft_torque[:-1]
     assert np.max(np.abs(drive - torque)) <= 1e-8 * np.max(np.abs(torque))
+
+
+def test_a_coupling_file_in_the_line():
+    """`drive_line.coupling`: the shipped stiff coupling between an ideal motor (c2, b2)
+    and the slider-crank (c1, b1): ω̄ is the lower root of the two-mass system J_K, J̄ on
+    c2 to the held motor and c1 between them, det(K − ω²M) = 0."""
+    mechanism = dyade.read_mechanism(shipped("slider-crank.toml"), {
+        "drive_line.coupling": "coupling/stiff-coupling.toml"})
+    coupling = dyade.read_coupling(shipped("coupling/stiff-coupling.toml"))
+    freq = api.natural_frequency(mechanism)
+    j1, j2, c1, c2 = coupling.inertia, freq.inertia_mean, coupling.c1, coupling.c2
+    # (c1 + c2 − ω²J1)(c1 − ω²J2) − c1² = 0, a quadratic in ω²
+    a, b, c = j1 * j2, -((c1 + c2) * j2 + c1 * j1), c1 * c2
+    low = (-b - math.sqrt(b * b - 4 * a * c)) / (2 * a)
+    assert freq.omega_bar == pytest.approx(math.sqrt(low), rel=1e-12)
+    assert api.line_of(mechanism).elements == 2

@@ -154,7 +154,7 @@ def driveline(mechanism_file: str, what: str, speeds_rpm: str | None, speed_rpm:
         write_json(document("driveline", columns, report.UNITS, summary, notes,
                             mechanism=mechanism.name, analysis=what), output)
     else:
-        parts = [report.summary_table("Natural frequency (VDI 2149: Ω/ω̄ ≤ 0.1)",
+        parts = [report.summary_table("Natural frequency, VDI 2149",
                                       summary["natural_frequency"])]
         for key in ("steady", "run_up"):
             if key in summary:
