@@ -383,8 +383,8 @@ def stability_map(mechanism: Mechanism, speeds_rpm, *, stiffness=None, damping=N
                                       dtype=np.float64))
     bad = ~np.isfinite(values) | (values <= 0.0 if name == "stiffness" else values < 0.0)
     if bad.any():
-        raise InputError.parameter(name, f"must be {'positive' if name == 'stiffness' else 'zero or more'}, "
-                                         f"got {values[bad][0]:g}.")
+        need = "positive" if name == "stiffness" else "zero or more"
+        raise InputError.parameter(name, f"must be {need}, got {values[bad][0]:g}.")
     grid_speed = np.tile(speeds, values.size)
     grid_value = np.repeat(values, speeds.size)
     k = grid_value if name == "stiffness" else np.full(grid_value.size, line.stiffness[0])
