@@ -22,7 +22,15 @@ from typing import Any
 
 
 class DyadeError(Exception):
-    """A problem dyade can explain: the mechanism cannot be analysed as asked."""
+    """A problem dyade can explain: the mechanism cannot be analysed as asked.
+
+    >>> import dyade
+    >>> try:
+    ...     dyade.read_mechanism("mechanisms/no-such-file.toml")
+    ... except dyade.DyadeError as err:           # every error dyade explains
+    ...     print(type(err).__name__)
+    InputError
+    """
 
 
 class InputError(DyadeError, ValueError):
@@ -41,6 +49,16 @@ class InputError(DyadeError, ValueError):
     reason : str or None
         What is wrong, as a sentence that follows the name of the input
         (``must be positive [kg], got -1.``); None when the message stands alone.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> mechanism = dyade.read_mechanism("mechanisms/fourbar.toml")
+    >>> try:
+    ...     dyade.analyse(mechanism, step_deg=-1)
+    ... except dyade.InputError as err:
+    ...     print(err.key, "|", err.reason)
+    step_deg | must be positive [°], got -1.
     """
 
     def __init__(self, message: str, *, source: str | None = None, key: str | None = None,
@@ -111,7 +129,12 @@ class InputError(DyadeError, ValueError):
 class MissingExtra(InputError, ImportError):
     """An optional extra is not installed (matplotlib for plots): the message names the
     command that installs it. Both an ``InputError`` (the command line exits 2) and an
-    ``ImportError`` (what ``import`` of the module would raise)."""
+    ``ImportError`` (what ``import`` of the module would raise).
+
+    >>> err = MissingExtra('plots need matplotlib: pip install "dyade[plot]"')
+    >>> isinstance(err, ImportError), isinstance(err, InputError)
+    (True, True)
+    """
 
 
 class AssemblyError(DyadeError):
@@ -120,6 +143,16 @@ class AssemblyError(DyadeError):
     ``problems`` lists one sentence per dyad, naming it and the crank-angle ranges;
     ``partial`` is True when the mechanism closes at some positions of the sweep (so
     that analysing only those is possible).
+
+    >>> import dyade
+    >>> short = dyade.read_mechanism("mechanisms/fourbar.toml", {"dyad.2.lengths": [170, 120]})
+    >>> try:
+    ...     dyade.analyse(short)
+    ... except dyade.AssemblyError as err:
+    ...     print(err.partial, err.problems)
+    True ('dyad 2 (kind 1 RRR, links 3-4) cannot close for crank angles 140.0°–220.0°',)
+    >>> dyade.analyse(short, allow_partial=True).summary()["positions"]   # the rest
+    280
     """
 
     def __init__(self, message: str, problems: tuple[str, ...] = (), partial: bool = False

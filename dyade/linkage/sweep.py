@@ -37,11 +37,20 @@ class Result(Outcome):
     """Everything a sweep computed, in SI units.
 
     ``columns()`` gives the sweep as named columns (the CSV contract, documented in
-    ``mechanisms/README.md``), ``summary()`` the extremes and the figures a designer
-    sizes parts by, ``notes`` the findings (dead centres, partial sweeps, friction,
-    self-locking; ``dyade.report.notes.say`` words them), ``to_pandas()`` a DataFrame
-    indexed by the crank angle [°]. ``kinematics``, ``forces`` and ``friction`` are the
-    whole sweep's arrays (computed again, as one block, where it ran in several).
+    the columns reference, ``docs/reference/columns.md``), ``summary()`` the extremes
+    and the figures a designer sizes parts by (plain Python numbers), ``notes`` the
+    findings (dead centres, partial sweeps, friction, self-locking;
+    ``dyade.report.notes.say`` words them), ``to_pandas()`` a DataFrame indexed by the
+    crank angle [°]. ``kinematics``, ``forces`` and ``friction`` are the whole sweep's
+    arrays (computed again, as one block, where it ran in several), in SI units.
+
+    >>> import dyade
+    >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/fourbar.toml"), step_deg=0.5)
+    >>> peak = result.summary()["columns"]["M_drive"]
+    >>> round(peak["max"], 3), peak["max_at_deg"]           # [N·m], [°]
+    (1.466, 69.0)
+    >>> result.kinematics.crank_angle.shape                  # every position [rad]
+    (721,)
     """
 
     setup: Setup | None = None

@@ -307,6 +307,20 @@ def size_flywheel(curve: TorqueCurve, fluctuation: float) -> Flywheel:
         ``dyade.linkage.drive.torque_curve`` (a mechanism).
     fluctuation : float
         δ = (ω_max − ω_min)/ω_mean [-], e.g. 0.02.
+
+    Returns
+    -------
+    Flywheel
+        ``delta_energy`` ΔE [J], ``flywheel`` J_F [kg·m²], the angles of the highest and
+        lowest speed, and notes on what the estimate rests on.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> curve = dyade.read_torque_curve("mechanisms/torque/engine.csv", speed_rpm=250)
+    >>> flywheel = dyade.size_flywheel(curve, 0.005)
+    >>> round(flywheel.delta_energy, 3), round(flywheel.flywheel, 3)    # [J], [kg·m²]
+    (2690.725, 785.167)
     """
     if not (math.isfinite(fluctuation) and fluctuation > 0.0):
         raise InputError.parameter("fluctuation", f"must be a positive number [-], got "
@@ -324,8 +338,23 @@ def size_flywheel(curve: TorqueCurve, fluctuation: float) -> Flywheel:
 
 
 def speed_fluctuation(curve: TorqueCurve, inertia: float) -> Flywheel:
-    """The speed fluctuation δ ≈ ΔE/((J_F + J_machine)·Ω²) with a flywheel of ``inertia``
-    J_F [kg·m²] on the crank shaft.
+    """The speed fluctuation δ ≈ ΔE/((J_F + J_machine)·Ω²) with a flywheel on the crank
+    shaft.
+
+    Parameters
+    ----------
+    curve : TorqueCurve
+        From ``torque_curve``, ``read_torque_curve`` or ``mechanism_torque_curve``.
+    inertia : float
+        The flywheel's moment of inertia J_F [kg·m²], ≥ 0.
+
+    Returns
+    -------
+    Flywheel
+        With the resulting ``fluctuation`` δ [-].
+
+    Examples
+    --------
 
     >>> import dyade
     >>> curve = dyade.read_torque_curve("mechanisms/torque/engine.csv", speed_rpm=250)

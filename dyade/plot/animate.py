@@ -45,6 +45,20 @@ class Animation:
 def animation(result, *, fig: Figure | None = None) -> Animation:
     """The mechanism of ``result`` ready to be animated over its reported positions.
 
+    Parameters
+    ----------
+    result : Result
+        A sweep (``dyade.analyse``): one frame per reported position.
+    fig : Figure, optional
+        A figure to draw on (a window's; default: a new one).
+
+    Returns
+    -------
+    Animation
+        ``count`` frames; ``update(k)`` draws frame k; ``save`` writes a GIF.
+
+    Examples
+    --------
     >>> import dyade
     >>> from dyade.plot.animate import animation
     >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/slotted-lever.toml"), step_deg=30)
@@ -66,7 +80,30 @@ def animation(result, *, fig: Figure | None = None) -> Animation:
 
 
 def save(motion: Animation, path: str, fps: float = FPS, dpi: int = DPI) -> None:
-    """Write the animation as a GIF (``path`` ends in .gif)."""
+    """Write the animation as a GIF.
+
+    Parameters
+    ----------
+    motion : Animation
+        From ``animation``.
+    path : str
+        The file, ending in .gif (written beside and renamed when complete).
+    fps : float
+        Frames per second.
+    dpi : int
+        Dots per inch of the frames.
+
+    Examples
+    --------
+    >>> import tempfile, dyade
+    >>> from pathlib import Path
+    >>> from dyade.plot import animate
+    >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/scotch-yoke.toml"), step_deg=90)
+    >>> path = Path(tempfile.mkdtemp()) / "yoke.gif"
+    >>> animate.save(animate.animation(result), str(path), fps=4, dpi=30)
+    >>> path.read_bytes()[:6]
+    b'GIF89a'
+    """
     canvas.save_frames(motion.figure, motion.update, motion.count, path, fps, dpi)
 
 

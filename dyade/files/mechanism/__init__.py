@@ -71,7 +71,32 @@ def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = N
 
 
 def build(data: dict[str, Any], path: str | os.PathLike | None = None) -> Mechanism:
-    """Validate mechanism data (the parsed TOML of a mechanism file, or the same
-    structure written in Python) and build the mechanism; errors name ``path``."""
+    """Validate mechanism data and build the mechanism.
+
+    Parameters
+    ----------
+    data : dict
+        The parsed TOML of a mechanism file, or the same structure written in Python:
+        the keys of the file reference, lengths in ``units`` (default mm), angles in
+        degrees.
+    path : str or os.PathLike, optional
+        The file the data came from, named in errors.
+
+    Returns
+    -------
+    Mechanism
+        In SI units, validated.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> slider_crank = dyade.build_mechanism({
+    ...     "crank": {"length": 0.05, "speed_rpm": 600}, "units": {"length": "m"},
+    ...     "dyad": [{"kind": "RRP", "links": [3, 4], "length": 0.2,
+    ...               "A": {"link": 2, "point": "tip"}, "C": {"link": 1, "angle": 0}}]})
+    >>> stroke = dyade.analyse(slider_crank).columns()["s_1_4"]     # [m]
+    >>> round(float(stroke.max() - stroke.min()), 6)
+    0.1
+    """
     path = os.fspath(path) if path else None
     return Reader(os.path.basename(path) if path else "mechanism", path).mechanism(data)
