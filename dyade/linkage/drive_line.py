@@ -131,6 +131,35 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
     change of the shaft torque, relative to its largest value, is reported as
     ``figures["accuracy"]`` (RK4: the error of the finer solution is about a fifteenth).
 
+    Parameters
+    ----------
+    mechanism : Mechanism
+        With a ``[drive_line]`` table; its ``[drive]`` motor, or an ideal motor.
+    speed_rpm : float, optional
+        The ideal motor's speed [rpm] (not with a ``[drive]`` motor).
+    steps : int, optional
+        RK4 steps per revolution (default: the table's, else 64 per period of the
+        highest natural frequency, at least 720).
+    accuracy : bool
+        Also solve with half the steps and report the change (``figures["accuracy"]``).
+
+    Returns
+    -------
+    SteadyState
+        Over one revolution at the grid nodes, with the rigid drive's values and the
+        Floquet multipliers.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> m = dyade.read_mechanism("mechanisms/slider-crank.toml", {
+    ...     "drive_line.stiffness": 1000.0, "drive_line.damping": 0.05,
+    ...     "links.2.inertia": 0.01})
+    >>> state = steady_state(m, accuracy=False)
+    >>> round(float(abs(state.shaft_torque).max()), 1), round(float(
+    ...     abs(state.rigid_torque).max()), 1), state.stable             # [N·m]
+    (176.2, 22.5, True)
+
     Raises
     ------
     DyadeError
@@ -325,7 +354,30 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     """The resonance curve and the Floquet multipliers over the ideal motor's speeds
     ``speeds_rpm`` [rpm] (vectorised over speeds): peak shaft torque, twist amplitude,
     speed fluctuation against speed, and the resonances to be expected in the range.
-    A ``[drive]`` motor is replaced by an ideal one (the speed is what is scanned)."""
+    A ``[drive]`` motor is replaced by an ideal one (the speed is what is scanned).
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        With a ``[drive_line]`` table.
+    speeds_rpm : array_like
+        Crank speeds [rpm], all of one sign, none zero.
+    steps : int, optional
+        RK4 steps per revolution (default as for ``steady_state``, at the lowest speed).
+
+    Returns
+    -------
+    ResonanceCurve
+
+    Examples
+    --------
+    >>> import dyade
+    >>> m = dyade.read_mechanism("mechanisms/dyade-16.toml", {
+    ...     "drive_line.stiffness": 1000.0, "drive_line.damping": 0.04})
+    >>> curve = resonance_curve(m, [3450.0, 3575.0])     # near 2·ω̄: J(φ)'s 1st harmonic
+    >>> curve.unstable.tolist(), [round(float(mu), 3) for mu in curve.stability]
+    ([False, True], [0.988, 1.039])
+    """
     speeds = _speeds(speeds_rpm)
     line = line_of(mechanism, ideal=True)
     n, tables = (steps, crank_tables(mechanism, steps)) if steps else _steps(
@@ -370,7 +422,32 @@ def stability_map(mechanism: Mechanism, speeds_rpm, *, stiffness=None, damping=N
                   steps: int | None = None) -> StabilityMap:
     """The largest Floquet multiplier over the ideal motor's speeds ``speeds_rpm`` [rpm]
     and the shaft's ``stiffness`` [N·m/rad] or ``damping`` [N·m·s/rad] values (one of
-    the two), all lanes in one integration."""
+    the two), all lanes in one integration.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        With a ``[drive_line]`` shaft (not a coupling).
+    speeds_rpm : array_like
+        Crank speeds of the ideal motor [rpm].
+    stiffness, damping : array_like
+        The values to map [N·m/rad] or [N·m·s/rad]: give one of the two.
+    steps : int, optional
+        RK4 steps per revolution.
+
+    Returns
+    -------
+    StabilityMap
+        ``stability`` (values, speeds): the largest |μ|.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> m = dyade.read_mechanism("mechanisms/dyade-16.toml", {"drive_line.stiffness": 1000.0})
+    >>> chart = stability_map(m, [3575.0], damping=[0.04, 0.3])   # [N·m·s/rad]
+    >>> chart.unstable[:, 0].tolist()                 # damping above ≈ 0.17 removes it
+    [True, False]
+    """
     if (stiffness is None) == (damping is None):
         raise InputError.parameter(("stiffness", "damping"), "give one of the two to map.")
     speeds = _speeds(speeds_rpm)
@@ -425,6 +502,30 @@ def run_up(mechanism: Mechanism, *, steps: int | None = None) -> RunUp:
     ``[drive]`` motor, in time, until the mean speed over a revolution settles; the
     largest shaft torque on the way.
 
+    Parameters
+    ----------
+    mechanism : Mechanism
+        With ``[drive]`` (the motor) and ``[drive_line]`` (with ``rotor_inertia``).
+    steps : int, optional
+        Grid of the crank shaft's tables per revolution (default: the table's, else 720).
+
+    Returns
+    -------
+    RunUp
+        The history in time and ``figures`` (largest shaft torque, when, at which speed).
+
+    Examples
+    --------
+    >>> import dyade
+    >>> m = dyade.read_mechanism("mechanisms/dyade-16.toml", {
+    ...     "drive_line.stiffness": 1000.0, "drive_line.damping": 0.04,
+    ...     "drive_line.rotor_inertia": 0.01, "drive.motor": "asynchronous",
+    ...     "drive.rated_torque": 20.0, "drive.rated_speed_rpm": 290.0,
+    ...     "drive.synchronous_speed_rpm": 300.0})
+    >>> run = run_up(m)
+    >>> round(run.figures["peak_torque"], 1), round(float(run.figures["speed_mean"]) * RPM, 1)
+    (146.4, 298.9)
+
     Raises
     ------
     InputError
@@ -461,7 +562,7 @@ def run_up(mechanism: Mechanism, *, steps: int | None = None) -> RunUp:
     peak = int(np.argmax(np.abs(path.shaft_torque)))
     figures = {"peak_torque": float(path.shaft_torque[peak]), "peak_time": float(path.time[peak]),
                "peak_speed": float(path.crank_speed[peak]), "duration": float(path.time[-1]),
-               "revolutions": path.revolutions, "final_speed": float(path.crank_speed[-1]),
+               "revolutions": path.revolutions, "speed_mean": path.mean_speed,
                "time_step": dt,
                "omega_bar": natural_frequency(mechanism).omega_bar}
     return RunUp(path.time, mechanism.sweep.start + sense * path.path, path.crank_speed,

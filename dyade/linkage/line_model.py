@@ -84,6 +84,19 @@ class NaturalFrequency:
 def natural_frequency(mechanism: Mechanism) -> NaturalFrequency:
     """ω̄, the range of the lowest natural frequency over the cycle, and Ω/ω̄.
 
+    Parameters
+    ----------
+    mechanism : Mechanism
+        With a ``[drive_line]`` table (else ``InputError``).
+
+    Returns
+    -------
+    NaturalFrequency
+        ω̄ [rad/s], its range with J(φ) frozen over the cycle, Ω/ω̄ and the VDI 2149
+        verdict (``vdi_2149``: Ω/ω̄ ≤ 0.1).
+
+    Examples
+    --------
     >>> import dyade
     >>> m = dyade.read_mechanism("mechanisms/slider-crank.toml",
     ...                          {"drive_line.stiffness": 1000.0, "links.2.inertia": 0.01})

@@ -584,6 +584,8 @@ class RunUp:
     """True when the mean speed over a revolution stopped changing (to ``tol``)"""
     revolutions: int
     """revolutions completed"""
+    mean_speed: float = math.nan
+    """2π over the time of the last whole revolution [rad/s]"""
 
 
 def run_up(line: Line, tables: Tables, *, dt: float, t_max: float, tol: float = 1e-6,
@@ -632,14 +634,14 @@ def run_up(line: Line, tables: Tables, *, dt: float, t_max: float, tol: float = 
                                            2.0 * math.pi * turn)
             mean = 2.0 * math.pi / (mark - last_mark)
             if turn > 1 and last_mean is not None and abs(mean - last_mean) <= tol * mean:
-                settled = True
+                settled, last_mean = True, mean
                 break
             last_mark, last_mean, turn = mark, mean, turn + 1
             if turn > max_revolutions:
                 break
     data = np.array(rows)
     return RunUp(data[:, 0], data[:, 1], data[:, 2], data[:, 3], data[:, 4], data[:, 5],
-                 settled, turn - 1)
+                 settled, turn - 1, math.nan if last_mean is None else last_mean)
 
 
 def _crossing(u0: float, u1: float, d0: float, d1: float, target: float) -> float:
