@@ -118,6 +118,7 @@ def run(*args):
     return CliRunner().invoke(main, [str(a) for a in args], catch_exceptions=False)
 
 
+@pytest.mark.slow
 def test_figures_of_the_drive_line(tmp_path):
     """The plot kinds draw from the API's results: the resonance curve's peak torque
     line holds the curve's values, the unstable speeds are shaded."""
