@@ -21,6 +21,7 @@ from dyade.arrays import FloatArray, Vec
 
 if TYPE_CHECKING:
     from dyade.machine.motor import Drive
+    from dyade.machine.motor import DriveLineData
 
 FRAME = 1  # link number of the frame
 CRANK = 2  # link number of the crank
@@ -324,6 +325,9 @@ class Mechanism:
     drive: Drive | None = None
     """The motor and flywheel of a ``[drive]`` table (the flywheel is already counted in
     link 2's inertia); None: the crank turns at its constant speed."""
+    drive_line: DriveLineData | None = None
+    """The elastic element between motor and crank of a ``[drive_line]`` table
+    (``dyade.machine.drive_line``); None: a rigid drive."""
 
     @property
     def joints(self) -> list[Joint]:
