@@ -2,7 +2,7 @@
 ``dyade.vibration.gears.model``.
 
 The file lists rigid bodies, shafts, bearings, spring-damper elements, gears, meshes,
-excitations and the input speed (``mechanisms/gears/README.md`` documents every key).
+excitations and the input speed (``docs/reference/gear-file.md`` documents every key).
 Lengths are in ``units.length`` and angles in ``units.angle`` as in mechanism files;
 masses, inertias, stiffnesses, moduli and densities are SI. Every error names the file
 and the key; the checks that need the assembled matrices (meshes that constrain the
@@ -73,7 +73,7 @@ def read_gears(path: str | os.PathLike, overrides: dict[str, Any] | None = None)
     Parameters
     ----------
     path : str or os.PathLike
-        The TOML file (``mechanisms/gears/README.md`` documents every key).
+        The TOML file (``docs/reference/gear-file.md`` documents every key).
     overrides : dict, optional
         Dotted key path -> value, replacing keys of the file as ``--set`` does
         (``{"shaft.1.segments": 8}``; array entries by 1-based index).

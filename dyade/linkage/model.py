@@ -6,7 +6,7 @@ reader (``dyade.files.mechanism``) turns the designer's per-kind description int
 objects, so the engine never needs to know which link of a prismatic pair was written
 as guide and which as slider. The link frames of the two links a dyad places are part
 of its kind's description (``DyadKind.frames``; the kinds are in ``dyade.linkage.dyads``,
-documented in ``mechanisms/README.md``).
+documented in ``docs/reference/mechanism-file.md``).
 """
 
 from __future__ import annotations
