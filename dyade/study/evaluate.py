@@ -46,7 +46,8 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
     moment, and ``extras`` (``flywheel``: the inertia for ``fluctuation``;
     ``clearance``: the peak force and amplification per clearance joint). NaN where the
     summary gives no value (a time ratio of an output that does not swing once)."""
-    from dyade.linkage.summary import cycle_mean, summary
+    from dyade import cycle
+    from dyade.linkage.summary import summary
 
     cols = result.columns()
     s = summary(result, cols, extremes=False)
@@ -68,7 +69,7 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
         angle = cols["angle_deg"]
         force = np.hypot(cols["Fx_shake"], cols["Fy_shake"])
         out["F_shake_max"] = float(np.nanmax(force)) if np.isfinite(force).any() else math.nan
-        out["F_shake_rms"] = math.sqrt(cycle_mean(angle, force ** 2))
+        out["F_shake_rms"] = cycle.rms(np.deg2rad(angle), force)
         moment = np.abs(cols["M_shake"])
         out["M_shake_max"] = float(np.nanmax(moment)) if np.isfinite(moment).any() else math.nan
     if "friction" in s:
