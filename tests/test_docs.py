@@ -87,6 +87,18 @@ def test_every_documented_docstring_is_valid_restructured_text(name):
     assert not errors and not stream.getvalue(), (errors, stream.getvalue())
 
 
+def test_the_gallery_shows_every_figure_of_make_figures():
+    """Each figure ``docs/make_figures.py`` makes is on the gallery page, with its code
+    (literalinclude of its function) and shown (a cell or its file)."""
+    source = (DOCS / "make_figures.py").read_text()
+    gallery = (DOCS / "gallery.md").read_text()
+    figures = re.findall(r'^    "([\w.-]+\.(?:png|gif))": (\w+),$', source, flags=re.M)
+    assert len(figures) >= 9
+    for name, function in figures:
+        assert f":pyobject: {function}\n" in gallery, function
+        assert f'show("{name}")' in gallery or f"]({name})" in gallery, name
+
+
 def _session() -> list[str]:
     """The code cells of the getting-started page that a reader sees (not the hidden
     ones that set the page up)."""
