@@ -26,7 +26,7 @@ sys.path.insert(0, str(ROOT))
 import dyade  # noqa: E402
 from dyade import clearance  # noqa: E402
 from dyade.plot import animate, canvas, clearance as clearance_plot  # noqa: E402
-from dyade.plot import campbell, coupling, curves, modes, polar  # noqa: E402
+from dyade.plot import campbell, coupling, curves, drive_line, modes, polar  # noqa: E402
 
 DOCS = ROOT / "docs"
 MECHANISMS = ROOT / "mechanisms"
@@ -80,6 +80,12 @@ def two_stage_modes():
     return modes.figure(dyade.gear_modes(drive), 4)
 
 
+def dyade16_drive_line():
+    mechanism = dyade.read_mechanism(MECHANISMS / "dyade-16.toml", {
+        "drive_line.stiffness": 1000.0, "drive_line.damping": 0.04})
+    return drive_line.steady(dyade.drive_line_steady_state(mechanism))
+
+
 FIGURES = {
     "fourbar-polar.png": fourbar_polar,
     "dyade-16-reversals.png": dyade16_polar_reversals,
@@ -89,6 +95,7 @@ FIGURES = {
     "clearance-paper.png": clearance_paper,
     "two-stage-campbell.png": two_stage_campbell,
     "two-stage-modes.png": two_stage_modes,
+    "dyade-16-driveline.png": dyade16_drive_line,
 }
 """file in docs/ -> the function that makes it"""
 

@@ -65,6 +65,40 @@ def test_every_documented_name_has_parameters_and_an_example(name):
         assert re.search(r"^Parameters\n-{10}", doc, flags=re.M), f"{name}: no Parameters"
 
 
+@pytest.mark.parametrize("name", documented())
+def test_every_documented_docstring_is_valid_restructured_text(name):
+    """What the site's build would fail on (-W), found without building it: numpydoc's
+    reST of each docstring parses without errors (a bare ``|μ|`` is an undefined
+    substitution). Needs the docs extra."""
+    pytest.importorskip("numpydoc")
+    docutils_core = pytest.importorskip("docutils.core")
+    from io import StringIO
+
+    from numpydoc.docscrape_sphinx import get_doc_object
+
+    if name.startswith("dyade.plot."):
+        pytest.importorskip("matplotlib")
+    text = str(get_doc_object(resolve(name), config={"show_class_members": False}))
+    stream = StringIO()
+    tree = docutils_core.publish_doctree(text, settings_overrides={
+        "report_level": 3, "halt_level": 5, "warning_stream": stream})
+    errors = [node.astext() for node in tree.findall()
+              if node.tagname == "system_message" and int(node["level"]) >= 3]
+    assert not errors and not stream.getvalue(), (errors, stream.getvalue())
+
+
+def test_the_gallery_shows_every_figure_of_make_figures():
+    """Each figure ``docs/make_figures.py`` makes is on the gallery page, with its code
+    (literalinclude of its function) and shown (a cell or its file)."""
+    source = (DOCS / "make_figures.py").read_text()
+    gallery = (DOCS / "gallery.md").read_text()
+    figures = re.findall(r'^    "([\w.-]+\.(?:png|gif))": (\w+),$', source, flags=re.M)
+    assert len(figures) >= 9
+    for name, function in figures:
+        assert f":pyobject: {function}\n" in gallery, function
+        assert f'show("{name}")' in gallery or f"]({name})" in gallery, name
+
+
 def _session() -> list[str]:
     """The code cells of the getting-started page that a reader sees (not the hidden
     ones that set the page up)."""

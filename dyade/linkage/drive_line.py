@@ -411,7 +411,7 @@ class StabilityMap:
     values: FloatArray
     """(p,) the parameter's values"""
     stability: FloatArray
-    """(p, s) the largest |μ| [-]; NaN where no periodic state was found"""
+    """(p, s) the largest ``|μ|`` [-]; NaN where no periodic state was found"""
 
     @property
     def unstable(self) -> FloatArray:
@@ -438,7 +438,7 @@ def stability_map(mechanism: Mechanism, speeds_rpm, *, stiffness=None, damping=N
     Returns
     -------
     StabilityMap
-        ``stability`` (values, speeds): the largest |μ|.
+        ``stability`` (values, speeds): the largest ``|μ|``.
 
     Examples
     --------

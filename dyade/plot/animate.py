@@ -99,9 +99,10 @@ def save(motion: Animation, path: str, fps: float = FPS, dpi: int = DPI) -> None
     >>> from pathlib import Path
     >>> from dyade.plot import animate
     >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/scotch-yoke.toml"), step_deg=90)
-    >>> path = Path(tempfile.mkdtemp()) / "yoke.gif"
-    >>> animate.save(animate.animation(result), str(path), fps=4, dpi=30)
-    >>> path.read_bytes()[:6]
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = Path(folder) / "yoke.gif"
+    ...     animate.save(animate.animation(result), str(path), fps=4, dpi=30)
+    ...     print(path.read_bytes()[:6])
     b'GIF89a'
     """
     canvas.save_frames(motion.figure, motion.update, motion.count, path, fps, dpi)

@@ -194,9 +194,10 @@ def save(fig: Figure, path: str, dpi: int = 100) -> None:
     >>> from pathlib import Path
     >>> from dyade.plot import canvas, curves
     >>> fig = curves.figure(dyade.analyse(dyade.read_mechanism("mechanisms/fourbar.toml")))
-    >>> path = Path(tempfile.mkdtemp()) / "fourbar.svg"
-    >>> canvas.save(fig, str(path))
-    >>> "<svg" in path.read_text()
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = Path(folder) / "fourbar.svg"
+    ...     canvas.save(fig, str(path))
+    ...     print("<svg" in path.read_text())
     True
     """
     data = render(fig, suffix(path), dpi)
