@@ -99,3 +99,84 @@ def test_labels_neither_overlap_nor_leave_the_figure(kind, args, monkeypatch):
 @pytest.mark.parametrize("kind, args", EVERY)
 def test_every_kind_and_example_is_readable(kind, args, monkeypatch):
     assert problems_of(drawn(kind, args, monkeypatch)) == []
+
+
+def covered(text: str, step: float = 30.0) -> set[int]:
+    """The crank angles [°] a mark label names: "90°", "150°/180°", "0°–150°"."""
+    out: set[int] = set()
+    for part in text.split("/"):
+        ends = [int(v.strip().rstrip("°")) for v in part.split("–")]
+        out |= set(range(ends[0], ends[-1] + 1, int(step)))
+    return out
+
+
+def by_axes(fig) -> dict:
+    texts: dict = {}
+    for text, _ in drawn_labels(fig):
+        texts.setdefault(text.axes, []).append(text)
+    return texts
+
+
+@pytest.mark.parametrize("name", ["dyade-16.toml", "self-locking.toml", "slider-crank.toml"])
+def test_polar_keeps_every_reversal_number_and_crank_angle_mark(name):
+    from dyade.plot import polar
+
+    result = dyade.analyse(dyade.read_mechanism(shipped(name)))
+    fig = polar.figure(result)
+    texts = by_axes(fig)
+    for ax in (ax for ax in fig.axes if ax.get_visible()):
+        gids = {line.get_gid(): line for line in ax.get_lines()}
+        drawn_texts = [t.get_text() for t in texts.get(ax, [])]
+        marks = next(line for gid, line in gids.items() if gid and gid.startswith("crank-"))
+        named = [covered(t.get_text()) for t in texts.get(ax, [])
+                 if (t.get_gid() or "").startswith("crank-angle-")]
+        # every mark has a label, no angle twice, the quarter turns among them
+        assert sum(len(n) for n in named) == len(marks.get_xdata()) == len(set().union(*named))
+        reversals = [line for gid, line in gids.items() if gid and gid.startswith("reversals-")]
+        count = len(reversals[0].get_xdata()) if reversals else 0
+        assert sorted(t for t in drawn_texts if t.isdigit()) == [str(k) for k in
+                                                                   range(1, count + 1)]
+        angle = np.rad2deg(result.crank_angle)
+        given = canvas.on_grid(result, result.columns()["forces_valid"].astype(float)) == 1
+        quarter = {q for q in (0, 90, 180, 270) if given[np.argmin(np.abs(angle - q))]}
+        assert quarter and quarter <= set().union(*named)
+
+
+@pytest.mark.parametrize("name", ["dyade-16.toml", "slotted-lever.toml", "watt-sixbar.toml"])
+def test_mechanism_drawing_keeps_every_link_number_and_point_name(name):
+    from dyade.plot import mechanism
+
+    result = dyade.analyse(dyade.read_mechanism(shipped(name)))
+    fig = mechanism.figure(result)
+    expected = sorted([str(body.link) for body in mechanism.geometry(result).bodies]
+                      + [point for point, _, _ in result.mechanism.named_points])
+    texts = by_axes(fig)
+    panels = [ax for ax in fig.axes if ax.get_visible()]
+    assert len(panels) == 4
+    for ax in panels:
+        assert sorted(t.get_text() for t in texts[ax]
+                      if t.get_gid() and t.get_gid().startswith(("link-label", "point-label"))
+                      ) == expected
+
+
+def test_every_note_kind_has_a_shading_style():
+    assert set(canvas.NOTE_LOOK) == {kind.value for kind in NoteKind}
+    looks = [look[1:] for look in canvas.NOTE_LOOK.values()]
+    assert len(set(looks)) == len(looks)  # hatch and grey tell the kinds apart
+
+
+def test_press_slide_shades_its_near_self_locking_ranges():
+    from dyade.plot import curves
+
+    result = dyade.analyse(dyade.read_mechanism(shipped("self-locking.toml")))
+    notes = [n for n in result.notes if n.kind == NoteKind.NEAR_SELF_LOCKING]
+    assert notes and notes[0].ranges
+    fig = curves.figure(result)
+    half = 0.5 * np.rad2deg(result.mechanism.sweep.step)
+    for ax in fig.axes:
+        spans = [p for p in ax.patches if p.get_gid() == "note-near_self_locking"]
+        extents = sorted((round(float(p.get_x()) + half, 6),
+                          round(float(p.get_x() + p.get_width()) - half, 6)) for p in spans)
+        assert extents == sorted((round(float(np.rad2deg(a)), 6), round(float(np.rad2deg(b)), 6))
+                                 for n in notes for a, b in n.ranges)
+        assert any("near self-locking" in t.get_text() for t in ax.get_legend().get_texts())
