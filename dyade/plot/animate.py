@@ -47,7 +47,7 @@ def animation(result, *, fig: Figure | None = None) -> Animation:
     >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/slotted-lever.toml"), step=0.5)
     >>> motion = animation(result)
     >>> motion.count, [artist.get_gid() for artist in motion.update(3)][:2]
-    (13, ['link-2', None])
+    (13, ['link-2', 'link-label-2'])
     """
     geo = geometry(result)
     width, height = panel_width(geo) + 0.4, panel_height(geo) + 0.9
