@@ -14,7 +14,7 @@ from dyade.plot import canvas
 from dyade.plot.mechanism import Scene, geometry, panel_height, panel_width
 
 FPS = 20.0  # [1/s] frames per second of the GIF
-DPI = 72  # [1/in] small frames keep a GIF small
+DPI = 100  # [1/in] frames large enough to read the labels (6.5 pt ≈ 9 px)
 
 
 @dataclass(slots=True, eq=False)
