@@ -20,6 +20,8 @@ from dyade.plot.labels import Placer, leader, merge
 
 MARK_EVERY = 30.0  # [°] crank-angle marks along the curve
 PANEL = 3.3  # [in] width and height of one panel
+LEFT, RIGHT, ABOVE, BELOW = 0.78, 0.12, 0.45, 0.45  # [in] a panel's margins around its axes
+TOP = 0.4  # [in] the figure's title
 EQUAL = 0.5  # [-] equal axes only where the shorter range is at least this share of the longer
 MARGIN = 0.1  # [-] space around the curve, share of its range
 SAME_SPOT = 4.0  # [pt] crank-angle marks closer than this share one label
@@ -87,17 +89,21 @@ def figure(result, joints=None, *, max_wander: float = MAX_WANDER,
     lines = force_lines(result, joints, max_wander=max_wander)
     cols = result.columns()
     rows, columns = canvas.grid(len(lines))
-    with canvas.style():
-        fig = canvas.new(PANEL * columns, PANEL * rows + 0.4, fig)
-        axes = fig.subplots(rows, columns, squeeze=False).ravel()
+    with canvas.style():  # margins by hand: the labels are placed in the final panels
+        width, height = PANEL * columns, PANEL * rows + TOP
+        fig = canvas.new(width, height, fig, layout=None)
+        box = PANEL - LEFT - RIGHT, PANEL - ABOVE - BELOW  # [in] one axes
+        axes = fig.subplots(rows, columns, squeeze=False, gridspec_kw={
+            "left": LEFT / width, "right": 1 - RIGHT / width, "bottom": BELOW / height,
+            "top": 1 - (TOP + ABOVE) / height, "wspace": (LEFT + RIGHT) / box[0],
+            "hspace": (ABOVE + BELOW) / box[1]}).ravel()
         for ax in axes[len(lines):]:
             ax.set_visible(False)
         drawn = [_panel(ax, result, cols, line) for ax, line in zip(axes, lines)]
-        fig.suptitle(f"{result.mechanism.name}: joint forces over the crank cycle")
-        fig.draw_without_rendering()  # the panels' final place: labels are placed in it
+        fig.suptitle(f"{result.mechanism.name}: joint forces over the crank cycle",
+                     y=1 - 0.12 / height, va="top")
         for ax, (curve, marked, line) in zip(axes, drawn):
             _labels(ax, curve, marked, line)
-        fig.set_layout_engine("none")  # keep the places the labels were fitted to
     return fig
 
 

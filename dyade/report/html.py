@@ -254,7 +254,7 @@ def mechanism_report(mechanism, *, source: str = "") -> str:
 
 def clearance_html(mechanism, result) -> str:
     """f(τ) of every reversal of the joints with clearance data, the peak force over
-    0.5–1.5 times the crank speed, and the worst reversal simulated."""
+    0.5–1.5 times the crank speed (5 speeds), and the worst reversal simulated."""
     import dyade
     from dyade import clearance as engine
     from dyade.plot import clearance as plot
@@ -263,7 +263,7 @@ def clearance_html(mechanism, result) -> str:
     checks = dyade.check_clearance(mechanism, result=result)
     cases = plot.cases(checks)
     rpm = abs(mechanism.crank.speed) / RPM
-    speeds = np.round(np.linspace(0.5, 1.5, 11) * rpm, 6)
+    speeds = np.round(np.linspace(0.5, 1.5, 5) * rpm, 6)
     lines = plot.speed_lines(dyade.clearance_speed_study(mechanism, speeds))
     history = None
     if cases:
