@@ -30,8 +30,6 @@ The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``
   ``gear_response(drive, frequencies, ...)``, ``gear_statics(drive, torques, ...)``,
   ``check_elimination(drive, modes=None)``: gear drives as rigid finite elements
   (``dyade.vibration.gears``)
-- ``design_report(path, overrides=None)`` -> the HTML design report of a mechanism or gear
-  file (``dyade report``; needs the plot extra)
 - ``DyadeError``, ``InputError``, ``AssemblyError``
 
 Everything is in SI units (m, rad, s, kg, N); mechanism files may use mm and degrees.
@@ -86,7 +84,6 @@ _EXPORTS = {
     "gear_response": "dyade.vibration.gears.response",
     "gear_statics": "dyade.vibration.gears.response",
     "check_elimination": ("dyade.vibration.gears.elimination", "check"),
-    "design_report": ("dyade.report.html", "report"),
     "DyadeError": "dyade.errors",
     "InputError": "dyade.errors",
     "AssemblyError": "dyade.errors",
