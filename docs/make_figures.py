@@ -24,7 +24,7 @@ sys.path.insert(0, str(ROOT))
 import dyade  # noqa: E402
 from dyade import clearance  # noqa: E402
 from dyade.plot import animate, canvas, clearance as clearance_plot  # noqa: E402
-from dyade.plot import campbell, coupling, curves, modes, polar  # noqa: E402
+from dyade.plot import campbell, coupling, curves, mechanism, modes, polar  # noqa: E402
 
 DOCS = ROOT / "docs"
 MECHANISMS = ROOT / "mechanisms"
@@ -64,7 +64,9 @@ def clearance_paper(path: Path) -> None:
     speeds = clearance_plot.standalone_speeds(clearance.peaks_over_speed(
         **args, speed_rpm=300, speeds_rpm=np.arange(100, 601, 50)))
     history = clearance_plot.History(case, clearance.simulate(**args, history=True))
-    canvas.save(clearance_plot.figure([case], speeds=speeds, history=history), str(path), dpi=80)
+    canvas.save(clearance_plot.figure([case], speeds=speeds, history=history,
+                                      operating=clearance_plot.operating_points([case], 300)),
+                str(path), dpi=80)
 
 
 def two_stage_campbell(path: Path) -> None:
@@ -78,6 +80,41 @@ def two_stage_modes(path: Path) -> None:
     canvas.save(modes.figure(dyade.gear_modes(drive), 4), str(path), dpi=80)
 
 
+def dyade16_mechanism(path: Path) -> None:
+    result = dyade.analyse(dyade.read_mechanism(MECHANISMS / "dyade-16.toml"))
+    canvas.save(mechanism.figure(result, np.deg2rad([0.0, 90.0])), str(path), dpi=80)
+
+
+def self_locking_curves(path: Path) -> None:
+    result = dyade.analyse(dyade.read_mechanism(MECHANISMS / "self-locking.toml"))
+    canvas.save(curves.figure(result), str(path), dpi=80)
+
+
+def fourbar_report(path: Path) -> None:
+    """The top of `dyade report mechanisms/fourbar.toml` as headless Chromium shows it
+    (skipped without a Chromium)."""
+    import shutil
+    import subprocess
+    import tempfile
+
+    from dyade.report.html import report
+
+    chromium = next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome")
+                     if shutil.which(n)), None)
+    if chromium is None:
+        print(f"{path.name}: no Chromium here, left as it is")
+        return
+    with tempfile.TemporaryDirectory() as folder:
+        page = Path(folder) / "report.html"
+        page.write_text(report(str(MECHANISMS / "fourbar.toml")), encoding="utf-8")
+        subprocess.run([chromium, "--headless", "--no-sandbox", "--disable-gpu",
+                        "--disable-quic", "--no-first-run", "--disable-background-networking",
+                        "--disable-component-update", "--disable-sync", "--hide-scrollbars",
+                        f"--user-data-dir={folder}/profile", f"--screenshot={path}",
+                        "--window-size=1000,2100", page.as_uri()],
+                       check=True, capture_output=True, timeout=120)
+
+
 FIGURES = {
     "fourbar-polar.png": fourbar_polar,
     "dyade-16-reversals.png": dyade16_polar_reversals,
@@ -87,6 +124,9 @@ FIGURES = {
     "clearance-paper.png": clearance_paper,
     "two-stage-campbell.png": two_stage_campbell,
     "two-stage-modes.png": two_stage_modes,
+    "dyade-16-mechanism.png": dyade16_mechanism,
+    "self-locking-curves.png": self_locking_curves,
+    "fourbar-report.png": fourbar_report,
 }
 
 

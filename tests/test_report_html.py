@@ -62,10 +62,11 @@ def test_same_file_same_bytes_and_nothing_from_outside(tmp_path):
     ids = re.findall(r'\bid="([^"]+)"', first)
     assert len(ids) == len(set(ids))  # the figures' ids prefixed: unique on the page
     headings = re.findall(r"<h2>(.*?)</h2>", first)
-    assert headings == ["What the file describes", "Key results",
+    assert headings == ["Key results",
                         "Notes: where the model holds, friction, self-locking, clearance",
                         "The linkage", "The motion",
-                        "Drive torque, power and transmission angles"]  # no forces: no polar
+                        "Drive torque, power and transmission angles",  # no forces: no polar
+                        "The file in assembly order (dyade describe)"]
 
 
 def test_motion_frames_are_the_analysis_one_per_position(tmp_path):

@@ -1,12 +1,13 @@
 """The design report (``dyade report``): one self-contained HTML file to review a
 mechanism or a gear drive with colleagues.
 
-For a mechanism file: what ``dyade describe`` says, the key results of ``dyade analyse``,
-the notes (validity, friction, self-locking, clearance), the figures of ``dyade.plot``
+For a mechanism file: the key results of ``dyade analyse``, the notes (validity,
+friction, self-locking, clearance), the figures of ``dyade.plot``
 (the linkage at four positions, drive torque and power with the energy fluctuation and
 the transmission angles, the joints' polar diagrams, the clearance check where the file
 has clearance data, the crank's speed and the motor where it has a ``[drive]``) and the
-motion, one frame per swept position, scrubbed with a crank-angle slider. For a gear
+motion, one frame per swept position, scrubbed with a crank-angle slider, and last, for
+reference, the file in assembly order as ``dyade describe`` says it. For a gear
 file: the natural frequencies and energy shares, the Campbell diagram and the mode
 shapes.
 
@@ -217,8 +218,6 @@ def mechanism_report(mechanism, *, source: str = "") -> str:
     summary = summarise(result, cols)
     the_plan = plan(mechanism)
     page = Page(f"{mechanism.name}: design report", source)
-    page.section("What the file describes",
-                 pre(text_of(describe.describe(mechanism, the_plan, tables.skipped(the_plan)))))
     parts = [table_html(tables.key_results(result, cols, summary, "m"), caption=False)]
     if result.drive is not None:
         parts.append(table_html(tables.motion_table(result, summary)))
@@ -249,6 +248,8 @@ def mechanism_report(mechanism, *, source: str = "") -> str:
             "30°, reversals of the line of action numbered."))
     if any(getattr(joint, "clearance", None) is not None for joint in mechanism.joints):
         page.section("Clearance check", clearance_html(mechanism, result))
+    page.section("The file in assembly order (dyade describe)",  # reference: last
+                 pre(text_of(describe.describe(mechanism, the_plan, tables.skipped(the_plan)))))
     return page.html()
 
 
