@@ -48,7 +48,7 @@ def dyade16_torque(path: Path) -> None:
 def slotted_lever_motion(path: Path) -> None:
     mechanism = dyade.read_mechanism(MECHANISMS / "slotted-lever.toml")
     motion = animate.animation(dyade.analyse(mechanism, step=np.deg2rad(5.0)))
-    animate.save(motion, str(path), fps=20, dpi=84)
+    animate.save(motion, str(path), fps=20, dpi=animate.DPI)
 
 
 def coupling_resonance(path: Path) -> None:
