@@ -119,10 +119,26 @@ def test_every_shipped_file_reports(path, tmp_path):
     mechanism = dyade.read_mechanism(path)
     result = dyade.analyse(mechanism)
     assert ("Joint forces: polar diagrams" in headings) == (result.forces is not None)
-    assert ("Clearance check" in headings) == any(j.clearance is not None
+    assert ("Clearance check" in headings) == any(getattr(j, "clearance", None) is not None
                                                   for j in mechanism.joints)
-    assert len(motion(page)["angles"]) == result.rows.sum() if result.rows.dtype == bool \
-        else len(motion(page)["angles"]) == len(result.rows)
+    assert len(motion(page)["angles"]) == len(result.columns()["angle_deg"])
     notes = re.search(r"<h2>Notes.*?</h2>(.*?)</section>", page, re.S).group(1)
     assert notes.count("<li>") == len(result.notes)
-    assert page.count("<figure") == page.count("</figure>") >= 4
+    expected = 3 + ("Joint forces: polar diagrams" in headings) + ("Clearance check" in headings)
+    assert page.count("<figure") == page.count("</figure>") == expected
+
+
+@pytest.mark.slow
+def test_a_drive_reports_its_speed_and_motor(tmp_path):
+    from tests.test_machine import FLYWHEEL_ONLY
+
+    path = tmp_path / "drive.toml"
+    path.write_text('name = "Flywheel drive"\n' + FLYWHEEL_ONLY)
+    page = write(path, tmp_path, "r.html")
+    headings = re.findall(r"<h2>(.*?)</h2>", page)
+    assert "The drive: crank speed and motor" in headings
+    motion_summary = dyade.analyse(dyade.read_mechanism(path)).summary()["motion"]
+    rpm = motion_summary["speed_mean"] * 30 / np.pi
+    assert f'<td class="number">{rpm:.6g}</td>' in page  # 1470 rpm: k·(ω_s − ω) = 5 N·m
+    assert rpm == pytest.approx(1470.0, rel=1e-9)
+    assert "Crank speed from the equation of motion" in page

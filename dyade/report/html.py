@@ -38,7 +38,7 @@ var(--rule); padding-bottom: 0.2em; margin-top: 1.6em; }
 .source { color: var(--muted); margin-top: 0; }
 pre { background: #f6f6f6; padding: 0.8em; overflow-x: auto; font-size: 0.82em; line-height: 1.25; }
 table { border-collapse: collapse; font-size: 0.88em; margin: 0.6em 0; }
-caption { text-align: left; font-weight: 600; padding: 0.3em 0; }
+caption { text-align: left; font-weight: 600; padding: 0.3em 0; white-space: pre-line; }
 th, td { border-bottom: 1px solid var(--rule); padding: 0.2em 0.7em; }
 th { text-align: left; background: #f0f0f0; } td.number { text-align: right;
 font-variant-numeric: tabular-nums; }
