@@ -13,8 +13,8 @@ from dyade.cli.options import MECHANISM_FILE, set_option
 from dyade.cli.output import atomic, flags, show, write_json, write_rows
 
 FORMAT = click.Choice(["table", "csv", "json"])
-FLYWHEEL_FLAGS = {"fluctuation": "--fluctuation", "inertia": "--inertia", "speed": "--speed-rpm",
-                  "step": "--step"}
+FLYWHEEL_FLAGS = {"fluctuation": "--fluctuation", "inertia": "--inertia", "speed_rpm": "--speed-rpm",
+                  "step_deg": "--step"}
 BALANCE_FLAGS = {"links": "--link", "radius": "--radius"}
 """API parameter -> the flag it comes from"""
 
@@ -65,18 +65,16 @@ def flywheel(source: str, fluctuation: float | None, inertia: float | None,
         if csv_source:
             if assignments or step is not None:
                 raise click.UsageError("--set and --step apply to a mechanism file, not a CSV.")
-            speed = None if speed_rpm is None else speed_rpm * math.pi / 30.0
-            if speed is not None and not (math.isfinite(speed) and speed > 0):
+            if speed_rpm is not None and not (math.isfinite(speed_rpm) and speed_rpm > 0):
                 raise click.BadParameter(f"must be a positive speed, got {speed_rpm:g}.",
                                          param_hint="--speed-rpm")
-            curve = dyade.read_torque_curve(source, speed=speed)
+            curve = dyade.read_torque_curve(source, speed_rpm=speed_rpm)
         else:
             if speed_rpm is not None:
                 raise click.UsageError("--speed-rpm is for a CSV source; a mechanism has its "
                                        "own (change it with --set crank.speed_rpm=…).")
             mechanism = load(source, assignments).mechanism
-            curve = dyade.mechanism_torque_curve(
-                mechanism, step=None if step is None else math.radians(step))
+            curve = dyade.mechanism_torque_curve(mechanism, step_deg=step)
         if fluctuation is not None:
             result = dyade.size_flywheel(curve, fluctuation)
         else:
