@@ -72,6 +72,7 @@ NOTE_LOOK = {
     "never_moves": ("never moves: no friction loss", "||", "0.95"),
     "run_up_not_settled": ("run-up not settled", "**", "0.88"),
     "clearance_not_applicable": ("clearance check not applicable", "O", "0.93"),
+    "drive_line_soft": ("drive line too soft for the rigid model", "xx", "0.82"),
 }
 """note kind -> (label, hatch, face grey) of its shaded crank-angle ranges"""
 
