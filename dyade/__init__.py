@@ -37,6 +37,8 @@ The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``
   ``gear_response(drive, frequencies, ...)``, ``gear_statics(drive, torques, ...)``,
   ``check_elimination(drive, modes=None)``: gear drives as rigid finite elements
   (``dyade.vibration.gears``)
+- ``study(file, *, jobs, executor, output, resume)`` -> ``Study``: a design study, one
+  row per variant (``dyade.study``; ``Study.columns()``, ``.to_pandas()``)
 - ``DyadeError``, ``InputError``, ``AssemblyError``, ``MissingExtra`` (an optional
   extra not installed: an ``InputError`` and ``ImportError`` naming the pip command)
 - ``dyade.plot``: the figures (the plot extra, ``pip install "dyade[plot]"``), loaded on
@@ -111,8 +113,8 @@ _EXPORTS = {
     "MissingExtra": "dyade.errors",
 }
 
-_SUBMODULES = {"clearance", "errors", "files", "linkage", "machine", "plot", "units",
-               "vibration"}
+_SUBMODULES = {"clearance", "errors", "files", "linkage", "machine", "plot", "study",
+               "units", "vibration"}
 """packages of the API, loaded on first attribute access (``dyade.clearance``)"""
 
 __all__ = sorted(_EXPORTS) + ["__version__"]

@@ -100,18 +100,19 @@ def _extreme(angle, values) -> dict[str, Any]:
     return {"min": values[lo], "min_at_deg": angle[lo], "max": values[hi], "max_at_deg": angle[hi]}
 
 
-def summary(result: Outcome, cols: Columns) -> dict[str, Any]:
-    """Per column min/max and where; drive, friction, self-locking, clearance figures:
-    plain Python numbers (``arrays.plain``), the crank angles where an extreme lies
-    rounded to the sweep's resolution (``arrays.resolution``: 359.5, not
-    359.50000000000006)."""
+def summary(result: Outcome, cols: Columns, extremes: bool = True) -> dict[str, Any]:
+    """Per column min/max and where (unless not ``extremes``); drive, friction,
+    self-locking, clearance figures: plain Python numbers (``arrays.plain``), the crank
+    angles where an extreme lies rounded to the sweep's resolution
+    (``arrays.resolution``: 359.5, not 359.50000000000006)."""
     angle = cols["angle_deg"]
     radians = np.deg2rad(angle)
     at = np.round(angle, resolution(angle))  # where: a position of the sweep
     out: dict[str, Any] = {"mechanism": result.mechanism.name, "positions": int(angle.size),
-                           **motion_figures(result, cols, at),
-                           "columns": {name: _extreme(at, values)
-                                       for name, values in cols.items() if name != "angle_deg"}}
+                           **motion_figures(result, cols, at)}
+    if extremes:
+        out["columns"] = {name: _extreme(at, values)
+                          for name, values in cols.items() if name != "angle_deg"}
     if result.forces_valid is not None:
         torque = cols["M_drive"]
         given = torque[np.isfinite(torque)]  # none where the forces are nowhere given
