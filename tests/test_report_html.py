@@ -142,3 +142,15 @@ def test_a_drive_reports_its_speed_and_motor(tmp_path):
     assert f'<td class="number">{rpm:.6g}</td>' in page  # 1470 rpm: k·(ω_s − ω) = 5 N·m
     assert rpm == pytest.approx(1470.0, rel=1e-9)
     assert "Crank speed from the equation of motion" in page
+
+
+@pytest.mark.slow
+def test_a_study_reports_its_tables_and_question(tmp_path):
+    path = shipped("studies/press-slide-tolerance.toml")
+    page = write(path, tmp_path, "r.html")
+    assert re.findall(r"<h2>(.*?)</h2>", page) == ["Results", "The question"]
+    assert outside(page) == [] and page.count("</figure>") == 1
+    assert "100 variants of self-locking.toml" in page
+    # the shipped study has outputs equal in every variant (a stroke): one bar each, drawn
+    out = CliRunner().invoke(main, ["plot", "study", str(path), "-o", str(tmp_path / "s.png")])
+    assert out.exit_code == 0, out.output

@@ -9,7 +9,7 @@ has clearance data, the crank's speed and the motor where it has a ``[drive]``) 
 motion, one frame per swept position, scrubbed with a crank-angle slider, and last, for
 reference, the file in assembly order as ``dyade describe`` says it. For a gear
 file: the natural frequencies and energy shares, the Campbell diagram and the mode
-shapes.
+shapes; for a study file its tables and the figure of its question.
 
 Self-contained: figures inline as SVG (text as paths: no font is needed), the motion's
 script and data inline, no request leaves the file; printable (a print stylesheet keeps
@@ -198,9 +198,12 @@ def report(path: str, overrides: dict[str, Any] | None = None) -> str:
         return page
     if any(key in data for key in ("shaft", "gear", "body")):
         return gear_report(dyade.read_gears(path, overrides), source=source)
-    raise InputError(f"{path}: neither a mechanism file (no [crank] table) nor a gear file "
-                     f"(no [[shaft]], [[gear]] or [[body]] tables): a report is made of one "
-                     f"of these (see mechanisms/README.md).")
+    if "plan" in data and "parameters" in data and not overrides:
+        return study_report(path, source=source)
+    raise InputError(f"{path}: neither a mechanism file (no [crank] table), a gear file "
+                     f"(no [[shaft]], [[gear]] or [[body]] tables) nor a study file ([plan] "
+                     f"and [parameters], without --set): a report is made of one of these "
+                     f"(see mechanisms/README.md).")
 
 
 # -- a mechanism -------------------------------------------------------------------------
@@ -348,6 +351,23 @@ def gear_report(drive, *, source: str = "") -> str:
             gears.campbell_tables(diagram)))
     page.section("Mode shapes", figure(modes_plot.figure(modes, 4), "modes",
                                        "The first elastic mode shapes along each shaft line."))
+    return page.html()
+
+
+# -- a design study ---------------------------------------------------------------------
+def study_report(path, *, source: str = "") -> str:
+    """The design report of a study file (see ``report``): its tables and the figure of
+    its question."""
+    from dyade.plot import study as plot
+    from dyade.report.study import tables
+    from dyade.study import study
+
+    result = study(path)
+    page = Page(f"Study {result.spec.label}: design report", source)
+    page.section("Results", table_html_many(tables(result)))
+    page.section("The question", figure(plot.question_figure(result), "study",
+                                        "The figure of the study's question (as dyade plot "
+                                        "study draws it)."))
     return page.html()
 
 
