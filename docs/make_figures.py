@@ -26,7 +26,7 @@ sys.path.insert(0, str(ROOT))
 import dyade  # noqa: E402
 from dyade import clearance  # noqa: E402
 from dyade.plot import animate, canvas, clearance as clearance_plot  # noqa: E402
-from dyade.plot import campbell, coupling, curves, drive_line, modes, polar  # noqa: E402
+from dyade.plot import campbell, coupling, curves, drive_line, mechanism, modes, polar  # noqa: E402
 
 DOCS = ROOT / "docs"
 MECHANISMS = ROOT / "mechanisms"
@@ -66,7 +66,8 @@ def clearance_paper():
     speeds = clearance_plot.standalone_speeds(clearance.peaks_over_speed(
         **args, speed_rpm=300, speeds_rpm=np.arange(100, 601, 50)))
     history = clearance_plot.History(case, clearance.simulate(**args, history=True))
-    return clearance_plot.figure([case], speeds=speeds, history=history)
+    return clearance_plot.figure([case], speeds=speeds, history=history,
+                                 operating=clearance_plot.operating_points([case], 300))
 
 
 def two_stage_campbell():
@@ -86,6 +87,41 @@ def dyade16_drive_line():
     return drive_line.steady(dyade.drive_line_steady_state(mechanism))
 
 
+def dyade16_mechanism():
+    result = dyade.analyse(dyade.read_mechanism(MECHANISMS / "dyade-16.toml"))
+    return mechanism.figure(result, at_deg=[0.0, 90.0])
+
+
+def self_locking_curves():
+    result = dyade.analyse(dyade.read_mechanism(MECHANISMS / "self-locking.toml"))
+    return curves.figure(result)
+
+
+def fourbar_report(path: Path) -> None:
+    """The top of `dyade report mechanisms/fourbar.toml` as headless Chromium shows it
+    (skipped without a Chromium)."""
+    import shutil
+    import subprocess
+    import tempfile
+
+    from dyade.report.html import report
+
+    chromium = next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome")
+                     if shutil.which(n)), None)
+    if chromium is None:
+        print(f"{path.name}: no Chromium here, left as it is")
+        return
+    with tempfile.TemporaryDirectory() as folder:
+        page = Path(folder) / "report.html"
+        page.write_text(report(str(MECHANISMS / "fourbar.toml")), encoding="utf-8")
+        subprocess.run([chromium, "--headless", "--no-sandbox", "--disable-gpu",
+                        "--disable-quic", "--no-first-run", "--disable-background-networking",
+                        "--disable-component-update", "--disable-sync", "--hide-scrollbars",
+                        f"--user-data-dir={folder}/profile", f"--screenshot={path}",
+                        "--window-size=1000,2100", page.as_uri()],
+                       check=True, capture_output=True, timeout=120)
+
+
 FIGURES = {
     "fourbar-polar.png": fourbar_polar,
     "dyade-16-reversals.png": dyade16_polar_reversals,
@@ -96,8 +132,13 @@ FIGURES = {
     "two-stage-campbell.png": two_stage_campbell,
     "two-stage-modes.png": two_stage_modes,
     "dyade-16-driveline.png": dyade16_drive_line,
+    "dyade-16-mechanism.png": dyade16_mechanism,
+    "self-locking-curves.png": self_locking_curves,
 }
 """file in docs/ -> the function that makes it"""
+
+SCREENSHOTS = {"fourbar-report.png": fourbar_report}
+"""file in docs/ -> the function that writes it (a browser's picture, not a figure)"""
 
 
 def png(name: str) -> bytes:
@@ -109,7 +150,7 @@ def save(name: str, path: Path) -> None:
     """Write the gallery figure ``name`` to ``path``."""
     made = FIGURES[name]()
     if isinstance(made, animate.Animation):
-        animate.save(made, str(path), fps=20, dpi=84)
+        animate.save(made, str(path), fps=20, dpi=animate.DPI)
     else:
         canvas.save(made, str(path), dpi=DPI)
 
@@ -122,6 +163,8 @@ def main() -> None:
         save(name, path)
         elapsed = time.perf_counter() - started
         print(f"{name:28s} {path.stat().st_size / 1024:7.1f} KiB  {elapsed:6.2f} s")
+    for name, make in SCREENSHOTS.items():
+        make(DOCS / name)
 
 
 if __name__ == "__main__":

@@ -15,10 +15,10 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from dyade.plot import canvas
-from dyade.plot.mechanism import PANEL, Scene, geometry, panel_height
+from dyade.plot.mechanism import Scene, geometry, panel_height, panel_width
 
 FPS = 20.0  # [1/s] frames per second of the GIF
-DPI = 72  # [1/in] small frames keep a GIF small
+DPI = 100  # [1/in] frames large enough to read the labels (6.5 pt ≈ 9 px)
 
 
 @dataclass(slots=True, eq=False)
@@ -33,6 +33,7 @@ class Animation:
     def update(self, k: int) -> list:
         """Set the figure to frame k (position k of the sweep); returns the moved artists."""
         moved = self.scene.update(k)
+        self.scene.place(k)
         angle = np.rad2deg(self.scene.geo.crank_angle[k])
         self.title.set_text(f"φ21 = {angle:6.1f}°")
         return moved + [self.title]
@@ -64,10 +65,10 @@ def animation(result, *, fig: Figure | None = None) -> Animation:
     >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/slotted-lever.toml"), step_deg=30)
     >>> motion = animation(result)
     >>> motion.count, [artist.get_gid() for artist in motion.update(3)][:2]
-    (13, ['link-2', None])
+    (13, ['link-2', 'link-label-2'])
     """
     geo = geometry(result)
-    width, height = PANEL + 0.4, panel_height(geo) + 0.9
+    width, height = panel_width(geo) + 0.4, panel_height(geo) + 0.9
     with canvas.style():  # margins by hand: no layout engine to rerun for every frame
         fig = canvas.new(width, height, fig, layout=None)
         fig.subplots_adjust(left=0.75 / width, right=1 - 0.15 / width, bottom=0.5 / height,

@@ -32,6 +32,8 @@ WEAK = 1e-4  # [-] κ below this share of the largest: the mode hardly loads the
 SIZES = (12.0, 110.0)  # [pt²] marker areas at κ = WEAK·largest and at the largest
 LABELLED = 4  # the strongest crossings named on the diagram
 MESH_STYLE = ("-", (0, (6, 2)), (0, (6, 1.5, 1, 1.5)), (0, (3, 1.5)))
+ZOOM = 600.0  # [Hz] a second panel enlarges the frequencies below this …
+ZOOM_ABOVE = 1.5  # [-] … where the diagram reaches this many times higher
 """dash pattern of each mesh's tooth-mesh lines (repeats after four meshes)"""
 
 
@@ -91,31 +93,15 @@ def figure(diagram, *, fig: Figure | None = None) -> Figure:
     tops += [float(o.frequency) for o in diagram.orders if o.slope == 0.0]
     tops += [c.frequency for c in diagram.crossings]
     top = 1.08 * max(tops + [float(np.nanmax(frequencies, initial=0.0))] * (not tops) + [1.0])
+    zoom = top > ZOOM_ABOVE * ZOOM
     with canvas.style():
-        fig = canvas.new(8.5, 7.0, fig)
-        ax = fig.subplots()
-        low, high = float(speeds[0]), float(speeds[-1])
-        shown = np.flatnonzero(np.isfinite(frequencies) & (frequencies <= top))
-        for k in shown:
-            ax.plot([low, high], [frequencies[k]] * 2, color="0.6", linewidth=0.7, zorder=1,
-                    gid=f"mode-{k + 1}")
-        _mode_labels(ax, frequencies[shown], shown + 1, high, top)
-        _order_lines(ax, diagram, top)
-        _crossings(ax, diagram)
-        rpm = drive.speed.rpm if drive.speed is not None else None
-        if rpm is not None and low <= rpm <= high:
-            ax.axvline(rpm, color="0.25", linestyle=canvas.DASHES[4], linewidth=0.9, zorder=2,
-                       gid="operating")
-            ax.annotate(f"operating speed {rpm:g} rpm", (rpm, 1.0),
-                        xycoords=("data", "axes fraction"), xytext=(-3, -4),
-                        textcoords="offset points", rotation=90, ha="right", va="top",
-                        fontsize=7)
-        ax.set_xlim(low, high)
-        ax.set_ylim(0.0, top)
-        body = drive.speed.body if drive.speed is not None else "input"
-        ax.set_xlabel(f"input speed n ({body}) [rpm]")
-        ax.set_ylabel("frequency [Hz]")
-        fig.legend(handles=_legend(ax, diagram), loc="outside lower center", ncols=3)
+        fig = canvas.new(8.5, 11.0 if zoom else 7.0, fig)
+        axes = fig.subplots(2, 1, height_ratios=(2, 3)) if zoom else [fig.subplots()]
+        for ax, ceiling, crowd in zip(axes, (top, ZOOM), (1.8 if zoom else 1.0, 1.0)):
+            _panel(ax, diagram, ceiling, crowd)
+        if zoom:
+            axes[1].set_title(f"below {ZOOM:.0f} Hz, enlarged", fontsize=8)
+        fig.legend(handles=_legend(axes[0], diagram), loc="outside lower center", ncols=3)
         hidden = int(np.sum(frequencies > top))
         above = f"; {hidden} modes above {top:.0f} Hz not shown" if hidden else ""
         fig.suptitle(f"{drive.name}: Campbell diagram ({len(diagram.crossings)} crossings{above})"
@@ -124,19 +110,52 @@ def figure(diagram, *, fig: Figure | None = None) -> Figure:
     return fig
 
 
+def _panel(ax, diagram, top: float, crowd: float = 1.0) -> None:
+    """The diagram up to ``top`` [Hz] on one axes; ``crowd``: how many times shorter
+    than a full figure's the axes are (labels are merged over that much more)."""
+    speeds, modes = diagram.speeds_rpm, diagram.modes
+    drive, frequencies = modes.system.drive, modes.frequencies
+    low, high = float(speeds[0]), float(speeds[-1])
+    shown = np.flatnonzero(np.isfinite(frequencies) & (frequencies <= top))
+    for k in shown:
+        ax.plot([low, high], [frequencies[k]] * 2, color="0.6", linewidth=0.7, zorder=1,
+                gid=f"mode-{k + 1}")
+    _mode_labels(ax, frequencies[shown], shown + 1, high, top, crowd)
+    _order_lines(ax, diagram, top, crowd)
+    _crossings(ax, diagram)
+    rpm = drive.speed.rpm if drive.speed is not None else None
+    if rpm is not None and low <= rpm <= high:
+        ax.axvline(rpm, color="0.25", linestyle=canvas.DASHES[4], linewidth=0.9, zorder=2,
+                   gid="operating")
+        ax.annotate(f"operating speed {rpm:g} rpm", (rpm, 0.0),  # the lines leave at the top
+                    xycoords=("data", "axes fraction"), xytext=(-3, 4),
+                    textcoords="offset points", rotation=90, ha="right", va="bottom",
+                    fontsize=7)
+    ax.set_xlim(low, high)
+    ax.set_ylim(0.0, top)
+    body = drive.speed.body if drive.speed is not None else "input"
+    ax.set_xlabel(f"input speed n ({body}) [rpm]")
+    ax.set_ylabel("frequency [Hz]")
+
+
 def _mode_labels(ax, frequencies: np.ndarray, numbers: np.ndarray, right: float,
-                 top: float) -> None:
-    """Mode numbers at the right edge, modes closer than 1.6 % of the axis in one label."""
+                 top: float, crowd: float = 1.0) -> None:
+    """Mode numbers at the right edge, modes closer than 1.6 % of the axis (times
+    ``crowd``) in one label, labels pushed apart to that spacing."""
+    gap = 0.016 * crowd * top
     groups: list[list[int]] = []
     for k, f in enumerate(frequencies):
-        if groups and f - frequencies[groups[-1][0]] < 0.016 * top:
+        if groups and f - frequencies[groups[-1][0]] < gap:
             groups[-1].append(k)
         else:
             groups.append([k])
+    below = -np.inf
     for group in groups:
         first, last = numbers[group[0]], numbers[group[-1]]
         text = f"{first}" if first == last else f"{first}–{last}"
-        ax.annotate(text, (right, float(np.mean(frequencies[group]))), xytext=(3, 0),
+        at = max(float(np.mean(frequencies[group])), below + gap)
+        below = at
+        ax.annotate(text, (right, at), xytext=(3, 0),
                     textcoords="offset points", va="center", fontsize=6, color="0.35",
                     annotation_clip=False)
     ax.annotate("mode", (1.0, 1.0), xycoords="axes fraction", xytext=(3, 3),
@@ -153,7 +172,7 @@ def _style(order) -> dict:
             "solid_capstyle": "butt"}
 
 
-def _order_lines(ax, diagram, top: float) -> None:
+def _order_lines(ax, diagram, top: float, crowd: float = 1.0) -> None:
     """Each excitation line, named where it leaves the axes (coinciding lines once)."""
     speeds = diagram.speeds_rpm
     names: dict[tuple[float, float], list[str]] = {}
@@ -172,7 +191,7 @@ def _order_lines(ax, diagram, top: float) -> None:
     right = sorted((e for e in ends if e[2]), key=lambda e: -e[0][1])
     merged: list[tuple[tuple[float, float], list[str], bool]] = []
     for where, labels, edge in right:  # labels closer than 3 % of the axis: one label
-        if merged and merged[-1][0][1] - where[1] < 0.03 * top:
+        if merged and merged[-1][0][1] - where[1] < 0.03 * crowd * top:
             merged[-1][1].extend(labels)
         else:
             merged.append((where, list(labels), edge))

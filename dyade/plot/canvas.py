@@ -62,10 +62,17 @@ ANIMATION = "gif"
 NOTE_LOOK = {
     "partial": ("does not close", "xxxx", "0.75"),
     "dead_centre": ("near a dead centre", "////", "0.85"),
+    "poor_transmission": ("poor transmission", "", "0.90"),
+    "implausible": ("implausible values", "oo", "0.80"),
     "forces_invalid": ("forces not given", "\\\\\\\\", "0.80"),
+    "near_self_locking": ("near self-locking", "||||", "0.85"),
     "self_locking": ("self-locking", "++", "0.80"),
     "friction_not_converged": ("friction not converged", "..", "0.90"),
     "at_rest": ("at rest: no friction", "--", "0.92"),
+    "never_moves": ("never moves: no friction loss", "||", "0.95"),
+    "run_up_not_settled": ("run-up not settled", "**", "0.88"),
+    "clearance_not_applicable": ("clearance check not applicable", "O", "0.93"),
+    "drive_line_soft": ("drive line too soft for the rigid model", "xx", "0.82"),
 }
 """note kind -> (label, hatch, face grey) of its shaded crank-angle ranges"""
 

@@ -65,8 +65,19 @@ def standalone_speeds(peaks) -> dict[str, tuple[np.ndarray, np.ndarray]]:
             "clearance share 6·c·s/τ": (rpm, np.array([p.clearance_share for _, p in peaks]))}
 
 
+def operating_points(points: list[Case], speed_rpm: float) -> dict[str, tuple[float, float]]:
+    """Per joint (or the standalone case), the operating speed [rpm] and the largest peak
+    force of its reversals there [N]: the point the speed panel marks."""
+    out: dict[str, tuple[float, float]] = {}
+    for case in points:
+        name = case.label.split(" #")[0]
+        out[name] = (float(speed_rpm), max(out.get(name, (0.0, 0.0))[1], case.peak.force))
+    return out
+
+
 def figure(points: list[Case], *, speeds: dict | None = None, history: History | None = None,
-           fig: Figure | None = None, title: str = "Clearance peak force") -> Figure:
+           fig: Figure | None = None, title: str = "Clearance peak force",
+           operating: dict | None = None) -> Figure:
     """f(τ) with the cases, and optionally the peaks over speed and a force history.
 
     Parameters
@@ -81,6 +92,9 @@ def figure(points: list[Case], *, speeds: dict | None = None, history: History |
         A figure to draw on (default: a new one).
     title : str
         The figure's title.
+    operating : dict, optional
+        label -> (speed [rpm], peak force [N]) at the operating speed, marked on the speed
+        panel (``operating_points``).
 
     Examples
     --------
@@ -97,7 +111,7 @@ def figure(points: list[Case], *, speeds: dict | None = None, history: History |
         axes = list(fig.subplots(1, count, squeeze=False).ravel())
         _f_of_tau(axes.pop(0), points)
         if speeds is not None:
-            _over_speed(axes.pop(0), speeds)
+            _over_speed(axes.pop(0), speeds, operating or {})
         if history is not None:
             _history(axes.pop(0), history)
         fig.suptitle(f"{title} (Dresig & Thümmel)")
@@ -131,10 +145,17 @@ def _f_of_tau(ax, points: list[Case]) -> None:
               ncols=2 if len(groups) > 8 else 1)
 
 
-def _over_speed(ax, speeds: dict) -> None:
+def _over_speed(ax, speeds: dict, operating: dict) -> None:
     for k, (label, (rpm, force)) in enumerate(speeds.items()):
         ax.plot(rpm, force, label=label, gid=f"speed-{label}",
                 **canvas.line(k, marker=True, markevery=1))
+    for k, (label, (rpm, force)) in enumerate(operating.items()):
+        ax.plot([rpm], [force], linestyle="none", marker="*", markersize=11,
+                markerfacecolor=canvas.COLOURS[1], markeredgecolor="black", zorder=6,
+                gid=f"operating-{label}",
+                label=f"operating point {rpm:.4g} rpm: {force:.4g} N" if k == 0 else None)
+        ax.axvline(rpm, color=canvas.GREY, linestyle=canvas.DASHES[2], linewidth=0.8,
+                   zorder=1)
     ax.set_xlabel("crank speed [rpm]")
     ax.set_ylabel("peak force F12max [N]")
     ax.set_ylim(bottom=0.0)

@@ -115,7 +115,8 @@ def figure(coupling, response, operating=None, *, log: bool = False,
         bottom.set_yticks([-180, -90, 0, 90, 180])
         bottom.set_xlabel("tuning ratio η = Ω/ω_t [-]")
         bottom.set_xlim(eta.min(), eta.max())
-        bottom.legend(loc="lower left", ncols=4)
+        handles, labels = bottom.get_legend_handles_labels()  # below the panel: off the curves
+        fig.legend(handles, labels, loc="outside lower center", ncols=4, title="phase")
         fig.suptitle(f"Stiff coupling (Strümpfel): ω_t = {coupling.natural_frequency:.5g} rad/s, "
                      f"D = {coupling.damping_ratio:.3g}")
     return fig

@@ -26,10 +26,15 @@ from dyade.linkage.kinematics import joint_point
 from dyade.linkage.model import FRAME, Prismatic, Revolute
 from dyade.linkage.motion import perp, travel
 from dyade.plot import canvas
+from dyade.plot.labels import Placer, leader
 
 BLOCK = (0.09, 0.05)  # block length and height, shares of the mechanism's size [-]
+SHORT = 0.45  # [-] a block at most this share of the shortest link: it hides no pin
 PIVOT = 0.045  # frame pivot symbol height, share of the mechanism's size [-]
-PANEL = 3.6  # [in] one panel
+PANEL = 3.6  # [in] one panel of a small linkage
+CROWD = 10  # labels (links and named points) a PANEL-wide panel holds
+WIDEST = 2.0  # [-] a big linkage's panel at most this many times PANEL wide
+LINK_SIZE, POINT_SIZE = 6.5, 7.0  # [pt] font sizes of link numbers and point names
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
@@ -144,7 +149,7 @@ def _layout(result) -> _Layout:
     reach += [motion.point(link, point)[rows] for _, link, point in mechanism.named_points]
     every = np.concatenate(reach)
     size = float(np.hypot(*(np.nanmax(every, axis=0) - np.nanmin(every, axis=0)))) or 1.0
-    length = BLOCK[0] * size
+    length = min(BLOCK[0] * size, SHORT * _shortest(local, size))
     guides = []
     for joint, low, high in travels:
         direction = np.array([np.cos(joint.guide_angle), np.sin(joint.guide_angle)])
@@ -161,7 +166,19 @@ def _layout(result) -> _Layout:
             nodes = longer
         if len(nodes) >= 2:
             outlines[link] = nodes[_hull(nodes)]
-    return _Layout(outlines, guides, (length, BLOCK[1] * size), size)
+    return _Layout(outlines, guides, (length, length * BLOCK[1] / BLOCK[0]), size)
+
+
+def _shortest(local: dict, size: float) -> float:
+    """[m] the shortest distance between two distinct points of one link (``size`` when
+    no link has two)."""
+    shortest = size
+    for points in local.values():
+        nodes = _unique(points)
+        if len(nodes) > 1:
+            gaps = np.hypot(*(nodes[:, None] - nodes[None]).transpose(2, 0, 1))
+            shortest = min(shortest, float(gaps[gaps > 1e-9].min()))
+    return shortest
 
 
 def _place(lay: _Layout, result) -> Geometry:
@@ -249,10 +266,13 @@ class Scene:
             else:
                 artist, = ax.plot(*body.outline[0].T, color=colour, linewidth=3.2,
                                   solid_capstyle="round", zorder=on_top, gid=f"link-{body.link}")
-            label = ax.text(*body.outline[0].mean(axis=0), str(body.link), fontsize=6.5,
-                            ha="center", va="center", zorder=8, color="0.1",
-                            bbox={"boxstyle": "circle,pad=0.15", "facecolor": "white",
-                                  "edgecolor": colour, "linewidth": 0.6})
+            label = ax.annotate(str(body.link), _anchor(body, 0), xytext=(0.0, 0.0),
+                                textcoords="offset points", fontsize=LINK_SIZE, ha="center",
+                                va="center", zorder=8, color="0.1", gid=f"link-label-{body.link}",
+                                bbox={"boxstyle": "circle,pad=0.15", "facecolor": "white",
+                                      "edgecolor": colour, "linewidth": 0.6},
+                                arrowprops={"arrowstyle": "-", "color": colour,
+                                            "linewidth": 0.5, "shrinkA": 0, "shrinkB": 0})
             self.bodies.append((body, artist, label))
         self.sliders = []
         for slider in geo.sliders:
@@ -262,7 +282,8 @@ class Scene:
                              gid=f"guide-{a}-{b}")
             if slider.fixed_guide:
                 _hatched_rails(ax, slider.rails[0], PIVOT * size * 0.4)
-            block = ax.add_patch(Polygon(slider.block[0], closed=True, facecolor="white",
+            block = ax.add_patch(Polygon(slider.block[0], closed=True,  # pins show through
+                                         facecolor=(1.0, 1.0, 1.0, 0.55),
                                          edgecolor="black", linewidth=1.1, zorder=4,
                                          gid=f"block-{a}-{b}"))
             self.sliders.append((slider, rails, block))
@@ -270,13 +291,18 @@ class Scene:
                              linestyle="none", marker="o", markersize=4.5,
                              markerfacecolor="white", markeredgecolor="black",
                              markeredgewidth=1.0, zorder=6, gid="pins")
-        self.points = None
+        self.ax, self.points, self.point_labels = ax, None, []
         if geo.points:
             self.points, = ax.plot(*np.stack(list(geo.points.values()))[:, 0].T,
                                    linestyle="none", marker="s", markersize=3.5, color="black",
                                    zorder=7, gid="points")
             self.point_labels = [ax.annotate(name, path[0], xytext=(4, 4),
-                                             textcoords="offset points", fontsize=7, zorder=8)
+                                             textcoords="offset points", fontsize=POINT_SIZE,
+                                             ha="center", va="center", zorder=8,
+                                             gid=f"point-label-{name}",
+                                             arrowprops={"arrowstyle": "-", "color": "0.45",
+                                                         "linewidth": 0.5, "shrinkA": 0,
+                                                         "shrinkB": 1})
                                  for name, path in geo.points.items()]
         ax.set_xlim(*geo.limits[:2])
         ax.set_ylim(*geo.limits[2:])
@@ -292,7 +318,7 @@ class Scene:
                 artist.set_xy(body.outline[k])
             else:
                 artist.set_data(*body.outline[k].T)
-            label.set_position(body.outline[k].mean(axis=0))
+            label.xy = _anchor(body, k)
             moved += [artist, label]
         for slider, rails, block in self.sliders:
             if not slider.fixed_guide:
@@ -307,6 +333,41 @@ class Scene:
                 text.xy = path[k]
             moved += [self.points, *self.point_labels]
         return moved
+
+    def place(self, k: int) -> None:
+        """Put the link numbers and point names of position k where they are clear of
+        each other and of the drawing (the axes in their final place on the figure)."""
+        places = Placer(self.ax)
+        for body, _, _ in self.bodies:
+            outline = body.outline[k]
+            places.avoid(np.concatenate([outline, outline[:1]]) if body.plate else outline)
+        for slider, _, _ in self.sliders:
+            places.avoid(np.concatenate([slider.block[k], slider.block[k][:1]]))
+            places.avoid(_rails(slider.rails[k]))
+        places.avoid(np.stack(list(self.geo.pins.values()))[:, k])
+        points = list(self.geo.points.values())
+        if points:
+            places.avoid(np.stack(points)[:, k])
+        centre = np.nanmean(np.stack(list(self.geo.pins.values()))[:, k], axis=0)
+        for text, path in zip(self.point_labels, points):  # the names first: they are points
+            text.xyann = places.place(path[k], text.get_text(), POINT_SIZE,
+                                      first=_away(places, path[k], centre))
+            text.arrow_patch.set_visible(leader(text.xyann) is not None)
+        for body, _, label in self.bodies:
+            label.xyann = places.place(label.xy, label.get_text(), LINK_SIZE, pad=2.5,
+                                       first=_away(places, label.xy, centre))
+            label.arrow_patch.set_visible(leader(label.xyann) is not None)
+
+
+def _anchor(body: Body, k: int) -> np.ndarray:
+    """Where a link's number points: the middle of a bar, the centre of a plate."""
+    return body.outline[k].mean(axis=0)
+
+
+def _away(places: Placer, at: np.ndarray, centre: np.ndarray) -> float:
+    """[rad] the direction from the drawing's centre to ``at`` on the screen."""
+    d = places.display(at)[0] - places.display(centre)[0]
+    return float(np.arctan2(d[1], d[0])) if np.isfinite(d).all() else 0.0
 
 
 def link_colour(link: int) -> str:
@@ -388,20 +449,34 @@ def figure(result, *, at_deg=None, fig: Figure | None = None, **renamed) -> Figu
         at = angle[0] + span * (np.arange(4) / 4 if full else np.arange(3) / 2)
     at = np.atleast_1d(np.asarray(at, dtype=float))
     placed = geometry(result, analyse_si(result.mechanism, crank_angle=at, plan=Plan()))
-    rows, columns = canvas.grid(len(at), 3 if len(at) == 3 else 2)
+    width = panel_width(placed)
+    rows, columns = canvas.grid(len(at), 1 if width > 1.5 * PANEL else 3 if len(at) == 3 else 2)
     with canvas.style():
-        fig = canvas.new(PANEL * columns, (panel_height(placed) + 0.5) * rows + 0.3, fig)
+        fig = canvas.new(width * columns, (panel_height(placed) + 0.5) * rows + 0.3, fig)
         axes = fig.subplots(rows, columns, squeeze=False).ravel()
         for ax in axes[len(at):]:
             ax.set_visible(False)
+        scenes = []
         for k, ax in enumerate(axes[:len(at)]):
-            Scene(ax, placed).update(k)
+            scenes.append(Scene(ax, placed))
+            scenes[-1].update(k)
             ax.set_title(f"φ21 = {np.rad2deg(at[k]):.4g}°")
         fig.suptitle(result.mechanism.name)
+        fig.draw_without_rendering()  # the panels' final place: labels are placed in it
+        for k, scene in enumerate(scenes):
+            scene.place(k)
+        fig.set_layout_engine("none")  # keep the places the labels were fitted to
     return fig
 
 
+def panel_width(geo: Geometry) -> float:
+    """[in] a panel's width: ``PANEL``, wider for a linkage with many labels (up to
+    ``WIDEST`` times)."""
+    count = len(geo.bodies) + len(geo.points)
+    return PANEL * float(np.clip(np.sqrt(count / CROWD), 1.0, WIDEST))
+
+
 def panel_height(geo: Geometry) -> float:
-    """[in] a panel's height for the drawing's aspect at ``PANEL`` wide."""
+    """[in] a panel's height for the drawing's aspect at ``panel_width`` wide."""
     x0, x1, y0, y1 = geo.limits
-    return PANEL * float(np.clip((y1 - y0) / (x1 - x0), 0.45, 1.6))
+    return panel_width(geo) * float(np.clip((y1 - y0) / (x1 - x0), 0.45, 1.6))

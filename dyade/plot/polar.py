@@ -21,9 +21,16 @@ from dyade.errors import InputError
 from dyade.linkage.joint_clearance import MAX_WANDER_DEG, force_lines
 from dyade.linkage.options import radians
 from dyade.plot import canvas
+from dyade.plot.labels import Placer, leader, merge
 
 MARK_EVERY = 30.0  # [°] crank-angle marks along the curve
 PANEL = 3.3  # [in] width and height of one panel
+LEFT, RIGHT, ABOVE, BELOW = 0.78, 0.12, 0.45, 0.45  # [in] a panel's margins around its axes
+TOP = 0.4  # [in] the figure's title
+EQUAL = 0.5  # [-] equal axes only where the shorter range is at least this share of the longer
+MARGIN = 0.1  # [-] space around the curve, share of its range
+SAME_SPOT = 4.0  # [pt] crank-angle marks closer than this share one label
+MARK_SIZE, NUMBER_SIZE = 6.5, 8.0  # [pt] font sizes of the angle marks and reversal numbers
 
 
 def marks(result) -> tuple[np.ndarray, np.ndarray]:
@@ -91,18 +98,27 @@ def figure(result, joints=None, *, max_wander_deg: float = MAX_WANDER_DEG,
     lines = force_lines(result, joints, max_wander=radians(max_wander_deg, "max_wander_deg"))
     cols = result.columns()
     rows, columns = canvas.grid(len(lines))
-    with canvas.style():
-        fig = canvas.new(PANEL * columns, PANEL * rows + 0.4, fig)
-        axes = fig.subplots(rows, columns, squeeze=False).ravel()
+    with canvas.style():  # margins by hand: the labels are placed in the final panels
+        width, height = PANEL * columns, PANEL * rows + TOP
+        fig = canvas.new(width, height, fig, layout=None)
+        box = PANEL - LEFT - RIGHT, PANEL - ABOVE - BELOW  # [in] one axes
+        axes = fig.subplots(rows, columns, squeeze=False, gridspec_kw={
+            "left": LEFT / width, "right": 1 - RIGHT / width, "bottom": BELOW / height,
+            "top": 1 - (TOP + ABOVE) / height, "wspace": (LEFT + RIGHT) / box[0],
+            "hspace": (ABOVE + BELOW) / box[1]}).ravel()
         for ax in axes[len(lines):]:
             ax.set_visible(False)
-        for ax, line in zip(axes, lines):
-            _panel(ax, result, cols, line)
-        fig.suptitle(f"{result.mechanism.name}: joint forces over the crank cycle")
+        drawn = [_panel(ax, result, cols, line) for ax, line in zip(axes, lines)]
+        fig.suptitle(f"{result.mechanism.name}: joint forces over the crank cycle",
+                     y=1 - 0.12 / height, va="top")
+        for ax, (curve, marked, line) in zip(axes, drawn):
+            _labels(ax, curve, marked, line)
     return fig
 
 
-def _panel(ax, result, cols, line) -> None:
+def _panel(ax, result, cols, line):
+    """The curve, its crank-angle marks and reversal markers, scaled; returns what
+    ``_labels`` needs once the layout is final."""
     a, b = line.joint
     fx = canvas.on_grid(result, cols[f"Fx_{a}_{b}"])
     fy = canvas.on_grid(result, cols[f"Fy_{a}_{b}"])
@@ -114,9 +130,6 @@ def _panel(ax, result, cols, line) -> None:
     shown = np.isfinite(mx) & np.isfinite(my)
     ax.plot(mx[shown], my[shown], linestyle="none", marker="o", markersize=3.0,
             color="black", zorder=4, gid=f"crank-angles-{a}-{b}")
-    for deg, x, y in zip(wanted[shown], mx[shown], my[shown]):
-        ax.annotate(f"{deg % 360:.0f}°", (x, y), xytext=(3, 3), textcoords="offset points",
-                    fontsize=6.5, color="0.25", zorder=5)
     if line.applies:
         ax.axline((0.0, 0.0), (np.cos(line.line_angle), np.sin(line.line_angle)),
                   color=canvas.COLOURS[2], linestyle=canvas.DASHES[1], linewidth=0.9, zorder=2,
@@ -125,19 +138,82 @@ def _panel(ax, result, cols, line) -> None:
         ax.plot(forces[:, 0], forces[:, 1], linestyle="none", marker="D", markersize=5.0,
                 markerfacecolor="white", markeredgecolor=canvas.COLOURS[1], zorder=6,
                 gid=f"reversals-{a}-{b}")
-        for number, (x, y) in enumerate(forces, 1):
-            turn = np.deg2rad(45.0 + 90.0 * (number - 1))  # neighbours' labels apart
-            ax.annotate(str(number), (x, y), xytext=(14 * np.cos(turn), 14 * np.sin(turn)),
-                        textcoords="offset points", ha="center", va="center", fontsize=8.0,
-                        fontweight="bold", color=canvas.COLOURS[1], zorder=7,
-                        arrowprops={"arrowstyle": "-", "color": canvas.COLOURS[1],
-                                    "linewidth": 0.6, "shrinkA": 0, "shrinkB": 2})
     gaps = int(np.count_nonzero(~(np.isfinite(fx) & np.isfinite(fy))))
     status = status_line(line) + (f"; gaps at {gaps} positions" if gaps else "")
-    ax.set_aspect("equal", adjustable="datalim")
+    scale(ax, fx, fy)
     ax.set_title(f"joint ({a},{b}): force on link {b}\n{status}", fontsize=7.5)
     ax.set_xlabel(f"Fx_{a}_{b} [N]")
     ax.set_ylabel(f"Fy_{a}_{b} [N]")
+    curve = np.stack([fx, fy], axis=1)
+    return curve, (wanted[shown], np.stack([mx[shown], my[shown]], axis=1)), line
+
+
+def scale(ax, fx: np.ndarray, fy: np.ndarray) -> bool:
+    """Limits around the curve and the origin; equal axes (a force's direction true to
+    the eye) unless they would leave more than half of the panel empty. Returns whether
+    the axes are equal."""
+    given = np.isfinite(fx) & np.isfinite(fy)
+    if not given.any():
+        return False
+    low = np.minimum([fx[given].min(), fy[given].min()], 0.0)
+    high = np.maximum([fx[given].max(), fy[given].max()], 0.0)
+    span = np.maximum(high - low, 1e-9 * max(float(np.max(high - low)), 1e-12))
+    if span.min() >= EQUAL * span.max():
+        ax.update_datalim([(0.0, 0.0)])  # the origin in view: the force's length true
+        ax.margins(MARGIN)
+        ax.set_aspect("equal", adjustable="datalim")
+        return True
+    centre, half = 0.5 * (low + high), 0.5 * span * (1.0 + 2.0 * MARGIN)
+    ax.set_xlim(centre[0] - half[0], centre[0] + half[0])
+    ax.set_ylim(centre[1] - half[1], centre[1] + half[1])
+    return False
+
+
+def _labels(ax, curve: np.ndarray, marked, line) -> None:
+    """The reversal numbers and the crank-angle marks, off the curve and apart (the
+    axes in their final place)."""
+    places = Placer(ax, curve)
+    angles, at = marked
+    places.avoid(at)
+    a, b = line.joint
+    if line.applies:
+        forces = line.reversal_forces
+        places.avoid(forces)
+        for number, xy in enumerate(forces, 1):
+            offset = places.place(xy, str(number), NUMBER_SIZE, "bold",
+                                  first=np.deg2rad(45.0 + 90.0 * (number - 1)))
+            ax.annotate(str(number), xy, xytext=offset, textcoords="offset points",
+                        ha="center", va="center", fontsize=NUMBER_SIZE, fontweight="bold",
+                        color=canvas.COLOURS[1], zorder=7, gid=f"reversal-number-{a}-{b}",
+                        arrowprops={"arrowstyle": "-", "color": canvas.COLOURS[1],
+                                    "linewidth": 0.6, "shrinkA": 0, "shrinkB": 2})
+    # marks on one spot share a label; the quarter turns placed first
+    spots = places.display(at)
+    groups: list[list[int]] = []
+    for k in range(len(angles)):
+        for group in groups:
+            if np.hypot(*(spots[group[0]] - spots[k])) * 72.0 / ax.figure.dpi < SAME_SPOT:
+                group.append(k)
+                break
+        else:
+            groups.append([k])
+    first = sorted(groups, key=lambda g: not any(angles[k] % 90.0 == 0 for k in g))
+    centre = np.nanmean(curve, axis=0) if np.isfinite(curve).any() else np.zeros(2)
+    offsets = {}
+    for group in first:  # the quarter turns take their places first
+        outward = places.display(at[group[0]])[0] - places.display(centre)[0]
+        offsets[group[0]] = places.place(at[group[0]], _text(angles, group), MARK_SIZE,
+                                         first=float(np.arctan2(outward[1], outward[0])))
+    for group in groups:  # drawn in crank-angle order
+        offset = offsets[group[0]]
+        ax.annotate(_text(angles, group), at[group[0]], xytext=offset,
+                    textcoords="offset points", ha="center", va="center", fontsize=MARK_SIZE,
+                    color="0.25", zorder=5, gid=f"crank-angle-{a}-{b}",
+                    arrowprops=leader(offset))
+
+
+def _text(angles: np.ndarray, group: list[int]) -> str:
+    return merge([float(angles[k]) for k in group], MARK_EVERY)
 
 
 def status_line(line) -> str:

@@ -82,8 +82,14 @@ def histograms(result, outputs: list[str], fig: Figure | None = None) -> Figure:
         for k, name in enumerate(outputs):
             ax = fig.add_subplot(rows, columns, k + 1)
             values = cols[name][ok & np.isfinite(cols[name])]
-            ax.hist(values, bins=max(5, min(40, int(np.sqrt(values.size)))),
-                    color=canvas.COLOURS[2], alpha=0.7)
+            bins: int | np.ndarray = max(5, min(40, int(np.sqrt(values.size))))
+            if values.size and np.ptp(values) <= 1e-9 * max(1.0, float(np.abs(values).max())):
+                # one value in every variant (to rounding): one bar, not bins of zero width
+                middle = float(np.median(values))
+                half = max(1e-3 * abs(middle), 1e-9)
+                bins = np.array([middle - half, middle + half])
+                values = np.clip(values, bins[0], bins[1])
+            ax.hist(values, bins=bins, color=canvas.COLOURS[2], alpha=0.7)
             if values.size:
                 for q, style in ((5, ":"), (95, ":")):
                     ax.axvline(np.percentile(values, q), color="black", linestyle=style,
@@ -168,3 +174,33 @@ def chosen_design(result) -> int | None:
         scaled.append((values - values.min()) / (span if span > 0 else 1.0))
     return int(index[np.argmin(np.hypot.reduce(scaled, axis=0) if len(scaled) > 1
                                else scaled[0])])
+
+
+def question_figure(result, outputs=None, x: str | None = None, y: str | None = None,
+                    fig: Figure | None = None) -> Figure:
+    """The figure of a study's question: a tolerance study's histograms with their
+    limits, a sensitivity study's bars, the Pareto front of several objectives;
+    otherwise ``outputs[0]`` (default M_drive_rms, else the first output) against the
+    parameter ``x`` (default the first), or a map over ``x`` and ``y``.
+
+    Parameters
+    ----------
+    result : Study
+        From ``dyade.study.study``.
+    outputs : list of str, optional
+        The outputs to draw (default: every one for histograms and bars).
+    x, y : str, optional
+        Parameters (their --set key paths) along the axes.
+    fig : Figure, optional
+        A figure to draw on (default: a new one).
+    """
+    chosen = list(outputs or []) or None
+    if result.tolerance is not None:
+        return histograms(result, chosen or result.outputs, fig=fig)
+    if result.sensitivity is not None:
+        return sensitivity_bars(result, chosen or result.outputs, fig=fig)
+    if result.pareto is not None and len(result.spec.optimise["objectives"]) > 1:
+        return pareto_front(result, fig=fig)
+    what = (chosen or ["M_drive_rms" if "M_drive_rms" in result.outputs
+                       else result.outputs[0]])[0]
+    return versus(result, what, x or result.parameters[0], y, fig=fig)

@@ -33,6 +33,7 @@ def clearance_figure(mechanism_file, joints, masses, stiffness, gap, slope, spee
     from dyade import clearance as engine
     from dyade.plot import clearance as figure
     from dyade.report import clearance as clearance_report
+    from dyade.units import RPM
 
     given = inputs(joints, masses, stiffness, gap, slope, speed_rpm, speed_range, simulate,
                    sim_steps, max_wander)
@@ -52,6 +53,7 @@ def clearance_figure(mechanism_file, joints, masses, stiffness, gap, slope, spee
             for line in clearance_report.mechanism_warnings(skipped, []):
                 console(stderr=True).print(line)
             cases, title = figure.cases(checks), mechanism.name
+            speed_rpm = mechanism.crank.speed / RPM
             if given.speeds:
                 speeds = figure.speed_lines(dyade.clearance_speed_study(
                     mechanism, given.speeds, **mechanism_options(given)))
@@ -59,6 +61,7 @@ def clearance_figure(mechanism_file, joints, masses, stiffness, gap, slope, spee
             peak = engine.peak_force(given.mass, given.stiffness, clearance=given.gap,
                                      slope=given.slope)
             cases, title = [figure.Case("standalone", peak)], "Clearance peak force"
+            speed_rpm = given.speed_rpm
             if given.speeds:
                 speeds = figure.standalone_speeds(engine.peaks_over_speed(
                     given.mass, given.stiffness, clearance=given.gap, slope=given.slope,
@@ -70,5 +73,7 @@ def clearance_figure(mechanism_file, joints, masses, stiffness, gap, slope, spee
             history = figure.History(worst, engine.simulate(
                 p.mass, p.stiffness, clearance=p.clearance, slope=p.slope,
                 steps_per_period=given.sim_steps, history=True))
+    operating = figure.operating_points(cases, speed_rpm) if speed_rpm else None
     finish(figure.figure(cases, speeds=speeds, history=history, title=title,
-                          fig=figure_for(target, (10.8, 3.7))), target, announce)
+                          operating=operating, fig=figure_for(target, (10.8, 3.7))),
+           target, announce)

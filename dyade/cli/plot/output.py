@@ -25,7 +25,7 @@ def output_options(default_format: str | None = "png"):
                               "well, write it too."),
             click.option("--dpi", type=click.IntRange(min=20, max=1200), default=None,
                          help="Resolution of a PNG or GIF [dots per inch]  [default: 100 for "
-                              "PNG, 72 for GIF]."),
+                              "PNG and GIF]."),
         ]
         if default_format:
             options.insert(1, click.option(

@@ -50,16 +50,5 @@ def study_figure(study_file, table, x, y, outputs, jobs, scheduler, block_size, 
 
             raise click.BadParameter(f"{key} is not an output.{suggest(key, set(result.outputs))}",
                                      param_hint="--show-output")
-    chosen = list(outputs) or None
-    fig = figure_for(target)
-    if result.tolerance is not None:
-        picture = figure.histograms(result, chosen or result.outputs, fig=fig)
-    elif result.sensitivity is not None:
-        picture = figure.sensitivity_bars(result, chosen or result.outputs, fig=fig)
-    elif result.pareto is not None and len(result.spec.optimise["objectives"]) > 1:
-        picture = figure.pareto_front(result, fig=fig)
-    else:
-        what = (chosen or ["M_drive_rms" if "M_drive_rms" in result.outputs
-                           else result.outputs[0]])[0]
-        picture = figure.versus(result, what, x or result.parameters[0], y, fig=fig)
+    picture = figure.question_figure(result, list(outputs), x, y, fig=figure_for(target))
     finish(picture, target, announce)

@@ -1,0 +1,479 @@
+"""The design report (``dyade report``): one self-contained HTML file to review a
+mechanism or a gear drive with colleagues.
+
+For a mechanism file: the key results of ``dyade analyse``, the notes (validity,
+friction, self-locking, clearance), the figures of ``dyade.plot``
+(the linkage at four positions, drive torque and power with the energy fluctuation and
+the transmission angles, the joints' polar diagrams, the clearance check where the file
+has clearance data, the crank's speed and the motor where it has a ``[drive]``) and the
+motion, one frame per swept position, scrubbed with a crank-angle slider, and last, for
+reference, the file in assembly order as ``dyade describe`` says it. For a gear
+file: the natural frequencies and energy shares, the Campbell diagram and the mode
+shapes; for a study file its tables and the figure of its question.
+
+Self-contained: figures inline as SVG (text as paths: no font is needed), the motion's
+script and data inline, no request leaves the file; printable (a print stylesheet keeps
+each figure on one page). Deterministic: the same input gives the same bytes (fixed
+SVG hash salt, no dates, element ids prefixed per figure).
+"""
+
+from __future__ import annotations
+
+import html
+import io
+import json
+import re
+from typing import Any
+
+import numpy as np
+
+from dyade.errors import InputError
+
+STYLE = """
+:root { --ink: #1a1a1a; --rule: #c8c8c8; --muted: #5a5a5a; }
+body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; color: var(--ink);
+       max-width: 1100px; margin: 1.5em auto; padding: 0 1em; line-height: 1.4; }
+h1 { font-size: 1.5em; margin-bottom: 0.2em; } h2 { font-size: 1.2em; border-bottom: 1px solid
+var(--rule); padding-bottom: 0.2em; margin-top: 1.6em; }
+.source { color: var(--muted); margin-top: 0; }
+pre { background: #f6f6f6; padding: 0.8em; overflow-x: auto; font-size: 0.82em; line-height: 1.25; }
+table { border-collapse: collapse; font-size: 0.88em; margin: 0.6em 0; }
+caption { text-align: left; font-weight: 600; padding: 0.3em 0; white-space: pre-line; }
+th, td { border-bottom: 1px solid var(--rule); padding: 0.2em 0.7em; }
+th { text-align: left; background: #f0f0f0; } td.number { text-align: right;
+font-variant-numeric: tabular-nums; }
+ul.notes li { margin: 0.3em 0; } .none { color: var(--muted); }
+figure { margin: 1em 0; break-inside: avoid; page-break-inside: avoid; }
+figure svg { max-width: 100%; height: auto; display: block; }
+figcaption { color: var(--muted); font-size: 0.9em; }
+.motion-controls { display: flex; gap: 1em; align-items: center; }
+.motion-controls input { flex: 1; }
+nav ul { columns: 2; }
+@media print {
+  body { max-width: none; margin: 0; font-size: 10pt; }
+  nav, .motion-controls { display: none; }
+  h2 { break-after: avoid; page-break-after: avoid; }
+  figure svg { max-height: 24cm; width: auto; max-width: 100%; }
+  pre { white-space: pre-wrap; }
+}
+"""
+
+SCRIPT = """
+(function () {
+  "use strict";
+  var data = JSON.parse(document.getElementById("motion-data").textContent);
+  var svg = document.getElementById("motion");
+  var slider = document.getElementById("motion-slider");
+  var readout = document.getElementById("motion-angle");
+  var NS = "http://www.w3.org/2000/svg";
+  function add(tag, attrs) {
+    var node = document.createElementNS(NS, tag);
+    for (var key in attrs) { node.setAttribute(key, attrs[key]); }
+    svg.appendChild(node);
+    return node;
+  }
+  function pairs(flat) {
+    var out = [];
+    for (var i = 0; i < flat.length; i += 2) { out.push(flat[i] + "," + flat[i + 1]); }
+    return out.join(" ");
+  }
+  data.paths.forEach(function (p) {
+    add("polyline", {points: pairs(p), fill: "none", stroke: "#8c8c8c",
+                     "stroke-width": 1, "stroke-dasharray": "2 3"});
+  });
+  data.fixed.forEach(function (p) {
+    add("polygon", {points: pairs(p), fill: "#ffffff", stroke: "#000", "stroke-width": 1});
+  });
+  var bodies = data.bodies.map(function (b) {
+    var shape = b.plate ?
+      add("polygon", {fill: b.colour, "fill-opacity": 0.25, stroke: b.colour, "stroke-width": 1.6}) :
+      add("polyline", {fill: "none", stroke: b.colour, "stroke-width": 4, "stroke-linecap": "round"});
+    return {b: b, shape: shape};
+  });
+  var rails = data.rails.map(function (r) {
+    return {r: r, shape: add("path", {fill: "none", stroke: r.colour, "stroke-width": 1.2})};
+  });
+  var blocks = data.blocks.map(function (b) {
+    return {b: b, shape: add("polygon", {fill: "#ffffff", "fill-opacity": 0.55, stroke: "#000",
+                                         "stroke-width": 1.2})};
+  });
+  var pins = data.pins.map(function (p) {
+    return {p: p, shape: add("circle", {r: 3.5, fill: "#fff", stroke: "#000", "stroke-width": 1.1})};
+  });
+  var points = data.points.map(function (p) {
+    var mark = add("rect", {width: 5, height: 5, fill: "#000"});
+    var text = add("text", {"font-size": 11, "font-family": "sans-serif"});
+    text.textContent = p.name;
+    return {p: p, mark: mark, text: text};
+  });
+  var labels = bodies.map(function (item) {
+    var text = add("text", {"font-size": 10, "font-family": "sans-serif", "text-anchor": "middle",
+                            "dominant-baseline": "central", fill: "#111"});
+    text.textContent = String(item.b.link);
+    return {item: item, text: text};
+  });
+  function at(flat, k, size) { return flat.slice(k * size, (k + 1) * size); }
+  function show(k) {
+    bodies.forEach(function (item) {
+      item.shape.setAttribute("points", pairs(at(item.b.xy, k, item.b.size)));
+    });
+    labels.forEach(function (label) {
+      var xy = at(label.item.b.xy, k, label.item.b.size), x = 0, y = 0, n = xy.length / 2;
+      for (var i = 0; i < xy.length; i += 2) { x += xy[i] / n; y += xy[i + 1] / n; }
+      label.text.setAttribute("x", x.toFixed(1));
+      label.text.setAttribute("y", (y - 9).toFixed(1));
+    });
+    rails.forEach(function (item) {
+      var xy = at(item.r.xy, k, 8);
+      item.shape.setAttribute("d", "M" + xy[0] + "," + xy[1] + "L" + xy[2] + "," + xy[3] +
+                              "M" + xy[4] + "," + xy[5] + "L" + xy[6] + "," + xy[7]);
+    });
+    blocks.forEach(function (item) {
+      item.shape.setAttribute("points", pairs(at(item.b.xy, k, 8)));
+    });
+    pins.forEach(function (item) {
+      var xy = at(item.p.xy, k, 2);
+      item.shape.setAttribute("cx", xy[0]);
+      item.shape.setAttribute("cy", xy[1]);
+    });
+    points.forEach(function (item) {
+      var xy = at(item.p.xy, k, 2);
+      item.mark.setAttribute("x", xy[0] - 2.5);
+      item.mark.setAttribute("y", xy[1] - 2.5);
+      item.text.setAttribute("x", xy[0] + 5);
+      item.text.setAttribute("y", xy[1] - 5);
+    });
+    svg.setAttribute("data-frame", String(k));
+    readout.textContent = "φ21 = " + data.angles[k].toFixed(1) + "°";
+  }
+  slider.addEventListener("input", function () { show(Number(slider.value)); });
+  show(Number(slider.value));
+})();
+"""
+
+MOTION_WIDTH = 640.0  # [px] the motion's drawing
+DECIMALS = 1  # [px] coordinates of the motion's data
+
+
+def report(path: str, overrides: dict[str, Any] | None = None) -> str:
+    """The design report of a mechanism or gear file as one self-contained HTML page.
+
+    Parameters
+    ----------
+    path : str
+        A mechanism file (with a ``[crank]`` table) or a gear file (``[[shaft]]``,
+        ``[[gear]]`` … tables).
+    overrides : dict, optional
+        Dotted keys and values that replace the file's (as ``--set``).
+
+    Returns
+    -------
+    str
+        The HTML page (UTF-8 text; the same file gives the same text).
+
+    Raises
+    ------
+    InputError
+        The file is neither a mechanism nor a gear file, or is not valid.
+    """
+    import os
+    import tomllib
+
+    import dyade
+
+    try:
+        with open(path, "rb") as handle:
+            data = tomllib.load(handle)
+    except OSError as error:
+        raise InputError(f"{path}: cannot be read ({error.strerror}).") from None
+    except tomllib.TOMLDecodeError as error:
+        raise InputError(f"{path}: not valid TOML: {error}.") from None
+    source = os.path.basename(os.fspath(path))
+    if "crank" in data:
+        mechanism = dyade.read_mechanism(path, overrides)
+        page = mechanism_report(mechanism, source=source)
+        # the page names the file, not where it lies: the same file gives the same bytes
+        for where in sorted({os.fspath(path), os.path.abspath(path)}, key=len, reverse=True):
+            page = page.replace(html.escape(where), html.escape(source))
+        return page
+    if any(key in data for key in ("shaft", "gear", "body")):
+        return gear_report(dyade.read_gears(path, overrides), source=source)
+    if "plan" in data and "parameters" in data and not overrides:
+        return study_report(path, source=source)
+    raise InputError(f"{path}: neither a mechanism file (no [crank] table), a gear file "
+                     f"(no [[shaft]], [[gear]] or [[body]] tables) nor a study file ([plan] "
+                     f"and [parameters], without --set): a report is made of one of these "
+                     f"(see mechanisms/README.md).")
+
+
+# -- a mechanism -------------------------------------------------------------------------
+def mechanism_report(mechanism, *, source: str = "") -> str:
+    """The design report of a mechanism (see ``report``)."""
+    import dyade
+    from dyade.linkage.plan import plan
+    from dyade.linkage.summary import summary as summarise
+    from dyade.plot import curves, mechanism as drawing, polar
+    from dyade.report import describe, tables
+    from dyade.report.notes import say
+
+    result = dyade.analyse(mechanism)
+    cols = result.columns()
+    summary = summarise(result, cols)
+    the_plan = plan(mechanism)
+    page = Page(f"{mechanism.name}: design report", source)
+    parts = [table_html(tables.key_results(result, cols, summary, "m"), caption=False)]
+    if result.drive is not None:
+        parts.append(table_html(tables.motion_table(result, summary)))
+    page.section("Key results", "".join(parts))
+    notes = [say(note, mechanism) for note in result.notes]
+    page.section("Notes: where the model holds, friction, self-locking, clearance",
+                 notes_html(notes))
+    page.section("The linkage", figure(drawing.figure(result), "mechanism",
+                                       "The linkage at four crank positions, the paths of "
+                                       "its named points dotted."))
+    page.section("The motion", motion_html(result))
+    quantities = curves.default_quantities(result)
+    if result.forces_valid is not None:
+        quantities.insert(1, "P_drive")
+    page.section("Drive torque, power and transmission angles", figure(
+        curves.figure(result, quantities), "curves",
+        "Drive torque with its cycle mean and the energy a flywheel must store (ΔE), the "
+        "drive power, and each dyad's transmission angle; warned ranges shaded."))
+    if result.drive is not None:
+        page.section("The drive: crank speed and motor", figure(
+            curves.figure(result, [name for name in ("omega_2", "M_motor", "M_drive")
+                                   if name in cols]), "drive",
+            "The crank's speed from the equation of motion and the motor's torque."))
+    if result.forces is not None:
+        page.section("Joint forces: polar diagrams", figure(
+            polar.figure(result), "polar",
+            "The force on the higher-numbered link over the crank cycle; crank angle every "
+            "30°, reversals of the line of action numbered."))
+    if any(getattr(joint, "clearance", None) is not None for joint in mechanism.joints):
+        page.section("Clearance check", clearance_html(mechanism, result))
+    page.section("The file in assembly order (dyade describe)",  # reference: last
+                 pre(text_of(describe.describe(mechanism, the_plan, tables.skipped(the_plan)))))
+    return page.html()
+
+
+def clearance_html(mechanism, result) -> str:
+    """f(τ) of every reversal of the joints with clearance data, the peak force over
+    0.5–1.5 times the crank speed (5 speeds), and the worst reversal simulated."""
+    import dyade
+    from dyade import clearance as engine
+    from dyade.plot import clearance as plot
+    from dyade.units import RPM
+
+    checks = dyade.check_clearance(mechanism, result=result)
+    cases = plot.cases(checks)
+    rpm = abs(mechanism.crank.speed) / RPM
+    speeds = np.round(np.linspace(0.5, 1.5, 5) * rpm, 6)
+    lines = plot.speed_lines(dyade.clearance_speed_study(mechanism, speeds))
+    history = None
+    if cases:
+        worst = max(cases, key=lambda case: case.peak.force)
+        p = worst.peak
+        history = plot.History(worst, engine.simulate(p.mass, p.stiffness,
+                                                      clearance=p.clearance, slope=p.slope,
+                                                      history=True))
+    fig = plot.figure(cases, speeds=lines, history=history, title=mechanism.name,
+                      operating=plot.operating_points(cases, rpm))
+    return figure(fig, "clearance", "The clearance peak force of each reversal on f(τ), the "
+                  "peak against crank speed with the operating point, and the worst reversal "
+                  "simulated next to the closed form.")
+
+
+def motion_html(result) -> str:
+    """The linkage drawn by an inline script, one frame per swept position, and a
+    crank-angle slider."""
+    from dyade.plot.mechanism import geometry, link_colour
+
+    geo = geometry(result)
+    x0, x1, y0, y1 = geo.limits
+    scale = MOTION_WIDTH / (x1 - x0)
+    height = (y1 - y0) * scale
+
+    def flat(xy: np.ndarray) -> list:
+        """(…, 2) world points -> flat list of SVG coordinates, frames first."""
+        xy = np.asarray(xy, dtype=float)
+        screen = np.stack([(xy[..., 0] - x0) * scale, (y1 - xy[..., 1]) * scale], axis=-1)
+        return np.round(np.nan_to_num(screen), DECIMALS).reshape(-1).tolist()
+
+    data = {
+        "angles": np.round(np.rad2deg(geo.crank_angle), 6).tolist(),
+        "paths": [flat(path) for path in geo.paths.values()],
+        "fixed": [flat(np.array([at, at + [-0.6 * h, -h], at + [0.6 * h, -h]]))
+                  for at in geo.pivots.values() for h in [0.045 * geo.size]],
+        "bodies": [{"link": body.link, "plate": bool(body.plate),
+                    "colour": link_colour(body.link), "size": int(body.outline.shape[1] * 2),
+                    "xy": flat(body.outline)} for body in geo.bodies],
+        "rails": [{"colour": "#262626" if s.fixed_guide else link_colour(s.carrier),
+                   "xy": flat(s.rails)} for s in geo.sliders],
+        "blocks": [{"xy": flat(s.block)} for s in geo.sliders],
+        "pins": [{"xy": flat(xy)} for xy in geo.pins.values()],
+        "points": [{"name": name, "xy": flat(xy)} for name, xy in geo.points.items()],
+    }
+    count = len(data["angles"])
+    text = json.dumps(data, separators=(",", ":"), ensure_ascii=False).replace("</", "<\\/")
+    return (f'<figure class="motion"><svg id="motion" xmlns="http://www.w3.org/2000/svg" '
+            f'viewBox="0 0 {MOTION_WIDTH:.0f} {height:.0f}" width="{MOTION_WIDTH:.0f}" '
+            f'height="{height:.0f}" role="img" aria-label="the linkage in motion"></svg>'
+            f'<div class="motion-controls"><label for="motion-slider">crank angle</label>'
+            f'<input type="range" id="motion-slider" min="0" max="{count - 1}" value="0" '
+            f'step="1"><output id="motion-angle"></output></div>'
+            f'<figcaption>{count} frames, one per swept position: move the slider to turn '
+            f'the crank.</figcaption></figure>'
+            f'<script type="application/json" id="motion-data">{text}</script>'
+            f'<script>{SCRIPT}</script>')
+
+
+# -- a gear drive ------------------------------------------------------------------------
+def gear_report(drive, *, source: str = "") -> str:
+    """The design report of a gear drive (see ``report``): its modes, Campbell diagram
+    and mode shapes."""
+    import dyade
+    from dyade.plot import campbell as campbell_plot, modes as modes_plot
+    from dyade.report import gears
+
+    modes = dyade.gear_modes(drive)
+    page = Page(f"{drive.name}: design report", source)
+    page.section("Natural frequencies and energy shares",
+                 "".join(table_html(part) if not isinstance(part, str) else
+                         f"<p>{html.escape(part)}</p>" for part in gears.mode_tables(modes)))
+    page.section("Notes", notes_html(gears.mode_notes(modes)))
+    if drive.speed is not None:
+        diagram = dyade.campbell(drive, campbell_plot.default_speeds(drive.speed.rpm),
+                                 modes=modes)
+        page.section("Campbell diagram", figure(
+            campbell_plot.figure(diagram), "campbell",
+            "Natural frequencies against the input speed, the excitation lines and their "
+            "crossings, sized by the modal mesh stiffness.") + table_html_many(
+            gears.campbell_tables(diagram)))
+    page.section("Mode shapes", figure(modes_plot.figure(modes, 4), "modes",
+                                       "The first elastic mode shapes along each shaft line."))
+    return page.html()
+
+
+# -- a design study ---------------------------------------------------------------------
+def study_report(path, *, source: str = "") -> str:
+    """The design report of a study file (see ``report``): its tables and the figure of
+    its question."""
+    from dyade.plot import study as plot
+    from dyade.report.study import tables
+    from dyade.study import study
+
+    result = study(path)
+    page = Page(f"Study {result.spec.label}: design report", source)
+    page.section("Results", table_html_many(tables(result)))
+    page.section("The question", figure(plot.question_figure(result), "study",
+                                        "The figure of the study's question (as dyade plot "
+                                        "study draws it)."))
+    return page.html()
+
+
+# -- the page ----------------------------------------------------------------------------
+class Page:
+    """Sections of a report, written as one HTML page."""
+
+    def __init__(self, title: str, source: str) -> None:
+        self.title, self.source = title, source
+        self.sections: list[tuple[str, str]] = []
+
+    def section(self, heading: str, body: str) -> None:
+        self.sections.append((heading, body))
+
+    def html(self) -> str:
+        from dyade import __version__
+
+        ids = [f"s{k + 1}" for k in range(len(self.sections))]
+        contents = "".join(f'<li><a href="#{i}">{html.escape(h)}</a></li>'
+                           for i, (h, _) in zip(ids, self.sections))
+        body = "".join(f'<section id="{i}"><h2>{html.escape(h)}</h2>{b}</section>'
+                       for i, (h, b) in zip(ids, self.sections))
+        source = (f"from {html.escape(self.source)}, " if self.source else "")
+        return (f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+                f'<meta name="viewport" content="width=device-width, initial-scale=1">'
+                f'<meta name="generator" content="dyade {__version__}">'
+                f"<title>{html.escape(self.title)}</title><style>{STYLE}</style></head>"
+                f"<body><h1>{html.escape(self.title)}</h1>"
+                f'<p class="source">{source}made by dyade {__version__}</p>'
+                f"<nav><ul>{contents}</ul></nav>{body}</body></html>\n")
+
+
+def figure(fig, key: str, caption: str) -> str:
+    """A matplotlib figure as inline SVG, its ids prefixed with ``key`` (unique on the
+    page), with its caption."""
+    from dyade.plot import canvas
+
+    svg = canvas.render(fig, "svg").decode("utf-8")
+    svg = svg[svg.index("<svg"):]
+    ids = set(re.findall(r'\bid="([^"]+)"', svg))
+    if ids:
+        pattern = "|".join(re.escape(i) for i in sorted(ids, key=len, reverse=True))
+        seen: dict[str, int] = {}
+
+        def unique(match) -> str:  # a gid given to an artist in every panel: numbered
+            name = match.group(1)
+            seen[name] = seen.get(name, 0) + 1
+            return f'id="{key}-{name}"' if seen[name] == 1 else f'id="{key}-{name}-{seen[name]}"'
+
+        svg = re.sub(rf'#({pattern})\b', lambda m: f"#{key}-{m.group(1)}", svg)
+        svg = re.sub(rf'\bid="({pattern})"', unique, svg)
+    svg = re.sub(r'<svg([^>]*?) width="([\d.]+)pt" height="([\d.]+)pt"',
+                 r'<svg\1 width="\2pt" height="\3pt" role="img"', svg, count=1)
+    return (f'<figure id="figure-{key}">{svg}<figcaption>{html.escape(caption)}'
+            f"</figcaption></figure>")
+
+
+def text_of(renderable) -> str:
+    """A rich renderable as plain text (no colour), 100 columns wide."""
+    from rich.console import Console
+
+    console = Console(file=io.StringIO(), width=100, color_system=None, record=True,
+                      force_terminal=False, legacy_windows=False)
+    console.print(renderable)
+    return console.export_text().rstrip() + "\n"
+
+
+def pre(text: str) -> str:
+    return f"<pre>{html.escape(text)}</pre>"
+
+
+def table_html(table, caption: bool = True) -> str:
+    """A rich Table as an HTML table: its title as caption, its columns and cells as
+    text (markup removed); right-justified columns as numbers. ``caption``: also its
+    caption (the terminal's hints about flags are left out with False)."""
+    from rich.text import Text
+
+    def plain(value) -> str:
+        return value.plain if isinstance(value, Text) else Text.from_markup(str(value)).plain
+
+    columns = table.columns
+    head = "".join(f"<th>{html.escape(plain(c.header))}</th>" for c in columns)
+    cells = [list(c.cells) for c in columns]
+    kinds = [' class="number"' if c.justify == "right" else "" for c in columns]
+    rows = []
+    for k in range(max((len(c) for c in cells), default=0)):
+        rows.append("<tr>" + "".join(f"<td{kind}>{html.escape(plain(cell[k]))}</td>"
+                                     for kind, cell in zip(kinds, cells)) + "</tr>")
+    title = f"<caption>{html.escape(plain(table.title))}</caption>" if table.title else ""
+    note = (f'<p class="none">{html.escape(plain(table.caption))}</p>'
+            if caption and table.caption else "")
+    return f"<table>{title}<thead><tr>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>{note}"
+
+
+def table_html_many(parts) -> str:
+    """Rich tables and lines of text as HTML."""
+    out = []
+    for part in parts:
+        if part is None:
+            continue
+        out.append(f"<p>{html.escape(str(part))}</p>" if isinstance(part, str) else
+                   table_html(part))
+    return "".join(out)
+
+
+def notes_html(notes: list[str]) -> str:
+    if not notes:
+        return '<p class="none">None: the model holds over the whole sweep.</p>'
+    return '<ul class="notes">' + "".join(f"<li>{html.escape(n)}</li>" for n in notes) + "</ul>"

@@ -1,0 +1,156 @@
+"""`dyade report` (issue 29): one self-contained HTML page per mechanism or gear file.
+
+The page is checked as text here (the browser checks are tests/test_report_browser.py):
+the same file gives the same bytes, nothing in it points outside the page, it holds the
+sections the file calls for, and the motion's frames are the analysis: each pin of each
+frame, mapped back from the drawing's coordinates, is the CSV's joint position.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+pytest.importorskip("matplotlib")
+
+import dyade  # noqa: E402
+from dyade.cli import main  # noqa: E402
+from dyade.report import html as report_html  # noqa: E402
+from tests.conftest import SHIPPED  # noqa: E402
+from tests.helpers import shipped  # noqa: E402
+
+GEAR_FILES = [shipped("gears/two-stage.toml"), shipped("gears/friswell-geared.toml")]
+LIMIT = 2_000_000  # [B] a report's size
+
+
+def write(path, tmp_path, name: str, *extra: str) -> str:
+    target = tmp_path / name
+    out = CliRunner().invoke(main, ["report", str(path), "-o", str(target), *extra],
+                             catch_exceptions=False)
+    assert out.exit_code == 0, out.output
+    assert f"wrote {target}" in out.output
+    return target.read_text(encoding="utf-8")
+
+
+def outside(page: str) -> list[str]:
+    """Everything in the page that would load something from outside it."""
+    found = re.findall(r'\b(?:src|href|action|poster)\s*=\s*"(?!#)([^"]*)"', page)
+    found += re.findall(r'url\(\s*[\'"]?(?!#)([^)\'"]+)', page)
+    found += re.findall(r"@import[^;]*", page)
+    found += re.findall(r"<(?:link|iframe|object|embed|img)\b[^>]*>", page)
+    found += re.findall(r"\b(?:fetch|XMLHttpRequest|WebSocket|EventSource)\b", page)
+    return found
+
+
+def motion(page: str) -> dict:
+    data = re.search(r'<script type="application/json" id="motion-data">(.*?)</script>',
+                     page, re.S)
+    return json.loads(data.group(1).replace("<\\/", "</"))
+
+
+def test_same_file_same_bytes_and_nothing_from_outside(tmp_path):
+    path = shipped("slotted-lever.toml")
+    first = write(path, tmp_path, "a.html")
+    assert write(path, tmp_path / "elsewhere", "b.html") == first
+    assert outside(first) == []
+    assert str(shipped("")) not in first  # the file by name, not by where it lies
+    assert len(first.encode()) < LIMIT
+    ids = re.findall(r'\bid="([^"]+)"', first)
+    assert len(ids) == len(set(ids))  # the figures' ids prefixed: unique on the page
+    headings = re.findall(r"<h2>(.*?)</h2>", first)
+    assert headings == ["Key results",
+                        "Notes: where the model holds, friction, self-locking, clearance",
+                        "The linkage", "The motion",
+                        "Drive torque, power and transmission angles",  # no forces: no polar
+                        "The file in assembly order (dyade describe)"]
+
+
+def test_motion_frames_are_the_analysis_one_per_position(tmp_path):
+    path = shipped("slotted-lever.toml")
+    page = write(path, tmp_path, "a.html")
+    data = motion(page)
+    result = dyade.analyse(dyade.read_mechanism(path))
+    cols = result.columns()
+    assert data["angles"] == pytest.approx(cols["angle_deg"], abs=1e-6)
+    count = len(data["angles"])
+    assert f'max="{count - 1}"' in page
+    from dyade.plot.mechanism import geometry
+
+    x0, x1, y0, y1 = geometry(result).limits
+    scale = report_html.MOTION_WIDTH / (x1 - x0)
+    revolute = [j.name for j in result.mechanism.joints if j.kind == "R"]
+    assert len(data["pins"]) == len(revolute)
+    tolerance = 0.51 * 10.0 ** -report_html.DECIMALS / scale  # [m] the rounding
+    for pin, (a, b) in zip(data["pins"], revolute):
+        xy = np.array(pin["xy"]).reshape(count, 2)
+        assert np.allclose(x0 + xy[:, 0] / scale, cols[f"x_{a}_{b}"], atol=tolerance, rtol=0)
+        assert np.allclose(y1 - xy[:, 1] / scale, cols[f"y_{a}_{b}"], atol=tolerance, rtol=0)
+
+
+def test_not_a_mechanism_nor_a_gear_file_is_bad_input(tmp_path):
+    bad = tmp_path / "coupling.toml"
+    bad.write_text('name = "x"\n[other]\nvalue = 1\n')
+    out = CliRunner().invoke(main, ["report", str(bad), "-o", str(tmp_path / "r.html")])
+    assert out.exit_code == 2 and "neither a mechanism file" in out.output
+    assert not (tmp_path / "r.html").exists()
+    out = CliRunner().invoke(main, ["report", str(shipped("fourbar.toml")), "--set",
+                                    "crank.length=-1", "-o", str(tmp_path / "r.html")])
+    assert out.exit_code == 2 and "crank.length" in out.output
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("path", SHIPPED + GEAR_FILES, ids=lambda p: p.stem)
+def test_every_shipped_file_reports(path, tmp_path):
+    page = write(path, tmp_path, "r.html")
+    assert len(page.encode()) < LIMIT and outside(page) == []
+    headings = re.findall(r"<h2>(.*?)</h2>", page)
+    if path in GEAR_FILES:
+        drive = dyade.read_gears(path)
+        assert "Mode shapes" in headings
+        assert ("Campbell diagram" in headings) == (drive.speed is not None)
+        modes = dyade.gear_modes(drive)
+        assert all(f"<td class=\"number\">{k + 1}</td>" in page
+                   for k in range(modes.frequencies.size))
+        return
+    mechanism = dyade.read_mechanism(path)
+    result = dyade.analyse(mechanism)
+    assert ("Joint forces: polar diagrams" in headings) == (result.forces is not None)
+    assert ("Clearance check" in headings) == any(getattr(j, "clearance", None) is not None
+                                                  for j in mechanism.joints)
+    assert len(motion(page)["angles"]) == len(result.columns()["angle_deg"])
+    notes = re.search(r"<h2>Notes.*?</h2>(.*?)</section>", page, re.S).group(1)
+    assert notes.count("<li>") == len(result.notes)
+    expected = 3 + ("Joint forces: polar diagrams" in headings) + ("Clearance check" in headings)
+    assert page.count("<figure") == page.count("</figure>") == expected
+
+
+@pytest.mark.slow
+def test_a_drive_reports_its_speed_and_motor(tmp_path):
+    from tests.test_machine import FLYWHEEL_ONLY
+
+    path = tmp_path / "drive.toml"
+    path.write_text('name = "Flywheel drive"\n' + FLYWHEEL_ONLY)
+    page = write(path, tmp_path, "r.html")
+    headings = re.findall(r"<h2>(.*?)</h2>", page)
+    assert "The drive: crank speed and motor" in headings
+    motion_summary = dyade.analyse(dyade.read_mechanism(path)).summary()["motion"]
+    rpm = motion_summary["speed_mean"] * 30 / np.pi
+    assert f'<td class="number">{rpm:.6g}</td>' in page  # 1470 rpm: k·(ω_s − ω) = 5 N·m
+    assert rpm == pytest.approx(1470.0, rel=1e-9)
+    assert "Crank speed from the equation of motion" in page
+
+
+@pytest.mark.slow
+def test_a_study_reports_its_tables_and_question(tmp_path):
+    path = shipped("studies/press-slide-tolerance.toml")
+    page = write(path, tmp_path, "r.html")
+    assert re.findall(r"<h2>(.*?)</h2>", page) == ["Results", "The question"]
+    assert outside(page) == [] and page.count("</figure>") == 1
+    assert "100 variants of self-locking.toml" in page
+    # the shipped study has outputs equal in every variant (a stroke): one bar each, drawn
+    out = CliRunner().invoke(main, ["plot", "study", str(path), "-o", str(tmp_path / "s.png")])
+    assert out.exit_code == 0, out.output
