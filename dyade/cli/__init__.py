@@ -47,8 +47,8 @@ class DyadeGroup(click.Group):
             sys.stdout.flush()  # a full disk says so here, not in Python's exit
             return outcome
         except OSError as err:  # writing the output failed (reading is an InputError)
-            if err.errno == errno.EPIPE:
-                raise  # the reader went away (`| head`): click ends quietly
+            if err.errno == errno.EPIPE:  # the reader went away (`| head`): a normal end
+                _closed_pipe()
             raise click.ClickException(f"could not write the output: {err.strerror or err}"
                                        f"{f' ({err.filename})' if err.filename else ''}."
                                        ) from None
@@ -62,6 +62,20 @@ class DyadeGroup(click.Group):
             raise click.UsageError(str(err)) from None  # exit 2
         except DyadeError as err:
             raise click.ClickException(str(err)) from None  # exit 1
+
+
+def _closed_pipe() -> None:
+    """End quietly as a Unix tool killed by SIGPIPE does: exit status 141 (128 + 13),
+    no message; standard output goes to /dev/null first, so that Python's own flush at
+    exit finds no broken pipe to complain about."""
+    import os
+
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):  # no file descriptor (a test's capture)
+        pass
+    raise click.exceptions.Exit(141) from None
 
 
 class Terminated(Exception):

@@ -74,6 +74,11 @@ def gears(gear_file: Path, shapes: int | None, speed_range: str | None, harmonic
     names = FLAGS | {"speed": f"{gear_file.name}: `[speed]`"}
     with flags(names):
         modes = gear_modes(drive)
+    if not modes.frequencies.size:
+        raise click.UsageError(
+            f"{gear_file.name}: nothing to vibrate: every motion of the drive is a rigid-body "
+            f"mode ({modes.rigid.shape[1]}), since no shaft, mesh stiffness, bearing or element "
+            f"resists it. Add the elements that hold its bodies.")
     label = report.title(modes)
     if speed_range:
         from dyade.vibration.gears.campbell import campbell

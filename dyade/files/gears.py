@@ -228,6 +228,7 @@ class Reader(UnitReader):
                          for k, t in enumerate(self.array(data, "bearing"), 1))
         elements += tuple(self.element(t, f"element.{k}", taken, located)
                           for k, t in enumerate(self.array(data, "element"), 1))
+        self.check_train(shafts, elements, meshes)
         speed = self.speed(data["speed"]) if "speed" in data else None
         drive = GearDrive(name, bodies, shafts, elements, tuple(self.gears.values()),
                           tuple(meshes), (), speed, model, self.source)
@@ -574,6 +575,52 @@ class Reader(UnitReader):
                                                       "and rotation.")
             out.append(mesh)
         return out
+
+    def check_train(self, shafts: tuple[Shaft, ...], elements: tuple, meshes: list[Mesh]
+                    ) -> None:
+        """The train can turn: every closed loop of shafts, elements and meshes gives each
+        body one speed (ratios multiply to 1 around it), whatever else the file holds.
+        A mesh between two bodies that shafts already join, or a loop of meshes whose
+        ratios disagree, locks the drive: refused naming the element that closes the
+        loop (in the file's order: shafts, elements, meshes). Speeds are signed along
+        each body's axis (a weighted union-find: body -> (parent, ratio to it))."""
+        parent: dict[str, tuple[str, float]] = {}
+
+        def root(body: str) -> tuple[str, float]:
+            ratio = 1.0
+            while body in parent:
+                body, step = parent[body]
+                ratio *= step
+            return body, ratio
+
+        def axis(body: str) -> Vector:
+            return self.bodies[body]["axis"]
+
+        joins = [(f"shaft.{k}", s.ends, "shaft", dot(axis(s.ends[0]), axis(s.ends[1])))
+                 for k, s in enumerate(shafts, 1) if FRAME not in s.ends]
+        joins += [(f"element.{k}", e.ends, "element", dot(axis(e.ends[0]), axis(e.ends[1])))
+                  for k, e in enumerate(elements, 1) if FRAME not in e.ends]
+        for k, mesh in enumerate(meshes, 1):
+            p, r = self.gears[mesh.driving], self.gears[mesh.driven]
+            joins.append((f"mesh.{k}", (p.body, r.body), "mesh",
+                          -p.teeth / r.teeth * dot(axis(p.body), axis(r.body))))
+        for key, (a, b), kind, ratio in joins:  # speed of b = ratio * speed of a
+            (ra, sa), (rb, sb) = root(a), root(b)
+            if ra != rb:
+                parent[rb] = (ra, ratio * sa / sb)
+                continue
+            if math.isclose(ratio * sa, sb, rel_tol=1e-9):
+                continue
+            if kind == "mesh" and math.isclose(sb / sa, 1.0, rel_tol=1e-9):
+                raise self.fail(key, f"joins bodies \"{a}\" and \"{b}\", which the drive's "
+                                     f"other connections already make turn together (one shaft "
+                                     f"line): the mesh locks the "
+                                     f"drive (a gear pair turns its bodies in opposite senses). "
+                                     f"Remove the mesh or the connection between them.")
+            raise self.fail(key, f"closes a loop whose gear ratios disagree: around it body "
+                                 f"\"{b}\" would turn at two speeds (the ratios multiply to "
+                                 f"{_fmt(ratio * sa / sb)}, not 1), so the drive is locked. "
+                                 f"Check the teeth of the loop's gears.")
 
     def check_speed_loops(self, drive: GearDrive, omega: dict[str, Vector]) -> None:
         """Around a closed loop of shafts and meshes the speeds must agree."""

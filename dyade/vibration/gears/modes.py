@@ -253,9 +253,9 @@ class Modes:
     def dominant(self) -> list[tuple[str, str, float]]:
         """Per mode, the (owner, motion) that holds the largest strain-energy share."""
         keys = list(self.strain)
-        values = np.array([self.strain[k] for k in keys]).reshape(len(keys), -1)
         if not keys:
             return [("", "", float("nan"))] * self.frequencies.size
+        values = np.array([self.strain[k] for k in keys]).reshape(len(keys), -1)
         best = np.argmax(values, axis=0)
         return [(keys[b][0], keys[b][1], float(values[b, k])) for k, b in enumerate(best)]
 
