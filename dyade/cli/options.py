@@ -46,6 +46,26 @@ set_option = click.option(
          "like the file.")
 
 
+max_memory_option = click.option(
+    "--max-memory", type=POSITIVE, default=4096, show_default=True, metavar="MB",
+    help="Refuse, before computing, a run that would need more memory than this; the "
+         "estimate is in the message (one bound for every command: dyade.limits).")
+"""--max-memory [MB]: give it to the API as ``max_memory * 2**20`` [B]"""
+
+
+def value_range_checked(text: str, hint: str, unit: str, quantity: str,
+                        positive_start: bool = False) -> list[float]:
+    """``value_range`` whose STOP must be plausible for ``quantity``
+    (``dyade.limits.PLAUSIBLE``)."""
+    from dyade.limits import PLAUSIBLE, plausible_range
+
+    values = value_range(text, hint, unit, positive_start)
+    if values[-1] > PLAUSIBLE[quantity][1]:
+        raise click.BadParameter(f"must stay within {plausible_range(quantity)} (what a "
+                                 f"machine has), got {text!r}.", param_hint=hint)
+    return values
+
+
 jobs_option = click.option(
     "-j", "--jobs", type=click.IntRange(min=0), default=1, show_default=True, metavar="N",
     help="Analyse several files (or speeds) on N processes at once (0: all cores); the "
@@ -69,7 +89,11 @@ def value_range(text: str, hint: str, unit: str, positive_start: bool = False) -
     if not (step > 0 and stop >= start and (start > 0 if positive_start else start >= 0)):
         raise click.BadParameter(f"needs {low} <= STOP and STEP > 0, got {text!r}.",
                                  param_hint=hint)
-    count = int(np.floor((stop - start) / step + 1e-9)) + 1
-    if count > MAX_VALUES:
-        raise click.BadParameter(f"asks for {count} values; at most {MAX_VALUES}.", param_hint=hint)
+    with np.errstate(over="ignore"):
+        count_f = np.floor((stop - start) / step + 1e-9) + 1
+    if not count_f <= MAX_VALUES:
+        shown = f"{count_f:.0f}" if np.isfinite(count_f) else "too many"
+        raise click.BadParameter(f"asks for {shown} values; at most {MAX_VALUES}.",
+                                 param_hint=hint)
+    count = int(count_f)
     return (start + step * np.arange(count)).tolist()
