@@ -38,6 +38,18 @@ class DyadeGroup(click.Group):
             importlib.import_module(f"dyade.cli.{SUBCOMMANDS[name]}")
         return super().get_command(ctx, name)
 
+    def resolve_command(self, ctx: click.Context, args: list[str]):
+        """A misspelt command gets "Did you mean" (``dyade analyze``: analyse)."""
+        name = args[0] if args else ""
+        if name and not name.startswith("-") and self.get_command(ctx, name) is None:
+            import difflib
+
+            close = difflib.get_close_matches(name, self.list_commands(ctx), n=1, cutoff=0.6)
+            hint = f" Did you mean `{close[0]}`?" if close else ""
+            ctx.fail(f"No such command '{name}'.{hint} The commands: "
+                     f"{', '.join(self.list_commands(ctx))}.")
+        return super().resolve_command(ctx, args)
+
     def invoke(self, ctx: click.Context) -> object:
         from dyade.errors import DyadeError, InputError
 

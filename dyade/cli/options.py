@@ -33,6 +33,31 @@ class Number(click.ParamType):
         return number
 
 
+class Renamed(click.Option):
+    """An option with old names kept as hidden aliases for one release (``old=``): they
+    work, but --help and the messages show only the new name."""
+
+    def __init__(self, param_decls, old: tuple[str, ...] = (), **kwargs) -> None:
+        names = [d for d in param_decls if d.startswith("-")]
+        dest = [d for d in param_decls if not d.startswith("-")]
+        super().__init__(names + list(old) + dest, **kwargs)
+        self.old = tuple(old)
+
+    def _shown(self, method, ctx):
+        opts = self.opts
+        self.opts = [o for o in opts if o not in self.old]
+        try:
+            return method(ctx)
+        finally:
+            self.opts = opts
+
+    def get_help_record(self, ctx):
+        return self._shown(super().get_help_record, ctx)
+
+    def get_error_hint(self, ctx):
+        return self._shown(super().get_error_hint, ctx)
+
+
 FINITE = Number()
 POSITIVE = Number(positive=True)
 
@@ -64,6 +89,17 @@ def value_range_checked(text: str, hint: str, unit: str, quantity: str,
         raise click.BadParameter(f"must stay within {plausible_range(quantity)} (what a "
                                  f"machine has), got {text!r}.", param_hint=hint)
     return values
+
+
+def modes_asked(asked: int, available: int, most: int | None = None) -> tuple[int, str]:
+    """The one rule for ``--modes N`` (N ≥ 1, by the option's type): N, or all there are
+    (at most ``most``), with a note saying so when N asks for more."""
+    given = min(asked, available, most if most is not None else asked)
+    if given == asked:
+        return given, ""
+    why = (f"the drive has {available} elastic mode{'s' * (available != 1)}"
+           if given == available else f"a figure shows at most {most}")
+    return given, f"--modes {asked}: {why}; giving the first {given}."
 
 
 jobs_option = click.option(
