@@ -50,16 +50,16 @@ def read_input(path: str) -> tuple[str, str]:
     return schema.read_text(path), path
 
 
-def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = SweepOptions()
-         ) -> Loaded:
+def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = SweepOptions(),
+         text: str | None = None) -> Loaded:
     """Read a mechanism ("-": standard input) with --set overrides and
-    --start/--stop/--step [°]."""
+    --start/--stop/--step [°]; ``text``: standard input's content, when already read."""
     from dyade.files import mechanism as reader
     from dyade.files import schema
     from dyade.linkage.options import with_sweep
 
     overrides = dict(schema.parse_assignment(a) for a in assignments)
-    text, label = read_input(path)
+    text, label = (text, "<stdin>") if text is not None else read_input(path)
     data = reader.load_data(label, overrides, "--set", text)
     mechanism = reader.build(data, label)
     if sweep.start is None and sweep.stop is None and sweep.step is None:

@@ -14,8 +14,8 @@ class Number(click.ParamType):
     name = "number"
 
     def __init__(self, positive: bool = False, low: float | None = None,
-                 high: float | None = None) -> None:
-        self.positive, self.low, self.high = positive, low, high
+                 high: float | None = None, unit: str = "") -> None:
+        self.positive, self.low, self.high, self.unit = positive, low, high, unit
 
     def convert(self, value, param, ctx) -> float:
         import math
@@ -29,7 +29,12 @@ class Number(click.ParamType):
         if self.positive and number <= 0.0:
             self.fail(f"must be positive, got {value!r}.", param, ctx)
         if self.low is not None and number < self.low or self.high is not None and number > self.high:
-            self.fail(f"must lie in {self.low:g}…{self.high:g}, got {value!r}.", param, ctx)
+            unit = f" {self.unit}" if self.unit else ""
+            if self.low is None:
+                self.fail(f"must be at most {self.high:g}{unit}, got {value!r}.", param, ctx)
+            if self.high is None:
+                self.fail(f"must be at least {self.low:g}{unit}, got {value!r}.", param, ctx)
+            self.fail(f"must lie in {self.low:g}…{self.high:g}{unit}, got {value!r}.", param, ctx)
         return number
 
 

@@ -9,19 +9,22 @@ import numpy as np
 
 from dyade.errors import DyadeError, InputError
 from dyade.linkage.model import Mechanism
+from dyade.linkage.options import check_size
 from dyade.linkage.sweep import analyse
 from dyade.machine.flywheel import TorqueCurve, cycle_mean, machine_curve
 
 FINE_STEP = math.radians(0.1)  # [rad] largest default step of a torque curve
 
 
-def torque_curve(mechanism: Mechanism, *, step: float | None = None) -> TorqueCurve:
+def torque_curve(mechanism: Mechanism, *, step: float | None = None,
+                 max_memory: float | None = None) -> TorqueCurve:
     """The machine's torque curve at constant speed, for the flywheel
     (``dyade.machine.flywheel``): the drive torque M_drive over one revolution from the
     sweep's start at ``step`` [rad] (default: the sweep's, at most 0.1°, since load
     tables put kinks in the curve that only a fine step integrates well), against a
     motor of constant torque, with the machine's mean reduced inertia. A ``[drive]``
-    table is ignored.
+    table is ignored. ``max_memory`` [B]: the bound on the sweep's size
+    (``dyade.limits``), checked before anything is allocated.
 
     >>> import dyade
     >>> curve = dyade.mechanism_torque_curve(dyade.read_mechanism("mechanisms/fourbar.toml"))
@@ -37,6 +40,7 @@ def torque_curve(mechanism: Mechanism, *, step: float | None = None) -> TorqueCu
         raise InputError(f"{mechanism.name}: no masses, loads or springs, so no drive torque to "
                          f"size a flywheel by (add mass data, see mechanisms/README.md).")
     count = int(math.ceil(2.0 * math.pi / step - 1e-9))
+    check_size(mechanism, count, max_memory)
     angle = mechanism.sweep.start + step * np.arange(count)
     cols = analyse(mechanism, crank_angle=angle, constant_speed=True).columns()
     torque, inertia = cols["M_drive"], cols["J_red"]  # NaN where not given

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from dyade.arrays import FloatArray
-from dyade.errors import InputError
+from dyade.errors import DyadeError, InputError
 
 LARGE_FLUCTUATION = 0.1  # [-] above this the small-fluctuation estimate δ ≈ ΔE/(J·Ω²) is rough
 MEAN_RTOL = 1e-3  # [-] mean excess torque (share of the mean |drive torque|) still periodic
@@ -290,10 +290,19 @@ def speed_fluctuation(curve: TorqueCurve, inertia: float) -> Flywheel:
         raise InputError.parameter("inertia", "must be positive: the curve gives no inertia "
                                               "of the machine.", value=inertia, unit="kg·m²")
     top, _, bottom, _ = energy_extremes(curve)
-    return _result(curve, inertia, (top - bottom) / (total * curve.speed ** 2), [])
+    fluctuation = (top - bottom) / (total * curve.speed ** 2)
+    if not fluctuation < 1.0:
+        raise DyadeError(f"with J = {total:.4g} kg·m² the energy fluctuation {top - bottom:.4g} J "
+                         f"would change the speed by more than its mean (δ ≈ {fluctuation:.3g}): "
+                         f"the machine stalls and the small-fluctuation estimate does not hold. "
+                         f"A flywheel of at least {(top - bottom) / curve.speed ** 2:.4g} kg·m² "
+                         f"keeps δ below 1; solve the equation of motion ([drive] table) for "
+                         f"the real speed.")
+    return _result(curve, inertia, fluctuation, [])
 
 
-def read_torque_curve(path: str | os.PathLike, *, speed: float | None = None) -> TorqueCurve:
+def read_torque_curve(path: str | os.PathLike, *, speed: float | None = None,
+                      text: str | None = None) -> TorqueCurve:
     """The torque curve of a CSV file with columns ``angle_deg`` and ``M_drive`` [N·m] and
     optionally ``M_load`` [N·m] (positive where it drives; default a constant load equal
     to the mean drive torque).
@@ -306,6 +315,8 @@ def read_torque_curve(path: str | os.PathLike, *, speed: float | None = None) ->
     ----------
     speed : float, optional
         The mean crank speed Ω [rad/s]; required unless the file is dyade's.
+    text : str, optional
+        The file's content, when already read (standard input); ``path`` names it.
 
     Examples
     --------
@@ -318,7 +329,7 @@ def read_torque_curve(path: str | os.PathLike, *, speed: float | None = None) ->
 
     path = os.fspath(path)
     label = os.path.basename(path)
-    columns = load_columns(path)
+    columns = load_columns(path, text)
     angle = np.deg2rad(columns["angle_deg"])
     if "dJ_red" in columns:
         if speed is None:
