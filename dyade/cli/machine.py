@@ -117,18 +117,19 @@ def flywheel(source: str, fluctuation: float | None, inertia: float | None,
 @click.option("--link", "links", type=int, multiple=True, metavar="N",
               help="A link to carry a counterweight (repeatable); it must turn about a frame "
                    "pivot. [default: every such link]")
-@click.option("--radius", type=float, metavar="M",
+@click.option("--radius", type=Number(positive=True), metavar="M",
               help="Radius [m] of each counterweight's mass from its pivot. [default: the "
                    "link's reach: its farthest joint, named point or centre of mass]")
 @set_option
-@click.option("--save-as", "save_path", type=click.Path(dir_okay=False, writable=True),
+@click.option("--save-as", "save_path", type=click.Path(dir_okay=False, allow_dash=True),
               help="Write the balanced mechanism (counterweights merged into the links' mass "
-                   "data) to this TOML file, for `dyade analyse`.")
+                   "data) to this TOML file, for `dyade analyse` (-: standard output).")
 @click.option("--format", "fmt", type=FORMAT, default=None,
               help="table, csv (one row per counterweight) or json. [default: table on "
                    "stdout; with -o: from its suffix]")
-@click.option("-o", "--output", type=click.Path(writable=True, dir_okay=False),
-              help="Write to this file instead of standard output.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True),
+              help="Write to this file instead of standard output (-: standard output; a "
+                   "missing folder is created).")
 def balance(mechanism_file: str, links: tuple[int, ...], radius: float | None,
             assignments: tuple[str, ...], save_path: str | None, fmt: str | None,
             output: str | None) -> None:

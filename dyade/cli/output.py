@@ -54,6 +54,10 @@ class atomic:
             if self.folder:
                 os.makedirs(self.folder, exist_ok=True)
             self.handle = open(self.tmp, "w", encoding="utf-8", newline="")
+        except (FileExistsError, NotADirectoryError):
+            raise InputError(f"{self.path}: cannot write the file: a part of its folder "
+                             f"{self.folder} is a file, not a folder.",
+                             source=self.path) from None
         except OSError as err:
             raise InputError(f"{self.path}: cannot write the file ({err.strerror}).",
                              source=self.path) from None
