@@ -27,7 +27,9 @@ def _gear_drive(gear_file: str, assignments: tuple[str, ...]):
 
 
 def _stem(path: str) -> str:
-    return os.path.splitext(os.path.basename(path))[0]
+    from dyade.cli.plot.output import stem
+
+    return stem(path)
 
 
 gear_set_option = click.option(

@@ -13,7 +13,7 @@ from dyade.cli.batch import batch
 from dyade.cli.common import SweepOptions, load, sweep, warn
 from dyade.cli.options import MECHANISM_FILE, set_option
 from dyade.cli.output import console, flags
-from dyade.cli.plot.output import (FORMATS, Target, emit, figure_for, output_options, prepare,
+from dyade.cli.plot.output import (FORMATS, Target, emit, figure_for, output_options, prepare, stem,
                                     suffix_format)
 
 
@@ -50,14 +50,14 @@ def run_linkage(kind: str, files: tuple[str, ...], output: str | None, fmt: str 
         mechanism = load(path, assignments, sweep_options).mechanism
         result = sweep(mechanism, allow_partial)
         warn(result.notes, mechanism, f"{os.path.basename(path)}: " if len(files) > 1 else "")
-        draw(result, Target(target, show, dpi), announce)
+        draw(result, Target(target, show, dpi, fmt), announce)
 
     announce = output is None
     if len(files) == 1 and not (output and os.path.isdir(output)):
-        if output:
+        if output and output != "-":
             suffix_format(output, suffixes)
-        elif not show:
-            output = f"{os.path.splitext(os.path.basename(files[0]))[0]}-{kind}.{fmt}"
+        elif not output and not show:
+            output = f"{stem(files[0])}-{kind}.{fmt}"
         one(files[0], output)
     else:
         directory = output or "."
