@@ -23,9 +23,12 @@ from dyade.cli.options import FINITE, MECHANISM_FILE, POSITIVE, jobs_option, set
 @click.option("-o", "--output", type=click.Path(writable=True),
               help="Write to this file instead of standard output; with several input files a "
                    "directory, which gets one result per input (NAME.csv, NAME.json, NAME.txt).")
-@click.option("--start", type=FINITE, help="First crank angle [°] (overrides [sweep] start).")
-@click.option("--stop", type=FINITE, help="Last crank angle [°] (default: start + 360).")
-@click.option("--step", type=POSITIVE, help="Crank angle step [°] (overrides [sweep] step).")
+@click.option("--start", type=FINITE, metavar="DEG",
+              help="First crank angle [°] (overrides [sweep] start).")
+@click.option("--stop", type=FINITE, metavar="DEG",
+              help="Last crank angle [°] (default: start + 360).")
+@click.option("--step", type=POSITIVE, metavar="DEG",
+              help="Crank angle step [°] (overrides [sweep] step).")
 @set_option
 @click.option("--save-as", type=click.Path(dir_okay=False, writable=True),
               help="Write the effective mechanism (after --set) to this TOML file, to keep a "

@@ -74,6 +74,11 @@ def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = Swe
     if stop < start:
         raise click.BadParameter(f"must not be below the start angle, got {sweep.stop:g}.",
                                  param_hint="--stop")
+    if sweep.step is not None and stop > start and step > stop - start:
+        raise click.BadParameter(f"{sweep.step:g}° is larger than the sweep "
+                                 f"({math.degrees(start):g}° to {math.degrees(stop):g}°), which "
+                                 f"would give one position: give a step of at most "
+                                 f"{math.degrees(stop - start):g}°.", param_hint="--step")
     with flags(FLAGS):
         return Loaded(with_sweep(mechanism, start, stop, step), text, overrides, label)
 

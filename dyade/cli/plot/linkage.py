@@ -11,7 +11,8 @@ import click
 
 from dyade.cli.batch import batch
 from dyade.cli.common import SweepOptions, load, sweep, warn
-from dyade.cli.options import MECHANISM_FILE, set_option
+from dyade.cli.options import FINITE, MECHANISM_FILE, POSITIVE, max_memory_option, set_option
+from dyade.limits import check_memory
 from dyade.cli.output import console, flags
 from dyade.cli.plot.output import (FORMATS, Target, emit, figure_for, output_options, prepare, stem,
                                     suffix_format)
@@ -21,10 +22,12 @@ def linkage_options(command):
     """The mechanism files and the sweep options of `dyade analyse`."""
     options = [
         click.argument("mechanism_files", type=MECHANISM_FILE, nargs=-1, required=True),
-        click.option("--start", type=float,
+        click.option("--start", type=FINITE, metavar="DEG",
                      help="First crank angle [°] (overrides [sweep] start)."),
-        click.option("--stop", type=float, help="Last crank angle [°] (default: start + 360)."),
-        click.option("--step", type=float, help="Crank angle step [°] (overrides [sweep] step)."),
+        click.option("--stop", type=FINITE, metavar="DEG",
+                     help="Last crank angle [°] (default: start + 360)."),
+        click.option("--step", type=POSITIVE, metavar="DEG",
+                     help="Crank angle step [°] (overrides [sweep] step)."),
         set_option,
         click.option("--allow-partial", is_flag=True,
                      help="Draw only the crank angles where every dyad closes (gaps elsewhere) "
@@ -176,10 +179,12 @@ def mechanism(mechanism_files, start, stop, step, assignments, allow_partial, at
 @click.command()
 @linkage_options
 @click.option("--fps", type=click.FloatRange(min=1, max=100), default=20.0, show_default=True,
+              metavar="N",
               help="Frames per second of the GIF.")
 @output_options(default_format=None)
+@max_memory_option
 def animate(mechanism_files, start, stop, step, assignments, allow_partial, fps, output, show,
-            dpi) -> None:
+            dpi, max_memory) -> None:
     """The linkage of MECHANISM_FILES in motion, one frame per step of the sweep, as an
     animated GIF (-o motion.gif; default NAME-motion.gif). A coarser --step makes a smaller
     file: `dyade plot animate mechanisms/slotted-lever.toml --step 5 -o motion.gif`."""
@@ -188,6 +193,11 @@ def animate(mechanism_files, start, stop, step, assignments, allow_partial, fps,
     def draw(result, target: Target, announce: bool) -> None:
         from dyade.plot import animate as figure
 
+        frames = int(result.crank_angle.size)
+        pixels = (4.0 * (target.dpi or figure.DPI)) * (5.0 * (target.dpi or figure.DPI))
+        with flags({"max_memory": "--max-memory"}):
+            check_memory(4.0 * pixels * frames + (100 << 20), f"an animation of {frames:,} "
+                         f"frames", max_memory * 2 ** 20, "Use a coarser --step or a lower --dpi")
         motion = figure.animation(result, fig=figure_for(target, (4.0, 5.0)))
         if target.path:
             figure.save(motion, target.path, fps, target.dpi or figure.DPI)
