@@ -20,6 +20,7 @@ import os
 from typing import Any
 
 from dyade.files.schema import UnitReader, is_number, load_data, suggest
+from dyade.limits import PLAUSIBLE, implausible
 from dyade.files.schema import fmt as _fmt
 from dyade.files.schema import show as _show
 from dyade.vibration.gears.model import (
@@ -111,10 +112,46 @@ def build_gears(data: dict[str, Any], path: str | os.PathLike | None = None) -> 
     return Reader(os.path.basename(path) if path else "gear drive", path).drive(data)
 
 
+PLAUSIBLE_UNITS = {"kg": "mass", "kg·m²": "inertia", "N/m": "stiffness",
+                   "N/m or N·m/rad": "stiffness", "N·m/rad": "stiffness", "N·s/m": "damping",
+                   "N·m·s/rad": "damping", "rpm": "speed_rpm", "Hz": "frequency",
+                   "N·m": "torque", "Pa": "modulus", "kg/m³": "density", "s": "time_constant"}
+"""unit of a key -> its quantity in ``dyade.limits.PLAUSIBLE``"""
+
+
 class Reader(UnitReader):
     """Walks the parsed TOML of a gear-drive file with key paths for the error messages."""
 
     top_keys = TOP_KEYS
+
+    # -- plausibility: every number within what a machine has (dyade.limits) ----------
+    def number(self, value: Any, key: str, unit: str, positive: bool = False,
+               non_negative: bool = False) -> float:
+        number = super().number(value, key, unit, positive, non_negative)
+        quantity = PLAUSIBLE_UNITS.get(unit)
+        if quantity and number != 0.0 and implausible(quantity, number):
+            low, high, _ = PLAUSIBLE[quantity]
+            raise self.fail(key, f"must lie in {_fmt(low)}…{_fmt(high)} {unit} (what a machine "
+                                 f"has), got {_fmt(number)}.", number, unit)
+        return number
+
+    def length_of(self, value: Any, key: str, positive: bool = False,
+                  non_negative: bool = False) -> float:
+        length = super().length_of(value, key, positive, non_negative)
+        if length != 0.0 and implausible("length", abs(length)):
+            low, high, _ = PLAUSIBLE["length"]
+            raise self.fail(key, f"must lie within {_fmt(low / self.length)}…"
+                                 f"{_fmt(high / self.length)} {self.length_unit} (what a "
+                                 f"machine has), got {_fmt(length / self.length)}.", value,
+                            self.length_unit)
+        return length
+
+    def integer(self, value: Any, key: str) -> int:
+        number = super().integer(value, key)
+        if key.endswith(".teeth") and number > PLAUSIBLE["teeth"][1]:
+            raise self.fail(key, f"must be at most {PLAUSIBLE['teeth'][1]:,} (what a gear "
+                                 f"has), got {number}.", number)
+        return number
 
     # -- primitives --------------------------------------------------------------------
     def vector(self, value: Any, key: str, unit_name: str, scale: float = 1.0) -> Vector:
