@@ -20,7 +20,7 @@ import os
 from typing import Any
 
 from dyade.files.schema import UnitReader, is_number, load_data, suggest
-from dyade.limits import PLAUSIBLE, implausible
+from dyade.limits import PLAUSIBLE
 from dyade.files.schema import fmt as _fmt
 from dyade.files.schema import show as _show
 from dyade.vibration.gears.model import (
@@ -98,9 +98,12 @@ def read_gears(path: str | os.PathLike, overrides: dict[str, Any] | None = None)
     return build_gears(load_data(path, overrides), path)
 
 
-def build_gears(data: dict[str, Any], path: str | os.PathLike | None = None) -> GearDrive:
+def build_gears(data: dict[str, Any], path: str | os.PathLike | None = None, *,
+                plausible: bool = True) -> GearDrive:
     """Validate gear-drive data (the parsed TOML of a gear-drive file, or the same
     structure written in Python) and build the drive; errors name ``path``.
+    ``plausible=False`` lifts the bounds of what a machine has (``dyade.limits``), for
+    studies of limits such as a rigid bearing.
 
     >>> drive = build_gears({"model": "torsional",
     ...     "body": [{"name": "a", "J_x": 1.0}, {"name": "b", "J_x": 1.0}],
@@ -109,7 +112,9 @@ def build_gears(data: dict[str, Any], path: str | os.PathLike | None = None) -> 
     100.0
     """
     path = os.fspath(path) if path else None
-    return Reader(os.path.basename(path) if path else "gear drive", path).drive(data)
+    reader = Reader(os.path.basename(path) if path else "gear drive", path)
+    reader.plausible = plausible
+    return reader.drive(data)
 
 
 PLAUSIBLE_UNITS = {"kg": "mass", "kg·m²": "inertia", "N/m": "stiffness",
@@ -123,13 +128,15 @@ class Reader(UnitReader):
     """Walks the parsed TOML of a gear-drive file with key paths for the error messages."""
 
     top_keys = TOP_KEYS
+    plausible = True
 
     # -- plausibility: every number within what a machine has (dyade.limits) ----------
     def number(self, value: Any, key: str, unit: str, positive: bool = False,
                non_negative: bool = False) -> float:
         number = super().number(value, key, unit, positive, non_negative)
-        quantity = PLAUSIBLE_UNITS.get(unit)
-        if quantity and number != 0.0 and implausible(quantity, number):
+        quantity = PLAUSIBLE_UNITS.get(unit) if self.plausible else None
+        if quantity and number != 0.0 and not PLAUSIBLE[quantity][0] <= number <= PLAUSIBLE[
+                quantity][1]:
             low, high, _ = PLAUSIBLE[quantity]
             raise self.fail(key, f"must lie in {_fmt(low)}…{_fmt(high)} {unit} (what a machine "
                                  f"has), got {_fmt(number)}.", number, unit)
@@ -138,8 +145,8 @@ class Reader(UnitReader):
     def length_of(self, value: Any, key: str, positive: bool = False,
                   non_negative: bool = False) -> float:
         length = super().length_of(value, key, positive, non_negative)
-        if length != 0.0 and implausible("length", abs(length)):
-            low, high, _ = PLAUSIBLE["length"]
+        low, high, _ = PLAUSIBLE["length"]
+        if self.plausible and (abs(length) > high or positive and length < low):  # offsets ~0
             raise self.fail(key, f"must lie within {_fmt(low / self.length)}…"
                                  f"{_fmt(high / self.length)} {self.length_unit} (what a "
                                  f"machine has), got {_fmt(length / self.length)}.", value,
@@ -148,7 +155,7 @@ class Reader(UnitReader):
 
     def integer(self, value: Any, key: str) -> int:
         number = super().integer(value, key)
-        if key.endswith(".teeth") and number > PLAUSIBLE["teeth"][1]:
+        if self.plausible and key.endswith(".teeth") and number > PLAUSIBLE["teeth"][1]:
             raise self.fail(key, f"must be at most {PLAUSIBLE['teeth'][1]:,} (what a gear "
                                  f"has), got {number}.", number)
         return number
