@@ -156,7 +156,7 @@ class Reader(UnitReader):
     def integer(self, value: Any, key: str) -> int:
         number = super().integer(value, key)
         if self.plausible and key.endswith(".teeth") and number > PLAUSIBLE["teeth"][1]:
-            raise self.fail(key, f"must be at most {PLAUSIBLE['teeth'][1]:,} (what a gear "
+            raise self.fail(key, f"must be at most {PLAUSIBLE['teeth'][1]:,} (what a machine "
                                  f"has), got {number}.", number)
         return number
 
