@@ -250,6 +250,13 @@ def _over_mechanism(path, given: Inputs, fmt, output, jobs: int = 1):
                                                     **mechanism_options(given))
         else:
             study = [(None, dyade.check_clearance(mechanism, **mechanism_options(given)))]
+    checks = [check for _, result in study for check in result]
+    if checks and all(check.missing == "data" for check in checks):  # nothing to compute
+        from dyade.errors import InputError
+
+        raise InputError(f"{'<stdin>' if str(path) == '-' else Path(path).name}: nothing to compute: no joint has clearance "
+                         f"data. Give --stiffness and --clearance, or `clearance = {{ gap = …, "
+                         f"stiffness = … }}` in a joint table.", source=str(path))
     rows, skipped = report.mechanism_rows(study, given.simulate, given.sim_steps)
     joints = given.joints or [j.name for j in mechanism.joints if j.kind == "R"]
     summary = {"mechanism": mechanism.name, "reversals": len(rows),
