@@ -254,7 +254,8 @@ def _over_mechanism(path, given: Inputs, fmt, output, jobs: int = 1):
     if checks and all(check.missing == "data" for check in checks):  # nothing to compute
         from dyade.errors import InputError
 
-        raise InputError(f"{'<stdin>' if str(path) == '-' else Path(path).name}: nothing to compute: no joint has clearance "
+        name = "<stdin>" if str(path) == "-" else Path(path).name
+        raise InputError(f"{name}: nothing to compute: no joint has clearance "
                          f"data. Give --stiffness and --clearance, or `clearance = {{ gap = …, "
                          f"stiffness = … }}` in a joint table.", source=str(path))
     rows, skipped = report.mechanism_rows(study, given.simulate, given.sim_steps)
