@@ -1,11 +1,13 @@
-"""Make the figures of the README's gallery (docs/*.png, docs/*.gif) with `dyade.plot`.
+"""Make the figures of the gallery (docs/*.png, docs/*.gif) with `dyade.plot`.
 
 Run from the repository (needs the plot extra: pip install -e ".[plot]"):
 
     python docs/make_figures.py
 
-Each figure is written from the shipped examples; the output is deterministic (the same
-data and matplotlib give the same bytes), so rerunning changes nothing unless dyade or
+Each function below builds one figure from the shipped examples and returns it (the
+animation: its ``Animation``); the gallery page (docs/gallery.md) shows each function's
+code and runs it at build time. The output is deterministic (the same data and
+matplotlib give the same bytes), so rerunning changes nothing unless dyade or
 matplotlib changed. Prints each figure's size and the time to compute and draw it.
 """
 
@@ -28,54 +30,54 @@ from dyade.plot import campbell, coupling, curves, modes, polar  # noqa: E402
 
 DOCS = ROOT / "docs"
 MECHANISMS = ROOT / "mechanisms"
+DPI = 80  # [dots per inch] of the gallery's PNGs
 
 
-def fourbar_polar(path: Path) -> None:
+def fourbar_polar():
     result = dyade.analyse(dyade.read_mechanism(MECHANISMS / "fourbar.toml"))
-    canvas.save(polar.figure(result), str(path), dpi=80)
+    return polar.figure(result)
 
 
-def dyade16_polar_reversals(path: Path) -> None:
+def dyade16_polar_reversals():
     result = dyade.analyse(dyade.read_mechanism(MECHANISMS / "dyade-16.toml"))
-    canvas.save(polar.figure(result, [(5, 6), (2, 7), (4, 15)]), str(path), dpi=80)
+    return polar.figure(result, [(5, 6), (2, 7), (4, 15)])
 
 
-def dyade16_torque(path: Path) -> None:
+def dyade16_torque():
     result = dyade.analyse(dyade.read_mechanism(MECHANISMS / "dyade-16.toml"))
-    canvas.save(curves.figure(result), str(path), dpi=80)
+    return curves.figure(result)
 
 
-def slotted_lever_motion(path: Path) -> None:
+def slotted_lever_motion():
     mechanism = dyade.read_mechanism(MECHANISMS / "slotted-lever.toml")
-    motion = animate.animation(dyade.analyse(mechanism, step=np.deg2rad(5.0)))
-    animate.save(motion, str(path), fps=20, dpi=84)
+    return animate.animation(dyade.analyse(mechanism, step_deg=5.0))
 
 
-def coupling_resonance(path: Path) -> None:
+def coupling_resonance():
     model = dyade.read_coupling(MECHANISMS / "coupling" / "stiff-coupling.toml")
     response = dyade.coupling_response(model, np.arange(0.0, 3.0 + 1e-9, 0.01))
     points = dyade.operating_points(model, [1450, 2900], order=2)
-    canvas.save(coupling.figure(model, response, points), str(path), dpi=80)
+    return coupling.figure(model, response, points)
 
 
-def clearance_paper(path: Path) -> None:
+def clearance_paper():
     args = {"mass": 3.6, "stiffness": 1e7, "clearance": 1e-4, "slope": 3.6e5}
     case = clearance_plot.Case("paper, section 4", clearance.peak_force(**args))
     speeds = clearance_plot.standalone_speeds(clearance.peaks_over_speed(
         **args, speed_rpm=300, speeds_rpm=np.arange(100, 601, 50)))
     history = clearance_plot.History(case, clearance.simulate(**args, history=True))
-    canvas.save(clearance_plot.figure([case], speeds=speeds, history=history), str(path), dpi=80)
+    return clearance_plot.figure([case], speeds=speeds, history=history)
 
 
-def two_stage_campbell(path: Path) -> None:
+def two_stage_campbell():
     drive = dyade.read_gears(MECHANISMS / "gears" / "two-stage.toml")
     diagram = dyade.campbell(drive, campbell.default_speeds(drive.speed.rpm))
-    canvas.save(campbell.figure(diagram), str(path), dpi=80)
+    return campbell.figure(diagram)
 
 
-def two_stage_modes(path: Path) -> None:
+def two_stage_modes():
     drive = dyade.read_gears(MECHANISMS / "gears" / "two-stage.toml")
-    canvas.save(modes.figure(dyade.gear_modes(drive), 4), str(path), dpi=80)
+    return modes.figure(dyade.gear_modes(drive), 4)
 
 
 FIGURES = {
@@ -88,14 +90,29 @@ FIGURES = {
     "two-stage-campbell.png": two_stage_campbell,
     "two-stage-modes.png": two_stage_modes,
 }
+"""file in docs/ -> the function that makes it"""
+
+
+def png(name: str) -> bytes:
+    """The PNG bytes of the gallery figure ``name`` (a key of ``FIGURES``), as written."""
+    return canvas.render(FIGURES[name](), "png", dpi=DPI)
+
+
+def save(name: str, path: Path) -> None:
+    """Write the gallery figure ``name`` to ``path``."""
+    made = FIGURES[name]()
+    if isinstance(made, animate.Animation):
+        animate.save(made, str(path), fps=20, dpi=84)
+    else:
+        canvas.save(made, str(path), dpi=DPI)
 
 
 def main() -> None:
     os.chdir(ROOT)
-    for name, make in FIGURES.items():
+    for name in FIGURES:
         path = DOCS / name
         started = time.perf_counter()
-        make(path)
+        save(name, path)
         elapsed = time.perf_counter() - started
         print(f"{name:28s} {path.stat().st_size / 1024:7.1f} KiB  {elapsed:6.2f} s")
 

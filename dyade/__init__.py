@@ -11,18 +11,20 @@ The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``
 ``dyade.vibration``, ``dyade.machine``), with the everyday functions re-exported here:
 
 - ``read_mechanism(path, overrides=None)``, ``build_mechanism(data)`` -> ``Mechanism``
-- ``plan(mechanism)`` -> ``Plan``; ``analyse(mechanism, ...)`` -> ``Result`` with
+- ``plan(mechanism)`` -> ``Plan``; ``analyse(mechanism, *, step_deg=..., ...)`` ->
+  ``Result`` with
   ``.columns()``, ``.summary()``, ``.notes`` (``Note``: its ``NoteKind``, subject,
   crank-angle ranges and figures; ``dyade.report.notes.say`` words it), ``.to_pandas()``;
   ``analyse_in_blocks(mechanism, block_size=...)`` -> a run whose blocks give the same
   columns block by block, in bounded memory
-- ``check_clearance(mechanism, ...)``, ``clearance_speed_study(mechanism, speeds, ...)``,
+- ``check_clearance(mechanism, ...)``, ``clearance_speed_study(mechanism, speeds_rpm, ...)``,
   ``peak_force(mass, stiffness, *, clearance, slope)``, ``simulate_clearance(...)``
 - ``Coupling``, ``read_coupling(path)``, ``coupling_response(coupling, eta)``,
   ``operating_points(coupling, speeds_rpm, *, order=1)``
 - ``accuracy_studies(mechanism)``
-- ``mechanism_torque_curve(mechanism)``, ``torque_curve(angle, drive, load, *, speed)``,
-  ``read_torque_curve(path, *, speed)``, ``size_flywheel(curve, fluctuation)``,
+- ``mechanism_torque_curve(mechanism, *, step_deg=None)``,
+  ``torque_curve(angle_deg, drive, load, *, speed_rpm)``,
+  ``read_torque_curve(path, *, speed_rpm=None)``, ``size_flywheel(curve, fluctuation)``,
   ``speed_fluctuation(curve, inertia)``: the flywheel (``dyade.machine``)
 - ``balance(mechanism, *, links, radius)``: counterweights against the shaking force
 - ``read_gears(path, overrides=None)``, ``build_gears(data)`` -> ``GearDrive``;
@@ -30,10 +32,19 @@ The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``
   ``gear_response(drive, frequencies, ...)``, ``gear_statics(drive, torques, ...)``,
   ``check_elimination(drive, modes=None)``: gear drives as rigid finite elements
   (``dyade.vibration.gears``)
-- ``DyadeError``, ``InputError``, ``AssemblyError``
+- ``DyadeError``, ``InputError``, ``AssemblyError``, ``MissingExtra`` (an optional
+  extra not installed: an ``InputError`` and ``ImportError`` naming the pip command)
+- ``dyade.plot``: the figures (the plot extra, ``pip install "dyade[plot]"``), loaded on
+  first use: ``dyade.plot.curves.figure(result)``
 
-Everything is in SI units (m, rad, s, kg, N); mechanism files may use mm and degrees.
-Nothing here prints or exits: problems are exceptions with structured fields.
+Units: angles a person passes or reads carry their unit in the name, as the CSV columns
+do: ``step_deg``, ``start_deg``, ``stop_deg``, ``crank_angle_deg``, ``max_wander_deg``;
+speeds ``speed_rpm``. An old name (``step=`` in radians) is refused with an
+``InputError`` naming the new one, and a step above one revolution or a sweep of one
+position is refused as a likely mistake. Everything else is SI (m, s, kg, N, rad/s),
+and so are the engine's arrays (``Result.kinematics``: rad). Mechanism files may use mm
+and degrees. Nothing here prints or exits: problems are exceptions with structured
+fields; results a person reads (``Result.summary()``) are plain Python numbers.
 
 >>> import dyade
 >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/slider-crank.toml"))
@@ -87,9 +98,11 @@ _EXPORTS = {
     "DyadeError": "dyade.errors",
     "InputError": "dyade.errors",
     "AssemblyError": "dyade.errors",
+    "MissingExtra": "dyade.errors",
 }
 
-_SUBMODULES = {"clearance", "errors", "files", "linkage", "machine", "units", "vibration"}
+_SUBMODULES = {"clearance", "errors", "files", "linkage", "machine", "plot", "units",
+               "vibration"}
 """packages of the API, loaded on first attribute access (``dyade.clearance``)"""
 
 __all__ = sorted(_EXPORTS) + ["__version__"]
@@ -112,4 +125,4 @@ def __getattr__(name: str):
 
 
 def __dir__() -> list[str]:
-    return __all__
+    return sorted(__all__ + list(_SUBMODULES))

@@ -203,6 +203,29 @@ def simulate(mass: float, stiffness: float, *, clearance: float, slope: float,
     With ``history`` the result keeps the time and contact force of every step (an
     RK4 step depends on the one before: the integration itself is sequential).
 
+    Parameters
+    ----------
+    mass : float
+        Reduced mass m [kg] (eq. 17).
+    stiffness : float
+        Contact stiffness c [N/m].
+    clearance : float
+        Clearance 2s [m].
+    slope : float
+        Slope F0/t0 of the rigid force at the reversal [N/s].
+    steps_per_period : int
+        RK4 steps per contact period 2π/ω.
+    history : bool
+        Keep the time and contact force of every step.
+
+    Returns
+    -------
+    Simulation
+        The peak contact force, when it occurs, and (with ``history``) the force history.
+
+    Examples
+    --------
+
     >>> sim = simulate(3.6, 1e7, clearance=1e-4, slope=3.6e5, history=True)
     >>> round(sim.force), sim.time.size == sim.steps + 1           # 2182 N, eq. (36)
     (2182, True)

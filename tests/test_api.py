@@ -12,7 +12,7 @@ import pytest
 import dyade
 from dyade.cli import main
 from dyade.files import mechanism as reader
-from tests.helpers import read_csv, shipped
+from tests.helpers import ROOT, read_csv, shipped
 
 
 def _imports_after(code: str) -> set[str]:
@@ -53,16 +53,112 @@ def test_a_mechanism_built_in_python_equals_the_file():
     assert all(np.array_equal(a[k], b[k], equal_nan=True) for k in b)
 
 
-def test_sweep_overrides_in_radians_and_their_errors():
+def test_sweep_overrides_in_degrees_and_their_errors():
     mechanism = dyade.read_mechanism(shipped("fourbar.toml"))
-    result = dyade.analyse(mechanism, start=0.5, step=0.25)
-    angle = result.crank_angle
-    assert angle[0] == 0.5 and np.allclose(np.diff(angle), 0.25)
-    assert angle[-1] <= 0.5 + 2 * np.pi + 1e-12 and angle[-1] > 0.5 + 2 * np.pi - 0.25
+    result = dyade.analyse(mechanism, start_deg=30.0, step_deg=15.0)
+    angle = result.columns()["angle_deg"]
+    assert np.allclose(angle, 30.0 + 15.0 * np.arange(25), rtol=0, atol=1e-12)
+    assert np.allclose(result.crank_angle, np.deg2rad(angle))
     with pytest.raises(dyade.InputError) as err:
-        dyade.analyse(mechanism, step=-1.0)
-    assert err.value.key == "step" and err.value.parameters == ("step",)
+        dyade.analyse(mechanism, step_deg=-1.0)
+    assert err.value.key == "step_deg" and err.value.parameters == ("step_deg",)
     assert "--" not in str(err.value)  # the API names no flag
+
+
+@pytest.mark.parametrize("old, new", [("step", "step_deg"), ("start", "start_deg"),
+                                      ("stop", "stop_deg"), ("crank_angle", "crank_angle_deg"),
+                                      ("dead_centre", "dead_centre_deg"),
+                                      ("transmission_warning", "transmission_warning_deg")])
+def test_an_angle_in_radians_under_its_old_name_is_refused_naming_the_new(old, new):
+    """``dyade.analyse(m, step=0.5)`` once swept every 28.6°: the old names are refused,
+    with an InputError (not a warning) that names the parameter in degrees."""
+    mechanism = dyade.read_mechanism(shipped("fourbar.toml"))
+    for function in (dyade.analyse, dyade.analyse_in_blocks):
+        with pytest.raises(dyade.InputError) as err:
+            function(mechanism, **{old: 0.5})
+        assert f"takes {new} (degrees), not {old}" in str(err.value)
+        assert err.value.key == old
+    with pytest.raises(TypeError, match="unexpected keyword argument 'stpe_deg'"):
+        dyade.analyse(mechanism, stpe_deg=0.5)
+
+
+def test_step_half_a_degree_means_half_a_degree():
+    mechanism = dyade.read_mechanism(shipped("fourbar.toml"))
+    result = dyade.analyse(mechanism, step_deg=0.5)
+    assert result.summary()["positions"] == 721
+    assert np.allclose(np.diff(result.crank_angle), np.pi / 360.0)
+    run = dyade.analyse_in_blocks(mechanism, step_deg=0.5, block_size=500)
+    assert [block.columns["angle_deg"].size for block in run] == [500, 221]
+
+
+@pytest.mark.parametrize("options, words", [
+    ({"step_deg": 400.0}, "more than one revolution"),
+    ({"start_deg": 10.0, "stop_deg": 10.0}, "one position"),
+    ({"start_deg": 0.0, "stop_deg": 5.0, "step_deg": 10.0}, "one position"),
+    ({"start_deg": 10.0, "stop_deg": 5.0}, "must not be below start_deg"),
+    ({"step_deg": float("nan")}, "finite"),
+    ({"dead_centre_deg": "two"}, "must be an angle"),
+    ({"crank_angle_deg": [0.0, float("inf")]}, "finite")])
+def test_a_wrong_looking_sweep_is_an_input_error_naming_the_fix(options, words):
+    mechanism = dyade.read_mechanism(shipped("fourbar.toml"))
+    for function in (dyade.analyse, dyade.analyse_in_blocks):
+        if "crank_angle_deg" in options and function is dyade.analyse_in_blocks:
+            continue
+        with pytest.raises(dyade.InputError, match=words) as err:
+            function(mechanism, **options)
+        assert err.value.parameters and err.value.parameters[0] in options
+
+
+def test_single_positions_are_given_in_degrees():
+    mechanism = dyade.read_mechanism(shipped("slider-crank.toml"))
+    one = dyade.analyse(mechanism, crank_angle_deg=90.0).columns()
+    assert one["angle_deg"].tolist() == [90.0]
+    sweep = dyade.analyse(mechanism, step_deg=1.0).columns()
+    assert one["M_drive"][0] == pytest.approx(sweep["M_drive"][90], rel=1e-12)
+
+
+def test_the_other_angles_of_the_api_carry_their_unit():
+    mechanism = dyade.read_mechanism(shipped("dyade-16.toml"))
+    with pytest.raises(dyade.InputError, match="max_wander_deg"):
+        dyade.check_clearance(mechanism, max_wander=0.5)
+    strict = dyade.check_clearance(mechanism, joints=[(13, 14)], stiffness=1e8, clearance=1e-4)
+    relaxed = dyade.check_clearance(mechanism, joints=[(13, 14)], stiffness=1e8,
+                                    clearance=1e-4, max_wander_deg=40.0)
+    assert not strict[0].applies and relaxed[0].applies  # it wanders up to 33°
+    fourbar = dyade.read_mechanism(shipped("fourbar.toml"))
+    with pytest.raises(dyade.InputError, match="step_deg"):
+        dyade.mechanism_torque_curve(fourbar, step=0.001)
+    with pytest.raises(dyade.InputError, match="below 90°"):
+        dyade.mechanism_torque_curve(fourbar, step_deg=90.0)
+    curve = dyade.mechanism_torque_curve(fourbar, step_deg=1.0)
+    assert curve.angle.size == 360 and np.allclose(np.diff(curve.angle), np.pi / 180.0)
+
+
+def test_summary_gives_plain_numbers_and_angles_at_the_sweeps_resolution():
+    """No np.float64(...) in a notebook and no 359.50000000000006."""
+    mechanism = dyade.read_mechanism(shipped("dyade-16.toml"))
+    summary = dyade.analyse(mechanism, step_deg=0.5).summary()
+
+    def walk(value, key=""):
+        if isinstance(value, dict):
+            for k, v in value.items():
+                yield from walk(v, k)
+        elif isinstance(value, (list, tuple)):
+            for v in value:
+                yield from walk(v, key)
+        else:
+            yield key, value
+
+    leaves = list(walk(summary))
+    assert all(type(v) in (str, int, float, bool, type(None)) for _, v in leaves), \
+        {type(v) for _, v in leaves}
+    where = [v for k, v in leaves if k.endswith("at_deg") and v is not None]
+    assert where and all(v == round(v, 1) and round(2 * v) == 2 * v for v in where)
+    # the extremes are where the columns say
+    cols = dyade.analyse(mechanism, step_deg=0.5).columns()
+    k = int(np.nanargmax(cols["M_drive"]))
+    assert summary["columns"]["M_drive"]["max_at_deg"] == round(float(cols["angle_deg"][k]), 1)
+    assert summary["columns"]["M_drive"]["max"] == float(cols["M_drive"][k])
 
 
 def test_assembly_error_names_the_parameter_and_the_cli_the_flag(tmp_path):
@@ -181,3 +277,49 @@ def test_the_mechanism_reader_reads_every_kind():
     from dyade.linkage import dyads
 
     assert list(MIDDLE) == [dyads.kind(k).name for k in range(1, len(dyads.REGISTRY) + 1)]
+
+
+def test_a_torque_curve_takes_degrees_and_rpm():
+    angle = np.arange(0.0, 360.0, 1.0)
+    engine = 10000 + 2000 * np.sin(np.deg2rad(2 * angle))
+    curve = dyade.torque_curve(angle, engine, speed_rpm=250)
+    assert np.allclose(curve.angle, np.deg2rad(angle)) and curve.speed == 250 * np.pi / 30
+    for old in ("angle", "speed"):
+        with pytest.raises(dyade.InputError, match=f"not {old}:"):
+            dyade.torque_curve(angle_deg=angle, drive=engine, **{old: 1.0})
+    with pytest.raises(dyade.InputError, match="speed_rpm"):
+        dyade.torque_curve(angle, engine)
+    with pytest.raises(dyade.InputError, match="speed_rpm"):
+        dyade.read_torque_curve(shipped("torque/engine.csv"), speed=26.0)
+    read = dyade.read_torque_curve(shipped("torque/engine.csv"), speed_rpm=250)
+    assert read.speed == 250 * np.pi / 30
+
+
+def test_dyade_plot_is_there_after_import_dyade():
+    pytest.importorskip("matplotlib")
+    code = ("import dyade\n"
+            "result = dyade.analyse(dyade.read_mechanism('mechanisms/fourbar.toml'))\n"
+            "fig = dyade.plot.curves.figure(result)\n"
+            "print(type(fig).__name__, 'plot' in dir(dyade))")
+    done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True,
+                          text=True, check=True)
+    assert done.stdout.split() == ["Figure", "True"]
+
+
+@pytest.mark.parametrize("statement", ["from dyade.plot import curves",
+                                       "import dyade; dyade.plot.polar",
+                                       "import dyade.plot.mechanism"])
+def test_without_matplotlib_the_plots_name_the_extra_to_install(statement):
+    """Without matplotlib, the API says what the command line says: pip install
+    "dyade[plot]", as an ImportError that is also an InputError."""
+    code = ("import sys\n"
+            "sys.modules['matplotlib'] = None  # as if it were not installed\n"
+            "from dyade.errors import InputError\n"
+            "try:\n"
+            f"    {statement}\n"
+            "except ImportError as err:\n"
+            "    print(isinstance(err, InputError), err)\n")
+    done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True,
+                          text=True, check=True)
+    assert done.stdout.strip() == ('True plots need matplotlib, which dyade installs only with '
+                                   'its plot extra: pip install "dyade[plot]"')

@@ -187,7 +187,7 @@ def test_an_absurd_sweep_is_refused_before_anything_is_allocated():
 
     mechanism = dyade.read_mechanism(shipped("dyade-16.toml"))
     with pytest.raises(dyade.InputError, match="max_memory"):
-        dyade.analyse(mechanism, step=1e-12 * 3.6e3)
+        dyade.analyse(mechanism, step_deg=1e-7)
     # the estimate is of the right size: dyade-16 at 36 001 positions peaked at 845 MB
     assert 0.8e9 < memory_estimate(mechanism, 36_001) < 1.2e9
 
@@ -244,7 +244,7 @@ def test_angle_columns_are_continuous_from_a_first_value_in_the_half_open_circle
 
     import dyade
 
-    result = dyade.analyse(dyade.read_mechanism(path), start=np.deg2rad(-725.0),
+    result = dyade.analyse(dyade.read_mechanism(path), start_deg=-725.0,
                            allow_partial=True)
     cols = result.columns()
     for name, values in cols.items():

@@ -13,6 +13,7 @@ import pytest
 from click.testing import CliRunner
 
 import dyade
+from dyade.linkage.sweep import analyse_si
 from dyade.cli import main
 from dyade.errors import DyadeError, InputError
 from dyade.files import mechanism as toml_input
@@ -74,9 +75,9 @@ def test_inertia_slope_is_the_derivative_of_the_inertia(name):
     mechanism = _massive(shipped(name))
     angles = np.deg2rad(np.arange(3.0, 360.0, 7.0))
     h = 1e-5  # central differences: error ~h²·J''' ~ 1e-10 of J
-    result = dyade.analyse(mechanism, crank_angle=angles).columns()
-    ahead = dyade.analyse(mechanism, crank_angle=angles + h).columns()["J_red"]
-    behind = dyade.analyse(mechanism, crank_angle=angles - h).columns()["J_red"]
+    result = analyse_si(mechanism, crank_angle=angles).columns()
+    ahead = analyse_si(mechanism, crank_angle=angles + h).columns()["J_red"]
+    behind = analyse_si(mechanism, crank_angle=angles - h).columns()["J_red"]
     slope = (ahead - behind) / (2 * h)
     assert np.allclose(result["dJ_red"], slope, rtol=0,
                        atol=1e-7 * np.max(np.abs(result["dJ_red"])))
@@ -93,7 +94,7 @@ def test_inertia_and_load_of_the_slider_crank_by_hand():
         "links": {"4": {"mass": mass}},
         "load": [{"link": 4, "force": [force, 0.0]}]})
     phi = np.deg2rad(np.arange(0.0, 360.0, 10.0))
-    cols = dyade.analyse(mechanism, crank_angle=phi).columns()
+    cols = analyse_si(mechanism, crank_angle=phi).columns()
     root = np.sqrt(length ** 2 - (r * np.sin(phi)) ** 2)
     dx = -r * np.sin(phi) - r ** 2 * np.sin(phi) * np.cos(phi) / root
     assert np.allclose(cols["J_red"], mass * dx ** 2, rtol=1e-12, atol=1e-15)
@@ -144,8 +145,8 @@ def test_speed_and_acceleration_of_the_crank_against_a_global_solve(path):
 def test_crank_acceleration_adds_the_reduced_inertia_times_it():
     # frictionless: M_drive(φ̇, φ̈) − M_drive(φ̇, 0) = J_red·φ̈ at one position
     mechanism = toml_input.read_mechanism(shipped("dyade-16.toml"))
-    at = dyade.analyse(mechanism, crank_angle=[1.0], crank_speed=25.0).columns()
-    sped = dyade.analyse(mechanism, crank_angle=[1.0], crank_speed=25.0,
+    at = analyse_si(mechanism, crank_angle=[1.0], crank_speed=25.0).columns()
+    sped = analyse_si(mechanism, crank_angle=[1.0], crank_speed=25.0,
                          crank_acceleration=80.0).columns()
     assert sped["alpha_2"][0] == 80.0 and at["alpha_2"][0] == 0.0
     assert sped["M_drive"][0] - at["M_drive"][0] == pytest.approx(at["J_red"][0] * 80.0,
@@ -265,7 +266,7 @@ def test_real_speed_kinetostatics_against_a_global_solve():
     mechanism = _driven({"motor": "asynchronous", "rated_torque": 4.0, "rated_speed_rpm": 290,
                          "synchronous_speed_rpm": 302})
     mechanism = replace(mechanism, loads=(), springs=())
-    result = dyade.analyse(mechanism, step=math.radians(10.0))
+    result = dyade.analyse(mechanism, step_deg=10.0)
     speed, acceleration = result.drive.speed, result.drive.acceleration
     assert np.ptp(speed) > 0.05 * np.mean(speed)
     _compare_to_global(mechanism, result.crank_angle, speed, acceleration)
@@ -282,12 +283,12 @@ def _run_up_balance(mechanism, count=8000):
     end = np.deg2rad(result.columns()["angle_deg"][-1])
     sigma = np.linspace(0.0, math.sqrt(end), count + 1)
     phi = sigma ** 2
-    cols = dyade.analyse(mechanism, run_up=True, crank_angle=phi).columns()
+    cols = analyse_si(mechanism, run_up=True, crank_angle=phi).columns()
     speed, acceleration = cols["omega_2"], cols["alpha_2"]
     motor = mechanism.drive.motor.torques(speed)
     unit = kinematics.sweep(mechanism, phi, crank_speed=1.0)
     load = applied_power(mechanism, unit.motion, phi)
-    frictionless = dyade.analyse(_frictionless(mechanism), crank_angle=phi, crank_speed=speed,
+    frictionless = analyse_si(_frictionless(mechanism), crank_angle=phi, crank_speed=speed,
                                  crank_acceleration=acceleration).columns()["M_drive"]
     rub = cols["M_drive"] - frictionless
     kin = result.kinematics
@@ -462,13 +463,13 @@ def test_flywheel_of_a_mechanism_against_a_fine_integration():
     mechanism = dyade.read_mechanism(shipped("dyade-16.toml"))
     result = dyade.size_flywheel(dyade.mechanism_torque_curve(mechanism), 0.02)
     fine = np.deg2rad(np.arange(0.0, 360.0 + 1e-9, 0.02))
-    torque = dyade.analyse(mechanism, crank_angle=fine).columns()["M_drive"]
+    torque = analyse_si(mechanism, crank_angle=fine).columns()["M_drive"]
     energy = cumulative_trapezoid(np.mean(torque[:-1]) - torque, fine, initial=0.0)
     assert result.delta_energy == pytest.approx(np.ptp(energy), rel=1e-5)
     assert math.degrees(result.angle_max_speed) == pytest.approx(
         np.rad2deg(fine[np.argmax(energy)]), abs=0.05)
     omega = 300 * RPM
-    inertia = dyade.analyse(mechanism, crank_angle=fine[:-1]).columns()["J_red"].mean()
+    inertia = analyse_si(mechanism, crank_angle=fine[:-1]).columns()["J_red"].mean()
     assert result.flywheel == pytest.approx(np.ptp(energy) / (0.02 * omega ** 2) - inertia,
                                             rel=1e-5)
 

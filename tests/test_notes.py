@@ -19,7 +19,7 @@ def test_every_kind_of_note_has_words():
 @pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.name)
 def test_every_note_of_a_shipped_mechanism_is_worded(path):
     result = dyade.analyse(dyade.read_mechanism(path), allow_partial=True,
-                           start=0.0, stop=2 * np.pi, step=np.deg2rad(0.5))
+                           start_deg=0.0, stop_deg=360.0, step_deg=0.5)
     for note in result.notes:
         text = say(note, result.mechanism)
         assert isinstance(note.kind, NoteKind) and text.endswith(".")
@@ -28,7 +28,7 @@ def test_every_note_of_a_shipped_mechanism_is_worded(path):
 
 def test_a_note_names_its_ranges_in_the_sweeps_decimals():
     result = dyade.analyse(dyade.read_mechanism(MECHANISMS / "self-locking.toml"),
-                           step=np.deg2rad(0.05))
+                           step_deg=0.05)
     lock, = [note for note in result.notes if note.kind == "self_locking"]
     assert lock.figures["digits"] == 2
     (first, last), = lock.ranges

@@ -79,15 +79,14 @@ def _check(mechanism, size, **options):
 @pytest.mark.parametrize("size", [1, 7, 4096])
 @pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.name)
 def test_every_shipped_mechanism_in_any_block_size(path, size):
-    coarse = {"step": np.deg2rad(4.0)} if size == 1 else {}  # 91 blocks of one
+    coarse = {"step_deg": 4.0} if size == 1 else {}  # 91 blocks of one
     _check(dyade.read_mechanism(path), size, allow_partial=True, **coarse)
 
 
 @pytest.mark.parametrize("size", [1, 7, 100])
 @pytest.mark.parametrize("label", list(CASES))
 def test_friction_in_any_block_size(label, size):
-    step = np.deg2rad(5.0 if size == 1 else 1.0)
-    whole = _check(_friction_case(label), size, step=step)
+    whole = _check(_friction_case(label), size, step_deg=5.0 if size == 1 else 1.0)
     if label == "self-locking":
         assert any(note.kind == "self_locking" for note in whole.notes)
 
@@ -102,8 +101,8 @@ def test_blocks_that_split_a_dead_centre_range(tmp_path, size):
     17 positions, cut by the blocks at every place."""
     path = tmp_path / "lever.toml"
     path.write_text(LEVER)
-    whole = _check(dyade.read_mechanism(path), size, step=np.deg2rad(0.5),
-                   dead_centre=np.deg2rad(4.0))
+    whole = _check(dyade.read_mechanism(path), size, step_deg=0.5,
+                   dead_centre_deg=4.0)
     assert any(note.kind == "dead_centre" for note in whole.notes)
 
 
@@ -150,7 +149,7 @@ def test_a_driven_mechanism_with_friction_couples_its_blocks_by_the_whole_sweep(
 def test_a_joint_that_never_moves_is_decided_over_the_whole_sweep():
     """The slide at its dead points only (0°, 180°, 360°): at rest at every position, in
     every block of one; whether it never moves is the whole sweep's to say."""
-    whole = _check(_friction_case("self-locking"), 1, step=np.pi)
+    whole = _check(_friction_case("self-locking"), 1, step_deg=180.0)
     assert [note.kind for note in whole.notes].count("never_moves") == 1
 
 
@@ -281,7 +280,7 @@ def test_progress_grows_to_the_whole_and_gives_the_first_pass_its_share():
     ending at ``FIRST_PASS`` of it, the last block at the whole; in between the second
     pass's own pace (measured) decides."""
     run = dyade.analyse_in_blocks(dyade.read_mechanism(shipped("fourbar.toml")),
-                                  block_size=50, step=np.radians(1.0))
+                                  block_size=50, step_deg=1.0)
     seen = []
     run.progress = lambda done, total: seen.append(done / total)
     for _ in run:
@@ -375,7 +374,7 @@ def test_the_benchmark_friction_model_in_blocks():
     """The benchmarks' friction model (μ in the crank pin too, edge friction) at a
     finer step, block boundaries anywhere."""
     mechanism = _with_friction(dyade.read_mechanism(MECHANISMS / "slider-crank.toml"))
-    _check(mechanism, 333, step=np.deg2rad(0.1))
+    _check(mechanism, 333, step_deg=0.1)
 
 
 def _arrays(thing, seen=None) -> list:
@@ -405,7 +404,7 @@ def test_what_analyse_hands_out_is_the_callers_in_any_block_size():
     any block size."""
     sl = dyade.read_mechanism(MECHANISMS / "self-locking.toml")
     for size in (None, 1):
-        result = dyade.analyse(sl, step=np.pi, block_size=size)
+        result = dyade.analyse(sl, step_deg=180.0, block_size=size)
         assert result.friction.never_moves == [(1, 4)]
         assert not result.friction.at_rest[(1, 4)].any()
     fourbar = dyade.read_mechanism(MECHANISMS / "fourbar.toml")
@@ -419,19 +418,19 @@ def test_what_analyse_hands_out_is_the_callers_in_any_block_size():
         for name, values in result.columns().items():
             assert not any(np.shares_memory(values, array) for array in engine), name
     slider = dyade.read_mechanism(MECHANISMS / "slider-crank.toml")
-    angle, speed = np.linspace(0.0, 1.0, 20), np.full(20, 10.0)
+    angle, speed = np.linspace(0.0, 57.0, 20), np.full(20, 10.0)
     for size in (None, 7):
-        result = dyade.analyse(slider, crank_angle=angle.copy(), crank_speed=[10.0],
+        result = dyade.analyse(slider, crank_angle_deg=angle.copy(), crank_speed=[10.0],
                                block_size=size)
-        assert np.array_equal(dyade.analyse(slider, crank_angle=angle,
+        assert np.array_equal(dyade.analyse(slider, crank_angle_deg=angle,
                                             crank_speed=np.array(10.0)).columns()["M_drive"],
                               result.columns()["M_drive"])
-        given = dyade.analyse(slider, crank_angle=angle, crank_speed=speed, block_size=size)
+        given = dyade.analyse(slider, crank_angle_deg=angle, crank_speed=speed, block_size=size)
         torque = given.columns()["M_drive"].copy()
         speed[:] = 99.0
         assert np.array_equal(given.forces.drive_torque, torque)
         speed[:] = 10.0
-    empty = dyade.analyse(slider, crank_angle=[], block_size=7).columns()
+    empty = dyade.analyse(slider, crank_angle_deg=[], block_size=7).columns()
     assert "M_drive" in empty and empty["angle_deg"].size == 0
 
 

@@ -103,7 +103,7 @@ def test_polar_reversals_are_where_dyade_clearance_reports_them():
     assert sum(len(v) for v in reported.values()) >= 10  # 40° lets (13,14) and more in
     table = csv_of(shipped("dyade-16.toml"))
     result = dyade.analyse(dyade.read_mechanism(shipped("dyade-16.toml")))
-    fig = polar.figure(result, max_wander=np.deg2rad(40))
+    fig = polar.figure(result, max_wander_deg=40)
     angle = table["angle_deg"]
     for ax in (ax for ax in fig.axes if ax.get_visible()):
         a, b = (int(v) for v in ax.get_title().split("(")[1].split(")")[0].split(","))
@@ -234,7 +234,7 @@ def _unique_points(points):
 def test_animation_one_frame_per_step_links_end_at_the_joints(name, tmp_path):
     table = csv_of(shipped(name), "--step", "30")
     mech = dyade.read_mechanism(shipped(name))
-    result = dyade.analyse(mech, step=np.deg2rad(30))
+    result = dyade.analyse(mech, step_deg=30)
     motion = animate.animation(result)
     assert motion.count == table["angle_deg"].size == 13
     checked = 0
@@ -258,7 +258,7 @@ def test_animation_one_frame_per_step_links_end_at_the_joints(name, tmp_path):
 
 def test_still_mechanism_at_the_angles_asked():
     mech = dyade.read_mechanism(shipped("slider-crank.toml"))
-    fig = mechanism.figure(dyade.analyse(mech), np.deg2rad([0, 45, 200]))
+    fig = mechanism.figure(dyade.analyse(mech), at_deg=[0, 45, 200])
     assert [ax.get_title() for ax in fig.axes if ax.get_visible()] == [
         "φ21 = 0°", "φ21 = 45°", "φ21 = 200°"]
     for ax, deg in zip(fig.axes, (0, 45, 200)):
@@ -578,7 +578,7 @@ def test_same_data_same_bytes(tmp_path):
     assert b"CreationDate" not in pdf and b"Producer" not in pdf
     paths = [tmp_path / "a.gif", tmp_path / "b.gif"]
     for path in paths:
-        animate.save(animate.animation(dyade.analyse(result.mechanism, step=np.deg2rad(45))),
+        animate.save(animate.animation(dyade.analyse(result.mechanism, step_deg=45)),
                      str(path), dpi=25)
     assert paths[0].read_bytes() == paths[1].read_bytes()
 

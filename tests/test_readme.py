@@ -1,6 +1,7 @@
-"""Every command shown in the README's shell blocks runs as written (issue 19): the
-README cannot drift from the program. Blocks that install the package or run the test
-suite and benchmarks are what CI itself runs, and are left to it."""
+"""Every command shown in the shell blocks of the README and of the documentation
+(docs/**/*.md) runs as written (issues 19, 30): they cannot drift from the program.
+Blocks that install the package, build the docs or run the test suite and benchmarks
+are what CI itself runs, and are left to it."""
 
 from __future__ import annotations
 
@@ -15,19 +16,54 @@ import pytest
 
 from tests.helpers import ROOT
 
-BLOCKS = re.findall(r"```sh\n(.*?)```", (ROOT / "README.md").read_text(), flags=re.S)
-RUNNABLE = [block for block in BLOCKS
-            if not re.search(r"pip install|pytest|python tests/", block)]
+PAGES = [ROOT / "README.md"] + sorted(
+    (page for page in (ROOT / "docs").glob("**/*.md") if "_build" not in page.parts),
+    key=lambda page: (page.name == "gallery.md", page))  # the gallery repeats the guide's
+BLOCKS = [(page, block) for page in PAGES
+          for block in re.findall(r"```sh\n(.*?)```", page.read_text(), flags=re.S)]
+
+
+def commands(block: str) -> frozenset[str]:
+    """The commands of a shell block, continuation lines joined, comments and spacing
+    left out."""
+    lines = block.replace("\\\n", " ").splitlines()
+    return frozenset(" ".join(re.sub(r"(^|\s)#.*$", "", line).split()) for line in lines) - {""}
+
+
+def runnable() -> list[tuple[Path, str]]:
+    """The blocks to run: not those that install, build the docs or run the tests (CI
+    does), nor a block whose every command an earlier block runs."""
+    seen: set[str] = set()
+    out = []
+    for page, block in BLOCKS:
+        if re.search(r"pip install|pytest|python tests/|sphinx-build", block):
+            continue
+        if commands(block) <= seen:
+            continue
+        seen |= commands(block)
+        out.append((page, block))
+    return out
+
+
+RUNNABLE = runnable()
 
 
 def test_the_readme_shows_commands():
-    assert len(RUNNABLE) >= 4 and all("dyade" in block for block in RUNNABLE)
+    readme = [block for page, block in RUNNABLE if page.name == "README.md"]
+    assert len(readme) >= 1 and len(RUNNABLE) >= 20
+    assert all("dyade" in block for _, block in RUNNABLE)
 
 
-@pytest.mark.parametrize("block", RUNNABLE, ids=lambda b: b.split()[1] + "…")
-def test_readme_block_runs_as_written(block, tmp_path):
+def _name(case) -> str:
+    page, block = case
+    return f"{page.relative_to(ROOT)}:{block.split()[1]}…"
+
+
+@pytest.mark.parametrize("case", RUNNABLE, ids=_name)
+def test_readme_block_runs_as_written(case, tmp_path):
     """Run in a fresh folder with the shipped mechanisms, the installed `dyade` first on
     the PATH: exit 0, no traceback, no "failed:" from the README's own loops."""
+    _, block = case
     shutil.copytree(ROOT / "mechanisms", tmp_path / "mechanisms")
     env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}",
                COLUMNS="100")

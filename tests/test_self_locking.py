@@ -14,6 +14,7 @@ from hypothesis import given, strategies as st
 from scipy import optimize
 
 import dyade
+from dyade.linkage.sweep import analyse_si
 from dyade.cli import main
 from dyade.errors import DyadeError
 from dyade.files import mechanism as toml_input
@@ -70,7 +71,7 @@ def test_pushed_block_locks_at_the_closed_form_jam_angle(up):
     mechanism = pushed_block("ccw" if up else "cw")
     onset = crank_angle_at(jam, up)
     angles = np.deg2rad(onset + np.linspace(-0.05, 0.05, 201))
-    result = dyade.analyse(mechanism, crank_angle=angles)
+    result = analyse_si(mechanism, crank_angle=angles)
     locks = result.locking[(1, 4)].locks
     assert locks.any() and not locks.all()
     first = int(np.argmax(locks))  # |β| grows with φ in the window: the lock starts
@@ -86,7 +87,7 @@ def test_pushed_block_locks_at_the_closed_form_jam_angle(up):
     solved = ~locks
     assert np.allclose(margin[solved], det[solved], rtol=1e-9, atol=1e-12)
     # and it runs the whole range where the rod is steeper than the jam angle
-    whole = dyade.analyse(mechanism, step=math.radians(0.25))
+    whole = dyade.analyse(mechanism, step_deg=0.25)
     locked = np.rad2deg(whole.crank_angle[whole.locking[(1, 4)].locks])
     lo, hi = (onset, 540.0 - onset) if up else (onset, 180.0 - onset)
     assert locked.min() == pytest.approx(lo, abs=0.25) and locked.max() == pytest.approx(hi, abs=0.25)

@@ -26,7 +26,7 @@ def test_the_quality_of_a_dyad_does_not_depend_on_the_sweep():
     pivot distance over the sweep: the same position was good or bad with --start."""
     mechanism = dyade.read_mechanism(shipped("slotted-lever.toml"))
     whole = dyade.analyse(mechanism)
-    part = dyade.analyse(mechanism, start=np.deg2rad(80.0), stop=np.deg2rad(100.0))
+    part = dyade.analyse(mechanism, start_deg=80.0, stop_deg=100.0)
     at = np.flatnonzero(np.isclose(np.rad2deg(whole.crank_angle), 90.0))[0]
     assert part.kinematics.conditioning[10, 0] == whole.kinematics.conditioning[at, 0]
     # independently: sin μ = lever arm / pivot distance, and the distance ≥ the crank

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 import os
 from typing import NamedTuple
 
@@ -112,8 +111,7 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
     chosen = tuple(p.strip() for p in patterns.split(",") if p.strip()) if patterns else ()
     job = Job(fmt, SweepOptions(start, stop, step), assignments, allow_partial, friction_tol,
               friction_max_iter, fail_on_lock, show_all, chosen, units, max_memory * 2 ** 20,
-              None if dead_centre is None else math.radians(dead_centre),
-              None if transmission_warning is None else math.radians(transmission_warning),
+              dead_centre, transmission_warning,
               run_up, constant_speed, block_size)
     if len(mechanism_files) == 1 and not (output and os.path.isdir(output)):
         job.run(mechanism_files[0], output, save_as)
@@ -160,9 +158,9 @@ class Job(NamedTuple):
     max_memory: float | None = None
     """[B]"""
     dead_centre: float | None = None
-    """[rad]"""
+    """[°]"""
     transmission_warning: float | None = None
-    """[rad]"""
+    """[°]"""
     run_up: bool = False
     constant_speed: bool = False
     block_size: int | None = None

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import NamedTuple
 
@@ -95,7 +94,7 @@ class Inputs(NamedTuple):
     simulate: bool
     sim_steps: int
     wander: float
-    """--max-wander [rad]"""
+    """--max-wander [°]"""
 
 
 def inputs(joints, masses, stiffness, gap, slope, speed_rpm, speed_range, simulate, sim_steps,
@@ -117,7 +116,7 @@ def inputs(joints, masses, stiffness, gap, slope, speed_rpm, speed_range, simula
     speeds = (value_range(speed_range, "--speed-range", " in rpm", positive_start=True)
               if speed_range else None)
     return Inputs([parse_joint(j) for j in joints], mass, stiffness, gap, slope, speed_rpm, speeds,
-                  simulate, sim_steps, math.radians(max_wander))
+                  simulate, sim_steps, max_wander)
 
 
 def standalone_check(given: Inputs) -> None:
@@ -148,7 +147,7 @@ def mechanism_check(given: Inputs) -> None:
 def mechanism_options(given: Inputs) -> dict:
     """The API's keyword arguments of ``check_clearance`` from the options."""
     return {"joints": given.joints or None, "stiffness": given.stiffness,
-            "clearance": given.gap, "mass": given.mass, "max_wander": given.wander}
+            "clearance": given.gap, "mass": given.mass, "max_wander_deg": given.wander}
 
 
 @main.command()

@@ -16,7 +16,8 @@ from dyade.cli.output import atomic, console, flags
 FLAGS = {"friction_tol": "--friction-tol", "friction_max_iter": "--friction-max-iter",
          "start": "--start", "stop": "--stop", "step": "--step",
          "sweep": "the sweep (--start, --stop, --step)", "max_memory": "--max-memory",
-         "dead_centre": "--dead-centre", "transmission_warning": "--transmission-warning",
+         "dead_centre_deg": "--dead-centre",
+         "transmission_warning_deg": "--transmission-warning",
          "run_up": "--run-up", "block_size": "--block-size"}
 """API parameter -> the flag it comes from"""
 

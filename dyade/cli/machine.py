@@ -14,8 +14,8 @@ from dyade.cli.output import atomic, flags, show, write_json, write_rows
 from dyade.limits import PLAUSIBLE
 
 FORMAT = click.Choice(["table", "csv", "json"])
-FLYWHEEL_FLAGS = {"fluctuation": "--fluctuation", "inertia": "--inertia", "speed": "--speed-rpm",
-                  "step": "--step", "max_memory": "--max-memory"}
+FLYWHEEL_FLAGS = {"fluctuation": "--fluctuation", "inertia": "--inertia", "speed_rpm": "--speed-rpm",
+                  "speed": "--speed-rpm", "step_deg": "--step", "max_memory": "--max-memory"}
 BALANCE_FLAGS = {"links": "--link", "radius": "--radius"}
 """API parameter -> the flag it comes from"""
 
@@ -80,17 +80,15 @@ def flywheel(source: str, fluctuation: float | None, inertia: float | None,
         if csv_source:
             if assignments or step is not None:
                 raise click.UsageError("--set and --step apply to a mechanism file, not a CSV.")
-            speed = None if speed_rpm is None else speed_rpm * math.pi / 30.0
             curve = dyade.read_torque_curve("<stdin>" if text is not None else source,
-                                            speed=speed, text=text)
+                                            speed_rpm=speed_rpm, text=text)
         else:
             if speed_rpm is not None:
                 raise click.UsageError("--speed-rpm is for a CSV source; a mechanism has its "
                                        "own (change it with --set crank.speed_rpm=…).")
-            mechanism = (load(source, assignments, text=text)).mechanism
-            curve = dyade.mechanism_torque_curve(
-                mechanism, step=None if step is None else math.radians(step),
-                max_memory=max_memory * 2 ** 20)
+            mechanism = load(source, assignments, text=text).mechanism
+            curve = dyade.mechanism_torque_curve(mechanism, step_deg=step,
+                                                 max_memory=max_memory * 2 ** 20)
         if fluctuation is not None:
             result = dyade.size_flywheel(curve, fluctuation)
         else:

@@ -69,8 +69,8 @@ def streamed(job, mechanism, loaded, path: str, output: str | None) -> None:
                                 else job.block_size,
                                 allow_partial=job.allow_partial, friction_tol=job.friction_tol,
                                 friction_max_iter=job.friction_max_iter,
-                                max_memory=job.max_memory, dead_centre=job.dead_centre,
-                                transmission_warning=job.transmission_warning,
+                                max_memory=job.max_memory, dead_centre_deg=job.dead_centre,
+                                transmission_warning_deg=job.transmission_warning,
                                 constant_speed=job.constant_speed, run_up=job.run_up)
         blocks = (block.columns for block in run)
         with progress(f"{os.path.basename(path)}: checking the sweep",

@@ -40,6 +40,23 @@ def load_data(path: str | os.PathLike) -> dict[str, Any]:
 def read_coupling(path: str | os.PathLike):
     """The coupling model of a coupling file (``b1``, ``b2`` default to 0).
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The TOML file (the coupling file reference documents every key).
+
+    Returns
+    -------
+    Coupling
+
+    Raises
+    ------
+    InputError
+        Naming the file and the key.
+
+    Examples
+    --------
+
     >>> import dyade
     >>> coupling = dyade.read_coupling("mechanisms/coupling/stiff-coupling.toml")
     >>> round(coupling.natural_frequency, 3), round(coupling.damping_ratio, 4)

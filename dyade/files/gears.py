@@ -100,10 +100,26 @@ def read_gears(path: str | os.PathLike, overrides: dict[str, Any] | None = None)
 
 def build_gears(data: dict[str, Any], path: str | os.PathLike | None = None, *,
                 plausible: bool = True) -> GearDrive:
-    """Validate gear-drive data (the parsed TOML of a gear-drive file, or the same
-    structure written in Python) and build the drive; errors name ``path``.
-    ``plausible=False`` lifts the bounds of what a machine has (``dyade.limits``), for
-    studies of limits such as a rigid bearing.
+    """Validate gear-drive data and build the drive.
+
+    Parameters
+    ----------
+    data : dict
+        The parsed TOML of a gear-drive file, or the same structure written in Python
+        (the gear-drive file reference documents every key).
+    path : str or os.PathLike, optional
+        The file the data came from, named in errors.
+    plausible : bool
+        False lifts the bounds of what a machine has (``dyade.limits``), for studies of
+        limits such as a rigid bearing.
+
+    Returns
+    -------
+    GearDrive
+        In SI units, validated, its bodies placed.
+
+    Examples
+    --------
 
     >>> drive = build_gears({"model": "torsional",
     ...     "body": [{"name": "a", "J_x": 1.0}, {"name": "b", "J_x": 1.0}],

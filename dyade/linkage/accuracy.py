@@ -13,7 +13,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from dyade.linkage.plan import plan
-from dyade.linkage.sweep import Result, analyse
+from dyade.linkage.sweep import Result, analyse, analyse_si
 from dyade.linkage.model import Mechanism, Revolute
 
 STEPS_DEG = (5.0, 2.0, 1.0, 0.5, 0.1, 0.05)  # [°] crank steps, the last one is the reference
@@ -91,7 +91,7 @@ def crank_step(mechanism: Mechanism, steps=STEPS_DEG, repeats: int = 3, tick=Non
     runs = []
     for step in steps:
         angles = mechanism.sweep.start + np.deg2rad(step) * np.arange(int(round(360 / step)) + 1)
-        seconds, result = _timed(lambda: analyse(mechanism, crank_angle=angles), repeats)
+        seconds, result = _timed(lambda: analyse_si(mechanism, crank_angle=angles), repeats)
         peaks = _peaks(mechanism, result.forces, result.rows, result.clearance)
         runs.append((f"{step:g}°", seconds, peaks or _kinematic_peaks(result),
                      f"{angles.size} positions"))
@@ -150,10 +150,37 @@ def clearance_simulation(result: Result, steps=SIM_STEPS, repeats: int = 3) -> l
 
 
 def studies(mechanism: Mechanism, *, repeats: int = 3, progress=None) -> list[Row]:
-    """Every study the mechanism calls for: the crank step always, the friction
-    tolerance with friction, closed form against simulation with clearance data; each
-    setting timed (best of ``repeats``) and its peaks compared with the finest one.
-    ``progress(done, total)`` is called after each setting."""
+    """Every study the mechanism calls for, as ``dyade accuracy`` shows them.
+
+    The crank step always, the friction tolerance with friction, closed form against
+    simulation with clearance data; each setting timed (best of ``repeats``) and its
+    peaks compared with the finest one.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        From ``read_mechanism`` or ``build_mechanism``.
+    repeats : int
+        Runs per setting; the best time counts.
+    progress : callable, optional
+        ``progress(done, total)`` is called after each setting.
+
+    Returns
+    -------
+    list of Row
+        One per setting: the study, the setting, its time and its deviation from the
+        finest setting.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> rows = dyade.accuracy_studies(dyade.read_mechanism("mechanisms/fourbar.toml"),
+    ...                               repeats=1)
+    >>> sorted({row.setting for row in rows if row.study == "crank step"})
+    ['0.05°', '0.1°', '0.5°', '1°', '2°', '5°']
+    >>> torque = [row for row in rows if row.quantity == "|M_drive| max"]
+    >>> bool(torque[0].error > torque[-2].error)   # 5° is further off than 0.1°
+    True"""
     the_plan = plan(mechanism)
     total = len(STEPS_DEG) + bool(the_plan.friction) * len(FRICTION_TOLS) + bool(the_plan.clearance)
     done = [0]

@@ -8,15 +8,16 @@ from dataclasses import replace
 import numpy as np
 
 from dyade.errors import InputError
-from dyade.linkage.joint_clearance import MAX_WANDER, JointCheck, check_mechanism, needs_forces
+from dyade.linkage.joint_clearance import MAX_WANDER_DEG, JointCheck, check_mechanism, needs_forces
 from dyade.linkage.model import ClearanceData, Mechanism, Revolute
+from dyade.linkage.options import radians
 from dyade.linkage.sweep import analyse
 from dyade.units import RPM
 
 
 def check(mechanism: Mechanism, *, joints=None, stiffness: float | None = None,
           clearance: float | None = None, mass: float | None = None,
-          max_wander: float = MAX_WANDER, result=None) -> list[JointCheck]:
+          max_wander_deg: float = MAX_WANDER_DEG, result=None, **renamed) -> list[JointCheck]:
     """The clearance check of a mechanism's revolute joints over its cycle.
 
     Parameters
@@ -31,11 +32,14 @@ def check(mechanism: Mechanism, *, joints=None, stiffness: float | None = None,
     mass : float, optional
         Reduced mass m [kg] for every joint; default: the file's, or the reduced mass of
         the joint's two links (eq. 17; the frame counts as rigid).
-    max_wander : float
-        How far [rad] the force may leave its dominant line of action for the model to
+    max_wander_deg : float
+        How far [°] the force may leave its dominant line of action for the model to
         apply (forces of at least 25 % of the peak count).
     result : Result, optional
         An analysis of ``mechanism`` to reuse (default: analysed here).
+    **renamed
+        The former ``max_wander`` [rad] is refused with an ``InputError`` naming
+        ``max_wander_deg``.
 
     Returns
     -------
@@ -52,6 +56,8 @@ def check(mechanism: Mechanism, *, joints=None, stiffness: float | None = None,
     >>> [round(r.peak.force) for r in checks[0].reversals]
     [318, 738]
     """
+    InputError.refuse_renamed("check_clearance", renamed, {"max_wander": "max_wander_deg"})
+    max_wander = radians(max_wander_deg, "max_wander_deg")
     if (stiffness is None) != (clearance is None):
         raise InputError.parameter("stiffness", "and clearance go together (or neither, to use "
                                                 "the clearance data of the mechanism).")
@@ -67,12 +73,35 @@ def check(mechanism: Mechanism, *, joints=None, stiffness: float | None = None,
 
 def speed_study(mechanism: Mechanism, speeds_rpm, progress=None, workers: int = 1,
                 **options) -> list[tuple[float, list]]:
-    """The clearance check at each crank speed of ``speeds_rpm`` [rpm] (the crank keeps
-    its sense of rotation); ``options`` as for ``check``; ``progress(done, total)`` is
-    called after each speed; ``workers`` processes check the speeds (the same results,
-    in the same order).
+    """The clearance check at each crank speed (the crank keeps its sense of rotation).
 
-    Returns (speed [rpm], list of JointCheck) per speed.
+    Parameters
+    ----------
+    mechanism : Mechanism
+        With masses, loads or springs, as for ``check_clearance``.
+    speeds_rpm : iterable of float
+        Crank speeds [rpm], positive.
+    progress : callable, optional
+        ``progress(done, total)`` is called after each speed.
+    workers : int
+        Processes that check the speeds (the same results, in the same order).
+    **options
+        As for ``check_clearance`` (``joints``, ``stiffness``, ``clearance``, ``mass``,
+        ``max_wander_deg``).
+
+    Returns
+    -------
+    list of (float, list of JointCheck)
+        (speed [rpm], the checks) per speed.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> mechanism = dyade.read_mechanism("mechanisms/dyade-16.toml")
+    >>> study = dyade.clearance_speed_study(mechanism, [100, 200], joints=[(2, 7)],
+    ...                                     stiffness=1e8, clearance=1e-4)
+    >>> [(rpm, len(checks[0].reversals)) for rpm, checks in study]
+    [(100.0, 0), (200.0, 2)]
     """
     speeds_rpm = list(speeds_rpm)
     for rpm in speeds_rpm:

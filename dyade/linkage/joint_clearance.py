@@ -25,7 +25,8 @@ MISSING = {
     "mass": ("no reduced mass: give {mass} or `clearance.mass` (links {a} and {b} have no "
              "mass to estimate it from)")}
 """why a joint cannot be checked: what is missing -> the reason, its inputs as fields"""
-MAX_WANDER = np.deg2rad(20.0)  # [rad] largest direction change off the line of action
+MAX_WANDER_DEG = 20.0  # [°] largest direction change off the line of action (API default)
+MAX_WANDER = np.deg2rad(MAX_WANDER_DEG)  # [rad] the same, inside the engine
 SMALL_FORCE = 0.25  # [-] forces below this share of the peak do not count for the wander
 
 

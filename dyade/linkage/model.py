@@ -284,7 +284,15 @@ class Mechanism:
     """A whole linkage in assembly order, SI units: the crank, the dyads, the links with
     their points and mass data, loads, springs, gravity and the crank-angle sweep.
     Made by ``dyade.read_mechanism`` (a file) or ``dyade.build_mechanism`` (a dict
-    with the same keys), which validate it."""
+    with the same keys), which validate it.
+
+    >>> import dyade
+    >>> sixbar = dyade.read_mechanism("mechanisms/watt-sixbar.toml")
+    >>> sixbar.name, [dyad.number for dyad in sixbar.dyads], sixbar.sweep.count
+    ('Watt II six-bar', [2, 3], 361)
+    >>> round(sixbar.crank.speed, 4)                    # Ω [rad/s]: SI inside
+    20.944
+    """
 
     name: str
     source: str | None

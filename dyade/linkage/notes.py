@@ -14,7 +14,15 @@ from dyade.arrays import FloatArray
 
 
 class NoteKind(enum.StrEnum):
-    """What a note is about (a ``str``: ``note.kind == "dead_centre"`` holds)."""
+    """What a note is about (a ``str``: ``note.kind == "dead_centre"`` holds).
+
+    >>> import dyade
+    >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/self-locking.toml"))
+    >>> sorted({note.kind for note in result.notes})
+    ['at_rest', 'near_self_locking', 'self_locking']
+    >>> dyade.NoteKind.SELF_LOCKING == "self_locking"
+    True
+    """
 
     PARTIAL = "partial"
     """some dyad does not close over part of the sweep; those positions are left out"""
@@ -54,7 +62,20 @@ class Note(NamedTuple):
     "slider (1,4)", or ""), the crank-angle ``ranges`` (first, last) [rad] where it holds
     (() where it is not positional) and the ``figures`` that size it (plain numbers and
     names: the dyad's number, the bands [rad], counts, the decimals [°] that tell the
-    sweep's positions apart). ``dyade.report.notes.say`` words it."""
+    sweep's positions apart). ``dyade.report.notes.say`` words it.
+
+    >>> import dyade
+    >>> from dyade.report.notes import say
+    >>> mechanism = dyade.read_mechanism("mechanisms/dyade-16.toml")
+    >>> note, = dyade.analyse(mechanism).notes
+    >>> note.kind, note.subject
+    ('poor_transmission', 'dyad 7')
+    >>> print(say(note, mechanism))
+    dyad 7 (kind 1 RRR, links 13-14) has a transmission angle below 40° (the designers'
+    rule) at crank angles 119.0°–204.0°, 29.5° at the least (crank angle 162.0°):
+    results are given, but the drive is sensitive to friction, clearance and elasticity
+    there.
+    """
 
     kind: NoteKind
     subject: str

@@ -2,7 +2,8 @@
 range of crank angles (``with_sweep``), the friction solution's tolerance and passes,
 the validity bands, the plan, and the memory the sweep may take (``check_size``, with
 the estimates of a sweep in one block, collected in blocks, or in blocks written as they
-come)."""
+come). The API's angles come in degrees (``sweep_in_degrees``, ``radians``,
+``angles_in_degrees``) and are radians from here on."""
 
 from __future__ import annotations
 
@@ -43,6 +44,74 @@ def with_sweep(mechanism: Mechanism, start: float | None = None, stop: float | N
     if problem:
         raise InputError.parameter("sweep", f"{problem}.", unit="rad")
     return replace(mechanism, sweep=Sweep(start, stop, step))
+
+
+def radians(value_deg: float | None, name: str) -> float | None:
+    """An angle of the API [°] -> [rad] (None stays None); ``name``: the parameter, for
+    the error of a value that is not a finite number."""
+    if value_deg is None:
+        return None
+    try:
+        value = float(value_deg)
+    except (TypeError, ValueError):
+        raise InputError.parameter(name, f"must be an angle [°], got {value_deg!r}.",
+                                   value=value_deg, unit="°") from None
+    if not math.isfinite(value):
+        raise InputError.parameter(name, f"must be a finite angle [°], got {value}.",
+                                   value=value, unit="°")
+    return math.radians(value)
+
+
+def angles_in_degrees(angles_deg, name: str = "crank_angle_deg") -> np.ndarray | None:
+    """Crank angles of the API [°] (the parameter ``name``) -> [rad] (None stays None)."""
+    if angles_deg is None:
+        return None
+    try:
+        angles = np.asarray(angles_deg, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise InputError.parameter(name, "must be crank angles [°] (numbers).",
+                                   unit="°") from None
+    if angles.ndim > 1 or not np.all(np.isfinite(angles)):
+        raise InputError.parameter(name, "must be one finite crank angle [°] or "
+                                                      "a sequence of them.", unit="°")
+    return np.deg2rad(np.atleast_1d(angles))
+
+
+def sweep_in_degrees(mechanism: Mechanism, start_deg: float | None = None,
+                     stop_deg: float | None = None, step_deg: float | None = None
+                     ) -> Mechanism:
+    """The mechanism with the sweep the API asks for in degrees (``with_sweep``), with
+    the values that look wrong refused, naming the fix: a step above one revolution (an
+    angle in radians would give a few positions at most) and a sweep of one position."""
+    if start_deg is None and stop_deg is None and step_deg is None:
+        return mechanism
+    start = radians(start_deg, "start_deg")
+    stop = radians(stop_deg, "stop_deg")
+    step = radians(step_deg, "step_deg")
+    if step is not None and step <= 0:
+        raise InputError.parameter("step_deg", f"must be positive [°], got {step_deg:g}.",
+                                   value=step_deg, unit="°")
+    if step_deg is not None and step_deg > 360.0:
+        raise InputError.parameter(
+            "step_deg", f"is {step_deg:g}°, more than one revolution. It is in degrees: "
+                        f"step_deg=0.5 sweeps every half degree.", value=step_deg, unit="°")
+    if start is not None and stop is not None and stop < start:
+        raise InputError.parameter("stop_deg", f"must not be below start_deg, got "
+                                               f"{stop_deg:g}° < {start_deg:g}°.",
+                                   value=stop_deg, unit="°")
+    swept = with_sweep(mechanism, start, stop, step)
+    if swept.sweep.count < 2:
+        sweep = swept.sweep
+        given = tuple(name for name, value in (("start_deg", start_deg), ("stop_deg", stop_deg),
+                                               ("step_deg", step_deg)) if value is not None)
+        reason = (f"the sweep from {math.degrees(sweep.start):g}° to "
+                  f"{math.degrees(sweep.stop):g}° in steps of {math.degrees(sweep.step):g}° has "
+                  f"one position: give a smaller step_deg or a wider range (stop_deg above "
+                  f"start_deg), or crank_angle_deg=[...] for single positions.")
+        err = InputError(f"{', '.join(given)}: {reason}", key=given[0], unit="°", reason=reason)
+        err.parameters = given
+        raise err
+    return swept
 
 
 
@@ -108,18 +177,18 @@ KEPT_PER_POSITION = 64
 angle, speed and acceleration, masks, the clearance joints' forces"""
 
 
-def configure(mechanism: Mechanism, *, start: float | None = None, stop: float | None = None,
-              step: float | None = None, positions: int | None = None,
+def configure(mechanism: Mechanism, *, positions: int | None = None,
               friction_tol: float | None = None, friction_max_iter: int | None = None,
               plan: Plan | None = None, max_memory: float | None = None,
               dead_centre: float | None = None, transmission_warning: float | None = None,
               given_speed: bool = False, constant_speed: bool = False, run_up: bool = False,
               estimate=None) -> tuple[Mechanism, Plan]:
-    """``analyse``'s options checked and applied: the mechanism to sweep and its plan.
+    """``analyse``'s options checked and applied (in SI units: the validity bands
+    ``dead_centre`` and ``transmission_warning`` [rad]; the sweep is the mechanism's):
+    the mechanism to sweep and its plan.
     ``positions``: how many crank angles are given (default: the sweep's); ``estimate``:
     the memory the sweep needs [B] as a function of (mechanism, positions) (default
     ``memory_estimate``)."""
-    mechanism = with_sweep(mechanism, start, stop, step)
     if friction_tol is not None:
         if not (math.isfinite(friction_tol) and friction_tol > 0):
             raise InputError.parameter("friction_tol", f"must be a positive number [-], got "
@@ -135,7 +204,7 @@ def configure(mechanism: Mechanism, *, start: float | None = None, stop: float |
         hard = mechanism.dead_centre_angle if dead_centre is None else dead_centre
         soft = mechanism.transmission_warning if transmission_warning is None else transmission_warning
         if not (math.isfinite(hard) and math.isfinite(soft) and 0.0 <= hard < soft <= np.pi / 2):
-            raise InputError.parameter(("dead_centre", "transmission_warning"),
+            raise InputError.parameter(("dead_centre_deg", "transmission_warning_deg"),
                                        f"must satisfy 0 ≤ the dead-centre band < the warning angle ≤ "
                                        f"90°, got {np.rad2deg(hard):g}° and {np.rad2deg(soft):g}°.")
         mechanism = replace(mechanism, dead_centre_angle=hard, transmission_warning=soft)

@@ -17,7 +17,16 @@ from dyade.linkage.model import Mechanism
 @dataclass(frozen=True, slots=True)
 class Plan:
     """The stages a sweep will run, decided from the data before anything runs
-    (``plan``): each is a tuple of the joints it concerns, or a flag."""
+    (``plan``): each is a tuple of the joints it concerns, or a flag.
+
+    >>> import dyade
+    >>> the_plan = dyade.plan(dyade.read_mechanism("mechanisms/self-locking.toml"))
+    >>> the_plan.friction, the_plan.self_locking
+    (((1, 2), (2, 3), (3, 4), (1, 4)), ((1, 4),))
+    >>> dyade.analyse(dyade.read_mechanism("mechanisms/fourbar.toml"),
+    ...               plan=dyade.Plan()).forces is None          # kinematics only
+    True
+    """
 
     kinematics: bool = True
     kinetostatics: bool = False
@@ -35,6 +44,20 @@ class Plan:
 
 def plan(mechanism: Mechanism) -> Plan:
     """Decide the stages from the data: only what the mechanism calls for.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        From ``read_mechanism`` or ``build_mechanism``.
+
+    Returns
+    -------
+    Plan
+        The stages a sweep runs (kinetostatics, friction, self-locking, clearance, the
+        equation of motion), each with the reason; ``dyade describe`` prints it.
+
+    Examples
+    --------
 
     >>> import dyade
     >>> dyade.plan(dyade.read_mechanism("mechanisms/fourbar.toml")).kinetostatics

@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from dyade.arrays import plain, resolution
 from dyade.linkage.columns import Columns
 from dyade.linkage.model import Revolute
 from dyade.linkage.verdicts import Outcome
@@ -59,12 +60,14 @@ def _vertex(angle_deg: np.ndarray, cycle: np.ndarray, step: float, sign: float) 
     return float(angle_deg[k] + shift * step)
 
 
-def motion_figures(result: Outcome, cols: Columns) -> dict[str, Any]:
+def motion_figures(result: Outcome, cols: Columns, at=None) -> dict[str, Any]:
     """What a designer reads off the kinematics: the smallest transmission angle of each
     dyad (its distance from a dead centre) and where, the stroke of every slider and the
     swing of every rocker (a link turning about a frame pivot without turning round),
-    each with its time ratio."""
+    each with its time ratio. ``at``: the crank angles [°] to say where (default: the
+    column ``angle_deg``)."""
     angle = cols["angle_deg"]
+    at = angle if at is None else at
     mechanism = result.mechanism
     out: dict[str, Any] = {"transmission": {}, "strokes": {}, "swings": {}}
     for dyad in mechanism.dyads:
@@ -73,7 +76,7 @@ def motion_figures(result: Outcome, cols: Columns) -> dict[str, Any]:
             continue
         off = np.minimum(mu, 180.0 - mu)  # the angle to the nearer dead centre
         k = int(np.nanargmin(off))
-        out["transmission"][str(dyad.number)] = {"min_deg": off[k], "at_deg": angle[k]}
+        out["transmission"][str(dyad.number)] = {"min_deg": off[k], "at_deg": at[k]}
     for joint in mechanism.joints:
         a, b = joint.name
         if isinstance(joint, Revolute):
@@ -106,11 +109,15 @@ def _extreme(angle, values) -> dict[str, Any]:
 
 
 def summary(result: Outcome, cols: Columns) -> dict[str, Any]:
-    """Per column min/max and where; drive, friction, self-locking, clearance figures."""
+    """Per column min/max and where; drive, friction, self-locking, clearance figures:
+    plain Python numbers (``arrays.plain``), the crank angles where an extreme lies
+    rounded to the sweep's resolution (``arrays.resolution``: 359.5, not
+    359.50000000000006)."""
     angle = cols["angle_deg"]
+    at = np.round(angle, resolution(angle))  # where: a position of the sweep
     out: dict[str, Any] = {"mechanism": result.mechanism.name, "positions": int(angle.size),
-                           **motion_figures(result, cols),
-                           "columns": {name: _extreme(angle, values)
+                           **motion_figures(result, cols, at),
+                           "columns": {name: _extreme(at, values)
                                        for name, values in cols.items() if name != "angle_deg"}}
     if result.forces_valid is not None:
         torque = cols["M_drive"]
@@ -126,7 +133,7 @@ def summary(result: Outcome, cols: Columns) -> dict[str, Any]:
             values = np.abs(cols[name])
             if np.isfinite(values).any():
                 k = int(np.nanargmax(values))
-                peaks[name] = {"value": cols[name][k], "at_deg": angle[k]}
+                peaks[name] = {"value": cols[name][k], "at_deg": at[k]}
         out["joint_peaks"] = peaks
     if result.rubbing is not None:
         rows = result.rows & result.forces_valid
@@ -136,8 +143,9 @@ def summary(result: Outcome, cols: Columns) -> dict[str, Any]:
                            "worst_residual": float(np.max(result.rubbing.residual[rows], initial=0.0))}
     if result.locking:
         out["self_locking"] = {f"{a}_{b}": {"locks": bool(lock.locks[result.rows].any()),
-                                            "locking_angles_deg": np.rad2deg(
-                                                result.crank_angle[lock.locks & result.rows])}
+                                            "locking_angles_deg": np.round(np.rad2deg(
+                                                result.crank_angle[lock.locks & result.rows]),
+                                                resolution(angle))}
                                for (a, b), lock in result.locking.items()}
     if result.drive is not None:
         out["motion"] = motion_summary(result)
@@ -150,7 +158,7 @@ def summary(result: Outcome, cols: Columns) -> dict[str, Any]:
                                             "amplification": r.amplification}
                                            for r in c.reversals]}
                             for c in result.clearance]
-    return out
+    return plain(out)
 
 
 def motion_summary(result: Outcome) -> dict[str, Any]:

@@ -14,7 +14,8 @@ from dyade.errors import InputError
 from dyade.linkage.blocks import BLOCK_SIZE
 from dyade.linkage.columns import Columns
 from dyade.linkage.model import FloatArray, Mechanism
-from dyade.linkage.options import collect_estimate, configure, stream_estimate
+from dyade.linkage.options import (angles_in_degrees, collect_estimate, configure, radians,
+                                   stream_estimate, sweep_in_degrees)
 from dyade.linkage.block import Block
 from dyade.linkage.pipeline import Run, prepare, stages
 from dyade.linkage.pipeline import Setup
@@ -36,11 +37,20 @@ class Result(Outcome):
     """Everything a sweep computed, in SI units.
 
     ``columns()`` gives the sweep as named columns (the CSV contract, documented in
-    ``mechanisms/README.md``), ``summary()`` the extremes and the figures a designer
-    sizes parts by, ``notes`` the findings (dead centres, partial sweeps, friction,
-    self-locking; ``dyade.report.notes.say`` words them), ``to_pandas()`` a DataFrame
-    indexed by the crank angle [°]. ``kinematics``, ``forces`` and ``friction`` are the
-    whole sweep's arrays (computed again, as one block, where it ran in several).
+    the columns reference, ``docs/reference/columns.md``), ``summary()`` the extremes
+    and the figures a designer sizes parts by (plain Python numbers), ``notes`` the
+    findings (dead centres, partial sweeps, friction, self-locking;
+    ``dyade.report.notes.say`` words them), ``to_pandas()`` a DataFrame indexed by the
+    crank angle [°]. ``kinematics``, ``forces`` and ``friction`` are the whole sweep's
+    arrays (computed again, as one block, where it ran in several), in SI units.
+
+    >>> import dyade
+    >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/fourbar.toml"), step_deg=0.5)
+    >>> peak = result.summary()["columns"]["M_drive"]
+    >>> round(peak["max"], 3), peak["max_at_deg"]           # [N·m], [°]
+    (1.466, 69.0)
+    >>> result.kinematics.crank_angle.shape                  # every position [rad]
+    (721,)
     """
 
     setup: Setup | None = None
@@ -108,27 +118,39 @@ def _decided(block: Block, rubbing) -> Block:
     return block
 
 
-def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | None = None,
-            step: float | None = None, crank_angle: FloatArray | None = None,
-            allow_partial: bool = False, friction_tol: float | None = None,
-            friction_max_iter: int | None = None, plan: Plan | None = None,
-            max_memory: float | None = None, dead_centre: float | None = None,
-            transmission_warning: float | None = None,
+RENAMED = {"start": "start_deg", "stop": "stop_deg", "step": "step_deg",
+           "crank_angle": "crank_angle_deg", "dead_centre": "dead_centre_deg",
+           "transmission_warning": "transmission_warning_deg"}
+"""former parameter names of ``analyse`` and ``analyse_in_blocks`` (radians) -> the
+names that carry the unit (degrees); the old names are refused, naming the new"""
+
+
+def analyse(mechanism: Mechanism, *, start_deg: float | None = None,
+            stop_deg: float | None = None, step_deg: float | None = None,
+            crank_angle_deg=None, allow_partial: bool = False,
+            friction_tol: float | None = None, friction_max_iter: int | None = None,
+            plan: Plan | None = None, max_memory: float | None = None,
+            dead_centre_deg: float | None = None, transmission_warning_deg: float | None = None,
             crank_speed: FloatArray | float | None = None,
             crank_acceleration: FloatArray | float | None = None,
             constant_speed: bool = False, run_up: bool = False,
-            block_size: int | None = None) -> Result:
+            block_size: int | None = None, **renamed) -> Result:
     """Sweep the crank: kinematics, and what the mechanism calls for (``plan``).
+
+    Angles are in degrees, as in the files, flags and tables: the names say so
+    (``step_deg``); speeds and everything else in SI units.
 
     Parameters
     ----------
     mechanism : Mechanism
         From ``read_mechanism`` or ``build_mechanism``.
-    start, stop, step : float, optional
-        The crank-angle sweep [rad], overriding the mechanism's; ``stop`` defaults to one
-        revolution after ``start``.
-    crank_angle : array_like, optional
-        Crank angles φ21 [rad] to compute instead of a regular sweep.
+    start_deg, stop_deg, step_deg : float, optional
+        The crank-angle sweep [°], overriding the mechanism's; ``stop_deg`` defaults to
+        one revolution after ``start_deg``. A step above one revolution, or a sweep of
+        one position, is refused (``InputError``): for single positions give
+        ``crank_angle_deg``.
+    crank_angle_deg : array_like, optional
+        Crank angles φ21 [°] to compute instead of a regular sweep.
     allow_partial : bool
         Report only the positions where every dyad closes, with a note, instead of
         raising ``AssemblyError``.
@@ -141,11 +163,11 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
         The stages to run (default: ``plan(mechanism)``).
     max_memory : float, optional
         Refuse, before allocating anything, a sweep estimated to take more memory [B]
-        (default ``MAX_MEMORY``, 4 GiB): its columns, 8 B per value, and one block.
-    dead_centre, transmission_warning : float, optional
-        The validity policy's hard and soft bands [rad] (defaults: the mechanism's,
-        2° and 40°): within ``dead_centre`` of a dead centre nothing is given; below
-        ``transmission_warning`` results come with a note.
+        (default ``dyade.limits.MAX_MEMORY``, 4 GiB): its columns, 8 B per value, and one block.
+    dead_centre_deg, transmission_warning_deg : float, optional
+        The validity policy's hard and soft bands [°] (defaults: the mechanism's, 2° and
+        40°): within ``dead_centre_deg`` of a dead centre nothing is given; below
+        ``transmission_warning_deg`` results come with a note.
     crank_speed, crank_acceleration : float or array_like, optional
         The crank's speed φ̇21 [rad/s] and angular acceleration φ̈21 [rad/s²], one value
         or one per position, instead of the constant speed of the file: the kinematics
@@ -159,6 +181,10 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
         Positions computed at a time (default ``COLLECT_BLOCK``): the results are the
         same to the bit for any block size; larger blocks take more memory besides the
         columns, smaller ones more time per position.
+    **renamed
+        The former names in radians (``start``, ``stop``, ``step``, ``crank_angle``,
+        ``dead_centre``, ``transmission_warning``) are refused with an ``InputError``
+        naming the new one.
 
     Returns
     -------
@@ -168,6 +194,8 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
     ------
     AssemblyError
         A dyad cannot close over part of the sweep (naming the dyad and the ranges).
+    InputError
+        A bad option, naming the parameter and the fix.
 
     Examples
     --------
@@ -177,16 +205,44 @@ def analyse(mechanism: Mechanism, *, start: float | None = None, stop: float | N
     >>> cols["angle_deg"].size, round(float(cols["M_drive"].max()), 3)
     (361, 1.466)
 
+    Every 2° from 90° to 180°:
+
+    >>> dyade.analyse(result.mechanism, start_deg=90, stop_deg=180, step_deg=2).summary()["positions"]
+    46
+
     One position of a crank that speeds up (φ̇21 = 20 rad/s, φ̈21 = 150 rad/s²):
 
-    >>> torque = dyade.analyse(result.mechanism, crank_angle=[0.5], crank_speed=20.0,
+    >>> torque = dyade.analyse(result.mechanism, crank_angle_deg=[30.0], crank_speed=20.0,
     ...                        crank_acceleration=150.0).columns()["M_drive"]
     >>> round(float(torque[0]), 4)
-    0.0378
+    0.0786
     """
+    InputError.refuse_renamed("analyse", renamed, RENAMED)
+    mechanism = sweep_in_degrees(mechanism, start_deg, stop_deg, step_deg)
+    return analyse_si(mechanism, crank_angle=angles_in_degrees(crank_angle_deg),
+                      allow_partial=allow_partial, friction_tol=friction_tol,
+                      friction_max_iter=friction_max_iter, plan=plan, max_memory=max_memory,
+                      dead_centre=radians(dead_centre_deg, "dead_centre_deg"),
+                      transmission_warning=radians(transmission_warning_deg,
+                                                   "transmission_warning_deg"),
+                      crank_speed=crank_speed, crank_acceleration=crank_acceleration,
+                      constant_speed=constant_speed, run_up=run_up, block_size=block_size)
+
+
+def analyse_si(mechanism: Mechanism, *, crank_angle: FloatArray | None = None,
+               allow_partial: bool = False, friction_tol: float | None = None,
+               friction_max_iter: int | None = None, plan: Plan | None = None,
+               max_memory: float | None = None, dead_centre: float | None = None,
+               transmission_warning: float | None = None,
+               crank_speed: FloatArray | float | None = None,
+               crank_acceleration: FloatArray | float | None = None,
+               constant_speed: bool = False, run_up: bool = False,
+               block_size: int | None = None) -> Result:
+    """``analyse`` for the engine's own callers, in SI units: ``crank_angle``,
+    ``dead_centre`` and ``transmission_warning`` [rad]; the sweep is the mechanism's."""
     size = _block_size(block_size, COLLECT_BLOCK)
     mechanism, the_plan = configure(
-        mechanism, start=start, stop=stop, step=step, positions=None if crank_angle is None
+        mechanism, positions=None if crank_angle is None
         else np.size(crank_angle), friction_tol=friction_tol,
         friction_max_iter=friction_max_iter, plan=plan, max_memory=max_memory,
         dead_centre=dead_centre, transmission_warning=transmission_warning,
@@ -227,30 +283,63 @@ def collect(run: Run) -> Result:
 
 
 def analyse_in_blocks(mechanism: Mechanism, *, block_size: int | None = None,
-                      start: float | None = None, stop: float | None = None,
-                      step: float | None = None, allow_partial: bool = False,
+                      start_deg: float | None = None, stop_deg: float | None = None,
+                      step_deg: float | None = None, allow_partial: bool = False,
                       friction_tol: float | None = None, friction_max_iter: int | None = None,
-                      max_memory: float | None = None, dead_centre: float | None = None,
-                      transmission_warning: float | None = None, constant_speed: bool = False,
-                      run_up: bool = False) -> Run:
+                      max_memory: float | None = None, dead_centre_deg: float | None = None,
+                      transmission_warning_deg: float | None = None,
+                      constant_speed: bool = False, run_up: bool = False, **renamed) -> Run:
     """``analyse`` block by block, in memory that does not grow with the number of
-    positions: a ``Run`` to iterate for its ``Block``s of ``block_size`` positions
-    (default ``BLOCK_SIZE``), each with its ``columns``; once they are exhausted,
-    ``run.outcome`` holds the notes and verdicts. The options as for ``analyse``
-    (``max_memory`` bounds what the run needs besides what the caller keeps).
+    positions.
 
+    Iterate over the returned ``Run`` for its ``Block``s of ``block_size`` positions,
+    each with its ``columns``; once they are exhausted, ``run.outcome`` holds the notes
+    and verdicts.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        From ``read_mechanism`` or ``build_mechanism``.
+    block_size : int, optional
+        Positions per block (default ``BLOCK_SIZE``).
+    start_deg, stop_deg, step_deg : float, optional
+        The crank-angle sweep [°], as for ``analyse``.
+    allow_partial, friction_tol, friction_max_iter, dead_centre_deg, transmission_warning_deg, constant_speed, run_up
+        As for ``analyse``.
+    max_memory : float, optional
+        The memory [B] the run may need besides what the caller keeps.
+    **renamed
+        The former names in radians are refused, as by ``analyse``.
+
+    Returns
+    -------
+    Run
+        An iterable of ``Block``; ``run.positions`` the number of positions,
+        ``run.outcome`` the notes and verdicts once every block was taken.
+
+    Examples
+    --------
     >>> import dyade
     >>> run = dyade.analyse_in_blocks(dyade.read_mechanism("mechanisms/fourbar.toml"),
     ...                               block_size=100)
     >>> [block.columns["angle_deg"].size for block in run], run.positions
     ([100, 100, 100, 61], 361)
+
+    The largest drive torque, block by block, without keeping the sweep:
+
+    >>> run = dyade.analyse_in_blocks(dyade.read_mechanism("mechanisms/fourbar.toml"),
+    ...                               block_size=100, step_deg=0.5)
+    >>> round(max(float(block.columns["M_drive"].max()) for block in run), 3)
+    1.466
     """
+    InputError.refuse_renamed("analyse_in_blocks", renamed, RENAMED)
     size = _block_size(block_size, BLOCK_SIZE)
+    mechanism = sweep_in_degrees(mechanism, start_deg, stop_deg, step_deg)
     mechanism, the_plan = configure(
-        mechanism, start=start, stop=stop, step=step, friction_tol=friction_tol,
-        friction_max_iter=friction_max_iter, max_memory=max_memory, dead_centre=dead_centre,
-        transmission_warning=transmission_warning, constant_speed=constant_speed,
-        run_up=run_up, estimate=stream_estimate(size))
+        mechanism, friction_tol=friction_tol, friction_max_iter=friction_max_iter,
+        max_memory=max_memory, dead_centre=radians(dead_centre_deg, "dead_centre_deg"),
+        transmission_warning=radians(transmission_warning_deg, "transmission_warning_deg"),
+        constant_speed=constant_speed, run_up=run_up, estimate=stream_estimate(size))
     return Run(prepare(mechanism, the_plan, allow_partial=allow_partial, run_up=run_up), size)
 
 

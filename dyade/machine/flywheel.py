@@ -17,7 +17,7 @@ interpolant crosses zero.
 >>> import numpy as np
 >>> theta = np.deg2rad(np.arange(0.0, 360.0, 1.0))        # one revolution
 >>> engine = 10000 + 2000 * np.sin(2 * theta) - 1800 * np.cos(2 * theta)   # [N·m]
->>> curve = torque_curve(theta, engine, speed=250 * np.pi / 30)   # against a constant load
+>>> curve = excess_curve(theta, engine, speed=250 * np.pi / 30)   # against a constant load
 >>> result = size_flywheel(curve, 0.005)
 >>> round(result.power / 1e3, 3), round(result.delta_energy, 3), round(result.flywheel, 2)
 (261.799, 2690.725, 785.17)
@@ -85,14 +85,19 @@ class Flywheel:
     """what the numbers rest on: assumptions, a flywheel not needed, a rough estimate"""
 
 
-def torque_curve(angle, drive, load=None, *, speed: float, machine_inertia: float = 0.0,
-                 source: str = "") -> TorqueCurve:
+RENAMED = {"angle": "angle_deg", "speed": "speed_rpm"}
+"""former parameter names of ``torque_curve`` and ``read_torque_curve`` (SI) -> the
+names that carry the unit"""
+
+
+def torque_curve(angle_deg, drive, load=None, *, speed_rpm: float | None = None,
+                 machine_inertia: float = 0.0, source: str = "", **renamed) -> TorqueCurve:
     """A torque curve from a driving torque and, optionally, a load torque.
 
     Parameters
     ----------
-    angle : array_like
-        Crank angles φ [rad] of one revolution, rising (a last value 2π after the first
+    angle_deg : array_like
+        Crank angles φ [°] of one revolution, rising (a last value 360° after the first
         repeats it and is dropped).
     drive : array_like
         The torque driving the crank shaft (an engine's turning moment) [N·m].
@@ -100,17 +105,62 @@ def torque_curve(angle, drive, load=None, *, speed: float, machine_inertia: floa
         The load torque on the crank shaft [N·m], positive where it drives the machine
         (as dyade's ``M_load``): a resisting load is negative. Default: a constant load
         equal to the mean drive torque.
-    speed : float
-        The mean crank speed Ω [rad/s].
+    speed_rpm : float
+        The mean crank speed [rpm].
     machine_inertia : float
         The machine's own mean reduced inertia [kg·m²].
+    source : str
+        Where the curve came from, for reports.
+    **renamed
+        The former ``angle`` [rad] and ``speed`` [rad/s] are refused with an
+        ``InputError`` naming ``angle_deg`` and ``speed_rpm``.
+
+    Returns
+    -------
+    TorqueCurve
+        In SI units (its ``angle`` [rad], ``speed`` [rad/s]).
 
     Raises
     ------
     InputError
         The angles do not cover one revolution, or drive and load do not balance on
         average (no periodic state), naming the parameter.
+
+    Examples
+    --------
+    An engine's turning moment against a constant load, at 250 rpm:
+
+    >>> import numpy as np, dyade
+    >>> angle = np.arange(0.0, 360.0, 1.0)
+    >>> engine = 10000 + 2000 * np.sin(np.deg2rad(2 * angle))     # [N·m]
+    >>> curve = dyade.torque_curve(angle, engine, speed_rpm=250)
+    >>> round(dyade.size_flywheel(curve, 0.005).flywheel, 1)    # [kg·m²]
+    583.6
     """
+    InputError.refuse_renamed("torque_curve", renamed, RENAMED)
+    if speed_rpm is None:
+        raise InputError.parameter("speed_rpm", "is needed: the mean crank speed [rpm].",
+                                   unit="rpm")
+    try:
+        angle = np.deg2rad(np.asarray(angle_deg, dtype=np.float64))
+        speed = float(speed_rpm) * math.pi / 30.0
+    except (TypeError, ValueError):
+        raise InputError.parameter(("angle_deg", "speed_rpm"), "must be numbers [°], [rpm]."
+                                   ) from None
+    try:
+        return excess_curve(angle, drive, load, speed=speed, machine_inertia=machine_inertia,
+                            source=source)
+    except InputError as err:
+        raise err.naming({"angle": "angle_deg", "speed": "speed_rpm", "load": "load",
+                          "machine_inertia": "machine_inertia"}) from None
+
+
+def excess_curve(angle, drive, load=None, *, speed: float, machine_inertia: float = 0.0,
+                 source: str = "") -> TorqueCurve:
+    """``torque_curve`` in SI units, for the engine's own callers: ``angle`` [rad] of one
+    revolution, rising (a last value 2π after the first repeats it and is dropped),
+    ``speed`` Ω [rad/s]; ``drive``, ``load``, ``machine_inertia`` and ``source`` as
+    there. Errors name these parameters."""
     angle, drive = _revolution(angle, drive, "angle")
     if not (math.isfinite(speed) and speed != 0.0):
         raise InputError.parameter("speed", f"must be a finite, non-zero speed [rad/s], got "
@@ -257,6 +307,20 @@ def size_flywheel(curve: TorqueCurve, fluctuation: float) -> Flywheel:
         ``dyade.linkage.drive.torque_curve`` (a mechanism).
     fluctuation : float
         δ = (ω_max − ω_min)/ω_mean [-], e.g. 0.02.
+
+    Returns
+    -------
+    Flywheel
+        ``delta_energy`` ΔE [J], ``flywheel`` J_F [kg·m²], the angles of the highest and
+        lowest speed, and notes on what the estimate rests on.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> curve = dyade.read_torque_curve("mechanisms/torque/engine.csv", speed_rpm=250)
+    >>> flywheel = dyade.size_flywheel(curve, 0.005)
+    >>> round(flywheel.delta_energy, 3), round(flywheel.flywheel, 3)    # [J], [kg·m²]
+    (2690.725, 785.167)
     """
     if not (math.isfinite(fluctuation) and fluctuation > 0.0):
         raise InputError.parameter("fluctuation", f"must be a positive number [-], got "
@@ -274,11 +338,26 @@ def size_flywheel(curve: TorqueCurve, fluctuation: float) -> Flywheel:
 
 
 def speed_fluctuation(curve: TorqueCurve, inertia: float) -> Flywheel:
-    """The speed fluctuation δ ≈ ΔE/((J_F + J_machine)·Ω²) with a flywheel of ``inertia``
-    J_F [kg·m²] on the crank shaft.
+    """The speed fluctuation δ ≈ ΔE/((J_F + J_machine)·Ω²) with a flywheel on the crank
+    shaft.
+
+    Parameters
+    ----------
+    curve : TorqueCurve
+        From ``torque_curve``, ``read_torque_curve`` or ``mechanism_torque_curve``.
+    inertia : float
+        The flywheel's moment of inertia J_F [kg·m²], ≥ 0.
+
+    Returns
+    -------
+    Flywheel
+        With the resulting ``fluctuation`` δ [-].
+
+    Examples
+    --------
 
     >>> import dyade
-    >>> curve = dyade.read_torque_curve("mechanisms/torque/engine.csv", speed=250 * math.pi / 30)
+    >>> curve = dyade.read_torque_curve("mechanisms/torque/engine.csv", speed_rpm=250)
     >>> round(dyade.speed_fluctuation(curve, 1000.0).fluctuation, 6)
     0.003926
     """
@@ -301,32 +380,43 @@ def speed_fluctuation(curve: TorqueCurve, inertia: float) -> Flywheel:
     return _result(curve, inertia, fluctuation, [])
 
 
-def read_torque_curve(path: str | os.PathLike, *, speed: float | None = None,
-                      text: str | None = None) -> TorqueCurve:
+def read_torque_curve(path: str | os.PathLike, *, speed_rpm: float | None = None,
+                      text: str | None = None, **renamed) -> TorqueCurve:
     """The torque curve of a CSV file with columns ``angle_deg`` and ``M_drive`` [N·m] and
     optionally ``M_load`` [N·m] (positive where it drives; default a constant load equal
     to the mean drive torque).
 
     A CSV written by ``dyade analyse`` (it has ``dJ_red``) is a machine's drive torque at
     constant speed, with its loads already in it: it is read as by ``machine_curve``, with
-    the machine's mean ``J_red`` and, unless ``speed`` is given, its crank speed.
+    the machine's mean ``J_red`` and, unless ``speed_rpm`` is given, its crank speed.
 
     Parameters
     ----------
-    speed : float, optional
-        The mean crank speed Ω [rad/s]; required unless the file is dyade's.
+    path : str or os.PathLike
+        The CSV file.
+    speed_rpm : float, optional
+        The mean crank speed [rpm]; required unless the file is dyade's.
     text : str, optional
         The file's content, when already read (standard input); ``path`` names it.
+    **renamed
+        The former ``speed`` [rad/s] is refused with an ``InputError`` naming
+        ``speed_rpm``.
+
+    Returns
+    -------
+    TorqueCurve
 
     Examples
     --------
     >>> import dyade
-    >>> curve = dyade.read_torque_curve("mechanisms/torque/engine.csv", speed=250 * math.pi / 30)
+    >>> curve = dyade.read_torque_curve("mechanisms/torque/engine.csv", speed_rpm=250)
     >>> curve.angle.size, round(curve.mean_torque, 6)     # 0°…359°: 360° repeats 0°
     (360, 10000.0)
     """
     from dyade.files.torque_curve import load_columns
 
+    InputError.refuse_renamed("read_torque_curve", renamed, RENAMED)
+    speed = None if speed_rpm is None else speed_rpm * math.pi / 30.0
     path = os.fspath(path)
     label = os.path.basename(path)
     columns = load_columns(path, text)
@@ -335,8 +425,8 @@ def read_torque_curve(path: str | os.PathLike, *, speed: float | None = None,
         if speed is None:
             omega = columns.get("omega_2")
             if omega is None or not np.all(np.isfinite(omega)):
-                raise InputError.parameter("speed", "is needed: the file has no crank speed "
-                                                    "omega_2.", unit="rad/s")
+                raise InputError.parameter("speed_rpm", "is needed: the file has no crank "
+                                                        "speed omega_2.", unit="rpm")
             speed = float(np.mean(omega))
         inertia = cycle_mean(*_revolution(angle, columns["J_red"], "angle"))
         curve = machine_curve(angle, columns["M_drive"], speed=speed, machine_inertia=inertia,
@@ -346,7 +436,7 @@ def read_torque_curve(path: str | os.PathLike, *, speed: float | None = None,
                                "a dyade analyse CSV: M_drive is the machine's need at constant "
                                "speed, its loads included",))
     if speed is None:
-        raise InputError.parameter("speed", "is needed with a torque CSV: the mean crank speed.",
-                                   unit="rad/s")
-    return torque_curve(angle, columns["M_drive"], columns.get("M_load"), speed=speed,
+        raise InputError.parameter("speed_rpm", "is needed with a torque CSV: the mean crank "
+                                                "speed.", unit="rpm")
+    return excess_curve(angle, columns["M_drive"], columns.get("M_load"), speed=speed,
                         source=label)

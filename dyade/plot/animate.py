@@ -5,6 +5,10 @@ GIF through matplotlib's PillowWriter (``dyade.plot.canvas.save_frames``).
 
 from __future__ import annotations
 
+from dyade.plot import require
+
+require()  # before matplotlib: without the plot extra, the install hint
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -41,9 +45,23 @@ class Animation:
 def animation(result, *, fig: Figure | None = None) -> Animation:
     """The mechanism of ``result`` ready to be animated over its reported positions.
 
+    Parameters
+    ----------
+    result : Result
+        A sweep (``dyade.analyse``): one frame per reported position.
+    fig : Figure, optional
+        A figure to draw on (a window's; default: a new one).
+
+    Returns
+    -------
+    Animation
+        ``count`` frames; ``update(k)`` draws frame k; ``save`` writes a GIF.
+
+    Examples
+    --------
     >>> import dyade
     >>> from dyade.plot.animate import animation
-    >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/slotted-lever.toml"), step=0.5)
+    >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/slotted-lever.toml"), step_deg=30)
     >>> motion = animation(result)
     >>> motion.count, [artist.get_gid() for artist in motion.update(3)][:2]
     (13, ['link-2', None])
@@ -62,7 +80,30 @@ def animation(result, *, fig: Figure | None = None) -> Animation:
 
 
 def save(motion: Animation, path: str, fps: float = FPS, dpi: int = DPI) -> None:
-    """Write the animation as a GIF (``path`` ends in .gif)."""
+    """Write the animation as a GIF.
+
+    Parameters
+    ----------
+    motion : Animation
+        From ``animation``.
+    path : str
+        The file, ending in .gif (written beside and renamed when complete).
+    fps : float
+        Frames per second.
+    dpi : int
+        Dots per inch of the frames.
+
+    Examples
+    --------
+    >>> import tempfile, dyade
+    >>> from pathlib import Path
+    >>> from dyade.plot import animate
+    >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/scotch-yoke.toml"), step_deg=90)
+    >>> path = Path(tempfile.mkdtemp()) / "yoke.gif"
+    >>> animate.save(animate.animation(result), str(path), fps=4, dpi=30)
+    >>> path.read_bytes()[:6]
+    b'GIF89a'
+    """
     canvas.save_frames(motion.figure, motion.update, motion.count, path, fps, dpi)
 
 

@@ -17,6 +17,10 @@ strongest crossings are labelled with their mode and speed.
 
 from __future__ import annotations
 
+from dyade.plot import require
+
+require()  # before matplotlib: without the plot extra, the install hint
+
 import math
 
 import numpy as np

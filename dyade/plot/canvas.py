@@ -10,6 +10,10 @@ pyplot figure for a window); nothing touches pyplot's global state but ``window`
 
 from __future__ import annotations
 
+from dyade.plot import require
+
+require()  # before matplotlib: without the plot extra, the install hint
+
 import math
 import os
 from contextlib import contextmanager
@@ -82,12 +86,26 @@ def style() -> Iterator[None]:
         yield
 
 
+class Drawing(Figure):
+    """A matplotlib ``Figure`` that shows itself in a notebook: IPython's rich display
+    takes its PNG (``_repr_png_``), without pyplot or a ``%matplotlib`` magic, as the
+    figures are built with the object API.
+
+    >>> png = Drawing(figsize=(1, 1))._repr_png_()
+    >>> png[:4]
+    b'\\x89PNG'
+    """
+
+    def _repr_png_(self) -> bytes:
+        return render(self, "png")
+
+
 def new(width: float, height: float, fig: Figure | None = None,
         layout: str | None = "constrained") -> Figure:
     """A figure of ``width`` × ``height`` [in], laid out by the constrained engine (or
     by hand: ``layout=None``); ``fig`` (a window's figure) is reused when given."""
     if fig is None:
-        return Figure(figsize=(width, height), layout=layout)
+        return Drawing(figsize=(width, height), layout=layout)
     fig.set_size_inches(width, height)
     fig.set_layout_engine(layout or "none")
     return fig
@@ -157,8 +175,30 @@ def render(fig: Figure, fmt: str, dpi: int = 100) -> bytes:
 
 
 def save(fig: Figure, path: str, dpi: int = 100) -> None:
-    """Write the figure in the format of the path's suffix (.png, .svg, .pdf): to a
-    temporary file beside it, renamed when complete."""
+    """Write the figure in the format of the path's suffix: to a temporary file beside
+    it, renamed when complete. The same figure gives the same bytes (no dates or
+    versions in the file).
+
+    Parameters
+    ----------
+    fig : Figure
+        From one of ``dyade.plot``'s ``figure`` functions.
+    path : str
+        The file: .png, .svg or .pdf.
+    dpi : int
+        Dots per inch (PNG).
+
+    Examples
+    --------
+    >>> import tempfile, dyade
+    >>> from pathlib import Path
+    >>> from dyade.plot import canvas, curves
+    >>> fig = curves.figure(dyade.analyse(dyade.read_mechanism("mechanisms/fourbar.toml")))
+    >>> path = Path(tempfile.mkdtemp()) / "fourbar.svg"
+    >>> canvas.save(fig, str(path))
+    >>> "<svg" in path.read_text()
+    True
+    """
     data = render(fig, suffix(path), dpi)
     with _atomic(path) as temporary:
         with open(temporary, "wb") as handle:

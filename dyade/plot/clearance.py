@@ -10,6 +10,10 @@ the contact force of the two-mass model over time next to eq. (26) and the rigid
 
 from __future__ import annotations
 
+from dyade.plot import require
+
+require()  # before matplotlib: without the plot extra, the install hint
+
 from typing import NamedTuple
 
 import numpy as np

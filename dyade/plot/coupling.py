@@ -11,6 +11,10 @@ left out and the gap is labelled ∞.
 
 from __future__ import annotations
 
+from dyade.plot import require
+
+require()  # before matplotlib: without the plot extra, the install hint
+
 import numpy as np
 from matplotlib.figure import Figure
 

@@ -12,6 +12,10 @@ dead-centre band; by default, both.
 
 from __future__ import annotations
 
+from dyade.plot import require
+
+require()  # before matplotlib: without the plot extra, the install hint
+
 import numpy as np
 from matplotlib.figure import Figure
 

@@ -13,6 +13,10 @@ points. Pins sit at the joint positions of the CSV (``x_i_j``, ``y_i_j``).
 
 from __future__ import annotations
 
+from dyade.plot import require
+
+require()  # before matplotlib: without the plot extra, the install hint
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -341,43 +345,49 @@ def _ground(ax, at: np.ndarray, height: float, gid: str) -> None:
             zorder=2)
 
 
-def figure(result, at=None, *, fig: Figure | None = None) -> Figure:
-    """The linkage at crank angles ``at`` [rad], one panel each, over the paths of its
+def figure(result, *, at_deg=None, fig: Figure | None = None, **renamed) -> Figure:
+    """The linkage at crank angles ``at_deg`` [°], one panel each, over the paths of its
     named points traced over the sweep of ``result``.
 
     Parameters
     ----------
     result : Result
         A sweep (``dyade.analyse``): the paths and the common scale of the panels.
-    at : iterable of float, optional
-        Crank angles [rad] (default: four positions spread over a full turn, else the
+    at_deg : iterable of float, optional
+        Crank angles [°] (default: four positions spread over a full turn, else the
         sweep's start, middle and end).
     fig : Figure, optional
         A figure to draw on (default: a new one).
+    **renamed
+        The former ``at`` [rad] is refused with an ``InputError`` naming ``at_deg``.
 
     Raises
     ------
     AssemblyError
-        The linkage cannot close at one of the angles ``at``.
+        The linkage cannot close at one of the angles ``at_deg``.
 
     Examples
     --------
     >>> import dyade
     >>> from dyade.plot import mechanism
     >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/fourbar.toml"))
-    >>> [ax.get_title() for ax in mechanism.figure(result, [0.0, 1.5707963267948966]).axes]
+    >>> [ax.get_title() for ax in mechanism.figure(result, at_deg=[0, 90]).axes]
     ['φ21 = 0°', 'φ21 = 90°']
     """
+    from dyade.errors import InputError
+    from dyade.linkage.options import angles_in_degrees
     from dyade.linkage.plan import Plan
-    from dyade.linkage.sweep import analyse
+    from dyade.linkage.sweep import analyse_si
 
+    InputError.refuse_renamed("mechanism.figure", renamed, {"at": "at_deg"})
+    at = angles_in_degrees(at_deg, "at_deg")
     if at is None:
         angle = result.crank_angle[result.rows]
         span = angle[-1] - angle[0]
         full = span >= 2 * np.pi - 1.5 * result.mechanism.sweep.step
         at = angle[0] + span * (np.arange(4) / 4 if full else np.arange(3) / 2)
     at = np.atleast_1d(np.asarray(at, dtype=float))
-    placed = geometry(result, analyse(result.mechanism, crank_angle=at, plan=Plan()))
+    placed = geometry(result, analyse_si(result.mechanism, crank_angle=at, plan=Plan()))
     rows, columns = canvas.grid(len(at), 3 if len(at) == 3 else 2)
     with canvas.style():
         fig = canvas.new(PANEL * columns, (panel_height(placed) + 0.5) * rows + 0.3, fig)

@@ -16,6 +16,10 @@ entry is +1. In the torsional model (rx only) the rotation itself is normalised.
 
 from __future__ import annotations
 
+from dyade.plot import require
+
+require()  # before matplotlib: without the plot extra, the install hint
+
 from dataclasses import dataclass
 
 import numpy as np

@@ -10,11 +10,16 @@ gaps where the forces are not given.
 
 from __future__ import annotations
 
+from dyade.plot import require
+
+require()  # before matplotlib: without the plot extra, the install hint
+
 import numpy as np
 from matplotlib.figure import Figure
 
 from dyade.errors import InputError
-from dyade.linkage.joint_clearance import MAX_WANDER, force_lines
+from dyade.linkage.joint_clearance import MAX_WANDER_DEG, force_lines
+from dyade.linkage.options import radians
 from dyade.plot import canvas
 
 MARK_EVERY = 30.0  # [°] crank-angle marks along the curve
@@ -44,8 +49,8 @@ def _at(angle: np.ndarray, values: np.ndarray, wanted: np.ndarray) -> np.ndarray
     return np.where(exact, values[index], between)
 
 
-def figure(result, joints=None, *, max_wander: float = MAX_WANDER,
-           fig: Figure | None = None) -> Figure:
+def figure(result, joints=None, *, max_wander_deg: float = MAX_WANDER_DEG,
+           fig: Figure | None = None, **renamed) -> Figure:
     """Polar diagrams of revolute joints' forces.
 
     Parameters
@@ -54,11 +59,14 @@ def figure(result, joints=None, *, max_wander: float = MAX_WANDER,
         An analysis with joint forces (``dyade.analyse``).
     joints : iterable of (int, int), optional
         The revolute joints, one panel each (default: every revolute joint).
-    max_wander : float
-        How far [rad] a force may leave its line of action for reversals to be given
+    max_wander_deg : float
+        How far [°] a force may leave its line of action for reversals to be given
         (as ``dyade clearance --max-wander``).
     fig : Figure, optional
         A figure to draw on (default: a new one).
+    **renamed
+        The former ``max_wander`` [rad] is refused with an ``InputError`` naming
+        ``max_wander_deg``.
 
     Examples
     --------
@@ -76,10 +84,11 @@ def figure(result, joints=None, *, max_wander: float = MAX_WANDER,
     joint (1,2): force on link 2
     no reversals: the force turns 87° off its line
     """
+    InputError.refuse_renamed("polar.figure", renamed, {"max_wander": "max_wander_deg"})
     if result.forces is None:
         raise InputError("joint-force polar diagrams need joint forces: the mechanism has no "
                          "masses, loads or springs (add mass data, see mechanisms/README.md).")
-    lines = force_lines(result, joints, max_wander=max_wander)
+    lines = force_lines(result, joints, max_wander=radians(max_wander_deg, "max_wander_deg"))
     cols = result.columns()
     rows, columns = canvas.grid(len(lines))
     with canvas.style():

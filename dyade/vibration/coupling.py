@@ -122,7 +122,27 @@ class Response:
 def response(coupling: Coupling, eta: FloatArray) -> Response:
     """Phasor solution at the tuning ratios ``eta`` = Ω/ω_t [-] (vectorised): transfer
     functions V_φ, V_ψ, V_q, V_r (eqs. (4), (7)-(9)), phases α, β, γ, δ (true quadrant)
-    and the phasors per unit exciting moment; unbounded where undamped at resonance."""
+    and the phasors per unit exciting moment; unbounded where undamped at resonance.
+
+    Parameters
+    ----------
+    coupling : Coupling
+        From ``Coupling(...)`` or ``read_coupling``.
+    eta : array_like
+        Tuning ratios η = Ω/ω_t [-], ≥ 0.
+
+    Returns
+    -------
+    Response
+        ``transfer`` (V_phi, V_psi, V_q, V_r) and ``phase`` per η.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> coupling = dyade.Coupling(1.0, 1.0, 1.0, 0.05, 0.05)
+    >>> response = dyade.coupling_response(coupling, [0.0, 0.7071, 2.0])
+    >>> [round(float(v), 3) for v in response.transfer["V_phi"]]   # peak near η0 = √(1 − κ)
+    [2.0, 40.0, 0.286]"""
     eta = np.asarray(eta, dtype=np.float64)
     if np.any(eta < 0.0) or not np.all(np.isfinite(eta)):
         raise InputError.parameter("eta", "(tuning ratios η) must be finite and not negative.")
@@ -205,7 +225,24 @@ class OperatingPoints:
 
 
 def operating_points(coupling: Coupling, speeds_rpm, *, order: float = 1.0) -> OperatingPoints:
-    """The coupling's response at operating speeds [rpm] for an excitation ``order``.
+    """The coupling's response at operating speeds for an excitation ``order``.
+
+    Parameters
+    ----------
+    coupling : Coupling
+        From ``Coupling(...)`` or ``read_coupling``.
+    speeds_rpm : iterable of float
+        Shaft speeds [rpm], positive.
+    order : float
+        Excitation order: pulses per revolution (Ω = order · 2π·speed/60).
+
+    Returns
+    -------
+    OperatingPoints
+        The speeds' tuning ratios η and the responses there.
+
+    Examples
+    --------
 
     >>> from dyade.vibration.coupling import Coupling, operating_points
     >>> points = operating_points(Coupling(1.0, 1.0, 1.0, 0.05, 0.05), [6.0], order=2)

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import dyade
+from dyade.linkage.sweep import analyse_si
 from dyade.files import mechanism as toml_input
 from dyade.linkage import friction, kinematics, kinetostatics
 from tests.benchmarks.test_benchmarks import _angles, _with_friction
@@ -40,7 +41,7 @@ def test_engine(benchmark, name, count):
                 else kinetostatics.solve(mechanism, kin))
 
     forces = benchmark(engine)
-    columns = dyade.analyse(mechanism, crank_angle=angles).columns()
+    columns = analyse_si(mechanism, crank_angle=angles).columns()
     given = forces.valid
     assert np.array_equal(columns["M_drive"][given], forces.drive_torque[given])
 
@@ -50,5 +51,5 @@ def test_engine(benchmark, name, count):
 def test_api_columns(benchmark, name, count):
     mechanism, _ = _case(name)
     angles = _angles(count)
-    columns = benchmark(lambda: dyade.analyse(mechanism, crank_angle=angles).columns())
+    columns = benchmark(lambda: analyse_si(mechanism, crank_angle=angles).columns())
     assert columns["angle_deg"].size == count

@@ -48,7 +48,7 @@ def _with_friction(mechanism, mu=0.1, edges=True):
 def test_full_analysis(benchmark, name, count):
     mechanism = toml_input.read_mechanism(shipped(name))
     angles = _angles(count)
-    result = benchmark(lambda: analysis.analyse(mechanism, crank_angle=angles).columns())
+    result = benchmark(lambda: analysis.analyse_si(mechanism, crank_angle=angles).columns())
     assert "M_drive" in result
 
 
@@ -180,7 +180,7 @@ def test_command(benchmark, command):
 
 def _dyade16_columns():
     mechanism = toml_input.read_mechanism(shipped("dyade-16.toml"))
-    return analysis.analyse(mechanism, step=np.deg2rad(0.1)).columns()
+    return analysis.analyse(mechanism, step_deg=0.1).columns()
 
 
 @pytest.mark.parametrize("writer", ["row by row (before issue 17)", "blocks"])

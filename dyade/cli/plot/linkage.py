@@ -111,7 +111,7 @@ def polar(mechanism_files, start, stop, step, assignments, allow_partial, joints
         from dyade.plot import polar as figure
 
         with flags({"joints": "--joint"}):
-            return figure.figure(result, chosen, max_wander=math.radians(max_wander), fig=fig)
+            return figure.figure(result, chosen, max_wander_deg=max_wander, fig=fig)
 
     run_linkage("polar", mechanism_files, output, fmt, show, dpi,
                  (SweepOptions(start, stop, step), assignments, allow_partial), static(build))
@@ -150,7 +150,7 @@ def _angles(texts: tuple[str, ...]) -> list[float] | None:
                                  f"{' '.join(texts)!r}.", param_hint="--at") from None
     if not all(math.isfinite(v) for v in values):
         raise click.BadParameter("crank angles must be finite numbers.", param_hint="--at")
-    return [math.radians(v) for v in values] or None
+    return values or None
 
 
 @click.command()
@@ -170,7 +170,7 @@ def mechanism(mechanism_files, start, stop, step, assignments, allow_partial, at
     def build(result, fig):
         from dyade.plot import mechanism as figure
 
-        return figure.figure(result, angles, fig=fig)
+        return figure.figure(result, at_deg=angles, fig=fig)
 
     run_linkage("mechanism", mechanism_files, output, fmt, show, dpi,
                  (SweepOptions(start, stop, step), assignments, allow_partial), static(build))

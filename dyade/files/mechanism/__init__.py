@@ -39,7 +39,9 @@ def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = N
         The TOML file (``mechanisms/README.md`` documents every key).
     overrides : dict, optional
         Dotted key path -> value, replacing keys of the file as ``--set`` does
-        (``{"crank.speed_rpm": 600}``; array entries by 1-based index).
+        (``{"crank.speed_rpm": 600}``). Array entries go by their number: links and
+        loads from 1, dyads as in DYADE from 2 (the crank is dyad 1, the first
+        ``[[dyad]]`` table dyad 2): ``{"dyad.2.length": 0.2}``.
 
     Returns
     -------
@@ -50,12 +52,51 @@ def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = N
     ------
     InputError
         Naming the file and the key path, what was expected and what was found.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> fourbar = dyade.read_mechanism("mechanisms/fourbar.toml")
+    >>> fourbar.name, [dyad.number for dyad in fourbar.dyads]
+    ('Four-bar crank-rocker', [2])
+    >>> faster = dyade.read_mechanism("mechanisms/fourbar.toml", {"crank.speed_rpm": 600})
+    >>> round(faster.crank.speed, 3)     # [rad/s]
+    62.832
+    >>> longer = dyade.read_mechanism("mechanisms/slider-crank.toml", {"dyad.2.length": 200})
+    >>> stroke = dyade.analyse(longer).columns()["s_1_4"]     # [m]
+    >>> round(float(stroke.max() - stroke.min()), 4)
+    0.0801
     """
     return build(load_data(path, overrides), path)
 
 
 def build(data: dict[str, Any], path: str | os.PathLike | None = None) -> Mechanism:
-    """Validate mechanism data (the parsed TOML of a mechanism file, or the same
-    structure written in Python) and build the mechanism; errors name ``path``."""
+    """Validate mechanism data and build the mechanism.
+
+    Parameters
+    ----------
+    data : dict
+        The parsed TOML of a mechanism file, or the same structure written in Python:
+        the keys of the file reference, lengths in ``units`` (default mm), angles in
+        degrees.
+    path : str or os.PathLike, optional
+        The file the data came from, named in errors.
+
+    Returns
+    -------
+    Mechanism
+        In SI units, validated.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> slider_crank = dyade.build_mechanism({
+    ...     "crank": {"length": 0.05, "speed_rpm": 600}, "units": {"length": "m"},
+    ...     "dyad": [{"kind": "RRP", "links": [3, 4], "length": 0.2,
+    ...               "A": {"link": 2, "point": "tip"}, "C": {"link": 1, "angle": 0}}]})
+    >>> stroke = dyade.analyse(slider_crank).columns()["s_1_4"]     # [m]
+    >>> round(float(stroke.max() - stroke.min()), 6)
+    0.1
+    """
     path = os.fspath(path) if path else None
     return Reader(os.path.basename(path) if path else "mechanism", path).mechanism(data)

@@ -13,13 +13,6 @@ strain-energy share in the elastic meshes, and, for a mesh line, the mode's moda
 stiffness F²/ω² [N/m] at that mesh (``Modes.mesh_stiffness``): the dynamic mesh force a
 unit transmission error drives at that resonance is F²/(2ζ·ω²), so it ranks crossings also
 for ideal meshes, which store no strain energy.
-
->>> import dyade
->>> drive = dyade.read_gears("mechanisms/gears/two-stage.toml")
->>> diagram = dyade.campbell(drive, range(0, 3001, 10))
->>> first = diagram.crossings[0]
->>> first.order, round(first.speed_rpm), first.mode
-('stage1 ×3', 79, 1)
 """
 
 from __future__ import annotations
@@ -177,6 +170,15 @@ def campbell(drive: GearDrive, speeds_rpm, *, harmonics: int = 3,
     -------
     Campbell
         The lines at every speed and the crossings (resonance speeds) in the range.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> drive = dyade.read_gears("mechanisms/gears/two-stage.toml")
+    >>> diagram = dyade.campbell(drive, range(0, 3001, 10))
+    >>> first = diagram.crossings[0]
+    >>> first.order, round(first.speed_rpm), first.mode
+    ('stage1 ×3', 79, 1)
     """
     speeds = np.asarray(speeds_rpm, dtype=float)
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(

@@ -13,12 +13,6 @@ constrained drive's n − l − r elastic eigenvalues, its r rigid-body zeros, a
 zero per mesh, whose eigenvectors violate the constraint (they are the motions the
 eliminated form no longer resists). ``check`` solves it with ``numpy.linalg.eig`` and
 reports these zeros separately from the rigid-body modes.
-
->>> import dyade
->>> from dyade.vibration.gears.elimination import check
->>> result = check(dyade.read_gears("mechanisms/gears/two-stage.toml"))
->>> result.extra_zeros, result.rigid_zeros, result.difference < 1e-9
-(2, 1, True)
 """
 
 from __future__ import annotations
@@ -87,6 +81,14 @@ def check(drive: GearDrive | System, modes: Modes | None = None) -> Elimination:
     ------
     DyadeError
         When the zero eigenvalues cannot be told from the elastic ones.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> drive = dyade.read_gears("mechanisms/gears/two-stage.toml")
+    >>> result = dyade.check_elimination(drive)
+    >>> result.extra_zeros, result.rigid_zeros, result.difference < 1e-9
+    (2, 1, True)
     """
     system = drive if isinstance(drive, System) else assemble(drive)
     modes = modes if modes is not None else gear_modes(system)

@@ -261,7 +261,13 @@ class GearDrive:
     """A gear drive as a gear-drive file describes it (SI, validated).
 
     ``model`` is "rfe" (six coordinates per body, the paper's model) or "torsional" (one
-    rotation per body, shafts as torsion springs, meshes by the gear ratio)."""
+    rotation per body, shafts as torsion springs, meshes by the gear ratio).
+
+    >>> import dyade
+    >>> drive = dyade.read_gears("mechanisms/gears/two-stage.toml")
+    >>> drive.name, drive.model, len(drive.bodies), len(drive.meshes)
+    ('Two-stage spur drive', 'rfe', 6, 2)
+    """
 
     name: str
     bodies: tuple[Body, ...]

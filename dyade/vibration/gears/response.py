@@ -16,12 +16,6 @@ positive: F = −λ), the bearing forces from the bearings' stiffness and dampin
 
 Statics (ω = 0) needs balanced loads when the drive can turn freely: torques that would
 spin a rigid-body mode are refused.
-
->>> import dyade
->>> drive = dyade.read_gears("mechanisms/gears/two-stage.toml")
->>> response = dyade.gear_response(drive, [50.0, 100.0])
->>> [round(float(abs(f))) for f in response.mesh_forces[:, 0]]      # stage 1 [N]
-[100, 122]
 """
 
 from __future__ import annotations
@@ -136,6 +130,14 @@ def gear_response(drive: GearDrive | System, frequencies, *, coordinates=None,
     -------
     Response
         Complex amplitudes of the coordinates, dynamic mesh forces and support forces.
+
+    Examples
+    --------
+    >>> import dyade
+    >>> drive = dyade.read_gears("mechanisms/gears/two-stage.toml")
+    >>> response = dyade.gear_response(drive, [50.0, 100.0])
+    >>> [round(float(abs(f))) for f in response.mesh_forces[:, 0]]      # stage 1 [N]
+    [100, 122]
     """
     system = drive if isinstance(drive, System) else assemble(drive)
     freq = np.atleast_1d(np.asarray(frequencies, dtype=float))
