@@ -238,7 +238,7 @@ MODULES = read_tree(ROOT, PACKAGE)
 CLI = ("dyade.cli",)
 REPORT = ("dyade.report",)
 PLOT = ("dyade.plot",)
-BASE = ("dyade.files", "dyade.units", "dyade.errors", "dyade.arrays")
+BASE = ("dyade.files", "dyade.units", "dyade.errors", "dyade.arrays", "dyade.limits")
 PLOTTING = ("matplotlib",)
 
 FACADE = "dyade"
