@@ -11,7 +11,8 @@ import click
 
 from dyade.cli.batch import batch
 from dyade.cli.common import SweepOptions, load, sweep, warn
-from dyade.cli.options import FINITE, MECHANISM_FILE, POSITIVE, max_memory_option, set_option
+from dyade.cli.options import (FINITE, MECHANISM_FILE, POSITIVE, Renamed, max_memory_option,
+                               set_option)
 from dyade.limits import check_memory
 from dyade.cli.output import console, flags
 from dyade.cli.plot.output import (FORMATS, Target, emit, figure_for, output_options, prepare, stem,
@@ -119,9 +120,11 @@ def polar(mechanism_files, start, stop, step, assignments, allow_partial, joints
 
 @click.command()
 @linkage_options
-@click.option("--y", "quantities", multiple=True, metavar="NAME,...",
-              help="Columns to draw against the crank angle, as named in the CSV: --y "
-                   "M_drive,F_2_3 (repeatable); columns of one unit share a panel. Default: "
+@click.option("--columns", "quantities", cls=Renamed, old=("--y",), multiple=True,
+              metavar="NAME,...",
+              help="Columns to draw against the crank angle, as named in the CSV (as "
+                   "`dyade analyse --columns`): --columns M_drive,F_2_3 (repeatable); columns "
+                   "of one unit share a panel. Default: "
                    "the drive torque with its mean and energy surplus, and the transmission "
                    "angles.")
 @output_options()
@@ -135,7 +138,7 @@ def curves(mechanism_files, start, stop, step, assignments, allow_partial, quant
     def build(result, fig):
         from dyade.plot import curves as figure
 
-        with flags({"quantities": "--y"}):
+        with flags({"quantities": "--columns"}):
             return figure.figure(result, names or None, fig=fig)
 
     run_linkage("curves", mechanism_files, output, fmt, show, dpi,
