@@ -27,11 +27,18 @@ The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``
   ``read_torque_curve(path, *, speed_rpm=None)``, ``size_flywheel(curve, fluctuation)``,
   ``speed_fluctuation(curve, inertia)``: the flywheel (``dyade.machine``)
 - ``balance(mechanism, *, links, radius)``: counterweights against the shaking force
+- ``drive_line_frequency(mechanism)``, ``drive_line_steady_state(mechanism, *,
+  speed_rpm=None)``, ``drive_line_resonance(mechanism, speeds_rpm)``,
+  ``drive_line_stability_map(mechanism, speeds_rpm, *, stiffness=None, damping=None)``,
+  ``drive_line_run_up(mechanism)``: a linkage driven through an elastic shaft or
+  coupling (``[drive_line]``, ``dyade.linkage.drive_line``)
 - ``read_gears(path, overrides=None)``, ``build_gears(data)`` -> ``GearDrive``;
   ``gear_modes(drive)`` -> ``Modes``, ``campbell(drive, speeds_rpm, ...)``,
   ``gear_response(drive, frequencies, ...)``, ``gear_statics(drive, torques, ...)``,
   ``check_elimination(drive, modes=None)``: gear drives as rigid finite elements
   (``dyade.vibration.gears``)
+- ``study(file, *, jobs, executor, output, resume)`` -> ``Study``: a design study, one
+  row per variant (``dyade.study``; ``Study.columns()``, ``.to_pandas()``)
 - ``DyadeError``, ``InputError``, ``AssemblyError``, ``MissingExtra`` (an optional
   extra not installed: an ``InputError`` and ``ImportError`` naming the pip command)
 - ``dyade.plot``: the figures (the plot extra, ``pip install "dyade[plot]"``), loaded on
@@ -87,6 +94,11 @@ _EXPORTS = {
     "size_flywheel": "dyade.machine.flywheel",
     "speed_fluctuation": "dyade.machine.flywheel",
     "balance": ("dyade.linkage.balance", "balance"),
+    "drive_line_frequency": ("dyade.linkage.drive_line", "natural_frequency"),
+    "drive_line_steady_state": ("dyade.linkage.drive_line", "steady_state"),
+    "drive_line_resonance": ("dyade.linkage.drive_line", "resonance_curve"),
+    "drive_line_stability_map": ("dyade.linkage.drive_line", "stability_map"),
+    "drive_line_run_up": ("dyade.linkage.drive_line", "run_up"),
     "read_gears": "dyade.files.gears",
     "build_gears": "dyade.files.gears",
     "GearDrive": "dyade.vibration.gears.model",
@@ -101,8 +113,8 @@ _EXPORTS = {
     "MissingExtra": "dyade.errors",
 }
 
-_SUBMODULES = {"clearance", "errors", "files", "linkage", "machine", "plot", "units",
-               "vibration"}
+_SUBMODULES = {"clearance", "errors", "files", "linkage", "machine", "plot", "study",
+               "units", "vibration"}
 """packages of the API, loaded on first attribute access (``dyade.clearance``)"""
 
 __all__ = sorted(_EXPORTS) + ["__version__"]

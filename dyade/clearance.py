@@ -126,12 +126,12 @@ def peak_force(mass: float, stiffness: float, *, clearance: float, slope: float)
     """
     check_positive(mass=mass, stiffness=stiffness, clearance=clearance, slope=slope)
     s = clearance / 2.0
-    t1 = np.cbrt(12.0 * mass * s / slope)
-    omega = np.sqrt(stiffness / mass)
+    t1 = float(np.cbrt(12.0 * mass * s / slope))
+    omega = float(np.sqrt(stiffness / mass))
     tau = omega * t1
     f = float(f_of_tau(tau))
-    return Peak(mass, stiffness, clearance, slope, float(t1), 6.0 * s / t1, float(tau), f,
-                stiffness * s * f, float(t1 + peak_angle(tau) / omega))
+    return Peak(float(mass), float(stiffness), float(clearance), float(slope), t1,
+                6.0 * s / t1, tau, f, stiffness * s * f, float(t1 + peak_angle(tau) / omega))
 
 
 def contact_force(peak: Peak, time: FloatArray | float) -> FloatArray:

@@ -29,7 +29,7 @@ def test_docstring_examples(name, monkeypatch):
 
 PAGES = [ROOT / "README.md"] + sorted(page for page in (ROOT / "docs").glob("**/*.md")
                                       if "_build" not in page.parts
-                                      and ">>>" in page.read_text())
+                                      and "\n>>> " in page.read_text())
 
 
 @pytest.mark.parametrize("page", PAGES, ids=lambda page: str(page.relative_to(ROOT)))

@@ -38,7 +38,7 @@ def test_init_dash_prints_the_template():
 
 
 # -- 10. formats and signals -----------------------------------------------------------
-@pytest.mark.parametrize("name", ["x.parquet", "x.xlsx", "x.CSV2"])
+@pytest.mark.parametrize("name", ["x.feather", "x.xlsx", "x.CSV2"])
 def test_an_unknown_output_suffix_lists_the_formats(tmp_path, name):
     result = run("analyse", shipped("fourbar.toml"), "-o", tmp_path / name)
     assert result.exit_code == 2

@@ -75,11 +75,27 @@ def test_energy_identity_with_friction_everywhere(path):
     assert np.mean(result.power[valid]) > 0.0
 
 
+def block_pressure(normal, tilt, length):
+    """∫|p| dx over a block of length L of the linear pressure p(x) = FN/L + 12·M'·x/L³
+    (x from the block's centre), integrated here by its zero: where p keeps its sign over
+    the block |FN|, else the two triangles |p(−L/2)|·(x₀ + L/2)/2 + |p(L/2)|·(L/2 − x₀)/2."""
+    normal, tilt = np.broadcast_arrays(np.asarray(normal, float), np.asarray(tilt, float))
+    half = 0.5 * length
+    left = normal / length - 12.0 * tilt * half / length ** 3
+    right = normal / length + 12.0 * tilt * half / length ** 3
+    with np.errstate(divide="ignore", invalid="ignore"):
+        zero = -normal * length ** 2 / (12.0 * tilt)
+    turns = (left * right < 0.0)
+    split = np.where(turns, zero, 0.0)
+    triangles = np.abs(left) * (split + half) / 2.0 + np.abs(right) * (half - split) / 2.0
+    return np.where(turns, triangles, np.abs(normal))
+
+
 def coulomb_law_errors(mechanism, kin, result, valid=None):
     """Per joint with friction: the largest |law − reported| relative to the law's
     size, and whether a friction load ever pushes along the relative motion, at the
     valid positions; read back from the reported forces: |MR| = μ·r_z·|F| and
-    |FR| = μ·(|FN| + 3·|M|/L), the reported M being the tilting moment M'."""
+    |FR| = μ·∫|p| dx (``block_pressure``), the reported M being the tilting moment M'."""
     ok = result.forces.valid if valid is None else valid
     out = {}
     for joint in mechanism.joints:
@@ -90,8 +106,8 @@ def coulomb_law_errors(mechanism, kin, result, valid=None):
             rubbing = result.friction_forces[joint.name][ok]
             normal = np.abs(result.forces.normal[joint.name][ok])
             tilt = np.abs(result.forces.moment[joint.name][ok])
-            edges = 3.0 * tilt / joint.slider_length if joint.edge_friction else 0.0
-            size = joint.friction * (normal + edges)
+            total = block_pressure(normal, tilt, joint.slider_length) if joint.edge_friction else normal
+            size = joint.friction * total
             sliding = joints.travel(joint, kin.motion)[1][ok]
             relative = sliding if higher == joint.slider else -sliding
         else:
@@ -159,9 +175,13 @@ def test_scotch_yoke_by_hand_without_edge_friction():
 def test_scotch_yoke_by_hand_with_edge_friction():
     # The slot force N acts on the yoke at the crank pin, y = r·sin φ above the guide,
     # so the guide carries the moment M = y·N and the tilting moment
-    # M' = y·N + ½·FN·H·μ·s (s = sign v, FN = m·g): N = m·a_x + μ·s·(m·g + 3·|M'|/L),
-    # linear in N for each sign σ of M'; the consistent σ gives the solution (one here:
-    # 3·μ·r/L < 1).
+    # u = M' = y·N + c₀, c₀ = ½·FN·H·μ·s (s = sign v, FN = m·g), and
+    # N = m·a_x + μ·s·P(FN, u) with the block's total pressure P:
+    #   6·|u| ≤ FN·L: P = FN, so N = m·a_x + μ·s·FN (and u follows);
+    #   beyond, with σ = sign u: P = FN²·L/(12·σ·u) + 3·σ·u/L, and N = (u − c₀)/y turns
+    #   the balance into the quadratic
+    #   (1/y − 3·μ·s·σ/L)·u² − (c₀/y + m·a_x)·u − μ·s·σ·FN²·L/12 = 0.
+    # Every candidate is checked for consistency (its region and its σ): exactly one is.
     mechanism = scotch_yoke(edges=True)
     result = analysis.analyse(mechanism)
     phi = result.crank_angle
@@ -169,22 +189,35 @@ def test_scotch_yoke_by_hand_with_edge_friction():
     v = -r * omega * np.sin(phi)
     s = np.where(np.abs(v) > 1e-9, np.sign(v), 0.0)
     y, a_x, normal = r * np.sin(phi), -r * omega ** 2 * np.cos(phi), m * g
-    force = np.full(phi.size, np.nan)
-    for sigma in (1.0, -1.0):
-        n = (m * a_x + mu * s * (normal + 3.0 * sigma * 0.5 * normal * height * mu * s / length)) \
-            / (1.0 - 3.0 * mu * s * sigma * y / length)
-        tilt = y * n + 0.5 * normal * height * mu * s
-        consistent = (np.sign(tilt) == sigma) | (s == 0.0)
-        force = np.where(consistent & np.isnan(force), n, force)
-    assert not np.isnan(force).any()
+    c0 = 0.5 * normal * height * mu * s
+    candidates = []
+    inner = m * a_x + mu * s * normal  # the pressure keeps its sign
+    tilt = y * inner + c0
+    candidates.append((inner, 6.0 * np.abs(tilt) <= normal * length))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for sigma in (1.0, -1.0):
+            a = 1.0 / y - 3.0 * mu * s * sigma / length
+            b = -(c0 / y + m * a_x)
+            c = -mu * s * sigma * normal ** 2 * length / 12.0
+            root = np.sqrt(b * b - 4.0 * a * c)
+            for u in ((-b + root) / (2.0 * a), (-b - root) / (2.0 * a)):
+                ok = (np.sign(u) == sigma) & (6.0 * np.abs(u) > normal * length) & (y != 0.0)
+                candidates.append(((u - c0) / y, ok))
+    count = sum(ok.astype(int) for _, ok in candidates)
+    assert np.all(count == 1)
+    force = sum(np.where(ok, n, 0.0) for n, ok in candidates)
     expected = -r * np.sin(phi) * force
     assert np.allclose(result.forces.drive_torque, expected, rtol=1e-9, atol=1e-9 * np.max(np.abs(expected)))
-    tilt = y * force + 0.5 * normal * height * mu * s  # M' on the yoke, as reported
+    tilt = y * force + c0  # M' on the yoke, as reported
     assert np.allclose(result.forces.moment[(1, 3)], tilt, rtol=1e-9, atol=1e-12)
     fr = result.friction.friction_forces[(1, 3)]
-    assert np.allclose(fr, -mu * s * (normal + 3.0 * np.abs(tilt) / length), rtol=1e-9)
+    total = block_pressure(normal, tilt, length)
+    assert np.allclose(fr, -mu * s * total, rtol=1e-9, atol=1e-12)
     plain = analysis.analyse(scotch_yoke(edges=False)).forces.drive_torque
     assert np.max(np.abs(result.forces.drive_torque - plain)) > 0.1  # the edges matter here
+    # both regions occur: near the dead centres (y → 0) the pressure keeps its sign
+    inside = 6.0 * np.abs(tilt) <= normal * length
+    assert inside.any() and (~inside).any()
 
 
 def test_iterations_grow_as_the_tolerance_shrinks():
@@ -316,3 +349,79 @@ def test_the_force_floor_median_is_numpys():
     for size in range(1, 120):
         values = rng.random(size) * 10.0 ** rng.integers(-5, 5, size)
         assert median(values) == float(np.median(values)), size
+
+
+# -- the block's total pressure (issue 28): ∫|p| dx, never |FN| + 3·|M'|/L
+def test_block_pressure_law_limits_and_continuity():
+    from dyade.linkage.friction.laws import pressure
+
+    length = 0.04
+    rng = np.random.default_rng(28)
+    normal = rng.normal(size=2000) * 10.0 ** rng.integers(-3, 3, 2000)
+    tilt = rng.normal(size=2000) * 10.0 ** rng.integers(-5, 1, 2000)
+    # the law against the pressure integrated here by its zero
+    assert np.allclose(pressure(normal, tilt, length), block_pressure(normal, tilt, length),
+                       rtol=1e-12, atol=0.0)
+    # FN = 0: the edge friction of a pure tilting moment, 3·|M'|/L
+    assert np.allclose(pressure(0.0, tilt, length), 3.0 * np.abs(tilt) / length, rtol=1e-15)
+    # 6·|M'| ≤ |FN|·L: the pressure keeps its sign, N = |FN| exactly
+    inside = 6.0 * np.abs(tilt) <= np.abs(normal) * length
+    assert inside.any() and np.array_equal(pressure(normal, tilt, length)[inside],
+                                           np.abs(normal)[inside])
+    # never above the paper's bound |FN| + 3·|M'|/L, never below |FN| or 3·|M'|/L... of it
+    total = pressure(normal, tilt, length)
+    assert np.all(total <= (np.abs(normal) + 3.0 * np.abs(tilt) / length) * (1 + 1e-15))
+    assert np.all(total >= np.abs(normal) * (1 - 1e-15))
+    # continuous at the bound 6·|M'| = |FN|·L, from both sides
+    edge = np.abs(normal) * length / 6.0
+    for side in (1.0 - 1e-12, 1.0 + 1e-12):
+        assert np.allclose(pressure(normal, edge * side, length), np.abs(normal), rtol=1e-11)
+
+
+def slider_crank_with_friction(mu, length, height, edges=True):
+    """The shipped slider-crank, μ in the guide only: the conrod's force passes through
+    the slider point, so the guide's moment is only the friction's own offset ½·FN·H·μ."""
+    return toml_input.read_mechanism(shipped("slider-crank.toml"), overrides={
+        "gravity": True, "dyad.2.C.friction": mu, "dyad.2.C.slider_length": length,
+        "dyad.2.C.slider_height": height, "dyad.2.C.edge_friction": edges})
+
+
+@pytest.mark.parametrize("length", [12.0, 40.0], ids=["3muH=L", "long"])
+def test_slider_crank_with_its_own_friction_offset_has_point_contact_friction(length):
+    # 3·μ·H ≤ L: 6·|M'| = 3·μ·H·|FN| ≤ |FN|·L, the pressure keeps its sign and the
+    # friction is exactly μ·|FN|: the point-contact solution, to the last digits
+    mu, height = 0.2, 20.0  # 3·μ·H = 12 mm
+    edged = analysis.analyse(slider_crank_with_friction(mu, length, height))
+    point = analysis.analyse(slider_crank_with_friction(mu, length, height, edges=False))
+    fr = edged.friction.friction_forces[(1, 4)]
+    normal = edged.forces.normal[(1, 4)]
+    moving = ~edged.friction.at_rest[(1, 4)]
+    assert np.allclose(np.abs(fr[moving]), mu * np.abs(normal[moving]), rtol=1e-12, atol=0.0)
+    scale = np.max(np.abs(point.forces.drive_torque))
+    assert np.allclose(edged.forces.drive_torque, point.forces.drive_torque, rtol=0.0,
+                       atol=1e-12 * scale)
+    # a block shorter than 3·μ·H tilts beyond the bound: more than point contact
+    short = analysis.analyse(slider_crank_with_friction(mu, 0.5 * 3 * mu * height, height))
+    more = np.abs(short.friction.friction_forces[(1, 4)][moving])
+    assert np.all(more >= mu * np.abs(short.forces.normal[(1, 4)][moving]) * (1 - 1e-12))
+    assert np.any(more > 1.01 * mu * np.abs(short.forces.normal[(1, 4)][moving]))
+
+
+@pytest.mark.parametrize("path", [p for p in SHIPPED if "friction" in p.read_text()],
+                         ids=lambda p: p.stem)
+def test_energy_and_coulomb_laws_hold_on_the_shipped_files_with_friction(path):
+    # as shipped (the press slide: μ = 0.25, a block tilting in its guide), not loaded
+    mechanism = replace(toml_input.read_mechanism(path), friction_tol=1e-13)
+    kin = kinematics.sweep(mechanism)
+    result = friction.solve(mechanism, kin)
+    valid = result.forces.valid
+    assert valid.sum() > 0.3 * valid.size
+    balance = (result.forces.drive_torque * mechanism.crank.speed
+               - kinetic_energy_rate(mechanism, kin.motion)
+               + applied_power(mechanism, kin.motion, kin.crank_angle))
+    scale = np.max(np.abs(result.forces.drive_torque[valid] * mechanism.crank.speed))
+    assert np.allclose(balance[valid], result.power[valid], rtol=1e-8, atol=1e-8 * scale)
+    assert np.all(result.power[valid] >= 0.0)
+    for name, (error, wrong_sense) in coulomb_law_errors(mechanism, kin, result).items():
+        assert error < 1e-9, name
+        assert not wrong_sense, name

@@ -136,7 +136,7 @@ OPTIONS = [
     (["analyse", FOUR, "--columns", "zzz*"], "--columns"),
     (["analyse", FOUR, "--set", "crank.speed_rpm=nan"], "`crank.speed_rpm`"),
     (["analyse", FOUR, "--set", "dyad.9.variant=1"], "dyad.9.variant"),
-    (["analyse", FOUR, "-o", "x.parquet"], "x.parquet"),
+    (["analyse", FOUR, "-o", "x.feather"], "x.feather"),
     (["clearance", "--mass", "nan", "--stiffness", "1e7", "--clearance", "1e-4", "--slope", "1"],
      "--mass"),
     (["clearance", "--mass", "3.6", "--stiffness", "inf", "--clearance", "1e-4", "--slope", "1"],

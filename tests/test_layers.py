@@ -262,6 +262,7 @@ BASE_EXCEPTIONS = {
     ("dyade.files.mechanism.dyads", "dyade.linkage.dyads"): "anywhere",
     # ... and the drive of its [drive] table (dyade.machine.motor: dataclasses only)
     ("dyade.files.mechanism.drive", "dyade.machine.motor"): "anywhere",
+    ("dyade.files.mechanism.drive_line", "dyade.machine.motor"): "anywhere",
     # the coupling reader returns the Coupling model; it imports it in read_coupling only,
     # so that reading the file's keys (load_data) does not load the model's numpy
     ("dyade.files.coupling", "dyade.vibration.coupling"): "in a function",

@@ -23,15 +23,16 @@ from dyade.linkage import friction, kinematics, kinetostatics, motion as joints,
 from dyade.linkage.model import Prismatic, Revolute
 from tests.helpers import TEMPLATES, mechanism_from, shipped
 from tests.strategies import dyad_files
-from tests.test_friction import coulomb_law_errors, with_friction
+from tests.test_friction import block_pressure, coulomb_law_errors, with_friction
 from tests.test_kinetostatics import with_masses
 
 # The pushed block (README, "Friction and self-locking"): crank r, rod l (massless, its
 # pins frictionless: a two-force member), a block of length L and height H in a guide
 # along x with friction μ, its pin e above the block's centre, a load R resisting the
 # outward stroke. Crank pivot level with the pin, so the rod's angle to the guide is
-# sin β = −r·sin φ/l.
-R, LENGTH, E, L, H, MU, LOAD = 80.0, 200.0, 60.0, 48.0, 30.0, 0.25, 400.0
+# sin β = −r·sin φ/l. e = 63 mm on a 48 mm block: a push straight along the guide moves
+# it (3·μ·e/L = 0.984 < 1), a push down jams it at the angle below.
+R, LENGTH, E, L, H, MU, LOAD = 80.0, 200.0, 63.0, 48.0, 30.0, 0.25, 400.0
 
 
 def pushed_block(direction: str = "ccw", **friction_keys):
@@ -47,15 +48,28 @@ def pushed_block(direction: str = "ccw", **friction_keys):
         "load": [{"link": 4, "point": [0, -E], "force": [-LOAD, 0]}]})
 
 
-def jam_angle(up: bool) -> float:
-    """|β| [°] at which the block jams. Per unit push P along the rod at β to the guide:
-    FN = −P·sin β, the guide's moment about the block's centre M = e·P·cos β, the
-    tilting moment M' = M + ½·FN·H·μ = e·P·cos β − ½·H·μ·P·sin β; motion needs
-    P·cos β > μ·(|FN| + 3·|M'|/L). Pushing up (β > 0, away from the guide on the pin's
-    side) the friction at the top face relieves the tilt, pushing down it adds to it:
-    tan |β| = (1 − 3μe/L) / (μ·(1 ∓ 3μH/(2L)))."""
+def tilt_per_push(t: float, up: bool) -> float:
+    """M'/P_x, the tilting moment per unit push along the guide at tan |β| = t: the
+    guide's moment about the block's centre e·P_x less (pushing up: the friction at the
+    top face relieves the tilt) or plus (pushing down) ½·FN·H·μ, with |FN| = t·P_x."""
     side = 1.0 if up else -1.0
-    return math.degrees(math.atan((1.0 - 3.0 * MU * E / L) / (MU * (1.0 - side * 1.5 * MU * H / L))))
+    return E - side * 0.5 * H * MU * t
+
+
+def jam_angle(up: bool) -> float:
+    """|β| [°] at which the block jams: P_x = μ·∫|p| dx. Per unit P_x, |FN| = t = tan |β|
+    and M' = m = e ∓ ½·H·μ·t (``tilt_per_push``); with 6·m > t·L (the pressure changes
+    sign over the block) ∫|p| dx = t²·L/(12·m) + 3·m/L, and 1 = μ·(t²·L/(12·m) + 3·m/L)
+    is the quadratic (μ·L² + 36·μ·k²)·t² + (12·L·k − 72·μ·e·k)·t + 36·μ·e² − 12·L·e = 0
+    with m = e − k·t, k = ±½·H·μ: its least positive root (inf: none)."""
+    k = (1.0 if up else -1.0) * 0.5 * H * MU
+    a = MU * L ** 2 + 36.0 * MU * k ** 2
+    b = 12.0 * L * k - 72.0 * MU * E * k
+    c = 36.0 * MU * E ** 2 - 12.0 * L * E
+    roots = [(-b + sign * math.sqrt(b * b - 4.0 * a * c)) / (2.0 * a) for sign in (1.0, -1.0)]
+    t = min((root for root in roots if root > 0.0), default=math.inf)
+    assert 6.0 * tilt_per_push(t, up) > t * L or t == math.inf  # the region assumed
+    return math.degrees(math.atan(t))
 
 
 def crank_angle_at(beta: float, up: bool) -> float:
@@ -64,11 +78,11 @@ def crank_angle_at(beta: float, up: bool) -> float:
     return 180.0 + phi if up else phi  # ccw: outward on 180°–360°; cw: on 0°–180°
 
 
-@pytest.mark.parametrize("up", [True, False], ids=["push-up", "push-down"])
-def test_pushed_block_locks_at_the_closed_form_jam_angle(up):
+def test_pushed_block_locks_at_the_closed_form_jam_angle():
+    up = False
     jam = jam_angle(up)
-    assert 5.0 < jam < 20.0  # the rod reaches 23.6°: both cases lock inside the sweep
-    mechanism = pushed_block("ccw" if up else "cw")
+    assert 5.0 < jam < 20.0  # the rod reaches 23.6°: the push down locks inside the sweep
+    mechanism = pushed_block("cw")
     onset = crank_angle_at(jam, up)
     angles = np.deg2rad(onset + np.linspace(-0.05, 0.05, 201))
     result = analyse_si(mechanism, crank_angle=angles)
@@ -79,25 +93,43 @@ def test_pushed_block_locks_at_the_closed_form_jam_angle(up):
     beta = np.abs(cols["phi_3_deg"])  # the rod's frame: ξ from A to B
     for k in (first - 1, first):
         assert beta[k] == pytest.approx(jam, abs=0.01)
-    # the margin is the same jam condition: its sign changes there too
+    # the paper's inequality is the conservative margin: ≤ 0 wherever the block locks
     margin = cols["lock_margin_1_4"]
-    assert np.all(margin[locks] <= 0.0) and np.all(margin[~locks] > 0.0)
-    # with friction only in the guide, the margin is the dyad's determinant itself
-    det = cols["friction_det_2"]
-    solved = ~locks
-    assert np.allclose(margin[solved], det[solved], rtol=1e-9, atol=1e-12)
+    assert np.all(margin[locks] <= 0.0) and np.all(margin <= cols["friction_det_2"] + 1e-12)
     # and it runs the whole range where the rod is steeper than the jam angle
     whole = dyade.analyse(mechanism, step_deg=0.25)
     locked = np.rad2deg(whole.crank_angle[whole.locking[(1, 4)].locks])
-    lo, hi = (onset, 540.0 - onset) if up else (onset, 180.0 - onset)
+    lo, hi = onset, 180.0 - onset
     assert locked.min() == pytest.approx(lo, abs=0.25) and locked.max() == pytest.approx(hi, abs=0.25)
     assert not (whole.friction.locks.keys() - {(1, 4)})
 
 
+@pytest.mark.parametrize("up", [True, False], ids=["push-up", "push-down"])
+def test_pushed_block_determinant_and_margin_in_closed_form(up):
+    # with friction only in the guide the dyad's determinant is the exact jam condition,
+    # 1 − μ·∫|p| dx per unit push along the guide, and the lock margin the paper's
+    # bound 1 − μ·(|FN| + 3·|M'|/L): both read off the rod's angle β
+    mechanism = pushed_block("ccw" if up else "cw")
+    result = dyade.analyse(mechanism, step_deg=1.0)
+    cols = result.columns()
+    t = np.tan(np.deg2rad(np.abs(cols["phi_3_deg"])))
+    m = tilt_per_push(t, up)
+    pushing = (result.crank_angle > np.pi) if up else (result.crank_angle < np.pi)
+    pushing &= t > 1e-9
+    solved = pushing & ~result.locking[(1, 4)].locks
+    exact = 1.0 - MU * np.where(6.0 * m > t * L, t * t * L / (12.0 * m) + 3.0 * m / L, t)
+    bound = 1.0 - MU * (t + 3.0 * np.abs(m) / L)
+    assert np.allclose(cols["friction_det_2"][solved], exact[solved], rtol=1e-9, atol=1e-12)
+    assert np.allclose(cols["lock_margin_1_4"][pushing], bound[pushing], rtol=1e-9, atol=1e-12)
+    if up:  # the push up relieves the tilt: no lock, though the paper's margin says < 0
+        assert math.isinf(jam_angle(up)) or jam_angle(up) > 23.6
+        assert not result.locking[(1, 4)].locks.any() and (bound[pushing] < 0.0).any()
+
+
 def test_drive_torque_grows_like_the_inverse_distance_to_the_lock():
     # towards a friction dead centre det(I + K) falls linearly, the forces grow as 1/det
-    up = True
-    mechanism = pushed_block()
+    up = False
+    mechanism = pushed_block("cw")
     onset = np.deg2rad(crank_angle_at(jam_angle(up), up))
     distance = np.logspace(-5, -3, 9)  # [rad] before the onset
     kin = kinematics.sweep(mechanism, onset - distance)
@@ -127,14 +159,14 @@ def test_press_slide_locks_where_its_comment_says():
     result = dyade.analyse(dyade.read_mechanism(shipped("self-locking.toml")))
     locks = result.locking[(1, 4)].locks
     angles = np.rad2deg(result.crank_angle[locks])
-    assert angles.min() == pytest.approx(270.0) and angles.max() == pytest.approx(332.0)
-    assert np.all(np.diff(angles) == 1.0)  # one range
+    assert angles.min() == pytest.approx(90.0) and angles.max() == pytest.approx(179.0)
+    assert np.allclose(np.diff(angles), 1.0)  # one range
     note, = [note for note in result.notes if note.kind == "self_locking"]
     assert note.subject == "slider (1,4)"
-    assert say(note, result.mechanism).startswith("slider (1,4) locks (self-locking) at crank angles 270.0°–332.0°")
+    assert say(note, result.mechanism).startswith("slider (1,4) locks (self-locking) at crank angles 90.0°–179.0°")
     near, = [note for note in result.notes if note.kind == "near_self_locking"]
     assert say(near, result.mechanism).startswith("dyad 2 (kind 2 RRP, links 3-4) is near self-locking at crank "
-                                "angles 221.0°–269.0°, 333.0°–359.0°")
+                                "angles 8.0°–89.0°")
     cols = result.columns()
     blank = ~cols["forces_valid"].astype(bool)
     assert np.isnan(cols["M_drive"][blank]).all()
@@ -142,7 +174,7 @@ def test_press_slide_locks_where_its_comment_says():
     assert np.all(cols["friction_det_2"][locks] <= 0.0)
     # on the return stroke the load drives the slide and the rod brakes it: not a lock,
     # although the jammed solution (det < 0) exists there too
-    back = result.crank_angle < np.pi
+    back = result.crank_angle > np.pi
     assert not locks[back].any() and np.all(cols["friction_det_2"][back] > 0.9)
 
 
@@ -201,7 +233,7 @@ def _dyad_residual(mechanism, kin, q, position):
         normal = d[0] * on_slider[1] - d[1] * on_slider[0]
         moment = on_slider[2] - (slider_point[0] * on_slider[1] - slider_point[1] * on_slider[0])
         tilt = moment + 0.5 * normal * joint.slider_height * joint.friction * s
-        size = abs(normal) + (3.0 * abs(tilt) / joint.slider_length if joint.edge_friction else 0.0)
+        size = float(block_pressure(normal, tilt, joint.slider_length)) if joint.edge_friction else abs(normal)
         return -joint.friction * size * s  # on the slider along d: S_k·W_k = ζd·ζf = d·f
 
     def residual(w_b):
@@ -334,13 +366,13 @@ def test_slotted_lever_with_friction_says_nothing_about_locking(tmp_path):
 
 @pytest.mark.parametrize("fmt", ["json", "table"])
 def test_a_sweep_locked_throughout_gives_no_drive_torque_and_no_warning(fmt):
-    """280°–300° of the press lie inside its self-locking range: no position has forces,
+    """100°–120° of the press lie inside its self-locking range: no position has forces,
     so the summary's drive torque is not given (JSON null, the table leaves it out),
     and no numpy warning (All-NaN slice) reaches the user."""
     import json
 
     result = CliRunner().invoke(main, ["analyse", str(shipped("self-locking.toml")),
-                                       "--start", "280", "--stop", "300", "--format", fmt])
+                                       "--start", "100", "--stop", "120", "--format", fmt])
     assert result.exit_code == 0, result.output
     assert "RuntimeWarning" not in result.output and "locks (self-locking)" in result.output
     if fmt == "json":
@@ -350,7 +382,7 @@ def test_a_sweep_locked_throughout_gives_no_drive_torque_and_no_warning(fmt):
 
 @pytest.mark.parametrize("passes", [1, 2, 7])
 def test_too_few_friction_passes_give_no_self_locking_verdict(passes):
-    """The press self-locks at 270°–332° (found with 8 passes or more). With fewer the
+    """The press self-locks at 90°–179° (found with 8 passes or more). With fewer the
     search from every forced pattern is cut short: one pass once called 30°–90° and
     216°–332° self-locking, where 30°–90° has a friction equilibrium. Now such positions
     are "not solved", with the reason, and no slider is said to lock."""
@@ -362,6 +394,6 @@ def test_too_few_friction_passes_give_no_self_locking_verdict(passes):
     assert "give no self-locking verdict" in say(note, mechanism)
     full = analysis.analyse(mechanism, friction_max_iter=8)
     locked = np.rad2deg(full.crank_angle[full.friction.locked])
-    assert locked.min() == pytest.approx(270.0) and locked.max() == pytest.approx(332.0)
+    assert locked.min() == pytest.approx(90.0) and locked.max() == pytest.approx(179.0)
     # every position left unsolved is solved or locked with the whole search
     assert not (short.friction.unsolved & ~full.friction.locked & ~full.friction.converged).any()

@@ -33,3 +33,22 @@ def test_slider_crank_yardstick_agrees_with_dyade():
     assert np.allclose(result.forces.revolute[(3, 4)], np.stack((ref["F34x"], ref["F34y"]), -1),
                        rtol=1e-8, atol=1e-8)
     assert np.allclose(result.forces.drive_torque, ref["M_drive"], rtol=1e-8, atol=1e-9)
+
+
+def test_variant_yardstick_agrees_with_a_study(tmp_path):
+    """The variants' yardstick (tests/benchmarks/test_study_speed.py) gives the study's
+    key results."""
+    import numpy as np
+
+    import dyade
+    from tests.benchmarks.yardstick import fourbar_variants
+    from tests.helpers import shipped
+
+    study = tmp_path / "study.toml"
+    study.write_text(f'mechanism = "{shipped("fourbar.toml")}"\n[parameters]\n'
+                     f'"dyad.2.lengths.1" = [190, 215]\n"dyad.2.lengths.2" = [140, 160]\n')
+    cols = dyade.study(str(study)).columns()
+    want = fourbar_variants(cols["dyad.2.lengths.1"] / 1000, cols["dyad.2.lengths.2"] / 1000,
+                            np.deg2rad(np.arange(361.0)), 10 * np.pi)
+    for name, values in want.items():
+        assert np.allclose(cols[name], values, rtol=1e-9, atol=1e-12), name

@@ -15,9 +15,12 @@ from dyade.cli.options import FINITE, MECHANISM_FILE, POSITIVE, jobs_option, set
 
 @main.command()
 @click.argument("mechanism_files", type=MECHANISM_FILE, nargs=-1, required=True)
-@click.option("--format", "fmt", type=click.Choice(["table", "csv", "json"]), default=None,
+@click.option("--format", "fmt", type=click.Choice(["table", "csv", "json", "parquet"]),
+              default=None,
               help="table: a summary (min/max and where); csv: the whole sweep, one row per crank "
-                   "position; json: the CSV columns as arrays plus the summary and warnings. "
+                   "position; json: the CSV columns as arrays plus the summary and warnings; "
+                   "parquet: the CSV's columns with their units (needs -o and the parquet "
+                   "extra). "
                    "[default: table on stdout; with -o: from its suffix (.json, .txt), else csv]")
 @click.option("-o", "--output", type=click.Path(writable=True),
               help="Write to this file instead of standard output; with several input files a "
@@ -106,6 +109,9 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
     from dyade.errors import DyadeError
 
     fmt = fmt or infer_format(output)
+    if fmt == "parquet" and (output is None or output == "-"):
+        raise click.UsageError("--format parquet needs -o FILE (Parquet is not written to a "
+                               "terminal).")
     if run_up and constant_speed:
         raise click.UsageError("--run-up and --constant-speed exclude each other.")
     chosen = tuple(p.strip() for p in patterns.split(",") if p.strip()) if patterns else ()
@@ -136,6 +142,7 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str, output: str | None,
 NEEDS = {"csv": SWEEP + ("dyade.report.csv_rows",),
          "json": SWEEP + ("dyade.linkage.summary", "dyade.report.document",
                           "dyade.report.spool", "dyade.report.notes", "dyade.report.effects"),
+         "parquet": SWEEP + ("dyade.report.spool", "dyade.study.tables"),
          "table": SWEEP + ("dyade.linkage.summary", "dyade.report.tables",
                            "dyade.report.spool", "dyade.report.notes")}
 """modules ``analyse`` needs for every file, by output format"""

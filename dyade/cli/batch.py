@@ -11,7 +11,7 @@ import click
 
 from dyade.cli.output import progress
 
-SUFFIX = {"csv": ".csv", "json": ".json", "table": ".txt"}
+SUFFIX = {"csv": ".csv", "json": ".json", "table": ".txt", "parquet": ".parquet"}
 """output format -> the suffix of each file a batch writes"""
 
 

@@ -107,7 +107,7 @@ def save_as(loaded: Loaded, path: str) -> None:
         handle.write(text)
 
 
-FORMATS = {".csv": "csv", ".json": "json", ".txt": "table", "": "csv"}
+FORMATS = {".csv": "csv", ".json": "json", ".txt": "table", ".parquet": "parquet", "": "csv"}
 """suffix of -o -> format (no suffix, or a directory: csv)"""
 
 
@@ -122,8 +122,8 @@ def infer_format(output: str | None) -> str:
     if suffix not in FORMATS:
         raise click.BadParameter(f"{output}: dyade does not write {suffix} files. It writes "
                                  f".csv (the sweep), .json (columns, units, summary, warnings) "
-                                 f"and .txt (the summary table); or give --format "
-                                 f"table|csv|json.", param_hint="-o")
+                                 f", .txt (the summary table) and .parquet (the sweep, "
+                                 f"with units); or give --format table|csv|json|parquet.", param_hint="-o")
     return FORMATS[suffix]
 
 

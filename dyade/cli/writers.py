@@ -26,6 +26,12 @@ def write(job, result, every, cols, output: str | None, loaded, summarise) -> No
                 csv_rows.write(cols, handle)
         else:
             csv_rows.write(cols, sys.stdout)
+    elif job.fmt == "parquet":
+        from dyade.linkage.columns import unit_of
+        from dyade.study.tables import write_parquet
+
+        write_parquet(cols, {name: unit_of(name) for name in cols}, output,
+                      {"dyade.mechanism": mechanism.name, "dyade.source": loaded.label})
     elif job.fmt == "json":
         from dyade.linkage.columns import unit_of
         from dyade.report.document import document

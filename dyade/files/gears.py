@@ -2,7 +2,7 @@
 ``dyade.vibration.gears.model``.
 
 The file lists rigid bodies, shafts, bearings, spring-damper elements, gears, meshes,
-excitations and the input speed (``mechanisms/gears/README.md`` documents every key).
+excitations and the input speed (``docs/reference/gear-file.md`` documents every key).
 Lengths are in ``units.length`` and angles in ``units.angle`` as in mechanism files;
 masses, inertias, stiffnesses, moduli and densities are SI. Every error names the file
 and the key; the checks that need the assembled matrices (meshes that constrain the
@@ -59,7 +59,8 @@ BEARING_KEYS = ({"name", "body", "offset"} | set(BEARING_STIFFNESS)
 ELEMENT_KEYS = {"name", "bodies", "at", "axis", "stiffness", "damping"}
 GEAR_KEYS = {"name", "body", "teeth", "module", "pressure_angle", "helix_angle", "hand", "width",
              "offset"}
-MESH_KEYS = {"name", "driving", "driven", "rotation", "angle", "stiffness", "damping"}
+MESH_KEYS = {"name", "driving", "driven", "rotation", "angle", "stiffness", "damping",
+             "c_gamma_alpha", "face_width"}
 EXCITATION_KEYS = {"name", "kind", "body", "mesh", "amplitude", "phase", "order", "harmonic",
                    "frequency"}
 SPEED_KEYS = {"body", "rpm", "rotation"}
@@ -73,7 +74,7 @@ def read_gears(path: str | os.PathLike, overrides: dict[str, Any] | None = None)
     Parameters
     ----------
     path : str or os.PathLike
-        The TOML file (``mechanisms/gears/README.md`` documents every key).
+        The TOML file (``docs/reference/gear-file.md`` documents every key).
     overrides : dict, optional
         Dotted key path -> value, replacing keys of the file as ``--set`` does
         (``{"shaft.1.segments": 8}``; array entries by 1-based index).
@@ -273,6 +274,7 @@ class Reader(UnitReader):
         shafts = tuple(self.shaft(t, f"shaft.{k}", taken)
                        for k, t in enumerate(self.array(data, "shaft"), 1))
         self.gears: dict[str, Gear] = {}
+        self.gear_keys: dict[str, str] = {}  # gear name -> its table's key path
         gear_names: dict[str, str] = {}  # gears have names of their own: meshes refer to them
         for k, table in enumerate(self.array(data, "gear"), 1):
             self.gear(table, f"gear.{k}", gear_names)
@@ -405,6 +407,41 @@ class Reader(UnitReader):
                                          "first one's axis).")
 
     # -- gears and meshes --------------------------------------------------------------
+    def mesh_stiffness(self, table: dict[str, Any], key: str, p: Gear, r: Gear) -> float | None:
+        """An elastic mesh's spring along the tooth normal [N/m]: `stiffness`, or ISO 6336's
+        transverse mesh stiffness per face width `c_gamma_alpha` [N/m²] times the face width
+        b, over cos²β_b (sin β_b = sin β·cos α_n); None for an ideal mesh. Either needs the
+        gears' size (`module`): the spring acts at their base radii."""
+        given = [k for k in ("stiffness", "c_gamma_alpha") if k in table]
+        if not given:
+            if "face_width" in table:
+                raise self.fail(f"{key}.face_width", "is for `c_gamma_alpha` (ISO 6336's mesh "
+                                                     "stiffness per face width): give it too.")
+            return None
+        if len(given) == 2:
+            raise self.fail(f"{key}.c_gamma_alpha", "and `stiffness` are two ways to give the "
+                                                    "mesh spring: give one of them.")
+        if p.module is None:
+            raise self.fail(f"{self.gear_keys[p.name]}.module",
+                            f"is missing: mesh `{key}.{given[0]}` is elastic, and its spring "
+                            f"acts at the base radii r_b = z·m_n·cos α_t/(2·cos β) of gears "
+                            f"\"{p.name}\" and \"{r.name}\": give `module` on both (without it "
+                            f"only the ratio is known, enough for ideal meshes).")
+        if given[0] == "stiffness":
+            return self.number(table["stiffness"], f"{key}.stiffness", "N/m", positive=True)
+        per_width = self.number(table["c_gamma_alpha"], f"{key}.c_gamma_alpha", "N/m²",
+                                positive=True)
+        widths = [g.width for g in (p, r) if g.width > 0.0]
+        if "face_width" in table:
+            width = self.length_of(table["face_width"], f"{key}.face_width", positive=True)
+        elif widths:
+            width = min(widths)
+        else:
+            raise self.fail(f"{key}.face_width", "is missing: `c_gamma_alpha` is a stiffness per "
+                                                 "face width b (or give `width` on the gears).")
+        base_helix = math.asin(math.sin(p.helix_angle) * math.cos(p.pressure_angle))
+        return per_width * width / math.cos(base_helix) ** 2
+
     def gear(self, table: Any, key: str, taken: dict[str, str]) -> None:
         self.keys(table, key, GEAR_KEYS)
         if "name" not in table:
@@ -442,6 +479,7 @@ class Reader(UnitReader):
         width = self.length_of(table.get("width", 0.0), f"{key}.width", non_negative=True)
         offset = self.length_of(table.get("offset", 0.0), f"{key}.offset")
         self.gears[name] = Gear(name, body, teeth, module, alpha, beta, hand, width, offset)
+        self.gear_keys[name] = key
 
     def gear_ref(self, table: dict[str, Any], key: str, role: str) -> Gear:
         if role not in table:
@@ -490,8 +528,7 @@ class Reader(UnitReader):
         rotation = (self.sense(table["rotation"], f"{key}.rotation") if "rotation" in table
                     else 0)
         angle = self.angle_of(table.get("angle", 0.0), f"{key}.angle")
-        stiffness = (self.number(table["stiffness"], f"{key}.stiffness", "N/m", positive=True)
-                     if "stiffness" in table else None)
+        stiffness = self.mesh_stiffness(table, key, p, r)
         damping = self.number(table.get("damping", 0.0), f"{key}.damping", "N·s/m",
                               non_negative=True)
         if damping > 0.0 and stiffness is None:

@@ -1,4 +1,5 @@
-"""What accuracy costs: crank step, friction tolerance and clearance simulation studies.
+"""What accuracy costs: crank step, friction tolerance, clearance simulation and drive line
+studies.
 
 Each study reruns the user's mechanism with one knob changed, times the engine (best of
 a few runs) and compares the quantities a designer sizes parts by (peak drive torque,
@@ -15,11 +16,11 @@ import numpy as np
 from dyade.linkage.plan import plan
 from dyade.linkage.sweep import Result, analyse, analyse_si
 from dyade.linkage.model import Mechanism, Revolute
+from dyade.roundoff import clean
 
 STEPS_DEG = (5.0, 2.0, 1.0, 0.5, 0.1, 0.05)  # [°] crank steps, the last one is the reference
 FRICTION_TOLS = (1e-3, 1e-6, 1e-9, 1e-12)  # [-], the last one is the reference
 SIM_STEPS = (25, 100, 400, 1600)  # RK4 steps per contact period
-NOISE = 1e-12  # [-] a joint force below this share of the largest is round-off (0)
 
 
 @dataclass(frozen=True, slots=True)
@@ -64,8 +65,8 @@ def _peaks(mechanism: Mechanism, forces, rows, clearance=None) -> dict[str, floa
                                                   initial=0.0))
     largest = max((v for k, v in out.items() if k != "|M_drive| max"), default=0.0)
     for key, value in out.items():  # a joint that carries nothing: round-off is no peak
-        if key != "|M_drive| max" and value <= NOISE * largest:
-            out[key] = 0.0
+        if key != "|M_drive| max":
+            out[key] = clean(value, largest)
     for check in clearance or []:
         if check.reversals:
             a, b = check.joint
@@ -149,6 +150,38 @@ def clearance_simulation(result: Result, steps=SIM_STEPS, repeats: int = 3) -> l
     return rows
 
 
+DRIVE_LINE_FACTORS = (0.25, 0.5, 1.0, 2.0, 4.0)  # × the default steps; the last: reference
+
+
+def drive_line_steps(mechanism: Mechanism, factors=DRIVE_LINE_FACTORS, repeats: int = 1,
+                     tick=None) -> list[Row]:
+    """The drive line's steady state (``dyade.linkage.drive_line``) against its RK4 steps
+    per revolution: peak shaft torque, twist amplitude, speed fluctuation and the largest
+    Floquet multiplier, each setting timed."""
+    from dyade.linkage import drive_line
+    from dyade.machine import drive_line as engine
+
+    line = drive_line.line_of(mechanism)
+    probe = drive_line.crank_tables(mechanism, engine.MIN_STEPS)
+    speed = abs(mechanism.crank.speed)
+    base = mechanism.drive_line.steps or engine.steps_for(line, float(np.min(probe.inertia)),
+                                                          speed)
+    runs = []
+    for factor in factors:
+        steps = max(36, int(round(base * factor)))
+        seconds, state = _timed(lambda: drive_line.steady_state(mechanism, steps=steps,
+                                                                accuracy=False), repeats)
+        peaks = {"|shaft torque| max": float(np.max(np.abs(state.shaft_torque))),
+                 "twist amplitude": float(np.ptp(state.twist) / 2.0),
+                 "speed fluctuation": state.figures["fluctuation"],
+                 "largest |mu|": state.figures["stability"]}
+        runs.append((f"{steps} steps", seconds, peaks, f"{state.figures['iterations']} "
+                                                      f"Newton iterations"))
+        if tick is not None:
+            tick()
+    return _compare("drive line steps", runs)
+
+
 def studies(mechanism: Mechanism, *, repeats: int = 3, progress=None) -> list[Row]:
     """Every study the mechanism calls for, as ``dyade accuracy`` shows them.
 
@@ -182,7 +215,8 @@ def studies(mechanism: Mechanism, *, repeats: int = 3, progress=None) -> list[Ro
     >>> bool(torque[0].error > torque[-2].error)   # 5° is further off than 0.1°
     True"""
     the_plan = plan(mechanism)
-    total = len(STEPS_DEG) + bool(the_plan.friction) * len(FRICTION_TOLS) + bool(the_plan.clearance)
+    total = (len(STEPS_DEG) + bool(the_plan.friction) * len(FRICTION_TOLS)
+             + bool(the_plan.clearance) + bool(the_plan.drive_line) * len(DRIVE_LINE_FACTORS))
     done = [0]
 
     def tick() -> None:
@@ -196,6 +230,8 @@ def studies(mechanism: Mechanism, *, repeats: int = 3, progress=None) -> list[Ro
     if the_plan.clearance:
         rows += clearance_simulation(analyse(mechanism), repeats=repeats)
         tick()
+    if the_plan.drive_line:
+        rows += drive_line_steps(mechanism, tick=tick)
     return rows
 
 

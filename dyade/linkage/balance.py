@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from dyade import cycle
 from dyade.errors import DyadeError, InputError
 from dyade.limits import PLAUSIBLE, check_plausible, implausible, plausible_range
 from dyade.linkage import kinematics
@@ -83,10 +84,11 @@ class Balance:
         magnitude and RMS over the sweep), the shaking moment M_shake and the drive torque
         M_drive (largest magnitude and RMS), and each joint's largest force."""
         shaking = {}
+        angle, valid = self.crank_angle, self.before.kinematics.valid
         for when, force in (("before", self.shaking_before), ("after", self.shaking_after)):
-            size = np.hypot(force[:, 0], force[:, 1])[self.before.kinematics.valid]
-            shaking[f"{when}_max"] = float(np.max(size))
-            shaking[f"{when}_rms"] = float(np.sqrt(np.mean(size ** 2)))
+            size = np.where(valid, np.hypot(force[:, 0], force[:, 1]), np.nan)
+            shaking[f"{when}_max"] = float(np.nanmax(size))
+            shaking[f"{when}_rms"] = cycle.rms(angle, size)
         shaking["residual"] = (shaking["after_rms"] / shaking["before_rms"]
                                if shaking["before_rms"] > 0.0 else 0.0)
         out: dict[str, Any] = {"shaking_force": shaking}
@@ -96,8 +98,7 @@ class Balance:
             for when, cols in columns.items():
                 values = cols[name][np.isfinite(cols[name])]
                 entry[f"{when}_max"] = float(np.max(np.abs(values))) if values.size else None
-                entry[f"{when}_rms"] = (float(np.sqrt(np.mean(values ** 2))) if values.size
-                                        else None)
+                entry[f"{when}_rms"] = cycle.rms(angle, cols[name]) if values.size else None
             out[key] = entry
         joints = {}
         for joint in self.mechanism.joints:

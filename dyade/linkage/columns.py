@@ -1,7 +1,7 @@
 """The CSV contract: a block of a sweep -> ordered named columns.
 
 One row per reported crank position; SI units except angles in degrees. The names are
-documented in ``mechanisms/README.md`` and are stable: scripts rely on them.
+documented in ``docs/reference/columns.md`` and are stable: scripts rely on them.
 """
 
 from __future__ import annotations

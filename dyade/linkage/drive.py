@@ -120,7 +120,7 @@ def solve(mechanism: Mechanism, crank_angle: FloatArray | None = None, *, run_up
     sense = 1.0 if mechanism.crank.speed > 0 else -1.0
     start = mechanism.sweep.start
     grid = start + sense * 0.5 * h * np.arange(2 * steps)
-    machine = _machine(mechanism, grid)
+    machine = machine_tables(mechanism, grid)
     tables = equation.Tables(machine.inertia, machine.load, np.zeros(2 * steps), machine.slope)
     nominal = abs(mechanism.crank.speed)
     motor = drive.motor
@@ -172,7 +172,7 @@ def solve(mechanism: Mechanism, crank_angle: FloatArray | None = None, *, run_up
     return out
 
 
-def _machine(mechanism: Mechanism, angles: FloatArray) -> Reduced:
+def machine_tables(mechanism: Mechanism, angles: FloatArray) -> Reduced:
     """J, J′, M_L at ``angles``; an error where the machine has no inertia or a dead centre
     leaves it undefined. Computed in blocks of positions (``blocks.spans``): the grid of a fine
     sweep has hundreds of thousands of points, and only these three arrays are kept."""

@@ -7,11 +7,12 @@ import math
 
 import numpy as np
 
+from dyade.cycle import mean as cycle_mean
 from dyade.errors import DyadeError, InputError
 from dyade.linkage.model import Mechanism
 from dyade.linkage.options import check_size, radians
 from dyade.linkage.sweep import analyse_si
-from dyade.machine.flywheel import TorqueCurve, cycle_mean, machine_curve
+from dyade.machine.flywheel import TorqueCurve, machine_curve
 
 FINE_STEP = math.radians(0.1)  # [rad] largest default step of a torque curve
 

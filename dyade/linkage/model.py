@@ -6,7 +6,7 @@ reader (``dyade.files.mechanism``) turns the designer's per-kind description int
 objects, so the engine never needs to know which link of a prismatic pair was written
 as guide and which as slider. The link frames of the two links a dyad places are part
 of its kind's description (``DyadKind.frames``; the kinds are in ``dyade.linkage.dyads``,
-documented in ``mechanisms/README.md``).
+documented in ``docs/reference/mechanism-file.md``).
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ from dyade.arrays import FloatArray, Vec
 
 if TYPE_CHECKING:
     from dyade.machine.motor import Drive
+    from dyade.machine.motor import DriveLineData
 
 FRAME = 1  # link number of the frame
 CRANK = 2  # link number of the crank
@@ -99,7 +100,9 @@ class Prismatic:
     friction: float = 0.0
     """Coulomb friction coefficient μ [-]."""
     edge_friction: bool = True
-    """Friction of the edge pressures 3·|M'|/L that the tilting moment causes (with μ > 0)."""
+    """The block's tilting moment M' enters its friction (with μ > 0): μ times the total
+    pressure of a linear distribution over L (``dyade.linkage.friction.laws``); False:
+    point contact, μ·|FN|."""
 
     @classmethod
     def through(cls, carrier: int, point: Vec, theta: float, offset: float, slider: int,
@@ -189,8 +192,8 @@ class DyadKind(NamedTuple):
     """the joint pattern A-B-C: RRR, RRP, RPR, PRP, PPR"""
     has_variant: bool
     """two closures, chosen by the assembly variant ±1 (else one, variant 0)"""
-    variant_rule: str
-    """what variant +1 means (empty without a variant)"""
+    variant_rules: tuple[str, str]
+    """what variant +1 and what variant −1 mean (empty without a variant)"""
     frames: tuple[str, str]
     """the link frames of links i and j (origin, ξ axis)"""
     transmission: str
@@ -199,6 +202,10 @@ class DyadKind(NamedTuple):
     """what μ = 0° or 180° is called: "dead centre" or "blocked position" """
     close: Callable
     """close(dyad, motion) -> Closure (``dyade.linkage.dyads.closure``)"""
+
+    def variant_rule(self, variant: int) -> str:
+        """What assembly variant ``variant`` (±1) means ("" without a variant)."""
+        return self.variant_rules[0 if variant > 0 else 1] if variant else ""
 
     @property
     def cannot_close(self) -> str:
@@ -318,6 +325,9 @@ class Mechanism:
     drive: Drive | None = None
     """The motor and flywheel of a ``[drive]`` table (the flywheel is already counted in
     link 2's inertia); None: the crank turns at its constant speed."""
+    drive_line: DriveLineData | None = None
+    """The elastic element between motor and crank of a ``[drive_line]`` table
+    (``dyade.machine.drive_line``); None: a rigid drive."""
 
     @property
     def joints(self) -> list[Joint]:

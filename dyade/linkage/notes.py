@@ -49,6 +49,8 @@ class NoteKind(enum.StrEnum):
     """a run-up that did not become periodic within its revolutions"""
     CLEARANCE_NOT_APPLICABLE = "clearance_not_applicable"
     """the clearance check does not apply to a joint, or not on a run-up"""
+    DRIVE_LINE_SOFT = "drive_line_soft"
+    """the drive line's ratio Ω/ω̄ exceeds VDI 2149's 0.1: the rigid model does not hold"""
 
     def __repr__(self) -> str:
         return repr(self.value)  # as the plain string it equals

@@ -295,6 +295,13 @@ class Keep:
                               {"digits": digits}))
         if setup.motion is not None:
             notes += motion_notes(setup.motion)
+        if setup.plan.drive_line:
+            from dyade.linkage.line_model import natural_frequency
+
+            line = natural_frequency(mechanism)
+            if not line.vdi_2149:
+                notes.append(Note(NoteKind.DRIVE_LINE_SOFT, "", (),
+                                  {"ratio": line.ratio, "omega_bar": line.omega_bar}))
         outcome = Outcome(mechanism, setup.plan, angle, rows, well, forces_valid, notes,
                           rubbing, locking, setup.motion)
         if setup.plan.clearance and not self.joints:

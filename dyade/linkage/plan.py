@@ -40,6 +40,9 @@ class Plan:
     equation_of_motion: str = ""
     """the motor of a [drive] table ('' without one): the crank's speed comes from the
     equation of motion"""
+    drive_line: str = ""
+    """the elastic drive line of a [drive_line] table ('' without one): its lowest natural
+    frequency ω̄ and the VDI 2149 check Ω/ω̄ ≤ 0.1 (the vibration: ``dyade driveline``)"""
 
 
 def plan(mechanism: Mechanism) -> Plan:
@@ -73,5 +76,6 @@ def plan(mechanism: Mechanism) -> Plan:
         motion = mechanism.drive.motor.describe()
         if mechanism.drive.flywheel_inertia:
             motion += f", flywheel {mechanism.drive.flywheel_inertia:g} kg·m²"
+    line = "" if mechanism.drive_line is None else mechanism.drive_line.describe()
     return Plan(kinematics=True, kinetostatics=dynamics, friction=rubbing, self_locking=locking,
-                clearance=gaps, equation_of_motion=motion)
+                clearance=gaps, equation_of_motion=motion, drive_line=line)

@@ -15,22 +15,32 @@ slider through its frictionless dyad (row k of M⁻¹, the kinematics' inverse) 
 other load. FN and M are then the joint's reactions to that push alone. For a block
 pushed by a two-force member (a rod pinned at both ends) the push runs along the rod, at
 the angle β to the guide and with its line of action at the lever e about the block, and
-the inequality is exactly the condition under which any push, however large, moves the
-block (README, "Friction and self-locking"). Everything is proportional to F_η, so
+the inequality is the condition under which any push moves the block, with the bound
+|FN| + 3·|M'|/L in place of the block's pressure (docs/guide/friction.md). Everything is
+proportional to F_η, so
 
     lock_margin = 1 − μ·(|FN| + 3·|M + ½·FN·H·μ·sign ṡ|/L) / |F_η|      [-]
 
 depends on the geometry alone and its sign is never decided by round-off: 1 for a push
-straight along the guide through the block's centre, 0 at the jam angle, negative where a
-push along the motion through the linkage would jam the block. Without edge friction
+straight along the guide through the block's centre, negative where a push along the
+motion through the linkage might jam the block. Without edge friction
 (``edge_friction = false``) the 3·|…|/L term is left out here as in the friction model.
+
+**The margin is conservative.** |FN| + 3·|M'|/L is an upper bound of the block's total
+pressure ∫|p| dx, which the friction model uses (``dyade.linkage.friction.laws``): equal
+to it only where FN = 0 or M' = 0. So a positive margin means no push through the
+linkage can jam the block; a negative one means it might. The exact jam condition is
+the sign of the dyad's determinant below.
 
 Whether the slider *does* lock is the friction solution's verdict: its dyad's
 friction-augmented equilibrium has no solution (a friction dead centre) and this joint's
-friction is the cause. For a slider pushed by a two-force member with friction in its
-guide only, that happens exactly where the margin crosses zero on a stroke on which the
-linkage pushes it; a negative margin elsewhere (the linkage brakes the slider, or other
-joints carry the motion) is no self-locking.
+friction is the cause. The verdict's determinant is that of the equilibrium's Jacobian at
+the solution relative to the frictionless one, det(I + K) with K from the laws'
+gradients there; a sign change against the frictionless one (≤ 0) marks the lock. For a
+block pushed by a two-force member with friction in its guide only it is 1 − μ·∫|p| dx
+per unit push along the guide, and the lock begins where it crosses zero, at or after
+the margin's zero; a negative margin elsewhere (the linkage brakes the slider, other
+joints carry the motion, or the bound overstates the pressure) is no self-locking.
 """
 
 from __future__ import annotations
@@ -54,11 +64,13 @@ class Locking:
     dyad: int
     """the number of the joint's dyad"""
     determinant: FloatArray
-    """(n,) friction-augmented determinant of that dyad relative to the frictionless one
-    [-] (1 without friction, ≤ 0 self-locking; NaN where not computed)"""
+    """(n,) determinant of that dyad's friction-augmented equilibrium's Jacobian at the
+    solution, relative to the frictionless one [-] (1 without friction, ≤ 0
+    self-locking: the lowest met where it locks; NaN where not computed)"""
     margin: FloatArray | None = None
     """slider: (n,) 1 − μ·(|FN| + 3·|M + ½·FN·H·μ·sign ṡ|/L)/|F_η| for a push F_η along
-    the motion through the frictionless dyad [-]; None for a revolute joint"""
+    the motion through the frictionless dyad [-], the paper's test: a conservative lock
+    margin (> 0: no push can jam the block); None for a revolute joint"""
 
 
 def test(mechanism: Mechanism, kin: Kinematics, result: FrictionResult

@@ -7,19 +7,11 @@ from typing import Any
 
 import numpy as np
 
+from dyade import cycle
 from dyade.arrays import plain, resolution
 from dyade.linkage.columns import Columns
 from dyade.linkage.model import Revolute
 from dyade.linkage.verdicts import Outcome
-
-
-def cycle_mean(angle: np.ndarray, values: np.ndarray) -> float:
-    """Mean over the crank angle (trapezoid rule), finite values only."""
-    keep = np.isfinite(values)
-    a, v = angle[keep], values[keep]
-    if a.size < 2:
-        return float(v.mean()) if v.size else float("nan")
-    return float(np.sum((v[1:] + v[:-1]) * np.diff(a)) / (2.0 * (a[-1] - a[0])))
 
 
 def full_cycle(angle_deg: np.ndarray) -> bool:
@@ -108,24 +100,26 @@ def _extreme(angle, values) -> dict[str, Any]:
     return {"min": values[lo], "min_at_deg": angle[lo], "max": values[hi], "max_at_deg": angle[hi]}
 
 
-def summary(result: Outcome, cols: Columns) -> dict[str, Any]:
-    """Per column min/max and where; drive, friction, self-locking, clearance figures:
-    plain Python numbers (``arrays.plain``), the crank angles where an extreme lies
-    rounded to the sweep's resolution (``arrays.resolution``: 359.5, not
-    359.50000000000006)."""
+def summary(result: Outcome, cols: Columns, extremes: bool = True) -> dict[str, Any]:
+    """Per column min/max and where (unless not ``extremes``); drive, friction,
+    self-locking, clearance figures: plain Python numbers (``arrays.plain``), the crank
+    angles where an extreme lies rounded to the sweep's resolution
+    (``arrays.resolution``: 359.5, not 359.50000000000006)."""
     angle = cols["angle_deg"]
+    radians = np.deg2rad(angle)
     at = np.round(angle, resolution(angle))  # where: a position of the sweep
     out: dict[str, Any] = {"mechanism": result.mechanism.name, "positions": int(angle.size),
-                           **motion_figures(result, cols, at),
-                           "columns": {name: _extreme(at, values)
-                                       for name, values in cols.items() if name != "angle_deg"}}
+                           **motion_figures(result, cols, at)}
+    if extremes:
+        out["columns"] = {name: _extreme(at, values)
+                          for name, values in cols.items() if name != "angle_deg"}
     if result.forces_valid is not None:
         torque = cols["M_drive"]
         given = torque[np.isfinite(torque)]  # none where the forces are nowhere given
         out["drive"] = {"M_max": given.max() if given.size else np.nan,
                         "M_min": given.min() if given.size else np.nan,
-                        "M_rms": float(np.sqrt(cycle_mean(angle, torque ** 2))),
-                        "P_mean": cycle_mean(angle, cols["P_drive"])}
+                        "M_rms": cycle.rms(radians, torque),
+                        "P_mean": cycle.mean(radians, cols["P_drive"])}
         peaks = {}
         for joint in result.mechanism.joints:
             a, b = joint.name
@@ -137,7 +131,7 @@ def summary(result: Outcome, cols: Columns) -> dict[str, Any]:
         out["joint_peaks"] = peaks
     if result.rubbing is not None:
         rows = result.rows & result.forces_valid
-        out["friction"] = {"P_mean": cycle_mean(angle, cols["P_friction"]),
+        out["friction"] = {"P_mean": cycle.mean(radians, cols["P_friction"]),
                            "iterations_min": float(np.min(cols["friction_iterations"])),
                            "iterations_max": float(np.max(cols["friction_iterations"])),
                            "worst_residual": float(np.max(result.rubbing.residual[rows], initial=0.0))}

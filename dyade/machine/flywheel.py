@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from dyade.arrays import FloatArray
+from dyade.cycle import integrals, mean as cycle_mean, segments
 from dyade.errors import DyadeError, InputError
 
 LARGE_FLUCTUATION = 0.1  # [-] above this the small-fluctuation estimate δ ≈ ΔE/(J·Ω²) is rough
@@ -230,35 +231,15 @@ def _revolution(angle, values, name: str) -> tuple[FloatArray, FloatArray]:
     return angle, values
 
 
-def _segments(angle: FloatArray, values: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """Interval lengths h_i (the last one closing the revolution) and three-point slopes."""
-    h = np.diff(np.append(angle, angle[0] + 2.0 * math.pi))
-    left = np.roll(h, 1)
-    ahead, behind = np.roll(values, -1), np.roll(values, 1)
-    slope = (left * left * (ahead - values) + h * h * (values - behind)) / (left * h * (left + h))
-    return h, slope
-
-
-def _integrals(angle: FloatArray, values: FloatArray) -> FloatArray:
-    """∫ over each interval of the cubic Hermite interpolant (the last closes the cycle)."""
-    h, slope = _segments(angle, values)
-    return 0.5 * h * (values + np.roll(values, -1)) + h * h / 12.0 * (slope - np.roll(slope, -1))
-
-
-def cycle_mean(angle: FloatArray, values: FloatArray) -> float:
-    """The mean over the revolution of a sampled periodic curve [same unit]."""
-    return float(np.sum(_integrals(angle, values)) / (2.0 * math.pi))
-
-
 def energy(curve: TorqueCurve) -> FloatArray:
     """E(φ) = ∫ΔM dφ from the first angle, at the curve's angles [J]."""
-    return np.concatenate(([0.0], np.cumsum(_integrals(curve.angle, curve.excess))[:-1]))
+    return np.concatenate(([0.0], np.cumsum(integrals(curve.angle, curve.excess))[:-1]))
 
 
 def energy_extremes(curve: TorqueCurve) -> tuple[float, float, float, float]:
     """(E_max, φ at E_max, E_min, φ at E_min), between the samples where ΔM crosses zero."""
     angle, f = curve.angle, curve.excess
-    h, slope = _segments(angle, f)
+    h, slope = segments(angle, f)
     start = energy(curve)
     f1, d1 = np.roll(f, -1), np.roll(slope, -1)
     change = np.flatnonzero(np.sign(f) != np.sign(f1))

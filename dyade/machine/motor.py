@@ -131,3 +131,41 @@ class Drive:
     counts as periodic [-]"""
     max_revolutions: int = 500
     """most revolutions of a run-up"""
+
+
+@dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
+class DriveLineData:
+    """The ``[drive_line]`` table of a mechanism file (SI): the elastic element between
+    the motor and the crank shaft. Stiffness and damping are those the crank shaft
+    sees (behind the gear); the rotor's inertia is on the motor shaft and enters reduced
+    by ratio²; a ``[drive]`` motor's characteristic is on the crank shaft, as without a
+    drive line."""
+
+    stiffness: float | None
+    """k [N·m/rad] of a shaft; None with a coupling"""
+    damping: float = 0.0
+    """b [N·m·s/rad]"""
+    ratio: float = 1.0
+    """i = motor speed / crank speed [-]"""
+    rotor_inertia: float | None = None
+    """J_rotor [kg·m²] on the motor shaft (needed with a ``[drive]`` motor)"""
+    coupling: object | None = None
+    """a ``dyade.vibration.coupling.Coupling`` in the line instead of the shaft: its
+    primary side (c1, b1), where Strümpfel's exciting moment acts, faces the linkage,
+    its secondary side (c2, b2) the motor"""
+    coupling_file: str | None = None
+    """the coupling file as the mechanism file names it"""
+    steps: int | None = None
+    """RK4 steps per revolution (None: 64 per period of the highest natural frequency,
+    at least 720)"""
+
+    def describe(self) -> str:
+        if self.coupling is not None:
+            text = f"coupling {self.coupling_file}"
+        else:
+            text = f"shaft {self.stiffness:g} N·m/rad, damping {self.damping:g} N·m·s/rad"
+        if self.rotor_inertia:
+            text += f", rotor {self.rotor_inertia:g} kg·m²"
+        if self.ratio != 1.0:
+            text += f", ratio {self.ratio:g}"
+        return text

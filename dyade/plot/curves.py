@@ -19,29 +19,34 @@ require()  # before matplotlib: without the plot extra, the install hint
 import numpy as np
 from matplotlib.figure import Figure
 
+from dyade import cycle
 from dyade.errors import InputError
 from dyade.linkage.columns import unit_of
+from dyade.linkage.machine_curve import torque_curve
+from dyade.machine.flywheel import energy_extremes, machine_curve
 from dyade.plot import canvas
 
 WIDTH, PANEL = 7.0, 2.5  # [in] figure width, height of one panel
 
 
-def energy_surplus(angle: np.ndarray, torque: np.ndarray) -> tuple[float, np.ndarray, float]:
-    """The drive torque's cycle mean [N·m], the energy E(φ) = ∫(M − M_mean)dφ [J] from the
-    sweep's start (trapezoid rule) and its range ΔE = max E − min E [J]: the energy a
-    flywheel must take up and give back per cycle (``angle`` in [rad]).
+def energy_surplus(angle: np.ndarray, torque: np.ndarray) -> tuple[float, float | None]:
+    """The drive torque's cycle mean [N·m] and, over a whole revolution, the range
+    ΔE = max E − min E [J] of the energy E(φ) = ∫(M − M_mean)dφ (else None): the energy a
+    flywheel must take up and give back per cycle (``angle`` in [rad]). Both as
+    ``dyade flywheel`` and ``analyse`` compute them (``dyade.cycle``,
+    ``dyade.machine.flywheel``): each position once, E between the samples too.
 
     >>> import numpy as np
-    >>> phi = np.linspace(0.0, 2 * np.pi, 3601)
-    >>> mean, energy, delta = energy_surplus(phi, 5.0 + 2.0 * np.sin(phi))
-    >>> round(mean, 6), round(delta, 4)      # ∫ 2 sin φ dφ over 0..π
+    >>> phi = np.linspace(0.0, 2 * np.pi, 361)
+    >>> mean, delta = energy_surplus(phi, 5.0 + 2.0 * np.sin(phi))
+    >>> round(mean, 12), round(delta, 6)      # ∫ 2 sin φ dφ over 0..π
     (5.0, 4.0)
     """
-    steps = np.diff(angle)
-    mean = float(np.sum((torque[1:] + torque[:-1]) * steps) / (2.0 * (angle[-1] - angle[0])))
-    energy = np.concatenate(([0.0], np.cumsum(0.5 * (torque[1:] + torque[:-1] - 2.0 * mean)
-                                              * steps)))
-    return mean, energy, float(energy.max() - energy.min())
+    mean = cycle.mean(angle, torque)
+    if not cycle.revolution(angle, torque)[2]:
+        return mean, None
+    top, _, bottom, _ = energy_extremes(machine_curve(angle, torque, speed=1.0))
+    return mean, top - bottom
 
 
 def default_quantities(result) -> list[str]:
@@ -120,14 +125,20 @@ def _check(names: list[str], cols: dict) -> None:
 
 def _torque(ax, result, torque: np.ndarray, k: int = 0) -> None:
     """The drive torque (style k), its cycle mean, and the energy surplus and deficit
-    shaded."""
+    shaded; at constant speed over a whole revolution the mean and ΔE are those of
+    ``dyade flywheel`` (the machine's torque curve at its fine step), else those of the
+    plotted samples (``energy_surplus``)."""
     angle = np.rad2deg(result.crank_angle)
     ax.plot(angle, torque, gid="M_drive", label="M_drive", **canvas.line(k))
     given = np.isfinite(torque)
     if not given.all():
         ax.set_title("no cycle mean or ΔE: the torque is not given everywhere", fontsize=7.5)
         return
-    mean, _, delta = energy_surplus(result.crank_angle, torque)
+    mean, delta = energy_surplus(result.crank_angle, torque)
+    if delta is not None and result.drive is None:  # at constant speed: as `dyade flywheel`
+        curve = torque_curve(result.mechanism)
+        top, _, bottom, _ = energy_extremes(curve)
+        mean, delta = curve.mean_torque, top - bottom
     ax.axhline(mean, gid="M_mean", label=f"mean {mean:.4g} N·m", **canvas.line(k + 2))
     ax.fill_between(angle, torque, mean, where=torque >= mean, interpolate=True,
                     facecolor="0.85", edgecolor=canvas.GREY, hatch="////", linewidth=0.0,
@@ -135,8 +146,7 @@ def _torque(ax, result, torque: np.ndarray, k: int = 0) -> None:
     ax.fill_between(angle, torque, mean, where=torque < mean, interpolate=True,
                     facecolor="white", edgecolor=canvas.GREY, hatch="....", linewidth=0.0,
                     label="below: the flywheel takes up", gid="deficit")
-    span = result.crank_angle[-1] - result.crank_angle[0]
-    if span >= 2 * np.pi - 1.5 * result.mechanism.sweep.step:
+    if delta is not None:
         ax.set_title(f"drive torque: ΔE = {delta:.4g} J per cycle (what a flywheel must store)",
                      fontsize=7.5)
     else:

@@ -52,7 +52,8 @@ def describe(mechanism: Mechanism, the_plan: Plan, skipped: list[str]) -> Tree:
     for k, dyad in enumerate(mechanism.dyads, 1):
         i, j = dyad.links
         g, h = dyad.known
-        variant = (f", assembly variant {dyad.variant:+d} ({dyad.kind.variant_rule})"
+        rule = dyad.kind.variant_rule(dyad.variant)
+        variant = (f", assembly variant {dyad.variant:+d} ({rule})"
                    if dyad.variant else "")
         node = tree.add(f"dyad {dyad.number} ({escape('[[dyad]]')} table {k}): kind {dyad.kind.number} "
                         f"{dyad.kind.name}, links i={i}, j={j}, attached to links {g} and "

@@ -29,6 +29,11 @@ def effects(the_plan: Plan) -> list[str]:
                    f"the motor: {the_plan.equation_of_motion}; its periodic steady state "
                    f"(shooting over one revolution), or the run-up from rest when asked; "
                    f"then kinematics and forces at the real crank speed and acceleration")
+    if the_plan.drive_line:
+        out.append(f"elastic drive line ({the_plan.drive_line}): its lowest natural frequency "
+                   f"ω̄ with the mean reduced inertia and the VDI 2149 check Ω/ω̄ ≤ 0.1 (a note "
+                   f"when exceeded); its vibration, resonances and stability with "
+                   f"`dyade driveline`")
     return out
 
 

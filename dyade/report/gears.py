@@ -9,6 +9,7 @@ from typing import Any
 
 import numpy as np
 
+from dyade.roundoff import EIGEN_ROUNDOFF, clean
 from dyade.vibration.gears.model import DOFS
 
 MOTIONS = ("torsion", "lateral", "axial")
@@ -186,8 +187,13 @@ def shape_table(modes, count: int):
                   title_justify="left")
     for head in SHAPE_COLUMNS:
         table.add_column(head, justify="left" if head == "body" else "right")
+    # a component below the round-off of its mode's largest one is 0 (``dyade.roundoff``)
+    scales = np.max(np.abs(modes.shapes), axis=0, initial=0.0)
     for row in shape_rows(modes, count):
-        table.add_row(*[fmt(row[name], 4) if name != "mode" else str(row[name])
+        scale = scales[row["mode"] - 1]
+        table.add_row(*[str(row[name]) if name == "mode" else
+                        fmt(clean(row[name], scale, EIGEN_ROUNDOFF) if isinstance(row[name], float)
+                            else row[name], 4)
                         for name in SHAPE_COLUMNS])
     return table
 

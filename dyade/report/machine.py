@@ -7,6 +7,8 @@ from typing import Any
 
 from rich.table import Table
 
+from dyade.roundoff import clean
+
 FLYWHEEL_COLUMNS = ["speed_rpm", "P_mean", "M_mean", "delta_E", "J_machine", "J_flywheel",
                     "fluctuation", "angle_max_speed_deg", "angle_min_speed_deg"]
 """the keys of ``dyade flywheel`` (CSV columns, JSON keys)"""
@@ -67,11 +69,14 @@ def balance_tables(name: str, rows: list[dict[str, Any]], changes: dict[str, Any
     for head in ("quantity", "unit", "before", "after", "after/before"):
         effect.add_column(head, justify="left" if head in ("quantity", "unit") else "right")
 
-    def add(label, unit, before, after):
+    def add(label, unit, before, after, scale=None):
+        """A row; round-off of ``scale`` (default: the larger of before and after) is 0."""
         if before is None or after is None:
             effect.add_row(label, unit, "—", "—", "")
             return
-        ratio = f"{after / before:.3g}" if before else ""
+        scale = max(abs(before), abs(after)) if scale is None else scale
+        before, after = clean(before, scale), clean(after, scale)
+        ratio = f"{after / before + 0.0:.3g}" if before else ""
         effect.add_row(label, unit, f"{before:.6g}", f"{after:.6g}", ratio)
 
     shaking = changes["shaking_force"]
@@ -82,6 +87,9 @@ def balance_tables(name: str, rows: list[dict[str, Any]], changes: dict[str, Any
         entry = changes[key]
         add(f"{label}, largest", unit, entry["before_max"], entry["after_max"])
         add(f"{label}, RMS", unit, entry["before_rms"], entry["after_rms"])
-    for name_, entry in changes["joint_forces"].items():
-        add(f"{name_} largest", "N", entry["before"], entry["after"])
+    forces = changes["joint_forces"]
+    largest = max((abs(value) for entry in forces.values() for value in entry.values()
+                   if value is not None), default=0.0)  # the machine's joint-force scale
+    for name_, entry in forces.items():
+        add(f"{name_} largest", "N", entry["before"], entry["after"], largest)
     return [weights, effect]

@@ -117,6 +117,13 @@ def _clearance_not_applicable(note, figures, mechanism) -> str:
     return f"clearance check of joint ({a},{b}) does not apply: {figures['reason']}."
 
 
+def _drive_line_soft(note, figures, mechanism) -> str:
+    return (f"the drive line's lowest natural frequency ω̄ = {figures['omega_bar']:.5g} rad/s is "
+            f"only {1.0 / figures['ratio']:.3g} times the crank speed (Ω/ω̄ = "
+            f"{figures['ratio']:.3g} > 0.1, VDI 2149 Part 1): these rigid-drive results do not "
+            f"hold; see `dyade driveline`.")
+
+
 WORDS = {NoteKind.PARTIAL: _partial, NoteKind.DEAD_CENTRE: _dead_centre,
           NoteKind.POOR_TRANSMISSION: _poor_transmission, NoteKind.IMPLAUSIBLE: _implausible,
           NoteKind.FORCES_INVALID: _forces_invalid,
@@ -125,5 +132,6 @@ WORDS = {NoteKind.PARTIAL: _partial, NoteKind.DEAD_CENTRE: _dead_centre,
           NoteKind.AT_REST: _at_rest, NoteKind.NEVER_MOVES: _never_moves,
           NoteKind.SELF_LOCKING: _self_locking,
           NoteKind.RUN_UP_NOT_SETTLED: _run_up_not_settled,
-          NoteKind.CLEARANCE_NOT_APPLICABLE: _clearance_not_applicable}
+          NoteKind.CLEARANCE_NOT_APPLICABLE: _clearance_not_applicable,
+          NoteKind.DRIVE_LINE_SOFT: _drive_line_soft}
 """every kind of note -> its words (tests/test_notes.py: none missing)"""

@@ -9,11 +9,11 @@ from dyade.linkage.plan import Plan
 from dyade.linkage.verdicts import Outcome as Result
 from dyade.linkage.model import FRAME, Mechanism, Prismatic, Revolute
 from dyade.linkage.columns import Columns, unit_of
-from dyade.linkage.summary import cycle_mean
+from dyade import cycle
+from dyade.roundoff import ROUNDOFF, is_roundoff
 from dyade.units import LENGTH_FACTORS
 
-
-NOISE = 1e-12  # [-] values below this share of their column's largest are round-off: 0
+FLAG = "1/0"  # the CSV/JSON unit of a flag column; tables say yes or no
 
 
 def display(unit: str, length_unit: str) -> tuple[float, str]:
@@ -23,13 +23,25 @@ def display(unit: str, length_unit: str) -> tuple[float, str]:
     return 1.0 / LENGTH_FACTORS[length_unit], length_unit + unit[1:]
 
 
-def number(value: float, scale: float = 0.0) -> str:
-    """A value to 6 significant digits; round-off noise (below NOISE of ``scale``) as 0."""
+def number(value: float, scale: float = 0.0, spec: str = ".6g") -> str:
+    """A value to 6 significant digits (``spec``); round-off of ``scale`` as 0
+    (``dyade.roundoff``)."""
     if not np.isfinite(value):
         return "—"
-    if abs(value) <= NOISE * scale:
+    if is_roundoff(value, scale):
         return "0"
-    return f"{value + 0.0:.6g}"
+    return f"{value + 0.0:{spec}}"
+
+
+def flag(value: float) -> str:
+    """A flag column's value in a table: yes (1) or no (0)."""
+    return "yes" if value else "no"
+
+
+def scale_of(values: np.ndarray) -> float:
+    """The largest finite magnitude of ``values`` (0 if none): a quantity's scale."""
+    finite = np.abs(values[np.isfinite(values)])
+    return float(finite.max()) if finite.size else 0.0
 
 
 def select(cols: Columns, patterns: list[str]) -> Columns:
@@ -69,6 +81,9 @@ def sweep_summary(result: Result, cols: Columns, length_unit: str = "m") -> Tabl
         if name == "angle_deg":
             continue
         factor, unit = display(unit_of(name), length_unit)
+        shown = number
+        if unit == FLAG:
+            unit, shown = "", lambda value, scale: flag(value)
         finite = np.isfinite(values)
         if not finite.any():
             table.add_row(name, unit, "—", "", "—", "")
@@ -76,11 +91,11 @@ def sweep_summary(result: Result, cols: Columns, length_unit: str = "m") -> Tabl
         masked = np.where(finite, values, np.nan) * factor
         lo, hi = int(np.nanargmin(masked)), int(np.nanargmax(masked))
         scale = scales[unit_of(name)] * factor
-        if masked[hi] - masked[lo] <= NOISE * scale and finite.all():
-            constant.append(f"{name} = {number(masked[lo], scale)}{f' {unit}' if unit else ''}")
+        if masked[hi] - masked[lo] <= ROUNDOFF * scale and finite.all():
+            constant.append(f"{name} = {shown(masked[lo], scale)}{f' {unit}' if unit else ''}")
             continue
-        table.add_row(name, unit, number(masked[lo], scale), f"{angle[lo]:.1f}",
-                      number(masked[hi], scale), f"{angle[hi]:.1f}")
+        table.add_row(name, unit, shown(masked[lo], scale), f"{angle[lo]:.1f}",
+                      shown(masked[hi], scale), f"{angle[hi]:.1f}")
     if constant:
         table.caption = "constant over the sweep: " + ", ".join(constant)
         table.caption_justify = "left"
@@ -110,15 +125,17 @@ def key_results(result: Result, cols: Columns, summary: dict, length_unit: str =
     drive = summary.get("drive")
     if drive:
         torque = cols["M_drive"]
+        torque_scale = scale_of(torque)
         for label, pick in (("drive torque max", np.nanargmax), ("drive torque min", np.nanargmin)):
             if np.isfinite(torque).any():
                 k = int(pick(torque))
-                table.add_row(label, number(torque[k]), "N·m", f"{angle[k]:.1f}")
-        table.add_row("drive torque RMS", number(drive["M_rms"]), "N·m", "")
-        power_scale = float(np.nanmax(np.abs(cols["P_drive"]), initial=0.0))
-        table.add_row("mean drive power", number(drive["P_mean"], power_scale), "W", "")
+                table.add_row(label, number(torque[k], torque_scale), "N·m", f"{angle[k]:.1f}")
+        table.add_row("drive torque RMS", number(drive["M_rms"], torque_scale), "N·m", "")
+        table.add_row("mean drive power", number(drive["P_mean"], scale_of(cols["P_drive"])), "W",
+                      "")
         if "friction" in summary:
-            table.add_row("mean friction power", number(summary["friction"]["P_mean"]), "W", "")
+            table.add_row("mean friction power", number(summary["friction"]["P_mean"],
+                                                        scale_of(cols["P_friction"])), "W", "")
         peaks = summary.get("joint_peaks", {})
         largest = max((abs(p["value"]) for p in peaks.values()), default=0.0)
         for name, peak in peaks.items():
@@ -178,6 +195,7 @@ def force_summary(result: Result, cols: Columns) -> Table | None:
     table.add_column("unit")
     table.add_column("largest |value|", justify="right")
     table.add_column("at φ21 [°]", justify="right")
+    scales = unit_scales(cols)
     for joint in result.mechanism.joints:
         a, b = joint.name
         names = ([f"F_{a}_{b}"] if isinstance(joint, Revolute) else [f"FN_{a}_{b}", f"M_{a}_{b}"])
@@ -187,18 +205,22 @@ def force_summary(result: Result, cols: Columns) -> Table | None:
                 table.add_row(name, unit_of(name), "—", "")
                 continue
             k = int(np.nanargmax(values))
-            table.add_row(name, unit_of(name), f"{cols[name][k] + 0.0:.6g}", f"{angle[k]:.1f}")
+            if is_roundoff(values[k], scales[unit_of(name)]):
+                table.add_row(name, unit_of(name), "0", "")  # round-off everywhere
+                continue
+            table.add_row(name, unit_of(name), number(cols[name][k]), f"{angle[k]:.1f}")
     torque = cols["M_drive"]
     finite = np.isfinite(torque)
+    radians = np.deg2rad(angle)
     if finite.any():
         lo, hi = int(np.nanargmin(torque)), int(np.nanargmax(torque))
-        table.add_row("M_drive max", "N·m", f"{torque[hi]:.6g}", f"{angle[hi]:.1f}")
-        table.add_row("M_drive min", "N·m", f"{torque[lo]:.6g}", f"{angle[lo]:.1f}")
-        rms = np.sqrt(cycle_mean(angle, torque ** 2))
-        table.add_row("M_drive RMS", "N·m", f"{rms:.6g}", "")
-        table.add_row("P_drive mean", "W", f"{cycle_mean(angle, cols['P_drive']):.6g}", "")
+        scale = scale_of(torque)
+        table.add_row("M_drive max", "N·m", number(torque[hi], scale), f"{angle[hi]:.1f}")
+        table.add_row("M_drive min", "N·m", number(torque[lo], scale), f"{angle[lo]:.1f}")
+        table.add_row("M_drive RMS", "N·m", number(cycle.rms(radians, torque), scale), "")
+        table.add_row("P_drive mean", "W", number(cycle.mean(radians, cols["P_drive"])), "")
     if rubbing is not None:
-        table.add_row("P_friction mean", "W", f"{cycle_mean(angle, cols['P_friction']):.6g}", "")
+        table.add_row("P_friction mean", "W", number(cycle.mean(radians, cols["P_friction"])), "")
         its = cols["friction_iterations"]
         rows = result.rows & result.forces_valid
         worst = float(np.max(rubbing.residual[rows], initial=0.0))

@@ -12,10 +12,14 @@ import numpy as np
 
 R2, R3, R4, B0 = 0.05, 0.2, 0.15, 0.25  # [m]
 M3, J3, M4, J4 = 1.2, 0.004, 0.9, 0.0017  # [kg], [kg m²]
+G3, G4 = 0.1, 0.075  # [m] centres of coupler and rocker from A and B0, along the link
 
 
-def fourbar(phi: np.ndarray, omega: float) -> dict[str, np.ndarray]:
-    """Angles, rates and joint forces of the four-bar at crank angles ``phi``."""
+def fourbar(phi: np.ndarray, omega: float, R3: float | np.ndarray = R3,  # noqa: N803
+            R4: float | np.ndarray = R4) -> dict[str, np.ndarray]:
+    """Angles, rates and joint forces of the four-bar at crank angles ``phi``; coupler
+    ``R3`` and rocker ``R4`` [m] may be arrays that broadcast against ``phi`` (variants ×
+    positions)."""
     c2, s2 = np.cos(phi), np.sin(phi)
     ax, ay = R2 * c2, R2 * s2
     dx, dy = B0 - ax, -ay
@@ -35,16 +39,16 @@ def fourbar(phi: np.ndarray, omega: float) -> dict[str, np.ndarray]:
     det = R3 * R4 * (s3 * c4 - s4 * c3)
     a3 = (-R4 * c4 * rx - R4 * s4 * ry) / det
     a4 = (-R3 * c3 * rx - R3 * s3 * ry) / det
-    # centre accelerations (middles of the links)
+    # centre accelerations (at G3, G4 along the links: their middles in the file)
     a_ax, a_ay = -R2 * omega ** 2 * c2, -R2 * omega ** 2 * s2
-    g3x = a_ax + 0.5 * R3 * (-a3 * s3 - w3 ** 2 * c3)
-    g3y = a_ay + 0.5 * R3 * (a3 * c3 - w3 ** 2 * s3)
-    g4x = 0.5 * R4 * (-a4 * s4 - w4 ** 2 * c4)
-    g4y = 0.5 * R4 * (a4 * c4 - w4 ** 2 * s4)
+    g3x = a_ax + G3 * (-a3 * s3 - w3 ** 2 * c3)
+    g3y = a_ay + G3 * (a3 * c3 - w3 ** 2 * s3)
+    g4x = G4 * (-a4 * s4 - w4 ** 2 * c4)
+    g4y = G4 * (a4 * c4 - w4 ** 2 * s4)
     # rocker moments about B0 and coupler moments about A give F34 (force on 4 at B)
     # rocker: M_B0(F34) + M_B0(−m4 g4) − J4 a4 = 0 ; coupler: M_A(−F34) + M_A(−m3 g3) − J3 a3 = 0
-    k4 = J4 * a4 + 0.5 * R4 * (c4 * M4 * g4y - s4 * M4 * g4x)
-    k3 = J3 * a3 + 0.5 * R3 * (c3 * M3 * g3y - s3 * M3 * g3x)
+    k4 = J4 * a4 + G4 * (c4 * M4 * g4y - s4 * M4 * g4x)
+    k3 = J3 * a3 + G3 * (c3 * M3 * g3y - s3 * M3 * g3x)
     # R4(c4 Fy − s4 Fx) = k4 ;  −R3(c3 Fy − s3 Fx) = k3
     den = R4 * R3 * (s3 * c4 - c3 * s4)
     fx = (k4 * R3 * c3 + k3 * R4 * c4) / den
@@ -85,3 +89,23 @@ def slider_crank(phi: np.ndarray, omega: float) -> dict[str, np.ndarray]:
     torque = ax * f23y - ay * f23x
     return {"phi3": phi3, "x_B": bx, "v_B": vb, "a_B": ab, "omega3": w3, "alpha3": a3,
             "F34x": fx, "F34y": fy, "F23x": f23x, "F23y": f23y, "M_drive": torque}
+
+
+def fourbar_variants(r3: np.ndarray, r4: np.ndarray, phi: np.ndarray, omega: float
+                     ) -> dict[str, np.ndarray]:
+    """Key results of four-bar variants (coupler ``r3``, rocker ``r4`` [m], each (V,))
+    over crank angles ``phi`` (P,), as ``dyade study`` gives them: the drive torque's
+    peak, trough and RMS over the cycle (trapezoid rule), the peak forces in joints
+    (2,3) and (3,4), and the smallest transmission angle [°]; one (variants × positions)
+    broadcast."""
+    out = fourbar(phi[None, :], omega, r3[:, None], r4[:, None])
+    torque = out["M_drive"]
+    span = phi[-1] - phi[0]
+    mean_square = np.sum((torque[:, 1:] ** 2 + torque[:, :-1] ** 2) * np.diff(phi), axis=1) / (
+        2.0 * span)
+    mu = np.rad2deg(np.abs(np.remainder(out["phi3"] - out["phi4"] + np.pi, 2 * np.pi) - np.pi))
+    return {"M_drive_max": torque.max(axis=1), "M_drive_min": torque.min(axis=1),
+            "M_drive_rms": np.sqrt(mean_square),
+            "F_2_3_peak": np.hypot(out["F23x"], out["F23y"]).max(axis=1),
+            "F_3_4_peak": np.hypot(out["F34x"], out["F34y"]).max(axis=1),
+            "mu_2_min_deg": np.minimum(mu, 180.0 - mu).min(axis=1)}

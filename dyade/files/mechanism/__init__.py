@@ -1,7 +1,7 @@
 """Read a mechanism file (TOML), validate it, and convert it to SI model objects.
 
 Every error names the file, the key path, what was expected (with its unit) and what
-was found; unknown keys get a "Did you mean" (``mechanisms/README.md`` documents every
+was found; unknown keys get a "Did you mean" (``docs/reference/mechanism-file.md`` documents every
 key). The primitives are the shared schema (``dyade.files.schema``); one module per
 part of the file:
 
@@ -36,7 +36,7 @@ def read_mechanism(path: str | os.PathLike, overrides: dict[str, Any] | None = N
     Parameters
     ----------
     path : str or os.PathLike
-        The TOML file (``mechanisms/README.md`` documents every key).
+        The TOML file (``docs/reference/mechanism-file.md`` documents every key).
     overrides : dict, optional
         Dotted key path -> value, replacing keys of the file as ``--set`` does
         (``{"crank.speed_rpm": 600}``). Array entries go by their number: links and

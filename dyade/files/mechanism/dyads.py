@@ -96,7 +96,7 @@ class DyadReader(LinkReader):
 # -- the kinds' own keys and joint B ----------------------------------------------------
 # middle(reader, table, key, i, j, dyad_table, dyad_key) -> Joint: joint B of a dyad of
 # links i and j from its table ``B`` (key path ``key``) and the dyad's table (``dyad_key``),
-# in the link frames of the kind (``DyadKind.frames``, ``mechanisms/README.md``)
+# in the link frames of the kind (``DyadKind.frames``, ``docs/reference/mechanism-file.md``)
 def rrr_middle(reader: DyadReader, table: Any, key: str, i: int, j: int,
                dyad_table: dict[str, Any], dyad_key: str) -> Revolute:
     """Joint B from ``lengths = [|AB|, |CB|]``: at (|AB|, 0) on link i, (|CB|, 0) on j."""

@@ -9,6 +9,7 @@ import os
 from typing import Any
 
 from dyade.files.mechanism.drive import DriveReader
+from dyade.files.mechanism.drive_line import DriveLineReader
 from dyade.files.mechanism.dyads import DyadReader
 from dyade.files.mechanism.links import FRAME_KEYS
 from dyade.files.mechanism.loads import LoadReader
@@ -16,11 +17,11 @@ from dyade.files.schema import fmt, show
 from dyade.linkage.model import CRANK, FRAME, Link, Mechanism, Sweep, sweep_problem
 
 TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
-            "gravity", "load", "spring", "friction", "drive"}
+            "gravity", "load", "spring", "friction", "drive", "drive_line"}
 SWEEP_KEYS = {"start", "stop", "step", "dead_centre", "transmission_warning"}
 
 
-class Reader(DyadReader, LoadReader, DriveReader):
+class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader):
     """Walks the parsed TOML of a mechanism file with key paths for the error messages."""
 
     top_keys = TOP_KEYS
@@ -74,9 +75,14 @@ class Reader(DyadReader, LoadReader, DriveReader):
             raise self.fail("drive", "needs the machine's inertia for its equation of motion: "
                                      "give the links masses (`links.N.mass`) or a flywheel "
                                      "(`drive.flywheel_inertia`).")
+        line = self.drive_line(data["drive_line"]) if "drive_line" in data else None
+        if line is not None and drive is not None and line.rotor_inertia is None:
+            raise self.fail("drive_line.rotor_inertia", "is missing: with a [drive] motor the "
+                                                        "drive line needs the rotor's moment of "
+                                                        "inertia [kg·m²] on the motor shaft.")
         return Mechanism(name, self.source, crank, dyads, links, sweep, gravity, loads, springs,
                          dead_centre, friction_tol, friction_max_iter, warning,
-                         (self.length_unit, self.angle_unit), drive)
+                         (self.length_unit, self.angle_unit), drive, line)
 
     def sweep(self, table: Any) -> tuple[Sweep, float, float]:
         self.keys(table, "sweep", SWEEP_KEYS)

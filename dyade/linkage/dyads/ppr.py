@@ -36,6 +36,6 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
 
 
 KIND = DyadKind(
-    5, "PPR", False, "", ("origin on guide A, ξ along the guide at A",
+    5, "PPR", False, ("", ""), ("origin on guide A, ξ along the guide at A",
                           "origin C, ξ along the guide at B"),
     "guide A and guide B", "blocked position", close)

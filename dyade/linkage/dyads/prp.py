@@ -35,5 +35,5 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
 
 
 KIND = DyadKind(
-    4, "PRP", False, "", ("origin B, ξ along the guide at A", "origin B, ξ along the guide at C"),
+    4, "PRP", False, ("", ""), ("origin B, ξ along the guide at A", "origin B, ξ along the guide at C"),
     "guide A and guide C", "blocked position", close)

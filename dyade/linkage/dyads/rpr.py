@@ -69,7 +69,8 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
 
 
 KIND = DyadKind(
-    3, "RPR", True, "the guide direction points from the guide link's pivot towards the other "
-                    "link's pivot",
+    3, "RPR", True, ("the guide direction points from the guide link's pivot towards the other "
+                     "link's pivot", "the guide direction points from the other link's pivot "
+                                     "towards the guide link's pivot"),
     ("origin A, ξ along the guide at B", "origin C, ξ along the guide at B"),
     "the normal of guide B and the line between the pivots", "dead centre", close)

@@ -54,6 +54,7 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
 
 
 KIND = DyadKind(
-    2, "RRP", True, "B ahead of the foot point of A in the guide direction",
+    2, "RRP", True, ("B ahead of the foot point of A in the guide direction",
+                     "B behind the foot point of A in the guide direction"),
     ("origin A, ξ towards B", "origin B, ξ along the guide at C"),
     "B−A and the normal of guide C", "dead centre", close)

@@ -48,6 +48,6 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
 
 
 KIND = DyadKind(
-    1, "RRR", True, "B left of the directed line A→C",
+    1, "RRR", True, ("B left of the directed line A→C", "B right of the directed line A→C"),
     ("origin A, ξ towards B", "origin C, ξ towards B"),
     "B−A and B−C (link i and link j at B)", "dead centre", close)

@@ -33,9 +33,9 @@ class FrictionResult:
     never_moves: list[tuple[int, int]]
     """joints with friction whose relative velocity is zero over the whole sweep"""
     determinant: dict[int, FloatArray]
-    """dyad number -> (n,) friction-augmented determinant relative to the frictionless
-    one, det(I + K) [-]: 1 without friction, ≤ 0 self-locking; NaN where not solved
-    (direct solution only)"""
+    """dyad number -> (n,) determinant of the friction-augmented equilibrium's Jacobian
+    at the solution relative to the frictionless one, det(I + K) [-]: 1 without
+    friction, ≤ 0 self-locking; NaN where not solved (direct solution only)"""
     locks: dict[tuple[int, int], FloatArray]
     """joint -> (n,) bool: its dyad self-locks there and this joint's friction is the
     cause (direct solution only)"""

@@ -12,12 +12,15 @@ joints with friction (one to three unknowns per crank position):
 
 Solve, take the pattern of the new reactions, repeat until the laws hold (the change a
 fixed-point step would make to a friction load is below ``tol`` times μ·r_z or μ times
-the dyad's largest joint force). A slider's law is piecewise linear, so a consistent
-pattern is exact after one or two passes; a pin's direction update is Newton's method
-on |F|, quadratically convergent. All positions at once.
+the dyad's largest joint force). Every law is homogeneous of degree 1, so this is
+Newton's method on τ + c·g(W(τ)) = 0: a slider whose pressure keeps its sign is linear
+for a consistent pattern (exact after one or two passes), a pin's direction and a
+tilting block's pressure (``laws.Law.curved``) converge quadratically. All positions at
+once.
 
-**Self-locking.** det(I + K) = det(Mᵀ + C·A)/det(Mᵀ) is the friction-augmented
-determinant of the dyad relative to the frictionless one (1 without friction); towards 0
+**Self-locking.** det(I + K) = det(Mᵀ + C·A)/det(Mᵀ), with A the laws' gradients at the
+solution, is the determinant of the friction-augmented equilibrium's Jacobian relative
+to the frictionless one (1 without friction); towards 0
 the forces grow like 1/det. A consistent solution with det > 0 is the one dyade reports;
 where the passes end at det ≤ 0 or cycle, they start again from every forced pattern
 (``_Direct``), since a slider that a load drives while its linkage brakes it also has a
@@ -260,6 +263,9 @@ class _Direct(Rub):
                 for law, (_, parts), old in zip(view.laws, measured, out.patterns):
                     for new, was in zip(law.pattern(parts), old):
                         renew |= new != was
+                    curved = law.curved(parts)  # its gradient turns from pass to pass
+                    if curved is not None:
+                        renew |= curved
                 renew &= pending
             else:
                 renew = pending

@@ -45,6 +45,7 @@ KERNEL_RTOL = 1e-9  # [-] singular values of the cluster constraint matrix below
 #                     of the largest: a motion nothing resists (rigid-body mode)
 RESOLVED = 1e3  # [-] an eigenvalue below RESOLVED·eps·|A| cannot be told from round-off
 MOTIONS = ("torsion", "lateral", "axial")
+TIE_RTOL = 1e-9  # [-] strain-energy shares this close to the largest tie with it (``dominant``)
 KINETIC_CATEGORY = ("axial", "lateral", "lateral", "torsion", "lateral", "lateral")
 """what each body coordinate (ux … rz) moves"""
 
@@ -252,13 +253,25 @@ class Modes:
         return out
 
     def dominant(self) -> list[tuple[str, str, float]]:
-        """Per mode, the (owner, motion) that holds the largest strain-energy share."""
+        """Per mode, the (owner, motion) that holds the largest strain-energy share; where
+        several hold it alike (within ``TIE_RTOL``), all of them: owners joined by " = "
+        (with their motions where those differ, the motion then "")."""
         keys = list(self.strain)
         if not keys:
             return [("", "", float("nan"))] * self.frequencies.size
         values = np.array([self.strain[k] for k in keys]).reshape(len(keys), -1)
         best = np.argmax(values, axis=0)
-        return [(keys[b][0], keys[b][1], float(values[b, k])) for k, b in enumerate(best)]
+        out = []
+        for k, b in enumerate(best):
+            top = float(values[b, k])
+            tied = [keys[i] for i in np.flatnonzero(values[:, k] >= top * (1.0 - TIE_RTOL))]
+            if len(tied) == 1 or not top > 0.0:
+                out.append((keys[b][0], keys[b][1], top))
+            elif len({motion for _, motion in tied}) == 1:
+                out.append((" = ".join(owner for owner, _ in tied), tied[0][1], top))
+            else:
+                out.append((" = ".join(f"{owner} {motion}" for owner, motion in tied), "", top))
+        return out
 
 
 MATRICES = 10
@@ -378,7 +391,8 @@ def multipliers(system: System, residual: np.ndarray) -> np.ndarray:
 
 def modal_mesh_forces(system: System, shapes: FloatArray) -> FloatArray:
     """(meshes, k): the mesh force of every mode, compression positive (−λ for ideal
-    meshes, k·w·φ for elastic ones, times the mesh's sense: ``System.senses``)."""
+    meshes, k·w·φ for elastic ones, times the mesh's sense: ``System.senses``); NaN for
+    a mesh whose gears have no module (``sizeless``)."""
     out = np.zeros((len(system.drive.meshes), shapes.shape[1]))
     if system.ideal:
         # (gᵀM⁻¹g)⁻¹·gᵀM⁻¹·K first: l rows, so that no n×n×k product is formed
@@ -387,4 +401,12 @@ def modal_mesh_forces(system: System, shapes: FloatArray) -> FloatArray:
     for k, mesh in enumerate(system.drive.meshes):
         if mesh.stiffness is not None:
             out[k] = mesh.stiffness * (system.mesh_rows[:, k] @ shapes)
+    out[sizeless(system)] = np.nan  # per unit module: not a force in newtons
     return system.senses[:, None] * out
+
+
+def sizeless(system: System) -> list[int]:
+    """The meshes whose gears have no `module` (a torsional model that gives only the
+    ratio): their forces, and with them κ, are not given (NaN)."""
+    return [k for k, mesh in enumerate(system.drive.meshes)
+            if system.drive.gear(mesh.driving).module is None]

@@ -29,7 +29,8 @@ from dyade.errors import InputError
 from dyade.limits import BYTES_PER_VALUE, check_memory
 from dyade.vibration.gears.assembly import System, assemble
 from dyade.vibration.gears.model import DOFS, FRAME, GearDrive, frame
-from dyade.vibration.gears.modes import Modes, NullSpace, gear_modes, multipliers, rigid_modes
+from dyade.vibration.gears.modes import (Modes, NullSpace, gear_modes, multipliers, rigid_modes,
+                                         sizeless)
 
 BATCH_BYTES = 32e6  # [B] complex matrices solved at once
 BALANCE_RTOL = 1e-9  # [-] loads with more than this share on a rigid-body mode: unbalanced
@@ -197,6 +198,7 @@ def gear_response(drive: GearDrive | System, frequencies, *, coordinates=None,
         forces[:, j] = (mesh.stiffness + 1j * omega * mesh.damping) * (q @ system.mesh_rows[:, j]
                                                                       - e[j])
     forces *= system.senses[None, :]
+    forces[:, sizeless(system)] = np.nan  # per unit module: not in newtons
     supports, support_forces = _support_forces(system, q, omega)
     columns = [system.coordinate(body, dof) for body, dof in picked]
     return Response(freq, picked, q[:, columns], forces,
@@ -288,6 +290,7 @@ def gear_statics(drive: GearDrive | System, torques: dict[str, float], *,
         if mesh.stiffness is not None:
             forces[j] = mesh.stiffness * system.mesh_rows[:, j] @ q
     forces *= system.senses
+    forces[sizeless(system)] = np.nan
     names, on_frame = _support_forces(system, q[None, :], np.zeros(1))
     supports = [e for e in system.elements if e.ends[1] == FRAME]
     axes = [np.array(frame(e.axis)).T for e in supports]  # element axes -> global

@@ -1,0 +1,98 @@
+"""Statistics over one crank revolution — the mean, the RMS and the integral of a sampled
+periodic curve — one function each, used by ``analyse`` (its summary), ``balance``,
+``flywheel`` and the plots alike, so that every command prints the same figure.
+
+A sweep 0°–360° holds the same position twice: these functions count it once. The
+samples of a revolution are periodic (``revolution``): the last angle repeats the first
+(it is dropped), or the sweep stops short of the next revolution by at most 1.5 steps
+(the closing interval is the gap to the first angle plus 2π). A periodic curve is
+integrated interval by interval with its cubic Hermite interpolant, the slopes by
+three-point differences (``integrals``: fourth order for smooth curves, and for equal
+steps exactly the periodic trapezoid rule, the plain mean of the distinct positions).
+A sweep over part of a revolution is averaged over its own span by the trapezoid rule.
+
+>>> import numpy as np
+>>> phi = np.deg2rad(np.arange(0.0, 361.0, 1.0))           # 0°..360°: 360° repeats 0°
+>>> torque = 1.0 + np.cos(phi)
+>>> round(mean(phi, torque), 12), round(rms(phi, torque), 12)   # 1 and sqrt(1.5)
+(1.0, 1.224744871392)
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from dyade.arrays import FloatArray
+from dyade.roundoff import clean
+
+TURN = 2.0 * math.pi
+CLOSE_RTOL = 1e-9  # [-] a last angle this close to the first plus 2π repeats it
+GAP_STEPS = 1.5  # a sweep this many steps short of 2π still covers the revolution
+
+
+def revolution(angle: FloatArray, values: FloatArray) -> tuple[FloatArray, FloatArray, bool]:
+    """(angles, values, periodic): the distinct positions of a sweep ``angle`` [rad]
+    (rising) with their ``values``, and whether they cover one revolution (the module
+    docstring): a repeated last position is dropped."""
+    angle = np.asarray(angle, dtype=np.float64)
+    values = np.asarray(values, dtype=np.float64)
+    if angle.size < 3:
+        return angle, values, False
+    span = float(angle[-1] - angle[0])
+    if abs(span - TURN) <= CLOSE_RTOL * TURN:
+        return angle[:-1], values[:-1], True
+    steps = np.diff(angle)
+    return angle, values, span < TURN and TURN - span <= GAP_STEPS * float(np.max(steps))
+
+
+def segments(angle: FloatArray, values: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Interval lengths h_i of a periodic curve's distinct positions (the last one
+    closing the revolution) and its three-point slopes."""
+    h = np.diff(np.append(angle, angle[0] + TURN))
+    left = np.roll(h, 1)
+    ahead, behind = np.roll(values, -1), np.roll(values, 1)
+    slope = (left * left * (ahead - values) + h * h * (values - behind)) / (left * h * (left + h))
+    return h, slope
+
+
+def integrals(angle: FloatArray, values: FloatArray) -> FloatArray:
+    """∫ over each interval of a periodic curve's cubic Hermite interpolant (the last
+    interval closes the revolution), at its distinct positions."""
+    h, slope = segments(angle, values)
+    return 0.5 * h * (values + np.roll(values, -1)) + h * h / 12.0 * (slope - np.roll(slope, -1))
+
+
+def mean(angle: FloatArray, values: FloatArray) -> float:
+    """The mean of ``values`` over the crank angle ``angle`` [rad]: over the revolution
+    if the sweep covers one (each position once), else over the sweep's span (trapezoid
+    rule); finite values only (where some are not, the trapezoid rule over those given).
+    NaN if none is; 0 where it is round-off of the values (``dyade.roundoff``)."""
+    angle = np.asarray(angle, dtype=np.float64)
+    values = np.asarray(values, dtype=np.float64)
+    keep = np.isfinite(values)
+    if not keep.any():
+        return float("nan")
+    return clean(_mean(angle, values, keep), float(np.max(np.abs(values[keep]))))
+
+
+def _mean(angle: FloatArray, values: FloatArray, keep: FloatArray) -> float:
+    """``mean`` before the round-off rule."""
+    if not keep.all():
+        angle, values = angle[keep], values[keep]
+    else:
+        distinct, cycle, periodic = revolution(angle, values)
+        if periodic:
+            return float(np.sum(integrals(distinct, cycle)) / TURN)
+    if angle.size < 2:
+        return float(values.mean()) if values.size else float("nan")
+    return float(np.sum((values[1:] + values[:-1]) * np.diff(angle))
+                 / (2.0 * (angle[-1] - angle[0])))
+
+
+def rms(angle: FloatArray, values: FloatArray) -> float:
+    """The root mean square of ``values`` over the crank angle ``angle`` [rad]
+    (``mean`` of the squares)."""
+    values = np.asarray(values, dtype=np.float64)
+    return float(np.sqrt(mean(angle, values * values)))

@@ -1,0 +1,171 @@
+"""The elastic drive line (``dyade.linkage.drive_line``): the resonance curve, the
+stability chart (unstable speeds shaded) or map, the shaft torque over the cycle against
+the rigid drive's, and the run-up."""
+
+from __future__ import annotations
+
+from dyade.plot import require
+
+require()  # before matplotlib: without the plot extra, the install hint
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from dyade.machine.drive_line import UNSTABLE_MARGIN
+from dyade.plot import canvas
+
+RPM = 30.0 / np.pi
+UNSTABLE = dict(facecolor="0.80", edgecolor="0.45", hatch="////", linewidth=0.0, alpha=0.7,
+                zorder=0)
+
+
+def _shade_unstable(ax, speed_rpm, unstable, label: bool = True) -> None:
+    """Shade each run of unstable speeds, half a step beyond its ends."""
+    half = 0.5 * float(np.min(np.diff(speed_rpm))) if speed_rpm.size > 1 else 0.5
+    first = None
+    for k, bad in enumerate(list(unstable) + [False]):
+        if bad and first is None:
+            first = k
+        if not bad and first is not None:
+            ax.axvspan(speed_rpm[first] - half, speed_rpm[k - 1] + half,
+                       label="unstable (|μ| > 1)" if label else None, **UNSTABLE)
+            label, first = False, None
+
+
+def _resonance_marks(ax, curve, label: bool = True) -> None:
+    """Forced resonances Ω = ω̄/k dotted, parametric Ω = 2ω̄/k dashed; the labels turned
+    upright along the lines, so that close ones stay legible."""
+    for k, speed, kind in curve.resonances:
+        ax.axvline(speed * RPM, color="0.5", linestyle=":" if kind == "forced" else "--",
+                   linewidth=0.8, zorder=1)
+        if label:
+            ax.annotate(f"{'ω̄' if kind == 'forced' else '2ω̄'}/{k}", (speed * RPM, 0.98),
+                        xycoords=("data", "axes fraction"), fontsize=6, ha="right",
+                        va="top", rotation=90, color="0.35")
+
+
+def resonance(curve, fig: Figure | None = None) -> Figure:
+    """Peak shaft torque (with the rigid drive's), twist amplitude and speed fluctuation
+    against the crank speed, the expected resonances Ω = ω̄/k (dotted) and parametric
+    ones Ω = 2ω̄/k (dashed) marked, unstable speeds shaded.
+
+    Parameters
+    ----------
+    curve : ResonanceCurve
+        ``dyade.linkage.drive_line.resonance_curve(...)``.
+    fig : Figure, optional
+    """
+    speed = curve.speed * RPM
+    with canvas.style():
+        fig = canvas.new(7.0, 6.4, fig)
+        axes = fig.subplots(3, 1, sharex=True)
+        ax = axes[0]
+        ax.plot(speed, curve.peak_torque, label="drive line", **canvas.line(0))
+        ax.plot(speed, curve.rigid_peak_torque, label="rigid drive", **canvas.line(1))
+        ax.set_ylabel("peak shaft torque [N·m]")
+        axes[1].plot(speed, np.degrees(curve.twist_amplitude), **canvas.line(0))
+        axes[1].set_ylabel("twist amplitude [°]")
+        axes[2].plot(speed, curve.fluctuation, **canvas.line(0))
+        axes[2].set_ylabel("speed fluctuation δ [-]")
+        axes[2].set_xlabel("crank speed Ω [rpm]")
+        for k, axis in enumerate(axes):
+            _shade_unstable(axis, speed, curve.unstable, label=k == 0)
+            _resonance_marks(axis, curve) if k == 0 else None
+            axis.set_xlim(speed[0], speed[-1])
+        top = axes[0].secondary_xaxis("top", functions=(lambda s: s / RPM / curve.omega_bar,
+                                                        lambda e: e * curve.omega_bar * RPM))
+        top.set_xlabel("η = Ω/ω̄")
+        ax.legend(loc="upper left", fontsize=8)
+        fig.suptitle(f"Resonance curve of the drive line (ω̄ = {curve.omega_bar * RPM:.5g} rpm)")
+    return fig
+
+
+def stability(curve, fig: Figure | None = None) -> Figure:
+    """The largest |Floquet multiplier| against the crank speed, 1 marked, unstable
+    speeds shaded (``resonance_curve``'s result)."""
+    speed = curve.speed * RPM
+    with canvas.style():
+        fig = canvas.new(7.0, 3.8, fig)
+        ax = fig.subplots()
+        ax.plot(speed, curve.stability, label="largest |μ|", **canvas.line(0, marker=True))
+        ax.axhline(1.0, color="0.3", linewidth=0.8)
+        _shade_unstable(ax, speed, curve.unstable)
+        _resonance_marks(ax, curve)
+        ax.set_xlim(speed[0], speed[-1])
+        ax.set_xlabel("crank speed Ω [rpm]")
+        ax.set_ylabel("largest |Floquet multiplier| [-]")
+        ax.legend(loc="lower right", fontsize=8)
+        fig.suptitle("Stability of the periodic motion (linearised about it)")
+    return fig
+
+
+def stability_map(result, fig: Figure | None = None) -> Figure:
+    """The largest |Floquet multiplier| over speed × stiffness or damping, the unstable
+    cells hatched and the boundary |μ| = 1 drawn."""
+    speed = result.speed * RPM
+    unit = "N·m/rad" if result.parameter == "stiffness" else "N·m·s/rad"
+    with canvas.style():
+        fig = canvas.new(7.0, 4.6, fig)
+        ax = fig.subplots()
+        values = np.where(np.isfinite(result.stability), result.stability, np.nan)
+        mesh = ax.pcolormesh(speed, result.values, values, shading="nearest", cmap="Greys",
+                             vmin=np.nanmin(values), vmax=max(np.nanmax(values), 1.0))
+        if result.unstable.any() and (~result.unstable).any() and min(values.shape) > 1:
+            # |μ| = 1 up to the margin: an undamped line's stable multipliers lie on the
+            # unit circle, and their round-off must not draw a boundary
+            ax.contour(speed, result.values, values, levels=[1.0 + UNSTABLE_MARGIN],
+                       colors="k", linewidths=1.0)
+        ax.contourf(speed, result.values, result.unstable.astype(float), levels=[0.5, 1.5],
+                    hatches=["////"], colors="none")
+        fig.colorbar(mesh, ax=ax, label="largest |μ| [-]")
+        ax.set_xlabel("crank speed Ω [rpm]")
+        ax.set_ylabel(f"{result.parameter} [{unit}]")
+        fig.suptitle(f"Stability map over speed × {result.parameter} (hatched: unstable)")
+    return fig
+
+
+def steady(state, fig: Figure | None = None) -> Figure:
+    """Shaft torque, crank speed and twist over one revolution, next to the rigid
+    drive's torque and speed."""
+    angle = np.degrees(state.crank_angle)
+    with canvas.style():
+        fig = canvas.new(7.0, 6.0, fig)
+        axes = fig.subplots(3, 1, sharex=True)
+        axes[0].plot(angle, state.shaft_torque, label="drive line", **canvas.line(0))
+        axes[0].plot(angle, state.rigid_torque, label="rigid drive", **canvas.line(1))
+        axes[0].set_ylabel("shaft torque [N·m]")
+        axes[0].legend(fontsize=8)
+        axes[1].plot(angle, state.crank_speed * RPM, **canvas.line(0))
+        axes[1].plot(angle, state.rigid_speed * RPM, **canvas.line(1))
+        axes[1].set_ylabel("crank speed [rpm]")
+        axes[2].plot(angle, np.degrees(state.twist), **canvas.line(0))
+        axes[2].set_ylabel("twist [°]")
+        axes[2].set_xlabel("crank angle φ21 [°]")
+        axes[2].set_xlim(angle[0], angle[-1])
+        f = state.figures
+        fig.suptitle(f"Steady state at {f['speed_mean'] * RPM:.5g} rpm, η = {f['eta']:.3g}, "
+                     f"largest |μ| = {f['stability']:.4g}")
+    return fig
+
+
+def run_up(run, fig: Figure | None = None) -> Figure:
+    """Crank and motor speed and the shaft torque against time, the largest torque
+    marked."""
+    with canvas.style():
+        fig = canvas.new(7.0, 5.0, fig)
+        axes = fig.subplots(2, 1, sharex=True)
+        axes[0].plot(run.time, run.crank_speed * RPM, label="crank", **canvas.line(0))
+        axes[0].plot(run.time, run.motor_speed * RPM, label="motor (reduced)", **canvas.line(1))
+        axes[0].set_ylabel("speed [rpm]")
+        axes[0].legend(fontsize=8)
+        axes[1].plot(run.time, run.shaft_torque, **canvas.line(0))
+        f = run.figures
+        axes[1].plot([f["peak_time"]], [f["peak_torque"]], "o", color="k", markersize=4)
+        axes[1].annotate(f"{f['peak_torque']:.4g} N·m at {f['peak_speed'] * RPM:.4g} rpm",
+                         (f["peak_time"], f["peak_torque"]), textcoords="offset points",
+                         xytext=(6, 0), fontsize=8, va="center")
+        axes[1].set_ylabel("shaft torque [N·m]")
+        axes[1].set_xlabel("time [s]")
+        axes[1].set_xlim(run.time[0], run.time[-1])
+        fig.suptitle("Run-up from rest")
+    return fig

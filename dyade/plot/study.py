@@ -1,0 +1,170 @@
+"""A design study's figures (``dyade plot study``): an output against one parameter
+(one line per combination of the others) or two (a map), a histogram per output with
+its limit, the sensitivity bars, and the Pareto front with the chosen design."""
+
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from dyade.plot import canvas
+
+LIMITS = {"joint_force": ("_peak", "joint force limit"),
+          "transmission_deg": ("_min_deg", "transmission limit")}
+
+
+def label(result, name: str) -> str:
+    unit = result.units.get(name, "")
+    return f"{name} [{unit}]" if unit and unit != "-" else name
+
+
+def given(result) -> np.ndarray:
+    """(n,) bool: the variants with outputs (ok or locks)."""
+    status = result.columns()["status"]
+    return (status == "ok") | (status == "locks")
+
+
+def versus(result, output: str, x: str, y: str | None = None, fig: Figure | None = None
+           ) -> Figure:
+    """``output`` against parameter ``x`` (one line per combination of the other
+    parameters, failed variants as crosses on the axis) or, with ``y``, a map over
+    ``x`` and ``y``."""
+    cols = result.columns()
+    ok = given(result)
+    with canvas.style():
+        fig = canvas.new(7.0, 5.0, fig)
+        ax = fig.add_subplot()
+        if y is None:
+            others = [p for p in result.parameters if p != x]
+            keys = [tuple(cols[p][i] for p in others) for i in range(len(ok))]
+            for k, key in enumerate(dict.fromkeys(keys)):
+                rows = np.array([i for i, other in enumerate(keys) if other == key])
+                order = rows[np.argsort(cols[x][rows])]
+                name = ", ".join(f"{p} = {v:g}" for p, v in zip(others, key))
+                ax.plot(cols[x][order], np.where(ok[order], cols[output][order], np.nan),
+                        **canvas.line(k, marker=True, label=name or None))
+                if len(dict.fromkeys(keys)) > 7:
+                    break
+            failed = ~ok
+            if failed.any():
+                ax.plot(cols[x][failed], np.full(failed.sum(), np.nanmin(
+                    np.where(ok, cols[output], np.nan))), "x", color=canvas.GREY,
+                        label="no result (see status)")
+            ax.set_xlabel(label(result, x))
+            ax.set_ylabel(label(result, output))
+            if others or failed.any():
+                ax.legend(fontsize="small")
+        else:
+            xs, ys = np.unique(cols[x]), np.unique(cols[y])
+            grid = np.full((ys.size, xs.size), np.nan)
+            for i in np.flatnonzero(ok):
+                grid[np.searchsorted(ys, cols[y][i]), np.searchsorted(xs, cols[x][i])] = \
+                    cols[output][i]
+            mesh = ax.pcolormesh(xs, ys, grid, shading="nearest", cmap="viridis")
+            if xs.size > 1 and ys.size > 1 and np.isfinite(grid).sum() > 3:
+                lines = ax.contour(xs, ys, grid, colors="white", linewidths=0.7)
+                ax.clabel(lines, fontsize="small")
+            fig.colorbar(mesh, ax=ax, label=label(result, output))
+            ax.set_xlabel(label(result, x))
+            ax.set_ylabel(label(result, y))
+        ax.set_title(f"{output}: {result.spec.label}")
+    return fig
+
+
+def histograms(result, outputs: list[str], fig: Figure | None = None) -> Figure:
+    """A histogram of each output over the variants, with its mean, the 5 % and 95 %
+    percentiles and the study's limit where one applies."""
+    cols, ok = result.columns(), given(result)
+    limits = result.spec.tolerance
+    rows, columns = canvas.grid(len(outputs))
+    with canvas.style():
+        fig = canvas.new(3.6 * columns, 2.8 * rows, fig)
+        for k, name in enumerate(outputs):
+            ax = fig.add_subplot(rows, columns, k + 1)
+            values = cols[name][ok & np.isfinite(cols[name])]
+            ax.hist(values, bins=max(5, min(40, int(np.sqrt(values.size)))),
+                    color=canvas.COLOURS[2], alpha=0.7)
+            if values.size:
+                for q, style in ((5, ":"), (95, ":")):
+                    ax.axvline(np.percentile(values, q), color="black", linestyle=style,
+                               linewidth=0.8)
+                ax.axvline(values.mean(), color="black", linewidth=0.8)
+            for key, (suffix, words) in LIMITS.items():
+                if key in limits and name.endswith(suffix):
+                    limit = limits[key]
+                    ax.axvline(limit if suffix != "_peak" or values.mean() >= 0 else -limit,
+                               color=canvas.COLOURS[1], linewidth=1.5, label=words)
+                    ax.legend(fontsize="x-small")
+            ax.set_xlabel(label(result, name), fontsize="small")
+            ax.set_ylabel("variants", fontsize="small")
+        share = result.tolerance["probability"] if result.tolerance else {}
+        words = ", ".join(f"P({k.replace('_', ' ')}) = {v:.3g}" for k, v in share.items())
+        fig.suptitle(f"{result.spec.label}: {int(ok.sum())} of {ok.size} variants give "
+                     f"results (mean solid, 5 %/95 % dotted)\n{words}", fontsize="small")
+    return fig
+
+
+def sensitivity_bars(result, outputs: list[str], fig: Figure | None = None) -> Figure:
+    """Normalised sensitivities (% output per % parameter), one panel per output."""
+    rows_, columns = canvas.grid(len(outputs))
+    table = result.sensitivity
+    with canvas.style():
+        fig = canvas.new(3.8 * columns, 0.6 + 0.35 * len(result.parameters) * rows_ + 1.2 * rows_,
+                         fig)
+        for k, name in enumerate(outputs):
+            ax = fig.add_subplot(rows_, columns, k + 1)
+            rows = [r for r in table if r["output"] == name]
+            values = [r["normalised"] for r in rows]
+            ax.barh(range(len(rows)), values,
+                    color=[canvas.COLOURS[2] if v >= 0 else canvas.COLOURS[1] for v in values])
+            ax.set_yticks(range(len(rows)), [r["parameter"] for r in rows], fontsize="small")
+            ax.axvline(0.0, color="black", linewidth=0.8)
+            ax.set_title(name, fontsize="small")
+            ax.set_xlabel("% per %", fontsize="small")
+        fig.suptitle(f"{result.spec.label}: normalised sensitivity (central differences)",
+                     fontsize="small")
+    return fig
+
+
+def pareto_front(result, fig: Figure | None = None) -> Figure:
+    """The first two objectives of every feasible variant, the non-dominated ones
+    joined, and the chosen design (nearest to the ideal point, objectives scaled to
+    their range on the front) marked."""
+    cols = result.columns()
+    (a, sa), (b, sb) = result.spec.optimise["objectives"][:2]
+    ok = given(result)
+    front = result.pareto
+    with canvas.style():
+        fig = canvas.new(6.5, 5.0, fig)
+        ax = fig.add_subplot()
+        ax.plot(cols[a][ok & ~front], cols[b][ok & ~front], "o", color=canvas.GREY,
+                markersize=3, label="variants")
+        order = np.flatnonzero(front)[np.argsort(cols[a][front])]
+        ax.plot(cols[a][order], cols[b][order], "o-", color=canvas.COLOURS[1], markersize=4,
+                label="Pareto front")
+        chosen = chosen_design(result)
+        if chosen is not None:
+            ax.plot(cols[a][chosen], cols[b][chosen], "*", color=canvas.COLOURS[2],
+                    markersize=14, label=f"chosen: variant {cols['variant'][chosen]}")
+        ax.set_xlabel(f"{label(result, a)} ({'min' if sa > 0 else 'max'})")
+        ax.set_ylabel(f"{label(result, b)} ({'min' if sb > 0 else 'max'})")
+        ax.legend(fontsize="small")
+        ax.set_title(f"{result.spec.label}: {int(front.sum())} non-dominated of "
+                     f"{int(ok.sum())} variants")
+    return fig
+
+
+def chosen_design(result) -> int | None:
+    """The variant of the front nearest the ideal point (each objective scaled to its
+    range on the front)."""
+    cols, front = result.columns(), result.pareto
+    index = np.flatnonzero(front)
+    if not index.size:
+        return None
+    scaled = []
+    for name, sense in result.spec.optimise["objectives"]:
+        values = sense * cols[name][index]
+        span = values.max() - values.min()
+        scaled.append((values - values.min()) / (span if span > 0 else 1.0))
+    return int(index[np.argmin(np.hypot.reduce(scaled, axis=0) if len(scaled) > 1
+                               else scaled[0])])

@@ -1,0 +1,245 @@
+"""Design studies: many variants of one mechanism file, one row each (``dyade study``).
+
+A study file (TOML; ``mechanisms/README.md``, "Design studies") names a mechanism file,
+the parameters by the dotted key paths of ``--set`` (each a list, a range or a
+distribution), the plan (grid, Latin hypercube, Monte Carlo, sensitivity, optimise)
+and what to ask of the table. ``study(...)`` runs it and gives a ``Study``: one row per
+variant, the parameters first, then its status and reason ("ok", "locks", "does not
+close", "refused", "failed"), then every key result of ``analyse``'s summary
+(``dyade.study.evaluate.key_results``).
+
+The variants run in blocks of at least 0.1 s of work, here, on ``jobs`` processes or on
+any ``concurrent.futures.Executor`` (a Dask cluster's: ``Client(address).get_executor()``);
+the rows stream to ``output`` block by block, and ``resume`` computes only the blocks
+not yet there. The plan's rows are made here from its seed: the same table on any
+number of workers.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import types
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from dyade.errors import InputError
+from dyade.study.spec import Parameter, Spec, needs, parse, read
+
+__all__ = ["Parameter", "Spec", "Study", "needs", "parse", "read", "study"]
+
+
+class _Package(types.ModuleType):
+    """``dyade.study(...)`` is ``dyade.study.study(...)``: the package is the function's
+    name too (importing a subpackage sets the parent's attribute to the module)."""
+
+    def __call__(self, *args, **kwargs) -> Study:
+        return study(*args, **kwargs)
+
+
+sys.modules[__name__].__class__ = _Package
+
+
+@dataclass(eq=False)
+class Study:
+    """A study's table and its answers.
+
+    ``columns()``: named columns (``variant``, the parameters by their key paths,
+    ``status``, ``reason``, the outputs); ``units``: each column's unit (parameters in
+    the mechanism file's units, as ``--set`` takes them); ``sensitivity``,
+    ``tolerance``, ``pareto`` and ``optimum``: the answers to the study file's
+    question (None where not asked).
+
+    Examples
+    --------
+    >>> import dyade
+    >>> spec = dyade.study.parse({"mechanism": "mechanisms/fourbar.toml",
+    ...                           "parameters": {"dyad.2.lengths.1": [190, 210]}})
+    >>> result = dyade.study(spec)
+    >>> list(result.columns())[:4], result.units["dyad.2.lengths.1"]
+    (['variant', 'dyad.2.lengths.1', 'status', 'reason'], 'mm')
+    >>> result.columns()["mu_2_min_deg"].round(2).tolist()
+    [56.57, 65.03]
+    """
+
+    spec: Spec
+    parameters: list[str]
+    outputs: list[str]
+    table: dict[str, np.ndarray]
+    evaluations: int = 0
+    """variants evaluated by this run (not those a resumed run found done)"""
+    sensitivity: list[dict] | None = None
+    tolerance: dict[str, Any] | None = None
+    pareto: np.ndarray | None = None
+    """(n,) bool: the non-dominated variants, for two or more objectives"""
+    optimum: dict[str, Any] | None = None
+    units: dict[str, str] = field(default_factory=dict)
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The table as named columns, one entry per variant, in the plan's order."""
+        return self.table
+
+    def to_pandas(self):
+        """The table as a ``pandas.DataFrame`` indexed by ``variant`` (needs pandas)."""
+        try:
+            import pandas
+        except ImportError:
+            raise ImportError("Study.to_pandas() needs pandas, which dyade does not install: "
+                              "pip install pandas") from None
+        frame = pandas.DataFrame(self.table).set_index("variant")
+        frame.attrs["units"] = dict(self.units)
+        return frame
+
+    def answers(self) -> dict[str, Any]:
+        """The question's answers as plain data (for JSON)."""
+        out: dict[str, Any] = {}
+        if self.sensitivity is not None:
+            out["sensitivity"] = self.sensitivity
+        if self.tolerance is not None:
+            out["tolerance"] = self.tolerance
+        if self.pareto is not None:
+            out["pareto"] = [int(v) for v in self.table["variant"][self.pareto]]
+        if self.optimum is not None:
+            out["optimum"] = self.optimum
+        return out
+
+
+def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
+          output: str | os.PathLike | None = None, resume: bool = False,
+          block_size: int | None = None, progress=None) -> Study:
+    """Run a design study.
+
+    Parameters
+    ----------
+    file : str, os.PathLike or Spec
+        The study file (TOML), or a ``Spec`` from ``dyade.study.parse``.
+    jobs : int
+        Processes on this machine (1: here, one variant after another).
+    executor : concurrent.futures.Executor, optional
+        Runs the blocks instead (its ``map``): a process pool, a Dask cluster's
+        ``Client(address).get_executor()``; the evaluator and the blocks must pickle.
+    output : str or os.PathLike, optional
+        A CSV file the rows stream to, block by block, as they are computed (for
+        another format, write the table from ``columns()`` afterwards).
+    resume : bool
+        Keep the rows already in ``output`` and compute only the others.
+    block_size : int, optional
+        Variants per task (default: at least 0.1 s of work, every worker busy).
+    progress : callable, optional
+        ``progress(done, total)`` in variants, as the blocks come.
+
+    Returns
+    -------
+    Study
+
+    Raises
+    ------
+    InputError
+        The study file or a key path is wrong (naming the file and the key).
+
+    Examples
+    --------
+    A grid over the four-bar's coupler length (a study file gives the same as a dict
+    to ``dyade.study.parse``; mechanism paths relative to the study file's directory):
+
+    >>> import dyade
+    >>> spec = dyade.study.parse({"mechanism": "mechanisms/fourbar.toml",
+    ...                           "parameters": {"dyad.2.lengths.1": [190, 210]}})
+    >>> dyade.study(spec).columns()["M_drive_rms"].round(4).tolist()
+    [1.0505, 1.0051]
+    """
+    from dyade.study import plans, questions, run
+    from dyade.study.evaluate import unit
+
+    spec = file if isinstance(file, Spec) else read(file)
+    if block_size is not None and not (isinstance(block_size, int) and block_size >= 1):
+        raise InputError.parameter("block_size", f"must be a whole number ≥ 1, got "
+                                                 f"{block_size!r}.", value=block_size)
+    evaluator = run.evaluator_for(spec)
+    params = [p.key for p in spec.parameters]
+    nominal = [p.nominal for p in spec.parameters]
+    units = {"variant": "", "status": "", "reason": "",
+             **{k: _file_unit(k, evaluator.data.get("units", {})) for k in params}}
+    if spec.plan == "optimise":
+        return _optimise(spec, evaluator, params, units, jobs, executor)
+    matrix = plans.variants(spec)
+    if not len(matrix):
+        raise InputError(f"{spec.label}: the plan gives no variant.", source=spec.label)
+    outputs, cost = run.probe(evaluator, matrix, nominal,
+                              precise=(jobs > 1 or executor is not None) and block_size is None)
+    units.update({name: unit(name) for name in outputs})
+    path = run.journal_path(None if output is None else os.fspath(output))
+    try:
+        table, evaluated = run.execute(spec, evaluator, matrix, outputs, path, jobs=jobs,
+                                       executor=executor, resume=resume, size=block_size,
+                                       cost=cost, progress=progress)
+    except BaseException:
+        if output is None:
+            os.unlink(path)
+        raise
+    if output is None:
+        os.unlink(path)
+    result = Study(spec, params, outputs, table, evaluated, units=units)
+    if spec.question == "sensitivity":
+        result.sensitivity = questions.sensitivity(table, spec, outputs, plans.steps(spec))
+    if spec.question == "tolerance":
+        result.tolerance = questions.tolerance(table, outputs, spec.tolerance)
+    if spec.question == "optimise":  # several objectives over a sampled plan
+        result.pareto = questions.pareto(table, spec.optimise["objectives"],
+                                         spec.optimise["bounds"])
+    return result
+
+
+def _optimise(spec, evaluator, params, units, jobs, executor) -> Study:
+    from dyade.study import questions, tables
+    from dyade.study.evaluate import unit
+
+    pool = None
+    if executor is not None:
+        workers = executor.map
+    elif jobs > 1:
+        import multiprocessing
+        import sys
+        from concurrent.futures import ProcessPoolExecutor
+
+        context = multiprocessing.get_context("fork" if sys.platform == "linux" else None)
+        pool = ProcessPoolExecutor(jobs, mp_context=context)
+        workers = pool.map
+    else:
+        workers = 1
+    try:
+        optimum = questions.optimise(spec, evaluator, workers)
+    finally:
+        if pool is not None:
+            pool.shutdown()
+    status, reason, out = evaluator.one(optimum["x"])
+    outputs = list(out)
+    units.update({name: unit(name) for name in outputs})
+    names = tables.header(params, outputs)
+    row = ["0", *(tables.cell(v) for v in optimum["x"]), status, reason,
+           *(tables.cell(out[n]) for n in outputs)]
+    return Study(spec, params, outputs, tables.columns_of(names, [row]),
+                 optimum["evaluations"], optimum=optimum, units=units)
+
+
+LENGTHS = {"length", "lengths", "centre", "points", "slider_length", "slider_height",
+           "pin_radius", "slider_point", "point", "gap", "A0", "B0"}
+ANGLES = {"angle", "start", "stop", "step", "dead_centre", "transmission_warning"}
+OTHER = {"mass": "kg", "inertia": "kg·m²", "speed_rpm": "rpm", "friction": "-",
+         "coefficient": "-", "stiffness": "N/m", "variant": "-"}
+
+
+def _file_unit(key: str, units: dict) -> str:
+    """A parameter's unit, as the mechanism file takes it (its ``[units]``): lengths and
+    angles in the file's units, the rest in SI (""; unknown)."""
+    parts = [part for part in key.split(".") if not part.isdigit()]
+    names = set(parts[-2:])
+    if parts and parts[-1] in OTHER:
+        return OTHER[parts[-1]]
+    if names & ANGLES:
+        return units.get("angle", "rad") if isinstance(units, dict) else "rad"
+    if names & LENGTHS or (parts and parts[0] == "frame"):
+        return units.get("length", "m") if isinstance(units, dict) else "m"
+    return ""

@@ -1,0 +1,130 @@
+"""The questions on top of a study's table: sensitivity (central differences),
+tolerance (Monte Carlo statistics and failure probabilities), the Pareto front of
+several objectives, and the optimum of one (differential evolution)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from dyade.study.evaluate import LOCKS, OK, OPEN, REFUSED, Evaluator
+from dyade.study.spec import Spec
+
+PERCENTILES = (1, 5, 50, 95, 99)
+ZERO = 1e-9
+"""an output below this in its unit (SI, degrees) is numerically zero (the mean drive
+power of a machine without losses comes out at 1e-16 W): no normalised sensitivity"""
+
+
+def sensitivity(columns: dict, spec: Spec, outputs: list[str], h: np.ndarray) -> list[dict]:
+    """d output / d parameter by central differences (the rows −h, +h of each
+    parameter after the nominal row), and normalised: (dy/y)/(dx/x) [% per %]; NaN where
+    the output is numerically zero (below ``ZERO``)."""
+    rows = []
+    y0 = {name: columns[name][0] for name in outputs}
+    for j, p in enumerate(spec.parameters):
+        minus, plus = 1 + 2 * j, 2 + 2 * j
+        for name in outputs:
+            derivative = (columns[name][plus] - columns[name][minus]) / (2.0 * h[j])
+            normalised = (derivative * p.nominal / y0[name]
+                          if abs(y0[name]) > ZERO and np.isfinite(y0[name]) else math.nan)
+            rows.append({"parameter": p.key, "output": name, "nominal": p.nominal,
+                         "step": float(h[j]), "value": float(y0[name]),
+                         "derivative": float(derivative), "normalised": float(normalised)})
+    return rows
+
+
+def tolerance(columns: dict, outputs: list[str], limits: dict[str, float]) -> dict[str, Any]:
+    """Statistics of every output over the variants that give it (mean, sd, percentiles
+    1, 5, 50, 95, 99, min, max) and the probability (share of all variants) of each
+    failure: no closure, refused, self-locking, a joint force above ``joint_force`` [N],
+    a transmission angle below ``transmission_deg`` [°]."""
+    status = columns["status"]
+    n = len(status)
+    stats = {}
+    for name in outputs:
+        values = columns[name][np.isfinite(columns[name])]
+        if not values.size:
+            continue
+        stats[name] = {"count": int(values.size), "mean": float(values.mean()),
+                       "sd": float(values.std(ddof=1)) if values.size > 1 else 0.0,
+                       "min": float(values.min()), "max": float(values.max()),
+                       **{f"p{q}": float(np.percentile(values, q)) for q in PERCENTILES}}
+    failures = {"no_closure": float(np.mean(status == OPEN)) if n else math.nan,
+                "refused": float(np.mean(status == REFUSED)) if n else math.nan,
+                "self_locks": float(np.mean(status == LOCKS)) if n else math.nan}
+    if "joint_force" in limits:
+        forces = [columns[k] for k in outputs if k.endswith("_peak")]
+        above = np.zeros(n, dtype=bool)
+        for values in forces:
+            above |= np.abs(values) > limits["joint_force"]
+        failures["joint_force_above"] = float(np.mean(above)) if n else math.nan
+    if "transmission_deg" in limits:
+        below = np.zeros(n, dtype=bool)
+        for k in outputs:
+            if k.startswith("mu_") and k.endswith("_min_deg"):
+                below |= columns[k] < limits["transmission_deg"]
+        failures["transmission_below"] = float(np.mean(below)) if n else math.nan
+    return {"variants": n, "limits": dict(limits), "outputs": stats, "probability": failures}
+
+
+def pareto(columns: dict, objectives: list[tuple[str, float]],
+           bounds: dict[str, tuple[float, float]] | None = None) -> np.ndarray:
+    """(n,) bool: the variants that give every objective, keep within ``bounds``, and
+    that no other such variant beats in one objective without losing in another."""
+    status = columns["status"]
+    feasible = (status == OK) | (status == LOCKS)
+    for name, (low, high) in (bounds or {}).items():
+        feasible &= (columns[name] >= low) & (columns[name] <= high)
+    values = np.column_stack([sense * columns[name] for name, sense in objectives])
+    feasible &= np.isfinite(values).all(axis=1)
+    index = np.flatnonzero(feasible)
+    front = np.zeros(len(status), dtype=bool)
+    points = values[index]
+    for k, i in enumerate(index):
+        dominated = (np.all(points <= points[k], axis=1) & np.any(points < points[k], axis=1))
+        front[i] = not dominated.any()
+    return front
+
+
+class Objective:
+    """One objective of the optimiser: ``sense`` × output of the variant at ``x``, +inf
+    where the variant gives no value or leaves the bounds on other outputs (a class: it
+    pickles for the executor's processes)."""
+
+    def __init__(self, evaluator: Evaluator, name: str, sense: float,
+                 bounds: dict[str, tuple[float, float]]) -> None:
+        self.evaluator, self.name, self.sense, self.bounds = evaluator, name, sense, bounds
+
+    def __call__(self, x) -> float:
+        status, _, out = self.evaluator.one(x)
+        value = out.get(self.name, math.nan)
+        for name, (low, high) in self.bounds.items():
+            if not low <= out.get(name, math.nan) <= high:
+                return math.inf
+        return self.sense * value if np.isfinite(value) else math.inf
+
+
+def optimise(spec: Spec, evaluator: Evaluator, workers=1) -> dict[str, Any]:
+    """Minimise (or maximise) one output over the parameters' ranges with
+    ``scipy.optimize.differential_evolution`` (seeded; ``workers``: a map-like callable
+    or 1), polished locally by L-BFGS-B when ``polish``."""
+    from dyade.study.spec import needs
+
+    needs("scipy", "optimise")
+    from scipy.optimize import differential_evolution
+
+    settings = spec.optimise
+    (name, sense), = settings["objectives"]
+    objective = Objective(evaluator, name, sense, settings["bounds"])
+    bounds = [(p.low, p.high) for p in spec.parameters]
+    result = differential_evolution(
+        objective, bounds, seed=spec.seed, maxiter=settings["maxiter"],
+        popsize=settings["popsize"], tol=settings["tol"], polish=settings["polish"],
+        workers=workers, updating="immediate" if workers == 1 else "deferred")
+    return {"objective": name, "sense": "minimise" if sense > 0 else "maximise",
+            "x": [float(v) for v in result.x], "value": float(sense * result.fun),
+            "evaluations": int(result.nfev), "success": bool(result.success),
+            "message": str(result.message)}

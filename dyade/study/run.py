@@ -1,0 +1,151 @@
+"""A study run: the variants in blocks, on this process, on ``-j`` processes
+(``dyade.parallel``) or on any ``concurrent.futures.Executor`` (a Dask cluster's
+included), each block's rows streamed to the journal as it comes, so that a rerun with
+``resume`` computes only the blocks not yet there."""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+from dyade.errors import InputError
+from dyade.study import tables
+from dyade.study.evaluate import FAILED, Evaluator
+from dyade.study.spec import Spec
+
+TASK_TIME = 0.1
+"""[s] the least work per block handed to a worker (a task's overhead is ~1 ms on a
+process pool, ~10 ms on a Dask cluster)"""
+
+
+def evaluator_for(spec: Spec) -> Evaluator:
+    """The spec's evaluator, with the mechanism file's data read once (and the study's
+    fixed overrides applied); the key paths checked on the nominal variant."""
+    from dyade.files.mechanism import load_data
+
+    data = load_data(spec.mechanism, spec.fixed, f"{spec.label}: set")
+    evaluator = Evaluator(spec.mechanism, data, tuple(p.key for p in spec.parameters),
+                          spec.extras, spec.fluctuation)
+    nominal = [p.nominal for p in spec.parameters]
+    try:
+        evaluator.mechanism(nominal)
+    except InputError as err:  # a key path that is not there; a value is the rows' to say
+        text = str(err)
+        if any(words in text for words in KEY_PROBLEMS):
+            raise InputError(f"{spec.label}: [parameters]: {text}", source=spec.label,
+                             key=err.key) from None
+    return evaluator
+
+
+KEY_PROBLEMS = ("unknown key", "are numbered", "is a value, not a table")
+"""what the reader and ``set_dotted`` say of a key path that is wrong (not of a value)"""
+
+
+def probe(evaluator: Evaluator, matrix: np.ndarray, nominal, precise: bool = True
+          ) -> tuple[list[str], float]:
+    """The output names (of the nominal variant, else of the first that gives outputs)
+    and the time one variant takes [s]: with ``precise``, of a second evaluation (the
+    first loads modules), for the block size of parallel runs."""
+    started = time.perf_counter()
+    status, _, out = evaluator.one(nominal)
+    cost = time.perf_counter() - started
+    evaluator.calls -= 1
+    if precise:
+        started = time.perf_counter()
+        evaluator.one(nominal)
+        cost = time.perf_counter() - started
+        evaluator.calls -= 1
+    for row in matrix[:5] if not out else ():
+        _, _, out = evaluator.one(row)
+        evaluator.calls -= 1
+        if out:
+            break
+    return list(out), cost
+
+
+def block_size(count: int, cost: float, workers: int) -> int:
+    """Variants per block: at least ``TASK_TIME`` of work, but every worker busy."""
+    size = max(1, math.ceil(TASK_TIME / max(cost, 1e-6)))
+    if workers > 1:
+        size = min(size, max(1, math.ceil(count / workers)))
+    return size
+
+
+def execute(spec: Spec, evaluator: Evaluator, matrix: np.ndarray, outputs: list[str],
+            journal_path: str, *, jobs: int = 1, executor=None, resume: bool = False,
+            size: int | None = None, cost: float = 0.01,
+            progress: Callable[[int, int], None] | None = None) -> tuple[dict, int]:
+    """Evaluate the rows of ``matrix`` not yet in the journal; (the whole table as named
+    columns, the variants evaluated by this call)."""
+    from dyade import parallel
+
+    params = [p.key for p in spec.parameters]
+    names = tables.header(params, outputs)
+    journal = tables.Journal(journal_path, names, resume, spec.label)
+    rows = dict(journal.done)
+    for index, row in rows.items():  # the plan still gives these values?
+        if index >= len(matrix) or any(
+                float(row[1 + j]) != matrix[index, j] for j in range(len(params))):
+            journal.close()
+            raise InputError(f"{spec.label}: resuming: variant {index} of {journal_path} has "
+                             f"other parameter values than this plan gives (its seed, "
+                             f"samples or parameters changed); remove the file or write "
+                             f"elsewhere.", source=journal_path)
+    todo = [i for i in range(len(matrix)) if i not in rows]
+    workers = jobs if executor is None else max(jobs, 2)
+    size = size or block_size(len(todo), cost, workers)
+    blocks = []
+    for k in range(0, len(todo), size):  # consecutive runs of variants not done
+        chunk = todo[k:k + size]
+        start = 0
+        for j in range(1, len(chunk) + 1):
+            if j == len(chunk) or chunk[j] != chunk[j - 1] + 1:
+                blocks.append((chunk[start], matrix[chunk[start]:chunk[j - 1] + 1]))
+                start = j
+    if executor is not None:
+        results = executor.map(evaluator, blocks)
+    else:
+        results = parallel.ordered_map(evaluator, blocks, jobs, lost=_lost)
+    done = len(rows)
+    evaluated = 0
+    try:
+        if progress is not None:
+            progress(done, len(matrix))
+        for block in results:
+            lines = [[str(index), *(tables.cell(v) for v in matrix[index]), status, reason,
+                      *(tables.cell(out.get(name, math.nan)) for name in outputs)]
+                     for index, status, reason, out in block]
+            journal.write(lines)
+            for line in lines:
+                rows[int(line[0])] = line
+            evaluated += len(lines)
+            done += len(lines)
+            if progress is not None:
+                progress(done, len(matrix))
+    finally:
+        journal.close()
+        close = getattr(results, "close", None)
+        if close is not None:
+            close()
+    return tables.columns_of(names, list(rows.values())), evaluated
+
+
+def _lost(block, reason: str):
+    """Rows for a block whose worker process ended without a result."""
+    first, values = block
+    return [(first + i, FAILED, f"{reason} (rerun it alone)", {}) for i in range(len(values))]
+
+
+def journal_path(output: str | None) -> str:
+    """Where the rows stream to: ``output`` (CSV), else a temporary file."""
+    if output is not None:
+        return output
+    import tempfile
+
+    handle, path = tempfile.mkstemp(suffix=".csv", prefix="dyade-study-")
+    os.close(handle)
+    return path

@@ -1,0 +1,155 @@
+"""A study's table on disk: the CSV journal it streams to block by block (and reads
+back to resume), JSON, and Parquet with the units in the schema's metadata. Also
+``write_parquet`` for any named columns (``dyade analyse -o sweep.parquet``)."""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+from typing import Any
+
+import numpy as np
+
+from dyade.errors import InputError
+
+TEXT = ("status", "reason")
+"""the columns that hold words; ``variant`` holds whole numbers, the others numbers"""
+
+
+def header(parameters: list[str], outputs: list[str]) -> list[str]:
+    return ["variant", *parameters, "status", "reason", *outputs]
+
+
+def cell(value: Any) -> str:
+    """A number as the shortest text that reads back to the same float."""
+    if isinstance(value, str):
+        return value
+    return repr(float(value)) if not isinstance(value, (int, np.integer)) else str(value)
+
+
+class Journal:
+    """The CSV a study streams to: a header, then one line per variant, a block at a
+    time, flushed; ``done``: the rows already there (``--resume``)."""
+
+    def __init__(self, path: str, names: list[str], resume: bool, label: str = "study") -> None:
+        self.path, self.names = path, names
+        self.done: dict[int, list[str]] = {}
+        if resume and os.path.exists(path) and os.path.getsize(path) > 0:
+            self.done = _read_rows(path, names, label)
+            self._trim()
+            self.handle = open(path, "a", newline="", encoding="utf-8")
+        else:
+            self.handle = open(path, "w", newline="", encoding="utf-8")
+            csv.writer(self.handle).writerow(names)
+            self.handle.flush()
+        self.writer = csv.writer(self.handle)
+
+    def _trim(self) -> None:
+        """Cut a last line that an interruption left without its end."""
+        with open(self.path, "rb+") as handle:
+            data = handle.read()
+            if data and not data.endswith(b"\n"):
+                handle.truncate(data.rfind(b"\n") + 1)
+
+    def write(self, rows: list[list[str]]) -> None:
+        self.writer.writerows(rows)
+        self.handle.flush()
+
+    def close(self) -> None:
+        self.handle.close()
+
+
+def _read_rows(path: str, names: list[str], label: str) -> dict[int, list[str]]:
+    with open(path, newline="", encoding="utf-8") as handle:
+        lines = handle.read().split("\n")
+    if lines and lines[-1] != "":  # a line cut short by an interruption
+        lines = lines[:-1]
+    reader = csv.reader(lines)
+    try:
+        first = next(reader)
+    except StopIteration:
+        return {}
+    if first != names:
+        raise InputError(f"{label}: resuming: {path} holds other columns than this study "
+                         f"gives (another study, or the study file changed); remove it or "
+                         f"write elsewhere.", source=path)
+    done = {}
+    for row in reader:
+        if len(row) == len(names):
+            done[int(row[0])] = row
+    return done
+
+
+def read_csv(path: str) -> dict[str, np.ndarray]:
+    """A study's CSV as named columns (numbers as floats, ``variant`` as integers)."""
+    with open(path, newline="", encoding="utf-8") as handle:
+        rows = list(csv.reader(handle))
+    return columns_of(rows[0], rows[1:])
+
+
+def columns_of(names: list[str], rows: list[list[str]]) -> dict[str, np.ndarray]:
+    rows = sorted(rows, key=lambda r: int(r[0]))
+    out: dict[str, np.ndarray] = {}
+    for k, name in enumerate(names):
+        values = [r[k] for r in rows]
+        if name == "variant":
+            out[name] = np.array(values, dtype=np.int64)
+        elif name in TEXT:
+            out[name] = np.array(values, dtype=object)
+        else:
+            out[name] = np.array([float(v) if v != "" else np.nan for v in values], dtype=float)
+    return out
+
+
+def write_csv(columns: dict[str, np.ndarray], path: str) -> None:
+    names = list(columns)
+    with open(path, "w", newline="", encoding="utf-8") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(names)
+        for i in range(len(next(iter(columns.values()))) if columns else 0):
+            writer.writerow([cell(columns[n][i]) for n in names])
+
+
+def write_json(columns: dict[str, np.ndarray], units: dict[str, str], path: str,
+               extra: dict[str, Any] | None = None) -> None:
+    def plain(values):
+        if values.dtype == object:
+            return list(values)
+        return [None if isinstance(v, float) and not np.isfinite(v) else v
+                for v in values.tolist()]
+
+    document = {"units": units, "columns": {n: plain(v) for n, v in columns.items()}}
+    document.update(extra or {})
+    with open(path, "w", encoding="utf-8") as handle:
+        json.dump(document, handle, indent=1, default=float)
+        handle.write("\n")
+
+
+def write_parquet(columns, units: dict[str, str], path: str,
+                  metadata: dict[str, str] | None = None) -> None:
+    """Named columns as a Parquet file (the ``parquet`` extra, pyarrow): each column's
+    unit in its field's metadata (``unit``) and all of them, as JSON, in the schema's
+    (``dyade.units``)."""
+    from dyade.study.spec import needs
+
+    needs("pyarrow", "Parquet tables", extra="parquet")
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    fields, arrays = [], []
+    for name in columns:
+        values = np.asarray(columns[name])
+        array = pa.array(values.tolist() if values.dtype == object else values)
+        fields.append(pa.field(name, array.type, metadata={"unit": units.get(name, "")}))
+        arrays.append(array)
+    meta = {"dyade.units": json.dumps({n: units.get(n, "") for n in columns})}
+    meta.update(metadata or {})
+    table = pa.Table.from_arrays(arrays, schema=pa.schema(fields, metadata=meta))
+    partial = f"{path}.partial"
+    try:
+        pq.write_table(table, partial)
+        os.replace(partial, path)
+    finally:
+        if os.path.exists(partial):
+            os.unlink(partial)

@@ -1,0 +1,84 @@
+"""Design studies (issue 26) against their yardsticks, side by side in one run:
+
+    pytest tests/benchmarks/test_study_speed.py -m benchmark --benchmark-enable \
+        --benchmark-columns=min,median,rounds
+
+- four-bar variants: ``dyade.study`` (one pipeline run per variant) against the numpy
+  yardstick that broadcasts the four-bar's closed form over variants × positions
+  (``yardstick.fourbar_variants``, the same key results); per variant, the yardstick
+  at 10 000 variants × 361 positions, the study at ``VARIANTS`` (its cost is linear in
+  the variants). Target of the issue: within 2x at 10 000 variants — not reached by
+  the per-variant path (see CHANGELOG, issue 26);
+- dyade-16 with friction: a study's cost per variant against ``read_mechanism`` and
+  ``dyade.analyse`` of each variant in the same process (target ≤ 1.1x);
+- ``-j 2`` against ``-j 1`` on a study of about 10 s (target ≤ 0.6x; needs 2 free cores).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import dyade
+from tests.benchmarks.yardstick import fourbar_variants
+from tests.helpers import shipped
+
+VARIANTS = 1000
+FRICTION = ('"friction.coefficient" = 0.1, "friction.pin_radius" = 10, '
+            '"friction.slider_length" = 40, "friction.slider_height" = 20')
+
+
+def _fourbar_study(tmp_path, samples: int) -> str:
+    path = tmp_path / "fourbar-study.toml"
+    path.write_text(f'mechanism = "{shipped("fourbar.toml")}"\n'
+                    f'[plan]\nkind = "monte-carlo"\nsamples = {samples}\nseed = 1\n'
+                    f'[parameters]\n"dyad.2.lengths.1" = {{ uniform = [195, 205] }}\n'
+                    f'"dyad.2.lengths.2" = {{ uniform = [145, 155] }}\n')
+    return str(path)
+
+
+def test_fourbar_variants_yardstick(benchmark):
+    rng = np.random.default_rng(1)
+    r3, r4 = rng.uniform(0.195, 0.205, 10_000), rng.uniform(0.145, 0.155, 10_000)
+    out = benchmark(fourbar_variants, r3, r4, np.deg2rad(np.arange(361.0)), 10 * np.pi)
+    assert out["M_drive_rms"].shape == (10_000,)
+
+
+def test_fourbar_variants_study(benchmark, tmp_path):
+    path = _fourbar_study(tmp_path, VARIANTS)
+    result = benchmark.pedantic(dyade.study, args=(path,), rounds=1, iterations=1)
+    assert (result.columns()["status"] == "ok").all()
+
+
+@pytest.fixture
+def dyade16_study(tmp_path):
+    path = tmp_path / "dyade16-study.toml"
+    path.write_text(f'mechanism = "{shipped("dyade-16.toml")}"\nset = {{ {FRICTION} }}\n'
+                    f'[parameters]\n"dyad.2.lengths.2" = {{ range = [145, 155], count = 40 }}\n')
+    return str(path)
+
+
+def test_dyade16_friction_study(benchmark, dyade16_study):
+    result = benchmark.pedantic(dyade.study, args=(dyade16_study,), rounds=3, iterations=1)
+    assert len(result.columns()["variant"]) == 40
+
+
+def test_dyade16_friction_single_runs(benchmark):
+    overrides = {"friction.coefficient": 0.1, "friction.pin_radius": 10,
+                 "friction.slider_length": 40, "friction.slider_height": 20}
+
+    def each():
+        for length in np.linspace(145, 155, 40):
+            mechanism = dyade.read_mechanism(shipped("dyade-16.toml"),
+                                             dict(overrides, **{"dyad.2.lengths.2": length}))
+            dyade.analyse(mechanism)
+
+    benchmark.pedantic(each, rounds=3, iterations=1)
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_study_jobs(benchmark, tmp_path, jobs):
+    path = _fourbar_study(tmp_path, 8000)  # about 11 s on one core
+    result = benchmark.pedantic(dyade.study, args=(path,), kwargs={"jobs": jobs}, rounds=1,
+                                iterations=1)
+    assert len(result.columns()["variant"]) == 8000
