@@ -42,7 +42,7 @@ from dyade.cli.options import FINITE, MECHANISM_FILE, POSITIVE, jobs_option, set
               help="Accept a position's friction solution when a fixed-point step would "
                    "change its joint forces or friction loads by less than this [-]  "
                    "[default: file's [friction] tol, 1e-9].")
-@click.option("--friction-max-iter", type=click.IntRange(min=1),
+@click.option("--friction-max-iter", type=click.IntRange(min=1), metavar="N",
               help="Most passes of the friction solution per dyad and position  [default: "
                    "file's [friction] max_iter, 50]; positions not solved are named on stderr.")
 @click.option("--all", "show_all", is_flag=True,

@@ -95,7 +95,7 @@ def _joints(texts: tuple[str, ...]) -> list[tuple[int, int]] | None:
 @click.option("--joint", "joints", multiple=True, metavar="I,J",
               help="A revolute joint to draw, e.g. --joint 5,6 (repeatable); default: every "
                    "revolute joint.")
-@click.option("--max-wander", type=click.FloatRange(min=0, max=90), default=20.0,
+@click.option("--max-wander", type=click.FloatRange(min=0, max=90), default=20.0, metavar="DEG",
               show_default=True,
               help="Largest angle [°] a force may leave its line of action for its reversals "
                    "to be numbered (as in `dyade clearance`).")
