@@ -194,8 +194,8 @@ def test_bad_line_exits_2_naming_the_key(assignment, key):
 def test_speed_range_through_zero_and_a_bad_coupling_file(tmp_path):
     result = run("driveline", shipped("slider-crank.toml"), "--set",
                  "drive_line.stiffness=1000", "--analysis", "resonance",
-                 "--speeds-rpm", "-100:100:50")
-    assert result.exit_code == 2 and "--speeds-rpm" in result.output
+                 "--speed-range", "-100:100:50")
+    assert result.exit_code == 2 and "--speed-range" in result.output
     bad = tmp_path / "coupling.toml"
     bad.write_text("J = 0.01\nc1 = \n")
     text = shipped("slider-crank.toml").read_text() + f'\n[drive_line]\ncoupling = "{bad}"\n'

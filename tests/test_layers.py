@@ -243,7 +243,7 @@ REPORT = ("dyade.report",)
 PLOT = ("dyade.plot",)
 COMPOSER = "dyade.report.html"
 """the design report (issue 29) composes tables and figures: above report and plot both"""
-BASE = ("dyade.files", "dyade.units", "dyade.errors", "dyade.arrays")
+BASE = ("dyade.files", "dyade.units", "dyade.errors", "dyade.arrays", "dyade.limits")
 PLOTTING = ("matplotlib",)
 
 FACADE = "dyade"

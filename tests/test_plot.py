@@ -202,9 +202,9 @@ def test_dead_centre_band_and_note_on_the_transmission_angle():
 
 
 def test_unknown_column_names_the_flag_and_a_close_match(tmp_path):
-    out = run("plot", "curves", shipped("fourbar.toml"), "--y", "M_drve", "-o", tmp_path / "c.png")
+    out = run("plot", "curves", shipped("fourbar.toml"), "--columns", "M_drve", "-o", tmp_path / "c.png")
     assert out.exit_code == 2
-    assert "--y" in out.output and "Did you mean M_drive" in out.output
+    assert "--columns" in out.output and "Did you mean M_drive" in out.output
 
 
 # -- the mechanism and its animation ----------------------------------------------------------

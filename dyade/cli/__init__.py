@@ -39,6 +39,18 @@ class DyadeGroup(click.Group):
             importlib.import_module(f"dyade.cli.{SUBCOMMANDS[name]}")
         return super().get_command(ctx, name)
 
+    def resolve_command(self, ctx: click.Context, args: list[str]):
+        """A misspelt command gets "Did you mean" (``dyade analyze``: analyse)."""
+        name = args[0] if args else ""
+        if name and not name.startswith("-") and self.get_command(ctx, name) is None:
+            import difflib
+
+            close = difflib.get_close_matches(name, self.list_commands(ctx), n=1, cutoff=0.6)
+            hint = f" Did you mean `{close[0]}`?" if close else ""
+            ctx.fail(f"No such command '{name}'.{hint} The commands: "
+                     f"{', '.join(self.list_commands(ctx))}.")
+        return super().resolve_command(ctx, args)
+
     def invoke(self, ctx: click.Context) -> object:
         from dyade.errors import DyadeError, InputError
 
@@ -48,8 +60,8 @@ class DyadeGroup(click.Group):
             sys.stdout.flush()  # a full disk says so here, not in Python's exit
             return outcome
         except OSError as err:  # writing the output failed (reading is an InputError)
-            if err.errno == errno.EPIPE:
-                raise  # the reader went away (`| head`): click ends quietly
+            if err.errno == errno.EPIPE:  # the reader went away (`| head`): a normal end
+                _closed_pipe()
             raise click.ClickException(f"could not write the output: {err.strerror or err}"
                                        f"{f' ({err.filename})' if err.filename else ''}."
                                        ) from None
@@ -63,6 +75,20 @@ class DyadeGroup(click.Group):
             raise click.UsageError(str(err)) from None  # exit 2
         except DyadeError as err:
             raise click.ClickException(str(err)) from None  # exit 1
+
+
+def _closed_pipe() -> None:
+    """End quietly as a Unix tool killed by SIGPIPE does: exit status 141 (128 + 13),
+    no message; standard output goes to /dev/null first, so that Python's own flush at
+    exit finds no broken pipe to complain about."""
+    import os
+
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):  # no file descriptor (a test's capture)
+        pass
+    raise click.exceptions.Exit(141) from None
 
 
 class Terminated(Exception):

@@ -15,7 +15,7 @@ from dyade.cli.output import progress, show, write_json, write_rows
 @main.command()
 @click.argument("mechanism_file", type=MECHANISM_FILE)
 @set_option
-@click.option("--repeats", type=click.IntRange(min=1), default=3, show_default=True,
+@click.option("--repeats", type=click.IntRange(min=1), default=3, show_default=True, metavar="N",
               help="Runs per setting; the best time counts.")
 @click.option("--format", "fmt", type=click.Choice(["table", "csv", "json"]), default="table",
               show_default=True)

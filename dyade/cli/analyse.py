@@ -25,9 +25,12 @@ from dyade.cli.options import FINITE, MECHANISM_FILE, POSITIVE, jobs_option, set
 @click.option("-o", "--output", type=click.Path(writable=True),
               help="Write to this file instead of standard output; with several input files a "
                    "directory, which gets one result per input (NAME.csv, NAME.json, NAME.txt).")
-@click.option("--start", type=FINITE, help="First crank angle [°] (overrides [sweep] start).")
-@click.option("--stop", type=FINITE, help="Last crank angle [°] (default: start + 360).")
-@click.option("--step", type=POSITIVE, help="Crank angle step [°] (overrides [sweep] step).")
+@click.option("--start", type=FINITE, metavar="DEG",
+              help="First crank angle [°] (overrides [sweep] start).")
+@click.option("--stop", type=FINITE, metavar="DEG",
+              help="Last crank angle [°] (default: start + 360).")
+@click.option("--step", type=POSITIVE, metavar="DEG",
+              help="Crank angle step [°] (overrides [sweep] step).")
 @set_option
 @click.option("--save-as", type=click.Path(dir_okay=False, writable=True),
               help="Write the effective mechanism (after --set) to this TOML file, to keep a "
@@ -39,7 +42,7 @@ from dyade.cli.options import FINITE, MECHANISM_FILE, POSITIVE, jobs_option, set
               help="Accept a position's friction solution when a fixed-point step would "
                    "change its joint forces or friction loads by less than this [-]  "
                    "[default: file's [friction] tol, 1e-9].")
-@click.option("--friction-max-iter", type=click.IntRange(min=1),
+@click.option("--friction-max-iter", type=click.IntRange(min=1), metavar="N",
               help="Most passes of the friction solution per dyad and position  [default: "
                    "file's [friction] max_iter, 50]; positions not solved are named on stderr.")
 @click.option("--all", "show_all", is_flag=True,

@@ -57,7 +57,7 @@ OPTIONS = [
                  help="Clearance (radial play) 2s [m] (typical 2e-5…2e-4)."),
     click.option("--slope", type=FINITE,
                  help="Standalone: force slope F0/t0 at the reversal [N/s]."),
-    click.option("--speed-rpm", type=FINITE,
+    click.option("--speed-rpm", type=FINITE, metavar="RPM",
                  help="Standalone: crank speed [rpm] at which --slope holds (for --speed-range)."),
     click.option("--speed-range", metavar="START:STOP:STEP",
                  help="Peak force against crank speed [rpm]; the slope grows with Ω³ (eq. 30)."),
@@ -65,8 +65,9 @@ OPTIONS = [
                  help="Also integrate the two-mass model directly; report its peak, the cost of "
                       "each method and whether contact holds (rebound)."),
     click.option("--sim-steps", type=click.IntRange(min=10), default=400, show_default=True,
+                 metavar="N",
                  help="RK4 steps per contact period for --simulate."),
-    click.option("--max-wander", type=Number(low=0.0, high=90.0), default=20.0,
+    click.option("--max-wander", type=Number(low=0.0, high=90.0), default=20.0, metavar="DEG",
                  show_default=True,
                  help="Largest angle [°] the force may leave its line of action (forces ≥ 25 % "
                       "of the peak) for the model to apply."),
@@ -249,6 +250,14 @@ def _over_mechanism(path, given: Inputs, fmt, output, jobs: int = 1):
                                                     **mechanism_options(given))
         else:
             study = [(None, dyade.check_clearance(mechanism, **mechanism_options(given)))]
+    checks = [check for _, result in study for check in result]
+    if checks and all(check.missing == "data" for check in checks):  # nothing to compute
+        from dyade.errors import InputError
+
+        name = "<stdin>" if str(path) == "-" else Path(path).name
+        raise InputError(f"{name}: nothing to compute: no joint has clearance "
+                         f"data. Give --stiffness and --clearance, or `clearance = {{ gap = …, "
+                         f"stiffness = … }}` in a joint table.", source=str(path))
     rows, skipped = report.mechanism_rows(study, given.simulate, given.sim_steps)
     joints = given.joints or [j.name for j in mechanism.joints if j.kind == "R"]
     summary = {"mechanism": mechanism.name, "reversals": len(rows),

@@ -51,16 +51,16 @@ def read_input(path: str) -> tuple[str, str]:
     return schema.read_text(path), path
 
 
-def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = SweepOptions()
-         ) -> Loaded:
+def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = SweepOptions(),
+         text: str | None = None) -> Loaded:
     """Read a mechanism ("-": standard input) with --set overrides and
-    --start/--stop/--step [°]."""
+    --start/--stop/--step [°]; ``text``: standard input's content, when already read."""
     from dyade.files import mechanism as reader
     from dyade.files import schema
     from dyade.linkage.options import with_sweep
 
     overrides = dict(schema.parse_assignment(a) for a in assignments)
-    text, label = read_input(path)
+    text, label = (text, "<stdin>") if text is not None else read_input(path)
     data = reader.load_data(label, overrides, "--set", text)
     mechanism = reader.build(data, label)
     if sweep.start is None and sweep.stop is None and sweep.step is None:
@@ -75,8 +75,25 @@ def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = Swe
     if stop < start:
         raise click.BadParameter(f"must not be below the start angle, got {sweep.stop:g}.",
                                  param_hint="--stop")
+    if sweep.step is not None and stop > start and step > stop - start:
+        raise click.BadParameter(f"{sweep.step:g}° is larger than the sweep "
+                                 f"({math.degrees(start):g}° to {math.degrees(stop):g}°), which "
+                                 f"would give one position: give a step of at most "
+                                 f"{math.degrees(stop - start):g}°.", param_hint="--step")
     with flags(FLAGS):
         return Loaded(with_sweep(mechanism, start, stop, step), text, overrides, label)
+
+
+def read_gear_file(path: str, assignments: tuple[str, ...] = ()):
+    """A gear drive ("-": standard input) with --set overrides, and the name that
+    messages give its file."""
+    from dyade.files import gears as reader
+    from dyade.files import schema
+
+    overrides = dict(schema.parse_assignment(a) for a in assignments)
+    text, label = read_input(path)
+    data = schema.load_data(label, overrides, "--set", text)
+    return reader.build_gears(data, None if path == "-" else path), os.path.basename(label)
 
 
 def save_as(loaded: Loaded, path: str) -> None:

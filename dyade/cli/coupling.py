@@ -24,7 +24,7 @@ OPTIONS = [
     click.option("--moment", type=FINITE,
                  help="Exciting moment amplitude M̂_E [N·m]: adds φ̂, ψ̂ [rad], M̂_Q [N·m], φ̂_r "
                       "[rad]."),
-    click.option("--speed-rpm", "speeds", type=FINITE, multiple=True,
+    click.option("--speed-rpm", "speeds", type=FINITE, multiple=True, metavar="RPM",
                  help="Operating speed [rpm] to place on the η axis (repeatable), with --order."),
     click.option("--order", type=FINITE, default=None,
                  help="Excitation order: Ω = order · 2π·speed/60  [default: 1]."),

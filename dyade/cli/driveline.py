@@ -6,11 +6,11 @@ import click
 
 from dyade.cli import main
 from dyade.cli.common import infer_format, load
-from dyade.cli.options import MECHANISM_FILE, set_option
+from dyade.cli.options import MECHANISM_FILE, POSITIVE, Renamed, set_option
 from dyade.cli.output import console, flags, show, write_json, write_rows
 
 ANALYSES = click.Choice(["steady", "resonance", "stability", "map", "run-up"])
-FLAGS = {"speeds_rpm": "--speeds-rpm", "speed_rpm": "--speed-rpm", "stiffness": "--map",
+FLAGS = {"speeds_rpm": "--speed-range", "speed_rpm": "--speed-rpm", "stiffness": "--map",
          "damping": "--map"}
 """API parameter -> the flag it comes from"""
 
@@ -38,13 +38,14 @@ def speed_range(text: str, hint: str) -> list[float]:
 @click.option("--analysis", "what", type=ANALYSES, default="steady", show_default=True,
               help="steady: the periodic state at the operating speed next to the rigid "
                    "drive's; resonance: peak shaft torque, twist and speed fluctuation over "
-                   "--speeds-rpm; stability: the Floquet multipliers over --speeds-rpm; map: "
-                   "the largest multiplier over --speeds-rpm × --map; run-up: from rest "
+                   "--speed-range; stability: the Floquet multipliers over --speed-range; map: "
+                   "the largest multiplier over --speed-range × --map; run-up: from rest "
                    "under the [drive] motor.")
-@click.option("--speeds-rpm", metavar="START:STOP:STEP",
+@click.option("--speed-range", "speeds_rpm", cls=Renamed, old=("--speeds-rpm",),
+              metavar="START:STOP:STEP",
               help="Crank speeds of an ideal motor [rpm] for resonance, stability and map.")
-@click.option("--speed-rpm", type=float, help="The ideal motor's speed for steady [rpm] "
-                                              "[default: the crank's].")
+@click.option("--speed-rpm", type=POSITIVE, metavar="RPM",
+              help="The ideal motor's speed for steady [rpm] [default: the crank's].")
 @click.option("--map", "map_range", metavar="stiffness|damping=START:STOP:STEP",
               help="The line's parameter and values for --analysis map [N·m/rad or "
                    "N·m·s/rad].")
@@ -65,8 +66,8 @@ def driveline(mechanism_file: str, what: str, speeds_rpm: str | None, speed_rpm:
 
     \b
         dyade driveline mech.toml                       # steady state vs rigid
-        dyade driveline mech.toml --analysis resonance --speeds-rpm 300:6000:50
-        dyade driveline mech.toml --analysis map --speeds-rpm 300:6000:50 \\
+        dyade driveline mech.toml --analysis resonance --speed-range 300:6000:50
+        dyade driveline mech.toml --analysis map --speed-range 300:6000:50 \\
             --map stiffness=500:2000:100
         dyade driveline mech.toml --analysis run-up
 
@@ -95,10 +96,10 @@ def driveline(mechanism_file: str, what: str, speeds_rpm: str | None, speed_rpm:
         speeds = None
         if what in ("resonance", "stability", "map"):
             if not speeds_rpm:
-                raise click.UsageError(f"--analysis {what} needs --speeds-rpm START:STOP:STEP.")
-            speeds = speed_range(speeds_rpm, "--speeds-rpm")
+                raise click.UsageError(f"--analysis {what} needs --speed-range START:STOP:STEP.")
+            speeds = speed_range(speeds_rpm, "--speed-range")
         elif speeds_rpm:
-            raise click.UsageError(f"--speeds-rpm is for resonance, stability and map, not "
+            raise click.UsageError(f"--speed-range is for resonance, stability and map, not "
                                    f"{what}.")
         if map_range and what != "map":
             raise click.UsageError("--map is for --analysis map.")

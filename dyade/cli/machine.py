@@ -8,37 +8,46 @@ import os
 import click
 
 from dyade.cli import main
-from dyade.cli.common import infer_format, load
-from dyade.cli.options import MECHANISM_FILE, set_option
+from dyade.cli.common import infer_format, load, read_input
+from dyade.cli.options import MECHANISM_FILE, Number, max_memory_option, set_option
 from dyade.cli.output import atomic, flags, show, write_json, write_rows
+from dyade.limits import PLAUSIBLE
 
 FORMAT = click.Choice(["table", "csv", "json"])
 FLYWHEEL_FLAGS = {"fluctuation": "--fluctuation", "inertia": "--inertia", "speed_rpm": "--speed-rpm",
-                  "step_deg": "--step"}
+                  "speed": "--speed-rpm", "step_deg": "--step", "max_memory": "--max-memory"}
 BALANCE_FLAGS = {"links": "--link", "radius": "--radius"}
 """API parameter -> the flag it comes from"""
 
 
+def _plausible(quantity: str, positive: bool = False) -> Number:
+    low, high, unit = PLAUSIBLE[quantity]
+    return Number(positive=positive, low=low, high=high, unit="" if unit == "-" else unit)
+
+
 @main.command()
-@click.argument("source", type=click.Path(exists=True, dir_okay=False))
-@click.option("--fluctuation", type=float, metavar="DELTA",
+@click.argument("source", type=click.Path(exists=True, dir_okay=False, allow_dash=True))
+@click.option("--fluctuation", type=_plausible("fluctuation"), metavar="DELTA",
               help="Size the flywheel for this speed fluctuation δ = (ω_max − ω_min)/ω_mean "
                    "[-], e.g. 0.02.")
-@click.option("--inertia", type=float, metavar="KG_M2",
+@click.option("--inertia", type=Number(low=0.0, high=PLAUSIBLE["inertia"][1], unit="kg·m²"), metavar="KG_M2",
               help="Give the flywheel's moment of inertia J_F [kg·m²] and get the fluctuation.")
-@click.option("--speed-rpm", type=float,
+@click.option("--speed-rpm", type=_plausible("speed_rpm"), metavar="RPM",
               help="Mean crank speed [rpm] of a CSV source (a mechanism has its own).")
-@click.option("--step", type=float, help="Crank angle step [°] for a mechanism's torque curve "
-                                        "[default: its sweep step, at most 0.1°].")
+@click.option("--step", type=Number(positive=True, high=90.0, unit="°"), metavar="DEG",
+              help="Crank angle step [°] for a mechanism's torque curve "
+                   "[default: its sweep step, at most 0.1°].")
 @set_option
 @click.option("--format", "fmt", type=FORMAT, default=None,
               help="table, csv (one row: the keys below) or json. [default: table on stdout; "
                    "with -o: from its suffix]")
-@click.option("-o", "--output", type=click.Path(writable=True, dir_okay=False),
-              help="Write to this file instead of standard output.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True),
+              help="Write to this file instead of standard output (-: standard output; a "
+                   "missing folder is created).")
+@max_memory_option
 def flywheel(source: str, fluctuation: float | None, inertia: float | None,
              speed_rpm: float | None, step: float | None, assignments: tuple[str, ...],
-             fmt: str | None, output: str | None) -> None:
+             fmt: str | None, output: str | None, max_memory: float) -> None:
     """The flywheel from the torque curve over one revolution.
 
     SOURCE is a mechanism file, analysed at its constant crank speed (its drive torque
@@ -60,21 +69,26 @@ def flywheel(source: str, fluctuation: float | None, inertia: float | None,
         raise click.UsageError("give either --fluctuation (to size the flywheel) or --inertia "
                                "(to get the fluctuation).")
     fmt = fmt or infer_format(output)
-    csv_source = os.path.splitext(source)[1].lower() == ".csv"
+    text = None
+    if source == "-":  # standard input: a CSV by its header, else a mechanism
+        text, _ = read_input(source)
+        first = text.lstrip("\ufeff").lstrip().split("\n", 1)[0]
+        csv_source = "," in first and "=" not in first and "[" not in first
+    else:
+        csv_source = os.path.splitext(source)[1].lower() == ".csv"
     with flags(FLYWHEEL_FLAGS):
         if csv_source:
             if assignments or step is not None:
                 raise click.UsageError("--set and --step apply to a mechanism file, not a CSV.")
-            if speed_rpm is not None and not (math.isfinite(speed_rpm) and speed_rpm > 0):
-                raise click.BadParameter(f"must be a positive speed, got {speed_rpm:g}.",
-                                         param_hint="--speed-rpm")
-            curve = dyade.read_torque_curve(source, speed_rpm=speed_rpm)
+            curve = dyade.read_torque_curve("<stdin>" if text is not None else source,
+                                            speed_rpm=speed_rpm, text=text)
         else:
             if speed_rpm is not None:
                 raise click.UsageError("--speed-rpm is for a CSV source; a mechanism has its "
                                        "own (change it with --set crank.speed_rpm=…).")
-            mechanism = load(source, assignments).mechanism
-            curve = dyade.mechanism_torque_curve(mechanism, step_deg=step)
+            mechanism = load(source, assignments, text=text).mechanism
+            curve = dyade.mechanism_torque_curve(mechanism, step_deg=step,
+                                                 max_memory=max_memory * 2 ** 20)
         if fluctuation is not None:
             result = dyade.size_flywheel(curve, fluctuation)
         else:
@@ -101,18 +115,19 @@ def flywheel(source: str, fluctuation: float | None, inertia: float | None,
 @click.option("--link", "links", type=int, multiple=True, metavar="N",
               help="A link to carry a counterweight (repeatable); it must turn about a frame "
                    "pivot. [default: every such link]")
-@click.option("--radius", type=float, metavar="M",
+@click.option("--radius", type=Number(positive=True), metavar="M",
               help="Radius [m] of each counterweight's mass from its pivot. [default: the "
                    "link's reach: its farthest joint, named point or centre of mass]")
 @set_option
-@click.option("--save-as", "save_path", type=click.Path(dir_okay=False, writable=True),
+@click.option("--save-as", "save_path", type=click.Path(dir_okay=False, allow_dash=True),
               help="Write the balanced mechanism (counterweights merged into the links' mass "
-                   "data) to this TOML file, for `dyade analyse`.")
+                   "data) to this TOML file, for `dyade analyse` (-: standard output).")
 @click.option("--format", "fmt", type=FORMAT, default=None,
               help="table, csv (one row per counterweight) or json. [default: table on "
                    "stdout; with -o: from its suffix]")
-@click.option("-o", "--output", type=click.Path(writable=True, dir_okay=False),
-              help="Write to this file instead of standard output.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True),
+              help="Write to this file instead of standard output (-: standard output; a "
+                   "missing folder is created).")
 def balance(mechanism_file: str, links: tuple[int, ...], radius: float | None,
             assignments: tuple[str, ...], save_path: str | None, fmt: str | None,
             output: str | None) -> None:
@@ -168,4 +183,4 @@ def _notes(notes) -> None:
 
         err = console(stderr=True)
         for note in notes:
-            err.print(f"note: {note}")
+            err.print(f"note: {note}", markup=False)

@@ -14,8 +14,8 @@ class Number(click.ParamType):
     name = "number"
 
     def __init__(self, positive: bool = False, low: float | None = None,
-                 high: float | None = None) -> None:
-        self.positive, self.low, self.high = positive, low, high
+                 high: float | None = None, unit: str = "") -> None:
+        self.positive, self.low, self.high, self.unit = positive, low, high, unit
 
     def convert(self, value, param, ctx) -> float:
         import math
@@ -29,8 +29,38 @@ class Number(click.ParamType):
         if self.positive and number <= 0.0:
             self.fail(f"must be positive, got {value!r}.", param, ctx)
         if self.low is not None and number < self.low or self.high is not None and number > self.high:
-            self.fail(f"must lie in {self.low:g}…{self.high:g}, got {value!r}.", param, ctx)
+            unit = f" {self.unit}" if self.unit else ""
+            if self.low is None:
+                self.fail(f"must be at most {self.high:g}{unit}, got {value!r}.", param, ctx)
+            if self.high is None:
+                self.fail(f"must be at least {self.low:g}{unit}, got {value!r}.", param, ctx)
+            self.fail(f"must lie in {self.low:g}…{self.high:g}{unit}, got {value!r}.", param, ctx)
         return number
+
+
+class Renamed(click.Option):
+    """An option with old names kept as hidden aliases for one release (``old=``): they
+    work, but --help and the messages show only the new name."""
+
+    def __init__(self, param_decls, old: tuple[str, ...] = (), **kwargs) -> None:
+        names = [d for d in param_decls if d.startswith("-")]
+        dest = [d for d in param_decls if not d.startswith("-")]
+        super().__init__(names + list(old) + dest, **kwargs)
+        self.old = tuple(old)
+
+    def _shown(self, method, ctx):
+        opts = self.opts
+        self.opts = [o for o in opts if o not in self.old]
+        try:
+            return method(ctx)
+        finally:
+            self.opts = opts
+
+    def get_help_record(self, ctx):
+        return self._shown(super().get_help_record, ctx)
+
+    def get_error_hint(self, ctx):
+        return self._shown(super().get_error_hint, ctx)
 
 
 FINITE = Number()
@@ -44,6 +74,37 @@ set_option = click.option(
     help="Override a key of the file without editing it, with its dotted path as in the file "
          "(repeatable): --set crank.speed_rpm=600 --set dyad.2.lengths=[200,150]. Validated "
          "like the file.")
+
+
+max_memory_option = click.option(
+    "--max-memory", type=POSITIVE, default=4096, show_default=True, metavar="MB",
+    help="Refuse, before computing, a run that would need more memory than this; the "
+         "estimate is in the message (one bound for every command: dyade.limits).")
+"""--max-memory [MB]: give it to the API as ``max_memory * 2**20`` [B]"""
+
+
+def value_range_checked(text: str, hint: str, unit: str, quantity: str,
+                        positive_start: bool = False) -> list[float]:
+    """``value_range`` whose STOP must be plausible for ``quantity``
+    (``dyade.limits.PLAUSIBLE``)."""
+    from dyade.limits import PLAUSIBLE, plausible_range
+
+    values = value_range(text, hint, unit, positive_start)
+    if values[-1] > PLAUSIBLE[quantity][1]:
+        raise click.BadParameter(f"must stay within {plausible_range(quantity)} (what a "
+                                 f"machine has), got {text!r}.", param_hint=hint)
+    return values
+
+
+def modes_asked(asked: int, available: int, most: int | None = None) -> tuple[int, str]:
+    """The one rule for ``--modes N`` (N ≥ 1, by the option's type): N, or all there are
+    (at most ``most``), with a note saying so when N asks for more."""
+    given = min(asked, available, most if most is not None else asked)
+    if given == asked:
+        return given, ""
+    why = (f"the drive has {available} elastic mode{'s' * (available != 1)}"
+           if given == available else f"a figure shows at most {most}")
+    return given, f"--modes {asked}: {why}; giving the first {given}."
 
 
 jobs_option = click.option(
@@ -69,7 +130,11 @@ def value_range(text: str, hint: str, unit: str, positive_start: bool = False) -
     if not (step > 0 and stop >= start and (start > 0 if positive_start else start >= 0)):
         raise click.BadParameter(f"needs {low} <= STOP and STEP > 0, got {text!r}.",
                                  param_hint=hint)
-    count = int(np.floor((stop - start) / step + 1e-9)) + 1
-    if count > MAX_VALUES:
-        raise click.BadParameter(f"asks for {count} values; at most {MAX_VALUES}.", param_hint=hint)
+    with np.errstate(over="ignore"):
+        count_f = np.floor((stop - start) / step + 1e-9) + 1
+    if not count_f <= MAX_VALUES:
+        shown = f"{count_f:.0f}" if np.isfinite(count_f) else "too many"
+        raise click.BadParameter(f"asks for {shown} values; at most {MAX_VALUES}.",
+                                 param_hint=hint)
+    count = int(count_f)
     return (start + step * np.arange(count)).tolist()

@@ -36,7 +36,8 @@ def console(stderr: bool = False, file: TextIO | None = None, width: int | None 
 class atomic:
     """Write to a temporary file beside ``path``, rename on success, remove on failure.
     A missing folder of ``path`` is created (one rule for -o, --save-as and init); a
-    target that cannot be written is an InputError naming it (exit 2)."""
+    target that cannot be written is an InputError naming it (exit 2); "-" is standard
+    output."""
 
     def __init__(self, path: str | os.PathLike) -> None:
         self.path = os.fspath(path)
@@ -46,16 +47,25 @@ class atomic:
     def __enter__(self) -> TextIO:
         from dyade.errors import InputError
 
+        if self.path == "-":  # standard output: nothing to create, rename or remove
+            self.handle = sys.stdout
+            return self.handle
         try:
             if self.folder:
                 os.makedirs(self.folder, exist_ok=True)
             self.handle = open(self.tmp, "w", encoding="utf-8", newline="")
+        except (FileExistsError, NotADirectoryError):
+            raise InputError(f"{self.path}: cannot write the file: a part of its folder "
+                             f"{self.folder} is a file, not a folder.",
+                             source=self.path) from None
         except OSError as err:
             raise InputError(f"{self.path}: cannot write the file ({err.strerror}).",
                              source=self.path) from None
         return self.handle
 
     def __exit__(self, exc_type, exc, tb) -> None:
+        if self.path == "-":
+            return
         self.handle.close()
         if exc_type is None:
             os.replace(self.tmp, self.path)
@@ -64,6 +74,12 @@ class atomic:
                 os.remove(self.tmp)
             except FileNotFoundError:
                 pass
+
+
+def to_file(output: str | os.PathLike | None) -> bool:
+    """Whether an output option names a file: not when absent, nor for "-" (standard
+    output), one rule for every command's -o and --save-as."""
+    return bool(output) and os.fspath(output) != "-"
 
 
 def _plain_renderable(part: Any) -> Any:
@@ -113,7 +129,7 @@ def literal(table: Any) -> Any:
 def show(parts: Iterable[Any], output: str | os.PathLike | None = None, width: int | None = None) -> None:
     """Print rich renderables to stdout or (atomically) to a file."""
     parts = [literal(p) for p in parts if p is not None]
-    if output:
+    if to_file(output):
         with atomic(output) as handle:
             con = console(file=handle, width=width or 160)
             con.print(*[_plain_renderable(p) for p in parts])
@@ -142,7 +158,7 @@ def write_rows(rows: list[dict], names: list[str], output: str | os.PathLike | N
         for row in rows:
             handle.write(",".join(cell(row.get(name)) for name in names) + "\n")
 
-    if output:
+    if to_file(output):
         with atomic(output) as handle:
             emit(handle)
     else:
@@ -191,7 +207,7 @@ def write_json(obj: dict, output: str | os.PathLike | None) -> None:
         else:
             handle.write(json.dumps(jsonable(obj), ensure_ascii=False, indent=1) + "\n")
 
-    if output:
+    if to_file(output):
         with atomic(output) as handle:
             emit(handle)
     else:

@@ -116,6 +116,13 @@ def streamed(job, mechanism, loaded, path: str, output: str | None) -> None:
     else:
         emit(sys.stdout)
     warn(run.outcome.notes, mechanism, f"{os.path.basename(path)}: " if output else "")
+    outcome = run.outcome
+    if outcome.rows.any() and not outcome.valid[outcome.rows].any():  # an all-empty table
+        from dyade.errors import DyadeError
+
+        raise DyadeError(f"{mechanism.name}: no position of the sweep has its kinematics "
+                         f"given (the warnings above say why); the output holds only empty "
+                         f"rows.")
     job.check_locks(run.outcome)
 
 

@@ -20,6 +20,7 @@ import os
 from typing import Any
 
 from dyade.files.schema import UnitReader, is_number, load_data, suggest
+from dyade.limits import PLAUSIBLE
 from dyade.files.schema import fmt as _fmt
 from dyade.files.schema import show as _show
 from dyade.vibration.gears.model import (
@@ -98,7 +99,8 @@ def read_gears(path: str | os.PathLike, overrides: dict[str, Any] | None = None)
     return build_gears(load_data(path, overrides), path)
 
 
-def build_gears(data: dict[str, Any], path: str | os.PathLike | None = None) -> GearDrive:
+def build_gears(data: dict[str, Any], path: str | os.PathLike | None = None, *,
+                plausible: bool = True) -> GearDrive:
     """Validate gear-drive data and build the drive.
 
     Parameters
@@ -108,6 +110,9 @@ def build_gears(data: dict[str, Any], path: str | os.PathLike | None = None) -> 
         (the gear-drive file reference documents every key).
     path : str or os.PathLike, optional
         The file the data came from, named in errors.
+    plausible : bool
+        False lifts the bounds of what a machine has (``dyade.limits``), for studies of
+        limits such as a rigid bearing.
 
     Returns
     -------
@@ -124,13 +129,53 @@ def build_gears(data: dict[str, Any], path: str | os.PathLike | None = None) -> 
     100.0
     """
     path = os.fspath(path) if path else None
-    return Reader(os.path.basename(path) if path else "gear drive", path).drive(data)
+    reader = Reader(os.path.basename(path) if path else "gear drive", path)
+    reader.plausible = plausible
+    return reader.drive(data)
+
+
+PLAUSIBLE_UNITS = {"kg": "mass", "kg·m²": "inertia", "N/m": "stiffness",
+                   "N/m or N·m/rad": "stiffness", "N·m/rad": "stiffness", "N·s/m": "damping",
+                   "N·m·s/rad": "damping", "rpm": "speed_rpm", "Hz": "frequency",
+                   "N·m": "torque", "Pa": "modulus", "kg/m³": "density", "s": "time_constant"}
+"""unit of a key -> its quantity in ``dyade.limits.PLAUSIBLE``"""
 
 
 class Reader(UnitReader):
     """Walks the parsed TOML of a gear-drive file with key paths for the error messages."""
 
     top_keys = TOP_KEYS
+    plausible = True
+
+    # -- plausibility: every number within what a machine has (dyade.limits) ----------
+    def number(self, value: Any, key: str, unit: str, positive: bool = False,
+               non_negative: bool = False) -> float:
+        number = super().number(value, key, unit, positive, non_negative)
+        quantity = PLAUSIBLE_UNITS.get(unit) if self.plausible else None
+        if quantity and number != 0.0 and not PLAUSIBLE[quantity][0] <= number <= PLAUSIBLE[
+                quantity][1]:
+            low, high, _ = PLAUSIBLE[quantity]
+            raise self.fail(key, f"must lie in {_fmt(low)}…{_fmt(high)} {unit} (what a machine "
+                                 f"has), got {_fmt(number)}.", number, unit)
+        return number
+
+    def length_of(self, value: Any, key: str, positive: bool = False,
+                  non_negative: bool = False) -> float:
+        length = super().length_of(value, key, positive, non_negative)
+        low, high, _ = PLAUSIBLE["length"]
+        if self.plausible and (abs(length) > high or positive and length < low):  # offsets ~0
+            raise self.fail(key, f"must lie within {_fmt(low / self.length)}…"
+                                 f"{_fmt(high / self.length)} {self.length_unit} (what a "
+                                 f"machine has), got {_fmt(length / self.length)}.", value,
+                            self.length_unit)
+        return length
+
+    def integer(self, value: Any, key: str) -> int:
+        number = super().integer(value, key)
+        if self.plausible and key.endswith(".teeth") and number > PLAUSIBLE["teeth"][1]:
+            raise self.fail(key, f"must be at most {PLAUSIBLE['teeth'][1]:,} (what a machine "
+                                 f"has), got {number}.", number)
+        return number
 
     # -- primitives --------------------------------------------------------------------
     def vector(self, value: Any, key: str, unit_name: str, scale: float = 1.0) -> Vector:
@@ -245,6 +290,7 @@ class Reader(UnitReader):
                          for k, t in enumerate(self.array(data, "bearing"), 1))
         elements += tuple(self.element(t, f"element.{k}", taken, located)
                           for k, t in enumerate(self.array(data, "element"), 1))
+        self.check_train(shafts, elements, meshes)
         speed = self.speed(data["speed"]) if "speed" in data else None
         drive = GearDrive(name, bodies, shafts, elements, tuple(self.gears.values()),
                           tuple(meshes), (), speed, model, self.source)
@@ -626,6 +672,52 @@ class Reader(UnitReader):
                                                       "and rotation.")
             out.append(mesh)
         return out
+
+    def check_train(self, shafts: tuple[Shaft, ...], elements: tuple, meshes: list[Mesh]
+                    ) -> None:
+        """The train can turn: every closed loop of shafts, elements and meshes gives each
+        body one speed (ratios multiply to 1 around it), whatever else the file holds.
+        A mesh between two bodies that shafts already join, or a loop of meshes whose
+        ratios disagree, locks the drive: refused naming the element that closes the
+        loop (in the file's order: shafts, elements, meshes). Speeds are signed along
+        each body's axis (a weighted union-find: body -> (parent, ratio to it))."""
+        parent: dict[str, tuple[str, float]] = {}
+
+        def root(body: str) -> tuple[str, float]:
+            ratio = 1.0
+            while body in parent:
+                body, step = parent[body]
+                ratio *= step
+            return body, ratio
+
+        def axis(body: str) -> Vector:
+            return self.bodies[body]["axis"]
+
+        joins = [(f"shaft.{k}", s.ends, "shaft", dot(axis(s.ends[0]), axis(s.ends[1])))
+                 for k, s in enumerate(shafts, 1) if FRAME not in s.ends]
+        joins += [(f"element.{k}", e.ends, "element", dot(axis(e.ends[0]), axis(e.ends[1])))
+                  for k, e in enumerate(elements, 1) if FRAME not in e.ends]
+        for k, mesh in enumerate(meshes, 1):
+            p, r = self.gears[mesh.driving], self.gears[mesh.driven]
+            joins.append((f"mesh.{k}", (p.body, r.body), "mesh",
+                          -p.teeth / r.teeth * dot(axis(p.body), axis(r.body))))
+        for key, (a, b), kind, ratio in joins:  # speed of b = ratio * speed of a
+            (ra, sa), (rb, sb) = root(a), root(b)
+            if ra != rb:
+                parent[rb] = (ra, ratio * sa / sb)
+                continue
+            if math.isclose(ratio * sa, sb, rel_tol=1e-9):
+                continue
+            if kind == "mesh" and math.isclose(sb / sa, 1.0, rel_tol=1e-9):
+                raise self.fail(key, f"joins bodies \"{a}\" and \"{b}\", which the drive's "
+                                     f"other connections already make turn together (one shaft "
+                                     f"line): the mesh locks the "
+                                     f"drive (a gear pair turns its bodies in opposite senses). "
+                                     f"Remove the mesh or the connection between them.")
+            raise self.fail(key, f"closes a loop whose gear ratios disagree: around it body "
+                                 f"\"{b}\" would turn at two speeds (the ratios multiply to "
+                                 f"{_fmt(ratio * sa / sb)}, not 1), so the drive is locked. "
+                                 f"Check the teeth of the loop's gears.")
 
     def check_speed_loops(self, drive: GearDrive, omega: dict[str, Vector]) -> None:
         """Around a closed loop of shafts and meshes the speeds must agree."""

@@ -54,10 +54,45 @@ def read_text(path: str | os.PathLike) -> str:
                          source=path) from None
 
 
+KINDS = (
+    ("a mechanism file", {"sweep", "frame", "crank", "dyad", "links", "gravity", "load",
+                          "spring", "friction", "drive"},
+     "dyade describe, analyse, clearance, accuracy, flywheel, balance and plot"),
+    ("a gear-drive file", {"model", "material", "body", "shaft", "bearing", "element", "gear",
+                           "mesh", "excitation", "speed"},
+     "dyade gears, plot campbell and plot modes"),
+    ("a coupling file", {"J", "c1", "c2", "b1", "b2", "moment", "eta_range", "speed_rpm",
+                         "order"},
+     "dyade coupling and plot coupling"),
+)
+"""each kind of input file: its own top-level keys and the commands that read it"""
+
+
+def other_kind(table: dict[str, Any], allowed: set[str] | dict) -> str:
+    """" It is a gear-drive file: …" when the top-level keys of ``table`` that
+    ``allowed`` does not know belong to another kind of dyade file (two of them, or
+    every key of the file), else ""."""
+    unknown = [name for name in table if name not in allowed]
+    for kind, keys, commands in KINDS:
+        ours = [name for name in unknown if name in keys]
+        if ours and (len(ours) >= 2 or all(name in keys or name in ("name", "description",
+                                                                    "units")
+                                           for name in table)):
+            return (f" It looks like {kind} (it has {', '.join(f'`{n}`' for n in ours[:3])}), "
+                    f"which {commands} read.")
+    return ""
+
+
 def _parse(text: str, path: str) -> dict[str, Any]:
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
+        first = text.lstrip("\ufeff").split("\n", 1)[0]
+        if path.lower().endswith(".csv") or ("," in first and "=" not in first
+                                             and "[" not in first):
+            raise InputError(f"{path}: not a TOML file: it looks like a CSV file (a torque "
+                             f"curve or a sweep), which dyade flywheel reads.",
+                             source=path) from None
         raise InputError(f"{path}: not valid TOML: {err}.", source=path) from None
     except RecursionError:
         raise InputError(f"{path}: arrays or tables nested too deeply to read; no dyade file "
@@ -179,6 +214,8 @@ class TableReader:
                 if key and name in self.top_keys:
                     hint = (f" `{name}` is a top-level key: move it above the first [table] "
                             f"header (in TOML, keys after a [header] belong to that table).")
+                elif not key and other_kind(table, allowed):
+                    hint = other_kind(table, allowed)
                 else:
                     hint = suggest(name, allowed)
                 raise InputError(f"{self.label}: unknown key `{where}`.{hint}",

@@ -16,45 +16,94 @@ REQUIRED = ("angle_deg", "M_drive")
 OPTIONAL = ("M_load", "J_red", "dJ_red", "omega_2")
 
 
-def load_columns(path: str | os.PathLike) -> dict[str, np.ndarray]:
-    """The torque curve's columns of a CSV file (empty fields are NaN)."""
+CHECKED = ("angle_deg", "M_drive", "M_load")
+"""columns whose every cell must be a finite, plausible number (the others of dyade's
+CSV are empty where a sweep gives no value)"""
+TORQUE_LIMIT = 1e9  # [N·m] no machine's crank shaft carries more (dyade.limits "torque")
+
+
+def load_columns(path: str | os.PathLike, text: str | None = None) -> dict[str, np.ndarray]:
+    """The torque curve's columns of a CSV file (empty fields are NaN); ``text``: its
+    content when already read (standard input), ``path`` naming it. Every message names
+    the file, the column as the header spells it and the line; a byte-order mark (Excel's
+    "CSV UTF-8") is dropped; headers match whatever their case or surrounding spaces."""
     path = os.fspath(path)
     label = os.path.basename(path)
-    try:
-        with open(path, encoding="utf-8") as handle:
-            lines = [line.strip() for line in handle if line.strip()]
-    except OSError as err:
-        raise InputError(f"{path}: cannot read the file ({err.strerror}).", source=path) from None
-    except UnicodeDecodeError:
-        raise InputError(f"{path}: not a UTF-8 text file.", source=path) from None
+    if text is None:
+        try:
+            with open(path, encoding="utf-8-sig") as handle:
+                text = handle.read()
+        except OSError as err:
+            raise InputError(f"{path}: cannot read the file ({err.strerror}).",
+                             source=path) from None
+        except UnicodeDecodeError:
+            raise InputError(f"{label}: not a UTF-8 text file; save it as CSV UTF-8.",
+                             source=path) from None
+    text = text.removeprefix("\ufeff")
+    lines = [(number, line.strip()) for number, line in enumerate(text.splitlines(), start=1)
+             if line.strip()]
     if not lines:
         raise InputError(f"{label}: the file is empty; it needs a header line with "
                          f"{', '.join(REQUIRED)}.", source=path)
-    names = [name.strip() for name in lines[0].split(",")]
+    header_line, header = lines[0]
+    written = [name.strip().strip('"') for name in header.split(",")]
+    known = {name.lower(): name for name in REQUIRED + OPTIONAL}
+    names = [known.get(name.lower(), name) for name in written]
     missing = [name for name in REQUIRED if name not in names]
     if missing:
-        raise InputError(f"{label}: no column {', '.join(missing)} in the header (it has "
-                         f"{', '.join(names[:8])}{' …' if len(names) > 8 else ''}).",
+        raise InputError(f"{label}: no column {', '.join(missing)} in the header (line "
+                         f"{header_line}: {', '.join(written[:8])}"
+                         f"{' …' if len(written) > 8 else ''}); the columns are angle_deg "
+                         f"[°] and M_drive [N·m], optionally M_load [N·m].",
                          source=path, key=missing[0])
     wanted = [name for name in REQUIRED + OPTIONAL if name in names]
+    twice = [name for name in wanted if names.count(name) > 1]
+    if twice:
+        raise InputError(f"{label}: line {header_line}: the column {twice[0]} appears twice "
+                         f"in the header.", source=path, key=twice[0])
     index = {name: names.index(name) for name in wanted}
-    rows = []
-    for number, line in enumerate(lines[1:], start=2):
+    rows, numbers = [], []
+    for number, line in lines[1:]:
         fields = line.split(",")
         if len(fields) != len(names):
             raise InputError(f"{label}: line {number} has {len(fields)} fields, the header "
-                             f"{len(names)}.", source=path)
+                             f"(line {header_line}) {len(names)}.", source=path)
         row = []
         for name in wanted:
-            text = fields[index[name]].strip()
+            cell = fields[index[name]].strip()
+            column = written[index[name]]
             try:
-                row.append(float(text) if text else np.nan)
+                value = float(cell) if cell else np.nan
             except ValueError:
-                raise InputError(f"{label}: line {number}, column {name}: not a number: "
-                                 f"{text!r}.", source=path, key=name) from None
+                raise InputError(f"{label}: line {number}, column {column}: not a number: "
+                                 f"{cell!r}.", source=path, key=name) from None
+            if name in CHECKED and not np.isfinite(value):
+                got = "empty" if not cell else f"not a finite number: {cell!r}"
+                raise InputError(f"{label}: line {number}, column {column}: {got}; the curve "
+                                 f"needs a value at every angle of the revolution.",
+                                 source=path, key=name)
+            if name in ("M_drive", "M_load") and abs(value) > TORQUE_LIMIT:
+                raise InputError(f"{label}: line {number}, column {column}: {cell} N·m is "
+                                 f"beyond what a machine has (|M| ≤ {TORQUE_LIMIT:g} N·m).",
+                                 source=path, key=name)
+            row.append(value)
         rows.append(row)
+        numbers.append(number)
     if len(rows) < 4:
         raise InputError(f"{label}: needs at least 4 rows over one revolution, got {len(rows)}.",
                          source=path)
     table = np.array(rows)
+    angle, column = table[:, 0], written[index["angle_deg"]]
+    steps = np.diff(angle)
+    if np.any(steps <= 0.0):
+        k = int(np.flatnonzero(steps <= 0.0)[0])
+        what = "repeats" if steps[k] == 0.0 else "is below"
+        raise InputError(f"{label}: line {numbers[k + 1]}, column {column}: {angle[k + 1]:g} "
+                         f"{what} line {numbers[k]}'s {angle[k]:g}; the angles must rise "
+                         f"strictly over one revolution.", source=path, key="angle_deg")
+    if angle[-1] - angle[0] <= 2.0 * np.pi + 1e-9 and angle[-1] - angle[0] > 3.0:
+        raise InputError(f"{label}: column {column} runs from {angle[0]:g} to {angle[-1]:g} "
+                         f"(lines {numbers[0]} to {numbers[-1]}): these look like radians; "
+                         f"the column is in degrees (0 to 360): multiply by 180/π.",
+                         source=path, key="angle_deg")
     return {name: table[:, k] for k, name in enumerate(wanted)}

@@ -29,8 +29,10 @@ import numpy as np
 
 from dyade import cycle
 from dyade.errors import DyadeError, InputError
+from dyade.limits import PLAUSIBLE, check_plausible, implausible, plausible_range
 from dyade.linkage import kinematics
 from dyade.linkage.model import CRANK, FRAME, FloatArray, Link, Mechanism, Revolute, Vec
+from dyade.linkage.options import check_size
 
 
 @dataclass(frozen=True, slots=True)
@@ -216,6 +218,10 @@ def balance(mechanism: Mechanism, *, links=None, radius: float | None = None) ->
     else:
         chosen = [int(link) for link in links]
         for link in chosen:
+            if link not in mechanism.links:
+                raise InputError.parameter(
+                    "links", f"{link}: there is no link {link} (the links are "
+                             f"{', '.join(map(str, sorted(mechanism.links)))}).", value=link)
             if link not in pivots:
                 raise InputError.parameter(
                     "links", f"{link}: link {link} does not turn about a frame pivot (those "
@@ -227,6 +233,9 @@ def balance(mechanism: Mechanism, *, links=None, radius: float | None = None) ->
     if radius is not None and not (math.isfinite(radius) and radius > 0.0):
         raise InputError.parameter("radius", f"must be a positive length [m], got {radius}.",
                                    value=radius, unit="m")
+    if radius is not None:
+        check_plausible("radius", radius, "length")
+    check_size(mechanism, 3 * mechanism.sweep.count, None)  # the fit and two sweeps
     if not any(link.mass > 0.0 for link in mechanism.links.values()):
         raise InputError(f"{mechanism.name}: no link has a mass, so there is no shaking force "
                          f"to balance (add mass data, see mechanisms/README.md).")
@@ -254,8 +263,15 @@ def balance(mechanism: Mechanism, *, links=None, radius: float | None = None) ->
         if reach <= 0.0:
             raise InputError.parameter("radius", f"is needed for link {link}: it has no joint "
                                                  f"or point away from its pivot.", unit="m")
-        weights.append(Counterweight(link, pivots[link], float(math.hypot(b_xi, b_eta)),
-                                     float(math.atan2(b_eta, b_xi)), float(reach)))
+        weight = Counterweight(link, pivots[link], float(math.hypot(b_xi, b_eta)),
+                               float(math.atan2(b_eta, b_xi)), float(reach))
+        if implausible("mass", max(weight.first_moment / reach, PLAUSIBLE["mass"][0])):
+            raise InputError.parameter(
+                "radius", f"{reach:g} m gives link {link} a counterweight of "
+                          f"{weight.first_moment / reach:.3g} kg, beyond what a machine has "
+                          f"({plausible_range('mass')}): give a larger radius.",
+                value=reach, unit="m")
+        weights.append(weight)
     balanced = with_counterweights(mechanism, weights)
     before_result = analyse(mechanism, constant_speed=True, allow_partial=True)
     after_result = analyse(balanced, constant_speed=True, allow_partial=True)

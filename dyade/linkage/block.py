@@ -45,3 +45,5 @@ class Block:
     implausible: dict[str, FloatArray] = field(default_factory=dict)
     """"kinematics"/"forces" -> (m,) bool: the positions taken out for a value beyond
     ``columns.PLAUSIBLE``"""
+    implausible_columns: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    """"kinematics"/"forces" -> the columns that held such a value"""

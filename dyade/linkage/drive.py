@@ -27,9 +27,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from dyade.errors import DyadeError, InputError
+from dyade.limits import check_memory
 from dyade.linkage import kinematics
 from dyade.linkage.blocks import BLOCK_SIZE, friction_coupling, spans
 from dyade.linkage.model import FloatArray, Mechanism
+from dyade.linkage.options import memory_estimate
 from dyade.linkage.reduced import Reduced, reduced
 from dyade.machine import equation
 from dyade.machine.motor import Asynchronous, ConstantTorque, Motor, TorqueSpeedTable
@@ -78,6 +80,23 @@ def steps_for(mechanism: Mechanism) -> int:
     return MIN_STEPS
 
 
+RUN_UP_BYTES = 160  # [B] per integration step of a run-up: the path's arrays, kept whole
+
+
+def check_drive_size(mechanism: Mechanism, steps: int, run_up: bool) -> None:
+    """Refuse, before anything is allocated, a ``[drive]`` whose grid (2·steps half-steps
+    with the machine's kinetostatics at each) or run-up (up to max_revolutions × steps
+    steps) would take more than the memory bound (``dyade.limits``)."""
+    check_memory(memory_estimate(mechanism, 2 * steps),
+                 f"the equation of motion's grid of {steps:,} steps per revolution",
+                 advice="Give fewer `drive.steps`")
+    if run_up:
+        revolutions = mechanism.drive.max_revolutions
+        check_memory(RUN_UP_BYTES * float(steps) * revolutions + (50 << 20),
+                     f"a run-up of up to {revolutions:,} revolutions at {steps:,} steps each",
+                     advice="Give fewer `drive.max_revolutions` or `drive.steps`")
+
+
 def solve(mechanism: Mechanism, crank_angle: FloatArray | None = None, *, run_up: bool = False,
           friction: bool = False) -> CrankMotion:
     """The crank's motion under the ``[drive]`` of ``mechanism``: the periodic steady state
@@ -96,6 +115,7 @@ def solve(mechanism: Mechanism, crank_angle: FloatArray | None = None, *, run_up
                          "`drive.torque` [N·m] (without it the motor only holds the nominal "
                          "speed in the steady state).", key="drive.torque")
     steps = steps_for(mechanism)
+    check_drive_size(mechanism, steps, run_up)
     h = 2.0 * math.pi / steps
     sense = 1.0 if mechanism.crank.speed > 0 else -1.0
     start = mechanism.sweep.start

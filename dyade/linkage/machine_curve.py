@@ -10,15 +10,15 @@ import numpy as np
 from dyade.cycle import mean as cycle_mean
 from dyade.errors import DyadeError, InputError
 from dyade.linkage.model import Mechanism
-from dyade.linkage.options import radians
+from dyade.linkage.options import check_size, radians
 from dyade.linkage.sweep import analyse_si
 from dyade.machine.flywheel import TorqueCurve, machine_curve
 
 FINE_STEP = math.radians(0.1)  # [rad] largest default step of a torque curve
 
 
-def torque_curve(mechanism: Mechanism, *, step_deg: float | None = None, **renamed
-                 ) -> TorqueCurve:
+def torque_curve(mechanism: Mechanism, *, step_deg: float | None = None,
+                 max_memory: float | None = None, **renamed) -> TorqueCurve:
     """The machine's torque curve at constant speed, for the flywheel.
 
     The drive torque M_drive over one revolution from the sweep's start, against a
@@ -32,6 +32,9 @@ def torque_curve(mechanism: Mechanism, *, step_deg: float | None = None, **renam
     step_deg : float, optional
         The crank-angle step [°], below 90° (default: the sweep's, at most 0.1°, since
         load tables put kinks in the curve that only a fine step integrates well).
+    max_memory : float, optional
+        Bound on the sweep's size [B] (``dyade.limits``), checked before anything is
+        allocated.
     **renamed
         The former ``step`` [rad] is refused with an ``InputError`` naming ``step_deg``.
 
@@ -57,6 +60,7 @@ def torque_curve(mechanism: Mechanism, *, step_deg: float | None = None, **renam
         raise InputError(f"{mechanism.name}: no masses, loads or springs, so no drive torque to "
                          f"size a flywheel by (add mass data, see mechanisms/README.md).")
     count = int(math.ceil(2.0 * math.pi / step - 1e-9))
+    check_size(mechanism, count, max_memory)
     angle = mechanism.sweep.start + step * np.arange(count)
     cols = analyse_si(mechanism, crank_angle=angle, constant_speed=True).columns()
     torque, inertia = cols["M_drive"], cols["J_red"]  # NaN where not given

@@ -13,6 +13,7 @@ from dataclasses import replace
 import numpy as np
 
 from dyade.errors import InputError
+from dyade.limits import BYTES_PER_VALUE, check_memory
 from dyade.linkage.model import Mechanism, Revolute, Sweep, sweep_problem
 from dyade.linkage.plan import Plan
 from dyade.linkage.plan import plan as infer_plan
@@ -113,10 +114,6 @@ def sweep_in_degrees(mechanism: Mechanism, start_deg: float | None = None,
     return swept
 
 
-MAX_MEMORY = 4 << 30  # [B] default bound on what a sweep may take (overridable)
-BYTES_PER_VALUE = 90  # [B] per column and position: arrays, the table and its CSV text
-"""measured: dyade-16 (269 columns) and the four-bar (59) at 3 600 and 36 000 positions
-peak at 84-86 B per column and position in `dyade analyse --format csv`"""
 
 
 def column_count(mechanism: Mechanism) -> int:
@@ -152,20 +149,9 @@ def check_size(mechanism: Mechanism, positions: int, max_memory: float | None,
                estimate=None) -> None:
     """Refuse a sweep that would take more than ``max_memory`` [B], before allocating;
     ``estimate(mechanism, positions)`` [B] (default ``memory_estimate``)."""
-    bound = MAX_MEMORY if max_memory is None else max_memory
     need = (estimate or memory_estimate)(mechanism, positions)
-    if need > bound:
-        raise InputError.parameter(
-            "max_memory", f"is {_size(bound)}, and this sweep of {positions:,} positions would "
-                          f"take about {_size(need)}. Use a coarser step or a shorter range, or "
-                          f"raise the bound.", value=bound, unit="B")
-
-
-def _size(nbytes: float) -> str:
-    for unit in ("B", "kB", "MB", "GB", "TB", "PB"):
-        if nbytes < 1000 or unit == "PB":
-            return f"{nbytes:.3g} {unit}"
-        nbytes /= 1000
+    check_memory(need, f"this sweep of {positions:,} positions", max_memory,
+                 "Use a coarser step or a shorter range")
 
 
 def stream_estimate(block_size: int):

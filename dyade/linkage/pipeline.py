@@ -163,6 +163,8 @@ def tabulate(mechanism: Mechanism, block: Block, phases: dict[int, Continuous]) 
         if block.forces is not None:
             block.forces.valid &= ~mask
         block.implausible[part] = mask
+        block.implausible_columns[part] = tuple(
+            n for n in names if np.any(np.abs(cols[n]) > columns_.PLAUSIBLE))
         cols = columns_.columns(mechanism, block, phases)
     for phase in phases.values():
         phase.commit()
@@ -244,6 +246,8 @@ class Keep:
         self.setup, self.rows, self.well = setup, rows, well
         self.implausible = {"kinematics": np.zeros(n, dtype=bool),
                             "forces": np.zeros(n, dtype=bool)}
+        self.implausible_columns: dict[str, dict[str, None]] = {"kinematics": {},
+                                                                "forces": {}}
         self.forces_valid = np.zeros(n, dtype=bool) if the_plan.kinetostatics else None
         self.rubbing = Rubbing.empty(n) if the_plan.friction else None
         run_up = setup.motion is not None and setup.motion.state == "run-up"
@@ -255,6 +259,8 @@ class Keep:
         first, last = block.first, block.last
         for part, mask in block.implausible.items():
             self.implausible[part][first:last] = mask
+        for part, names in block.implausible_columns.items():
+            self.implausible_columns[part].update(dict.fromkeys(names))
         self.well[first:last] = block.valid
         if block.forces is not None:
             self.forces_valid[first:last] = block.forces.valid
@@ -282,7 +288,8 @@ class Keep:
                 notes.append(Note(NoteKind.IMPLAUSIBLE, "",
                                   tuple(ranges(angle, self.implausible[part])),
                                   {"part": part, "limit": columns_.PLAUSIBLE,
-                                   "digits": digits}))
+                                   "digits": digits,
+                                   "columns": tuple(self.implausible_columns[part])}))
         if invalid is not None and invalid.any():
             notes.append(Note(NoteKind.FORCES_INVALID, "", tuple(ranges(angle, invalid)),
                               {"digits": digits}))

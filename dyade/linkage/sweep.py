@@ -163,7 +163,7 @@ def analyse(mechanism: Mechanism, *, start_deg: float | None = None,
         The stages to run (default: ``plan(mechanism)``).
     max_memory : float, optional
         Refuse, before allocating anything, a sweep estimated to take more memory [B]
-        (default ``MAX_MEMORY``, 4 GiB): its columns, 8 B per value, and one block.
+        (default ``dyade.limits.MAX_MEMORY``, 4 GiB): its columns, 8 B per value, and one block.
     dead_centre_deg, transmission_warning_deg : float, optional
         The validity policy's hard and soft bands [°] (defaults: the mechanism's, 2° and
         40°): within ``dead_centre_deg`` of a dead centre nothing is given; below

@@ -33,7 +33,7 @@ import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.cycle import integrals, mean as cycle_mean, segments
-from dyade.errors import InputError
+from dyade.errors import DyadeError, InputError
 
 LARGE_FLUCTUATION = 0.1  # [-] above this the small-fluctuation estimate δ ≈ ΔE/(J·Ω²) is rough
 MEAN_RTOL = 1e-3  # [-] mean excess torque (share of the mean |drive torque|) still periodic
@@ -350,11 +350,19 @@ def speed_fluctuation(curve: TorqueCurve, inertia: float) -> Flywheel:
         raise InputError.parameter("inertia", "must be positive: the curve gives no inertia "
                                               "of the machine.", value=inertia, unit="kg·m²")
     top, _, bottom, _ = energy_extremes(curve)
-    return _result(curve, inertia, (top - bottom) / (total * curve.speed ** 2), [])
+    fluctuation = (top - bottom) / (total * curve.speed ** 2)
+    if not fluctuation < 1.0:
+        raise DyadeError(f"with J = {total:.4g} kg·m² the energy fluctuation {top - bottom:.4g} J "
+                         f"would change the speed by more than its mean (δ ≈ {fluctuation:.3g}): "
+                         f"the machine stalls and the small-fluctuation estimate does not hold. "
+                         f"A flywheel of at least {(top - bottom) / curve.speed ** 2:.4g} kg·m² "
+                         f"keeps δ below 1; solve the equation of motion ([drive] table) for "
+                         f"the real speed.")
+    return _result(curve, inertia, fluctuation, [])
 
 
-def read_torque_curve(path: str | os.PathLike, *, speed_rpm: float | None = None, **renamed
-                      ) -> TorqueCurve:
+def read_torque_curve(path: str | os.PathLike, *, speed_rpm: float | None = None,
+                      text: str | None = None, **renamed) -> TorqueCurve:
     """The torque curve of a CSV file with columns ``angle_deg`` and ``M_drive`` [N·m] and
     optionally ``M_load`` [N·m] (positive where it drives; default a constant load equal
     to the mean drive torque).
@@ -369,6 +377,8 @@ def read_torque_curve(path: str | os.PathLike, *, speed_rpm: float | None = None
         The CSV file.
     speed_rpm : float, optional
         The mean crank speed [rpm]; required unless the file is dyade's.
+    text : str, optional
+        The file's content, when already read (standard input); ``path`` names it.
     **renamed
         The former ``speed`` [rad/s] is refused with an ``InputError`` naming
         ``speed_rpm``.
@@ -390,7 +400,7 @@ def read_torque_curve(path: str | os.PathLike, *, speed_rpm: float | None = None
     speed = None if speed_rpm is None else speed_rpm * math.pi / 30.0
     path = os.fspath(path)
     label = os.path.basename(path)
-    columns = load_columns(path)
+    columns = load_columns(path, text)
     angle = np.deg2rad(columns["angle_deg"])
     if "dJ_red" in columns:
         if speed is None:

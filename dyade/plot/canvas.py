@@ -239,6 +239,17 @@ def _atomic(path: str) -> Iterator[str]:
     folder, name = os.path.split(os.fspath(path))
     stem, ext = os.path.splitext(name)
     temporary = os.path.join(folder, f".{stem}.part{ext}")
+    try:  # a missing folder is created, as for every output of dyade
+        if folder:
+            os.makedirs(folder, exist_ok=True)
+        with open(temporary, "wb"):
+            pass
+    except (FileExistsError, NotADirectoryError):
+        raise InputError(f"{path}: cannot write the file: a part of its folder {folder} is a "
+                         f"file, not a folder.", source=os.fspath(path)) from None
+    except OSError as err:
+        raise InputError(f"{path}: cannot write the file ({err.strerror}).",
+                         source=os.fspath(path)) from None
     try:
         yield temporary
         os.replace(temporary, path)

@@ -134,9 +134,16 @@ def _link(node: Tree, mechanism: Mechanism, number: int, length: Lengths,
                      f"J_s {link.inertia:g} kg·m²")
     if parts:
         node.add(f"link {number}: " + "; ".join(parts))
-    for name, point in link.points.items():
-        if not (number == CRANK and name == "tip"):
-            node.add(f"link {number} point {name} = {length.point(point)} (ξ, η)")
+    named = [(name, point) for name, point in link.points.items()
+             if not (number == CRANK and name == "tip")]
+    for name, point in named[:SHOWN_POINTS]:
+        node.add(f"link {number} point {name} = {length.point(point)} (ξ, η)")
+    if len(named) > SHOWN_POINTS:
+        node.add(f"link {number}: {len(named) - SHOWN_POINTS:,} more named points "
+                 f"({named[SHOWN_POINTS][0]} … {named[-1][0]}; dyade analyse gives their paths)")
+
+
+SHOWN_POINTS = 50  # named points listed per link; a file may have thousands
 
 
 def _loads(tree: Tree, mechanism: Mechanism, length: Lengths) -> None:
@@ -229,7 +236,12 @@ def _motion(mechanism: Mechanism):
     from dyade.linkage.summary import motion_figures
     from dyade.linkage.sweep import analyse
 
-    one = replace(mechanism, sweep=type(mechanism.sweep)(0.0, 2 * math.pi, math.radians(0.5)))
+    # the figures need the links' angles and the sliders' travel, not the named points
+    # (a file may have thousands: they would cost columns at every position)
+    bare = {number: replace(link, points={k: v for k, v in link.points.items() if k == "tip"})
+            for number, link in mechanism.links.items()}
+    one = replace(mechanism, links=bare,
+                  sweep=type(mechanism.sweep)(0.0, 2 * math.pi, math.radians(0.5)))
     try:
         result = analyse(one, plan=Plan())
     except AssemblyError:

@@ -48,8 +48,11 @@ def _poor_transmission(note, figures, mechanism) -> str:
 
 
 def _implausible(note, figures, mechanism) -> str:
-    return (f"{figures['part']} beyond {figures['limit']:.0e} (SI units) at crank angles "
-            f"{_at(note, figures)}: no machine moves or loads so; those rows are not given.")
+    names = figures.get("columns", ())
+    which = (f" ({', '.join(names[:4])}{' …' if len(names) > 4 else ''})" if names else "")
+    return (f"{figures['part']}{which} beyond {figures['limit']:.0e} (SI units) at crank "
+            f"angles {_at(note, figures)}: no machine moves or loads so; those rows are not "
+            f"given.")
 
 
 def _forces_invalid(note, figures, mechanism) -> str:

@@ -110,8 +110,13 @@ def key_results(result: Result, cols: Columns, summary: dict, length_unit: str =
     angle = cols["angle_deg"]
     mechanism = result.mechanism
     rpm = abs(mechanism.crank.speed) * 60.0 / (2.0 * np.pi)
+    speed = f"at {rpm:g} rpm"
+    motion = summary.get("motion")
+    if motion is not None:  # the equation of motion sets the speed, not the file's rpm
+        speed = (f"at a mean {motion['speed_mean'] * 30.0 / np.pi:.4g} rpm (equation of "
+                 f"motion)" if motion["state"] == "steady" else "in a run-up from rest")
     table = Table(title=f"{mechanism.name}: {angle.size} crank positions "
-                        f"{angle[0]:.1f}°–{angle[-1]:.1f}° at {rpm:g} rpm — key results",
+                        f"{angle[0]:.1f}°–{angle[-1]:.1f}° {speed} — key results",
                   title_justify="left", caption="--all: min and max of every column; "
                   "--columns PATTERN to choose columns", caption_justify="left")
     for head, justify in (("quantity", "left"), ("value", "right"), ("unit", "left"),

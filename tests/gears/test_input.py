@@ -60,7 +60,8 @@ CASES = {
     "the same motion constrained twice": (_duplicate_mesh, "`mesh.2` constrains a motion that "
                                                            "the meshes before it already fix "
                                                            "(gᵀM⁻¹g is singular)"),
-    "gear ratios around a loop": (_triangle, "`mesh.2` closes a loop whose gear ratios disagree: body \"idler\" would turn at two speeds"),
+    "gear ratios around a loop": (_triangle, "`mesh.3` closes a loop whose gear ratios disagree: "
+                                             "around it body \"pinion\" would turn at two speeds"),
     "helical gears of one hand": (lambda d: d["gear"][0].update(helix_angle=15, hand="left")
                                   or d["gear"][1].update(helix_angle=15, hand="left"),
                                   "`mesh.1` joins two left-hand gears"),
@@ -110,9 +111,11 @@ def test_bad_input_is_named(case, tmp_path):
 def test_bad_options_are_named(tmp_path):
     path = tmp_path / "drive.toml"
     path.write_text(tomlkit.dumps(single_stage()), encoding="utf-8")
-    cases = [(["--dof", "motor.qx", "--response", "1:2:1"], "--dof names 'motor.qx'"),
-             (["--campbell", "0:100"], "--campbell"),
-             (["--campbell", "0:100:1", "--check"], "--campbell and --check: one analysis")]
+    cases = [(["--dof", "motor.qx", "--frequency-range", "1:2:1"], "--dof names 'motor.qx'"),
+             (["--dof", "motor.qx", "--response", "1:2:1"], "--dof names 'motor.qx'"),  # old
+             (["--speed-range", "0:100"], "--speed-range"),
+             (["--campbell", "0:100"], "--speed-range"),  # the old name, a hidden alias
+             (["--speed-range", "0:100:1", "--check"], "--speed-range and --check: one analysis")]
     for args, message in cases:
         run = CliRunner().invoke(main, ["gears", str(path), *args])
         assert run.exit_code == 2 and message in run.output, run.output

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
+import dyade
 from dyade.vibration.gears.modes import gear_modes
 from tests.gears.drives import build, single_stage, two_stage_data, with_pressure_angle
 
@@ -40,7 +41,7 @@ def test_stiff_bearings_and_shafts_converge_to_the_torsional_model():
     assert limit.size == 6  # 6 bodies + 3 shaft segments - 2 meshes - 1 rigid-body mode
     errors = []
     for scale in (1e2, 1e3, 1e4):
-        modes = gear_modes(build(_stiffened(data, scale)))
+        modes = gear_modes(dyade.build_gears(_stiffened(data, scale), plausible=False))
         torsion = modes.totals("kinetic")["torsion"] > 0.5
         f = modes.frequencies[torsion][:limit.size]
         errors.append(np.abs(f - limit) / limit)

@@ -6,7 +6,7 @@ import os
 
 import click
 
-from dyade.cli.options import MECHANISM_FILE, set_option
+from dyade.cli.options import MECHANISM_FILE, Renamed, set_option
 from dyade.cli.plot.output import figure_for, finish, output_options, single_target
 
 KINDS = click.Choice(["resonance", "stability", "map", "steady", "run-up"])
@@ -15,11 +15,12 @@ KINDS = click.Choice(["resonance", "stability", "map", "steady", "run-up"])
 @click.command("driveline")
 @click.argument("mechanism_file", type=MECHANISM_FILE)
 @click.option("--analysis", "what", type=KINDS, default="resonance", show_default=True,
-              help="resonance: peak shaft torque, twist, fluctuation over --speeds-rpm; "
+              help="resonance: peak shaft torque, twist, fluctuation over --speed-range; "
                    "stability: the largest Floquet multiplier over them, unstable shaded; "
-                   "map: over --speeds-rpm × --map; steady: shaft torque over the cycle "
+                   "map: over --speed-range × --map; steady: shaft torque over the cycle "
                    "against the rigid drive's; run-up: from rest.")
-@click.option("--speeds-rpm", metavar="START:STOP:STEP",
+@click.option("--speed-range", "speeds_rpm", cls=Renamed, old=("--speeds-rpm",),
+              metavar="START:STOP:STEP",
               help="Crank speeds of an ideal motor [rpm] (resonance, stability, map).")
 @click.option("--map", "map_range", metavar="stiffness|damping=START:STOP:STEP",
               help="The parameter mapped against speed (map).")
@@ -29,7 +30,7 @@ def driveline_figure(mechanism_file, what, speeds_rpm, map_range, assignments, o
                      show, dpi) -> None:
     """Figures of the elastic drive line of MECHANISM_FILE (see `dyade driveline`):
 
-        dyade plot driveline mech.toml --speeds-rpm 300:6000:25 -o resonance.png
+        dyade plot driveline mech.toml --speed-range 300:6000:25 -o resonance.png
     """
     from dyade.cli.common import load
     from dyade.cli.driveline import FLAGS, speed_range
@@ -40,13 +41,13 @@ def driveline_figure(mechanism_file, what, speeds_rpm, map_range, assignments, o
     target, announce = single_target(output, fmt, show, dpi, name)
     mechanism = load(mechanism_file, assignments).mechanism
     if what in ("resonance", "stability", "map") and not speeds_rpm:
-        raise click.UsageError(f"--analysis {what} needs --speeds-rpm START:STOP:STEP.")
+        raise click.UsageError(f"--analysis {what} needs --speed-range START:STOP:STEP.")
     from dyade.plot import drive_line as figures
 
     fig = figure_for(target)
     with flags(FLAGS):
         if what in ("resonance", "stability"):
-            curve = api.resonance_curve(mechanism, speed_range(speeds_rpm, "--speeds-rpm"))
+            curve = api.resonance_curve(mechanism, speed_range(speeds_rpm, "--speed-range"))
             made = (figures.resonance if what == "resonance" else figures.stability)(curve,
                                                                                      fig=fig)
         elif what == "map":
@@ -55,7 +56,7 @@ def driveline_figure(mechanism_file, what, speeds_rpm, map_range, assignments, o
                 raise click.UsageError("--analysis map needs --map stiffness=START:STOP:STEP "
                                        "or damping=START:STOP:STEP.")
             key, text = map_range.split("=", 1)
-            result = api.stability_map(mechanism, speed_range(speeds_rpm, "--speeds-rpm"),
+            result = api.stability_map(mechanism, speed_range(speeds_rpm, "--speed-range"),
                                        **{key: speed_range(text, "--map")})
             made = figures.stability_map(result, fig=fig)
         elif what == "steady":

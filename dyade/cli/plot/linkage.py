@@ -11,9 +11,11 @@ import click
 
 from dyade.cli.batch import batch
 from dyade.cli.common import SweepOptions, load, sweep, warn
-from dyade.cli.options import MECHANISM_FILE, set_option
+from dyade.cli.options import (FINITE, MECHANISM_FILE, POSITIVE, Renamed, max_memory_option,
+                               set_option)
+from dyade.limits import check_memory
 from dyade.cli.output import console, flags
-from dyade.cli.plot.output import (FORMATS, Target, emit, figure_for, output_options, prepare,
+from dyade.cli.plot.output import (FORMATS, Target, emit, figure_for, output_options, prepare, stem,
                                     suffix_format)
 
 
@@ -21,10 +23,12 @@ def linkage_options(command):
     """The mechanism files and the sweep options of `dyade analyse`."""
     options = [
         click.argument("mechanism_files", type=MECHANISM_FILE, nargs=-1, required=True),
-        click.option("--start", type=float,
+        click.option("--start", type=FINITE, metavar="DEG",
                      help="First crank angle [°] (overrides [sweep] start)."),
-        click.option("--stop", type=float, help="Last crank angle [°] (default: start + 360)."),
-        click.option("--step", type=float, help="Crank angle step [°] (overrides [sweep] step)."),
+        click.option("--stop", type=FINITE, metavar="DEG",
+                     help="Last crank angle [°] (default: start + 360)."),
+        click.option("--step", type=POSITIVE, metavar="DEG",
+                     help="Crank angle step [°] (overrides [sweep] step)."),
         set_option,
         click.option("--allow-partial", is_flag=True,
                      help="Draw only the crank angles where every dyad closes (gaps elsewhere) "
@@ -50,14 +54,14 @@ def run_linkage(kind: str, files: tuple[str, ...], output: str | None, fmt: str 
         mechanism = load(path, assignments, sweep_options).mechanism
         result = sweep(mechanism, allow_partial)
         warn(result.notes, mechanism, f"{os.path.basename(path)}: " if len(files) > 1 else "")
-        draw(result, Target(target, show, dpi), announce)
+        draw(result, Target(target, show, dpi, fmt), announce)
 
     announce = output is None
     if len(files) == 1 and not (output and os.path.isdir(output)):
-        if output:
+        if output and output != "-":
             suffix_format(output, suffixes)
-        elif not show:
-            output = f"{os.path.splitext(os.path.basename(files[0]))[0]}-{kind}.{fmt}"
+        elif not output and not show:
+            output = f"{stem(files[0])}-{kind}.{fmt}"
         one(files[0], output)
     else:
         directory = output or "."
@@ -91,7 +95,7 @@ def _joints(texts: tuple[str, ...]) -> list[tuple[int, int]] | None:
 @click.option("--joint", "joints", multiple=True, metavar="I,J",
               help="A revolute joint to draw, e.g. --joint 5,6 (repeatable); default: every "
                    "revolute joint.")
-@click.option("--max-wander", type=click.FloatRange(min=0, max=90), default=20.0,
+@click.option("--max-wander", type=click.FloatRange(min=0, max=90), default=20.0, metavar="DEG",
               show_default=True,
               help="Largest angle [°] a force may leave its line of action for its reversals "
                    "to be numbered (as in `dyade clearance`).")
@@ -116,9 +120,11 @@ def polar(mechanism_files, start, stop, step, assignments, allow_partial, joints
 
 @click.command()
 @linkage_options
-@click.option("--y", "quantities", multiple=True, metavar="NAME,...",
-              help="Columns to draw against the crank angle, as named in the CSV: --y "
-                   "M_drive,F_2_3 (repeatable); columns of one unit share a panel. Default: "
+@click.option("--columns", "quantities", cls=Renamed, old=("--y",), multiple=True,
+              metavar="NAME,...",
+              help="Columns to draw against the crank angle, as named in the CSV (as "
+                   "`dyade analyse --columns`): --columns M_drive,F_2_3 (repeatable); columns "
+                   "of one unit share a panel. Default: "
                    "the drive torque with its mean and energy surplus, and the transmission "
                    "angles.")
 @output_options()
@@ -132,7 +138,7 @@ def curves(mechanism_files, start, stop, step, assignments, allow_partial, quant
     def build(result, fig):
         from dyade.plot import curves as figure
 
-        with flags({"quantities": "--y"}):
+        with flags({"quantities": "--columns"}):
             return figure.figure(result, names or None, fig=fig)
 
     run_linkage("curves", mechanism_files, output, fmt, show, dpi,
@@ -176,10 +182,12 @@ def mechanism(mechanism_files, start, stop, step, assignments, allow_partial, at
 @click.command()
 @linkage_options
 @click.option("--fps", type=click.FloatRange(min=1, max=100), default=20.0, show_default=True,
+              metavar="N",
               help="Frames per second of the GIF.")
 @output_options(default_format=None)
+@max_memory_option
 def animate(mechanism_files, start, stop, step, assignments, allow_partial, fps, output, show,
-            dpi) -> None:
+            dpi, max_memory) -> None:
     """The linkage of MECHANISM_FILES in motion, one frame per step of the sweep, as an
     animated GIF (-o motion.gif; default NAME-motion.gif). A coarser --step makes a smaller
     file: `dyade plot animate mechanisms/slotted-lever.toml --step 5 -o motion.gif`."""
@@ -188,6 +196,11 @@ def animate(mechanism_files, start, stop, step, assignments, allow_partial, fps,
     def draw(result, target: Target, announce: bool) -> None:
         from dyade.plot import animate as figure
 
+        frames = int(result.crank_angle.size)
+        pixels = (4.0 * (target.dpi or figure.DPI)) * (5.0 * (target.dpi or figure.DPI))
+        with flags({"max_memory": "--max-memory"}):
+            check_memory(4.0 * pixels * frames + (100 << 20), f"an animation of {frames:,} "
+                         f"frames", max_memory * 2 ** 20, "Use a coarser --step or a lower --dpi")
         motion = figure.animation(result, fig=figure_for(target, (4.0, 5.0)))
         if target.path:
             figure.save(motion, target.path, fps, target.dpi or figure.DPI)

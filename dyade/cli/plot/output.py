@@ -16,14 +16,16 @@ def output_options(default_format: str | None = "png"):
     """-o, --format, --show and --dpi, shared by every figure command."""
     def decorate(command):
         options = [
-            click.option("-o", "--output", type=click.Path(writable=True),
-                         help="Write the figure to this file, its format from the suffix; "
+            click.option("-o", "--output", type=click.Path(allow_dash=True),
+                         help="Write the figure to this file, its format from the suffix (a "
+                              "missing folder is created; -: standard output, in --format); "
                               "with several mechanism files a directory (NAME-KIND.FORMAT "
                               "each)."),
             click.option("--show", is_flag=True,
                          help="Open the figure in a window (needs a display); with -o as "
                               "well, write it too."),
             click.option("--dpi", type=click.IntRange(min=20, max=1200), default=None,
+                         metavar="N",
                          help="Resolution of a PNG or GIF [dots per inch]  [default: 100 for "
                               "PNG and GIF]."),
         ]
@@ -44,6 +46,8 @@ class Target(NamedTuple):
     path: str | None
     show: bool
     dpi: int | None
+    fmt: str | None = None
+    """the format of a figure on standard output (path "-")"""
 
 
 def prepare(show: bool) -> None:
@@ -58,6 +62,11 @@ def prepare(show: bool) -> None:
                                "with -o FILE instead.")
 
 
+def stem(path: str) -> str:
+    """The name a figure of input ``path`` is named after ("-": stdin)."""
+    return "stdin" if path == "-" else os.path.splitext(os.path.basename(path))[0]
+
+
 def suffix_format(path: str, allowed: tuple[str, ...]) -> str:
     fmt = os.path.splitext(path)[1].lower().lstrip(".")
     if fmt not in allowed:
@@ -70,7 +79,12 @@ def emit(fig, target: Target, announce: bool) -> None:
     """Write the figure when it has a file (its format from the suffix)."""
     from dyade.plot import canvas
 
-    if target.path:
+    if target.path == "-":  # standard output: the bytes of the format asked for
+        import sys
+
+        sys.stdout.buffer.write(canvas.render(fig, target.fmt or "png", target.dpi or 100))
+        sys.stdout.flush()
+    elif target.path:
         canvas.save(fig, target.path, target.dpi or 100)
         if announce:
             console(stderr=True).print(f"wrote {target.path}")
@@ -89,6 +103,8 @@ def single_target(output: str | None, fmt: str | None, show: bool, dpi: int | No
                    name: str) -> tuple[Target, bool]:
     """The target of a figure from options or a file (one figure)."""
     prepare(show)
+    if output == "-":
+        return Target("-", show, dpi, fmt or "png"), False
     if output and os.path.isdir(output):
         output = os.path.join(output, f"{name}.{fmt or 'png'}")
     elif output:

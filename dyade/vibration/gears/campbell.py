@@ -23,8 +23,9 @@ import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.errors import InputError
+from dyade.limits import BYTES_PER_VALUE, check_memory
 from dyade.vibration.gears.model import FRAME, GearDrive
-from dyade.vibration.gears.modes import Modes, gear_modes
+from dyade.vibration.gears.modes import Modes, coordinate_count, gear_modes
 
 
 @dataclass(frozen=True, slots=True)
@@ -138,8 +139,17 @@ def orders(drive: GearDrive, harmonics: int = 3) -> tuple[Order, ...]:
     return tuple(out)
 
 
+def campbell_size(drive: GearDrive, speeds: int, harmonics: int) -> float:
+    """What a Campbell diagram of ``speeds`` speeds and ``harmonics`` tooth-mesh
+    harmonics takes [B], before anything is computed: its lines (8 B per line and
+    speed) and at most one crossing per line and mode (a row of the table each)."""
+    lines = harmonics * len(drive.meshes) + len(drive.bodies) + len(drive.excitations)
+    modes = coordinate_count(drive)
+    return 8.0 * lines * speeds + 8 * BYTES_PER_VALUE * lines * modes + (50 << 20)
+
+
 def campbell(drive: GearDrive, speeds_rpm, *, harmonics: int = 3,
-             modes: Modes | None = None) -> Campbell:
+             modes: Modes | None = None, max_memory: float | None = None) -> Campbell:
     """Natural frequencies against input speed, the excitation lines and the resonances.
 
     Parameters
@@ -152,6 +162,9 @@ def campbell(drive: GearDrive, speeds_rpm, *, harmonics: int = 3,
         Tooth-mesh harmonics to draw (1 … harmonics).
     modes : Modes, optional
         ``gear_modes(drive)``, if already computed.
+    max_memory : float, optional
+        Bound on what the diagram may take [B] (default ``dyade.limits.MAX_MEMORY``),
+        checked before anything is computed.
 
     Returns
     -------
@@ -172,8 +185,14 @@ def campbell(drive: GearDrive, speeds_rpm, *, harmonics: int = 3,
             speeds < 0) or np.any(np.diff(speeds) <= 0):
         raise InputError.parameter("speeds_rpm", "must be ascending speeds ≥ 0 [rpm].",
                                    unit="rpm")
+    if isinstance(harmonics, bool) or not isinstance(harmonics, (int, np.integer)) or harmonics < 0:
+        raise InputError.parameter("harmonics", f"must be a whole number ≥ 0, got {harmonics!r}.",
+                                   value=harmonics)
+    check_memory(campbell_size(drive, speeds.size, int(harmonics)),
+                 f"a Campbell diagram of {speeds.size:,} speeds and {harmonics:,} tooth-mesh "
+                 f"harmonics", max_memory, "Ask for fewer speeds or harmonics")
     lines = orders(drive, harmonics)
-    modes = modes if modes is not None else gear_modes(drive)
+    modes = modes if modes is not None else gear_modes(drive, max_memory=max_memory)
     slopes = np.array([o.slope for o in lines])
     fixed = np.array([o.frequency for o in lines])
     values = slopes[:, None] * speeds[None, :] + fixed[:, None]

@@ -26,6 +26,7 @@ import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.errors import InputError
+from dyade.limits import BYTES_PER_VALUE, check_memory
 from dyade.vibration.gears.assembly import System, assemble
 from dyade.vibration.gears.model import DOFS, FRAME, GearDrive, frame
 from dyade.vibration.gears.modes import (Modes, NullSpace, gear_modes, multipliers, rigid_modes,
@@ -97,8 +98,18 @@ def _coordinates(system: System, coordinates) -> tuple[tuple[str, str], ...]:
     return tuple(out)
 
 
+def response_size(system: System, frequencies: int, coordinates: int) -> float:
+    """What a forced response at ``frequencies`` frequencies takes [B], before anything
+    is solved: the complex amplitudes of the coordinates, meshes and supports (two table
+    columns each: amplitude and phase) and the reduced right-hand sides."""
+    supports = sum(e.ends[1] == FRAME for e in system.elements)
+    columns = 1 + 2 * (coordinates + len(system.drive.meshes) + 6 * supports)
+    return (BYTES_PER_VALUE * columns + 16.0 * system.size) * frequencies + (50 << 20)
+
+
 def gear_response(drive: GearDrive | System, frequencies, *, coordinates=None,
-                  load: np.ndarray | None = None, error: np.ndarray | None = None) -> Response:
+                  load: np.ndarray | None = None, error: np.ndarray | None = None,
+                  max_memory: float | None = None) -> Response:
     """Forced response to the drive's excitations, over ``frequencies`` [Hz].
 
     Parameters
@@ -112,6 +123,9 @@ def gear_response(drive: GearDrive | System, frequencies, *, coordinates=None,
     load, error : ndarray, optional
         Complex generalized forces (n,) and transmission errors per mesh instead of the
         file's excitations.
+    max_memory : float, optional
+        Bound on what the response may take [B] (default ``dyade.limits.MAX_MEMORY``),
+        checked before anything is solved.
 
     Returns
     -------
@@ -131,6 +145,9 @@ def gear_response(drive: GearDrive | System, frequencies, *, coordinates=None,
     if freq.ndim != 1 or not np.all(np.isfinite(freq)) or np.any(freq < 0):
         raise InputError.parameter("frequencies", "must be finite and ≥ 0 [Hz].", unit="Hz")
     picked = _coordinates(system, coordinates)
+    check_memory(response_size(system, freq.size, len(picked)),
+                 f"a response at {freq.size:,} frequencies", max_memory,
+                 "Ask for fewer frequencies (a larger step or a shorter range)")
     p, e = excitation_vectors(system)
     p = p if load is None else np.asarray(load, dtype=complex)
     e = e if error is None else np.asarray(error, dtype=complex)
