@@ -1,7 +1,8 @@
 """Every command shown in the shell blocks of the README and of the documentation
 (docs/**/*.md) runs as written (issues 19, 30): they cannot drift from the program.
 Blocks that install the package, build the docs or run the test suite and benchmarks
-are what CI itself runs, and are left to it."""
+are what CI itself runs, and are left to it. The documentation's blocks are in the slow
+set (`pytest -m slow`, run by CI)."""
 
 from __future__ import annotations
 
@@ -59,7 +60,15 @@ def _name(case) -> str:
     return f"{page.relative_to(ROOT)}:{block.split()[1]}…"
 
 
-@pytest.mark.parametrize("case", RUNNABLE, ids=_name)
+def _marked(case):
+    """The README's own blocks run in the default run (its quick start is what a user
+    tries first); the documentation's many blocks, a subprocess per command, run with the
+    slow set that CI runs too."""
+    page, _ = case
+    return case if page.name == "README.md" else pytest.param(*[case], marks=pytest.mark.slow)
+
+
+@pytest.mark.parametrize("case", [_marked(case) for case in RUNNABLE], ids=_name)
 def test_readme_block_runs_as_written(case, tmp_path):
     """Run in a fresh folder with the shipped mechanisms, the installed `dyade` first on
     the PATH: exit 0, no traceback, no "failed:" from the README's own loops."""
