@@ -31,7 +31,7 @@ PLAUSIBLE: dict[str, tuple[float, float, str]] = {
     "torque": (-1e9, 1e9, "N·m"),
     "mass": (1e-9, 1e7, "kg"),
     "inertia": (1e-12, 1e7, "kg·m²"),
-    "stiffness": (0.0, 1e13, "N/m or N·m/rad"),
+    "stiffness": (1e-6, 1e13, "N/m or N·m/rad"),  # 0 (no spring) passes: the bound is for the rest
     "damping": (0.0, 1e10, "N·s/m or N·m·s/rad"),
     "length": (1e-7, 1e3, "m"),
     "modulus": (1e5, 1e13, "Pa"),
