@@ -95,8 +95,9 @@ def _results(function, items: list, workers: int, lost) -> Iterator:
                     value = future.result()
                 except BrokenProcessPool:
                     break
-                yield value
                 start = index + 1
+                clean = start == len(items)  # all done: a caller that stops after the
+                yield value  # last item (zip with the items) ends the pool cleanly too
             clean = True
         finally:
             pool.end(clean)
@@ -157,15 +158,17 @@ class _Pool:
         return self.executor.submit(_call, index)
 
     def end(self, clean: bool) -> None:
-        """Shut the executor down: ``clean``, waiting for its workers to end; else (the
-        iterator closed early, an error, Ctrl-C) terminating those still busy."""
-        if clean:
-            self.executor.shutdown(wait=True)
-            return
-        self.executor.shutdown(wait=False, cancel_futures=True)
-        for process in self.context.processes:
-            if process.pid is not None and process.exitcode is None:  # started, running
-                process.terminate()
+        """Shut the executor down and wait for it: ``clean``, its workers end when idle;
+        else (the iterator closed early, an error, Ctrl-C) they are killed first (SIGKILL:
+        one forked a moment ago may still have the command's SIGTERM handler, and the
+        executor waits for every worker to end). Always waiting: an executor thread still
+        running at the interpreter's exit races its shutdown hook (``OSError: [Errno 9]
+        Bad file descriptor`` on stderr)."""
+        if not clean:
+            for process in self.context.processes:
+                if process.pid is not None and process.exitcode is None:  # started, running
+                    process.kill()
+        self.executor.shutdown(wait=True, cancel_futures=True)
 
     def ending(self) -> str:
         """How a worker that ended without a result did, in words."""
