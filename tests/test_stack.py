@@ -1,0 +1,73 @@
+"""Variants of one topology stacked into one mechanism (``dyade.linkage.stack``): one
+sweep over the flattened (variant, position) axis gives each variant's kinematics and
+forces as its own sweep does (issue 26, "Speed")."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import dyade
+from dyade.linkage import kinematics, kinetostatics
+from dyade.linkage.stack import NotStackable, stack
+from tests.helpers import shipped
+
+FOURBAR = [{"dyad.2.lengths.1": a, "dyad.2.lengths.2": b, "links.3.mass": m,
+            "links.4.centre": [c, 5], "links.3.inertia": i, "frame.points.B0": [250, y]}
+           for a, b, m, c, i, y in [(200, 150, 1.2, 75, 0.004, 0), (196, 148, 1.0, 70, 0.003, 2),
+                                    (204, 153, 1.5, 80, 0.005, -3)]]
+SLIDER = [{"dyad.2.length": a, "links.4.mass": m, "crank.length": r}
+          for a, m, r in [(160, 0.5, 40), (150, 0.7, 38), (170, 0.4, 45)]]
+MOTION = ("origin", "angle", "omega", "alpha", "velocity", "acceleration")
+
+
+def _stacked(name, sets):
+    variants = [dyade.read_mechanism(shipped(name), values) for values in sets]
+    positions = variants[0].sweep.count
+    together = stack(variants, positions)
+    angle = np.tile(variants[0].sweep.angles(), len(variants))
+    kin = kinematics.sweep(together, angle)
+    return variants, positions, kin, kinetostatics.solve(together, kin)
+
+
+@pytest.mark.parametrize(("name", "sets"), [("fourbar.toml", FOURBAR),
+                                            ("slider-crank.toml", SLIDER)])
+def test_stacked_sweep_is_each_variants_sweep(name, sets):
+    variants, positions, kin, forces = _stacked(name, sets)
+    for v, mechanism in enumerate(variants):
+        part = slice(v * positions, (v + 1) * positions)
+        alone = kinematics.sweep(mechanism)
+        alone_forces = kinetostatics.solve(mechanism, alone)
+        links = list(mechanism.moving_links)
+        for array in MOTION:
+            np.testing.assert_allclose(getattr(kin.motion, array)[part][:, links],
+                                       getattr(alone.motion, array)[:, links],
+                                       rtol=1e-12, atol=1e-15)
+        np.testing.assert_allclose(kin.transmission[part], alone.transmission, rtol=1e-12)
+        np.testing.assert_allclose(forces.drive_torque[part], alone_forces.drive_torque,
+                                   rtol=1e-12, atol=1e-12)
+        for joint, reaction in alone_forces.revolute.items():
+            np.testing.assert_allclose(forces.revolute[joint][part], reaction,
+                                       rtol=1e-12, atol=1e-12)
+    # and the variants do differ (the test could not pass by broadcasting one of them)
+    first, second = (kin.motion.angle[k * positions:(k + 1) * positions, 3] for k in (0, 1))
+    assert np.max(np.abs(first - second)) > 1e-3
+
+
+def test_a_variant_that_does_not_close_leaves_the_others_alone():
+    sets = [FOURBAR[0], dict(FOURBAR[0], **{"dyad.2.lengths.2": 60}), FOURBAR[1]]
+    variants, positions, kin, _ = _stacked("fourbar.toml", sets)
+    bad = kin.valid.reshape(3, positions)
+    assert bad[0].all() and bad[2].all() and not bad[1].all()
+    alone = kinematics.sweep(variants[2])
+    np.testing.assert_allclose(kin.motion.angle[2 * positions:, 4], alone.motion.angle[:, 4],
+                               rtol=1e-12)
+
+
+def test_variants_of_other_topologies_do_not_stack():
+    fourbar = dyade.read_mechanism(shipped("fourbar.toml"))
+    other = dyade.read_mechanism(shipped("fourbar.toml"), {"dyad.2.variant": -1})
+    with pytest.raises(NotStackable, match="variant"):
+        stack([fourbar, other], 361)
+    with pytest.raises(NotStackable):
+        stack([fourbar, dyade.read_mechanism(shipped("slider-crank.toml"))], 361)
