@@ -18,6 +18,10 @@ FOURBAR = [{"dyad.2.lengths.1": a, "dyad.2.lengths.2": b, "links.3.mass": m,
                                     (204, 153, 1.5, 80, 0.005, -3)]]
 SLIDER = [{"dyad.2.length": a, "links.4.mass": m, "crank.length": r}
           for a, m, r in [(160, 0.5, 40), (150, 0.7, 38), (170, 0.4, 45)]]
+DYADE16 = [{"dyad.2.lengths.2": b, "crank.length": r, "dyad.7.lengths.1": c,
+            "frame.points.C0": [0, y], "links.8.mass": m}
+           for b, r, c, y, m in [(150, 40, 160, -140, 1.0), (146, 39, 158, -136, 1.3),
+                                 (154, 41, 163, -144, 0.8)]]
 MOTION = ("origin", "angle", "omega", "alpha", "velocity", "acceleration")
 
 
@@ -31,9 +35,11 @@ def _stacked(name, sets):
 
 
 @pytest.mark.parametrize(("name", "sets"), [("fourbar.toml", FOURBAR),
-                                            ("slider-crank.toml", SLIDER)])
+                                            ("slider-crank.toml", SLIDER),
+                                            ("dyade-16.toml", DYADE16)])
 def test_stacked_sweep_is_each_variants_sweep(name, sets):
     variants, positions, kin, forces = _stacked(name, sets)
+    assert np.all(kin.valid)
     for v, mechanism in enumerate(variants):
         part = slice(v * positions, (v + 1) * positions)
         alone = kinematics.sweep(mechanism)
@@ -46,9 +52,10 @@ def test_stacked_sweep_is_each_variants_sweep(name, sets):
         np.testing.assert_allclose(kin.transmission[part], alone.transmission, rtol=1e-12)
         np.testing.assert_allclose(forces.drive_torque[part], alone_forces.drive_torque,
                                    rtol=1e-12, atol=1e-12)
-        for joint, reaction in alone_forces.revolute.items():
-            np.testing.assert_allclose(forces.revolute[joint][part], reaction,
-                                       rtol=1e-12, atol=1e-12)
+        for kind in ("revolute", "normal", "moment"):
+            for joint, reaction in getattr(alone_forces, kind).items():
+                np.testing.assert_allclose(getattr(forces, kind)[joint][part], reaction,
+                                           rtol=1e-12, atol=1e-12)
     # and the variants do differ (the test could not pass by broadcasting one of them)
     first, second = (kin.motion.angle[k * positions:(k + 1) * positions, 3] for k in (0, 1))
     assert np.max(np.abs(first - second)) > 1e-3

@@ -65,4 +65,8 @@ def _stack(values: list, positions: int, where: str):
         parts = [_stack([v[k] for v in values], positions, f"{where}[{k}]")
                  for k in range(len(first))]
         return tuple(parts)
+    if isinstance(first, np.ndarray):  # a table (a load over the crank angle): shared
+        if all(isinstance(v, np.ndarray) and np.array_equal(v, first) for v in values):
+            return first
+        raise NotStackable(f"{where}: a table that differs between variants")
     raise NotStackable(f"{where}: {type(first).__name__} differs between variants")
