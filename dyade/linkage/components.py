@@ -89,4 +89,6 @@ def full(motion: Motion, value):
 def direction_xy(joint: Prismatic, cos, sin) -> tuple:
     """World guide direction d of a prismatic joint from its carrier's cos and sin."""
     theta = joint.guide_angle
-    return rotate_xy(cos, sin, (float(np.cos(theta)), float(np.sin(theta))))
+    if np.ndim(theta) == 0:
+        return rotate_xy(cos, sin, (float(np.cos(theta)), float(np.sin(theta))))
+    return rotate_xy(cos, sin, (np.cos(theta), np.sin(theta)))

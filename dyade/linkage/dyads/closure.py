@@ -133,7 +133,7 @@ def carry(joint: Prismatic, known: int, unknown: int, motion: Motion) -> tuple:
     offset = joint.relative_angle if joint.carrier == known else -joint.relative_angle
     if known != FRAME:
         return turn(motion, unknown, known, offset)
-    cos, sin = float(np.cos(offset)), float(np.sin(offset))
+    cos, sin = scalar(np.cos(offset)), scalar(np.sin(offset))
     motion.angle[:, unknown] = offset
     motion.cos[:, unknown] = cos
     motion.sin[:, unknown] = sin
@@ -143,7 +143,7 @@ def carry(joint: Prismatic, known: int, unknown: int, motion: Motion) -> tuple:
 def turn(motion: Motion, link: int, known: int, offset: float) -> tuple:
     """φ_link = φ_known + offset (``Motion.turn_with``, a copy for no offset); returns
     the link's cos and sin."""
-    if offset == 0.0:
+    if is_nought(offset):
         for array in (motion.angle, motion.cos, motion.sin):
             array[:, link] = array[:, known]
     else:
