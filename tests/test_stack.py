@@ -85,3 +85,24 @@ def test_variants_of_other_topologies_do_not_stack():
         stack([fourbar, other], 361)
     with pytest.raises(NotStackable):
         stack([fourbar, dyade.read_mechanism(shipped("slider-crank.toml"))], 361)
+
+
+@pytest.mark.parametrize("stop", [360.0, 359.0, 270.0])
+def test_means_of_rows_are_each_rows_mean(stop):
+    """``cycle.means``/``rmss``: one reduction over the variants' rows gives each row's
+    ``cycle.mean``/``rms`` (whole revolutions, gaps, round-off, partial sweeps)."""
+    from dyade import cycle
+
+    angle = np.deg2rad(np.arange(0.0, stop + 0.5, 1.0))
+    rng = np.random.default_rng(3)
+    rows = (rng.uniform(-2, 2, (6, 1)) + np.cos(angle + rng.uniform(0, 6, (6, 1)))
+            * rng.uniform(0.5, 3, (6, 1)))
+    rows[2] = np.cos(angle)  # a mean that is round-off: 0
+    rows[4, 17] = np.nan     # a gap: the trapezoid rule over the rest
+    expected_mean = [cycle.mean(angle, row) for row in rows]
+    expected_rms = [cycle.rms(angle, row) for row in rows]
+    np.testing.assert_allclose(cycle.means(angle, rows), expected_mean, rtol=1e-14, atol=0)
+    np.testing.assert_allclose(cycle.rmss(angle, rows), expected_rms, rtol=1e-14, atol=0)
+    if stop == 360.0:
+        assert cycle.means(angle, rows)[2] == 0.0
+        assert abs(cycle.means(angle, rows)[0] - np.mean(rows[0, :-1])) < 1e-12
