@@ -25,7 +25,7 @@ import math
 import numpy as np
 
 from dyade.arrays import FloatArray
-from dyade.roundoff import clean
+from dyade.roundoff import ROUNDOFF, clean
 
 TURN = 2.0 * math.pi
 CLOSE_RTOL = 1e-9  # [-] a last angle this close to the first plus 2π repeats it
@@ -52,16 +52,18 @@ def segments(angle: FloatArray, values: FloatArray) -> tuple[FloatArray, FloatAr
     closing the revolution) and its three-point slopes."""
     h = np.diff(np.append(angle, angle[0] + TURN))
     left = np.roll(h, 1)
-    ahead, behind = np.roll(values, -1), np.roll(values, 1)
+    ahead, behind = np.roll(values, -1, axis=-1), np.roll(values, 1, axis=-1)
     slope = (left * left * (ahead - values) + h * h * (values - behind)) / (left * h * (left + h))
     return h, slope
 
 
 def integrals(angle: FloatArray, values: FloatArray) -> FloatArray:
     """∫ over each interval of a periodic curve's cubic Hermite interpolant (the last
-    interval closes the revolution), at its distinct positions."""
+    interval closes the revolution), at its distinct positions (``values``: one curve,
+    or one per row, all at ``angle``)."""
     h, slope = segments(angle, values)
-    return 0.5 * h * (values + np.roll(values, -1)) + h * h / 12.0 * (slope - np.roll(slope, -1))
+    return (0.5 * h * (values + np.roll(values, -1, axis=-1))
+            + h * h / 12.0 * (slope - np.roll(slope, -1, axis=-1)))
 
 
 def mean(angle: FloatArray, values: FloatArray) -> float:
@@ -89,6 +91,31 @@ def _mean(angle: FloatArray, values: FloatArray, keep: FloatArray) -> float:
         return float(values.mean()) if values.size else float("nan")
     return float(np.sum((values[1:] + values[:-1]) * np.diff(angle))
                  / (2.0 * (angle[-1] - angle[0])))
+
+
+def means(angle: FloatArray, values: FloatArray) -> FloatArray:
+    """``mean`` of every row of ``values`` (variants, positions), all at the crank angle
+    ``angle`` [rad]: one reduction over the rows finite over a whole revolution, ``mean``
+    row by row for the others (a partial sweep, gaps)."""
+    angle = np.asarray(angle, dtype=np.float64)
+    values = np.asarray(values, dtype=np.float64)
+    out = np.empty(values.shape[0])
+    distinct, _, periodic = revolution(angle, angle)
+    whole = np.isfinite(values).all(axis=1) if periodic else np.zeros(len(out), dtype=bool)
+    if whole.any():
+        rows = values[whole]
+        totals = np.sum(integrals(distinct, rows[:, :distinct.size]), axis=-1) / TURN
+        scale = np.max(np.abs(rows), axis=1)
+        out[whole] = np.where(np.abs(totals) <= ROUNDOFF * scale, 0.0, totals + 0.0)
+    for k in np.flatnonzero(~whole):
+        out[k] = mean(angle, values[k])
+    return out
+
+
+def rmss(angle: FloatArray, values: FloatArray) -> FloatArray:
+    """``rms`` of every row of ``values`` (variants, positions) (``means``)."""
+    values = np.asarray(values, dtype=np.float64)
+    return np.sqrt(means(angle, values * values))
 
 
 def rms(angle: FloatArray, values: FloatArray) -> float:

@@ -31,8 +31,8 @@ def pose(motion: Motion, link: int) -> tuple:
 def rotate_xy(cos, sin, local: Vec) -> tuple:
     """R(φ)·u from cos φ and sin φ (as ``Motion.rotated_xy``); (0.0, 0.0) for u = 0."""
     u, v = local
-    if v == 0.0:
-        if u == 0.0:
+    if np.ndim(v) == 0 and v == 0.0:
+        if np.ndim(u) == 0 and u == 0.0:
             return 0.0, 0.0
         return cos * u, sin * u
     return cos * u - sin * v, sin * u + cos * v
@@ -89,4 +89,6 @@ def full(motion: Motion, value):
 def direction_xy(joint: Prismatic, cos, sin) -> tuple:
     """World guide direction d of a prismatic joint from its carrier's cos and sin."""
     theta = joint.guide_angle
-    return rotate_xy(cos, sin, (float(np.cos(theta)), float(np.sin(theta))))
+    if np.ndim(theta) == 0:
+        return rotate_xy(cos, sin, (float(np.cos(theta)), float(np.sin(theta))))
+    return rotate_xy(cos, sin, (np.cos(theta), np.sin(theta)))

@@ -91,7 +91,7 @@ def applied_loads(mechanism: Mechanism, kin: Kinematics) -> FloatArray:
             part *= -link.mass
         np.multiply(plus(motion.origin[:, number, 0], rx), fy, out=moment)
         moment -= plus(motion.origin[:, number, 1], ry) * fx
-        if link.inertia:
+        if np.any(link.inertia):
             moment -= link.inertia * alpha
     add_loads_and_springs(q, mechanism, kin)
     return q

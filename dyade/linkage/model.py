@@ -178,7 +178,7 @@ class Link:
 
     @property
     def has_mass(self) -> bool:
-        return self.mass > 0.0 or self.inertia > 0.0
+        return bool(np.any(self.mass > 0.0) or np.any(self.inertia > 0.0))
 
 
 class DyadKind(NamedTuple):

@@ -91,7 +91,7 @@ class Motion:
         """Components of R(φ_link)·u over the sweep."""
         c, s = self.cos[:, link], self.sin[:, link]
         u, v = local
-        if v == 0.0:
+        if np.ndim(v) == 0 and v == 0.0:
             return c * u, s * u
         return c * u - s * v, s * u + c * v
 

@@ -24,6 +24,7 @@ from tests.benchmarks.yardstick import fourbar_variants
 from tests.helpers import shipped
 
 VARIANTS = 1000
+BLOCK = 200  # variants per stacked sweep: 72 200 positions, the arrays in cache
 FRICTION = ('"friction.coefficient" = 0.1, "friction.pin_radius" = 10, '
             '"friction.slider_length" = 40, "friction.slider_height" = 20')
 
@@ -82,3 +83,36 @@ def test_study_jobs(benchmark, tmp_path, jobs):
     result = benchmark.pedantic(dyade.study, args=(path,), kwargs={"jobs": jobs}, rounds=1,
                                 iterations=1)
     assert len(result.columns()["variant"]) == 8000
+
+
+@pytest.fixture(scope="module")
+def fourbar_variants_built():
+    rng = np.random.default_rng(1)
+    r3, r4 = rng.uniform(195, 205, 10_000), rng.uniform(145, 155, 10_000)
+    return [dyade.read_mechanism(shipped("fourbar.toml"),
+                                 {"dyad.2.lengths.1": a, "dyad.2.lengths.2": b})
+            for a, b in zip(r3, r4)]
+
+
+def test_fourbar_variants_stacked_engine(benchmark, fourbar_variants_built):
+    """The engine's part of a batched study: the 10 000 variants stacked in blocks of
+    ``BLOCK`` into one mechanism each (``dyade.linkage.stack``), each block's kinematics
+    and forces one sweep of BLOCK × 361 positions (without the mechanism files' reading,
+    the columns and the summary, which a study still runs per variant)."""
+    from dyade.linkage import kinematics, kinetostatics
+    from dyade.linkage.stack import stack
+
+    variants = fourbar_variants_built
+    positions = variants[0].sweep.count
+    angle = np.tile(variants[0].sweep.angles(), BLOCK)
+
+    def engine():
+        torque = []
+        for first in range(0, len(variants), BLOCK):
+            together = stack(variants[first:first + BLOCK], positions)
+            kin = kinematics.sweep(together, angle)
+            torque.append(kinetostatics.solve(together, kin).drive_torque)
+        return np.concatenate(torque)
+
+    torque = benchmark.pedantic(engine, rounds=3, iterations=1)
+    assert torque.shape == (10_000 * positions,) and np.isfinite(torque).all()

@@ -49,7 +49,7 @@ def pin_xy(joint: Revolute, unknown: int, motion: Motion) -> tuple[tuple, Vec]:
     (p, q), (u_p, u_q) = joint.links, joint.points
     known, local, other = (q, u_q, u_p) if p == unknown else (p, u_p, u_q)
     if known == FRAME:
-        return (float(local[0]), float(local[1])), other
+        return (scalar(local[0]), scalar(local[1])), other
     cos, sin, ox, oy = pose(motion, known)
     rx, ry = rotate_xy(cos, sin, local)
     return (plus(ox, rx), plus(oy, ry)), other
@@ -70,10 +70,10 @@ def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: Float
     """Place a link whose local vector ``arm`` (of ``length``) lies along the world
     vector (wx, wy) of the same length, with its local point ``local`` on (px, py):
     the cosine and sine of its angle come without trigonometric functions."""
-    beta = float(np.arctan2(arm[1], arm[0]))
+    beta = scalar(np.arctan2(arm[1], arm[0]))
     cos, sin, angle = motion.cos[:, link], motion.sin[:, link], motion.angle[:, link]
     np.arctan2(wy, wx, out=angle)
-    if beta == 0.0:
+    if is_nought(beta):
         np.divide(wx, length, out=cos)
         np.divide(wy, length, out=sin)
     else:
@@ -82,13 +82,36 @@ def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: Float
         np.add(ex * cb, ey * sb, out=cos)
         np.subtract(ey * cb, ex * sb, out=sin)
         angle -= beta
-    if local[0] == 0.0 and local[1] == 0.0:
+    if is_nought(local[0]) and is_nought(local[1]):
         motion.origin[:, link, 0] = px
         motion.origin[:, link, 1] = py
     else:
         rx, ry = motion.rotated_xy(link, local)
         motion.origin[:, link, 0] = px - rx
         motion.origin[:, link, 1] = py - ry
+
+
+def scalar(value):
+    """A plain float for a number; an array (a variant's number per position,
+    ``dyade.linkage.stack``) as it is."""
+    return float(value) if np.ndim(value) == 0 else value
+
+
+def is_nought(value) -> bool:
+    """A number (not a per-position array) that is zero."""
+    return np.ndim(value) == 0 and value == 0.0
+
+
+def difference(a: Vec, b: Vec) -> tuple:
+    """a − b of two local points, component-wise (numbers or per-position arrays)."""
+    if np.ndim(a[0]) == np.ndim(a[1]) == np.ndim(b[0]) == np.ndim(b[1]) == 0:
+        return np.subtract(a, b)
+    return (np.subtract(a[0], b[0]), np.subtract(a[1], b[1]))
+
+
+def length(arm) -> float | FloatArray:
+    """|arm| (a float, or one per position)."""
+    return scalar(np.hypot(arm[0], arm[1]))
 
 
 def same_pins(joints: dict) -> dict:
@@ -110,7 +133,7 @@ def carry(joint: Prismatic, known: int, unknown: int, motion: Motion) -> tuple:
     offset = joint.relative_angle if joint.carrier == known else -joint.relative_angle
     if known != FRAME:
         return turn(motion, unknown, known, offset)
-    cos, sin = float(np.cos(offset)), float(np.sin(offset))
+    cos, sin = scalar(np.cos(offset)), scalar(np.sin(offset))
     motion.angle[:, unknown] = offset
     motion.cos[:, unknown] = cos
     motion.sin[:, unknown] = sin
@@ -120,7 +143,7 @@ def carry(joint: Prismatic, known: int, unknown: int, motion: Motion) -> tuple:
 def turn(motion: Motion, link: int, known: int, offset: float) -> tuple:
     """φ_link = φ_known + offset (``Motion.turn_with``, a copy for no offset); returns
     the link's cos and sin."""
-    if offset == 0.0:
+    if is_nought(offset):
         for array in (motion.angle, motion.cos, motion.sin):
             array[:, link] = array[:, known]
     else:
@@ -150,7 +173,7 @@ def guide_line(joint: Prismatic, unknown: int, motion: Motion, cos, sin) -> tupl
 
 def shift_line(c, dx, dy, cos, sin, local: Vec):
     """c + n·R(φ)·u: the line n·r = c of a link's origin moved to its point u."""
-    if local[0] == 0.0 and local[1] == 0.0:
+    if is_nought(local[0]) and is_nought(local[1]):
         return c
     ux, uy = rotate_xy(cos, sin, local)
     return c + (-dy * ux + dx * uy)

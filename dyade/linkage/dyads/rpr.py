@@ -16,6 +16,21 @@ from dyade.linkage.motion import Motion, rotate
 from dyade.linkage.model import Dyad, DyadKind
 
 
+def guide_offset(theta, kappa, guide_point, p_c, slider_point, p_s):
+    """c0 = n·(g − p_c) − n·R(κ)·(s − p_s), n = (−sin θ, cos θ): the guide's distance
+    from the slider's pivot (a float, or one per position for stacked variants)."""
+    if all(np.ndim(v) == 0 for v in (theta, kappa, *guide_point, *p_c, *slider_point, *p_s)):
+        n_local = np.array([-np.sin(theta), np.cos(theta)])
+        slider_arm = rotate(np.array(kappa), np.subtract(slider_point, p_s))
+        return float(n_local @ np.subtract(guide_point, p_c) - n_local @ slider_arm)
+    nx, ny = -np.sin(theta), np.cos(theta)
+    sx, sy = np.subtract(slider_point[0], p_s[0]), np.subtract(slider_point[1], p_s[1])
+    ck, sk = np.cos(kappa), np.sin(kappa)
+    ax, ay = ck * sx - sk * sy, sk * sx + ck * sy
+    gx, gy = np.subtract(guide_point[0], p_c[0]), np.subtract(guide_point[1], p_c[1])
+    return (nx * gx + ny * gy) - (nx * ax + ny * ay)
+
+
 def close(dyad: Dyad, motion: Motion) -> Closure:
     """The guide through the carrier's pivot O_c passes at distance c0 from the slider's
     pivot O_s: with D = O_s − O_c and ρ = |D|, its angle is ψ = atan2(D) − asin(c0/ρ)
@@ -29,9 +44,7 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
     c, s = joint_b.carrier, joint_b.slider
     ((ocx, ocy), p_c), ((osx, osy), p_s) = pins[c], pins[s]
     theta, kappa = joint_b.guide_angle, joint_b.relative_angle
-    n_local = np.array([-np.sin(theta), np.cos(theta)])
-    slider_arm = rotate(np.array(kappa), np.subtract(joint_b.slider_point, p_s))
-    c0 = float(n_local @ np.subtract(joint_b.guide_point, p_c) - n_local @ slider_arm)
+    c0 = guide_offset(theta, kappa, joint_b.guide_point, p_c, joint_b.slider_point, p_s)
     dx, dy = full(motion, osx - ocx), full(motion, osy - ocy)
     rho = np.hypot(dx, dy)
     # pivots on top of each other (or a subnormal distance apart): no closure

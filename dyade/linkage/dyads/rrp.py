@@ -9,6 +9,7 @@ import numpy as np
 
 from dyade.linkage.components import full, minus, plus, times
 from dyade.linkage.dyads.closure import (Closure, carry, ends, guide_line, orient, pin,
+                                         length as length_of,
                                          place_origin, same_pins, shift_line)
 from dyade.linkage.motion import Motion
 from dyade.linkage.model import FRAME, Dyad, DyadKind
@@ -30,7 +31,7 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
     nx, ny = -dy, dx
     offset = shift_line(offset, dx, dy, c_j, s_j, b_j)  # now n·B = offset
     arm_i = (b_i[0] - a_i[0], b_i[1] - a_i[1])
-    length = float(np.hypot(*arm_i))
+    length = length_of(arm_i)
     height = minus(offset, plus(times(nx, ax), times(ny, ay)))
     along = length ** 2 - height ** 2
     closes = along >= -1e-12 * length ** 2

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.linkage.dyads.closure import Closure, ends, orient, pin_xy
+from dyade.linkage.dyads.closure import Closure, difference, ends, length, orient, pin_xy
 from dyade.linkage.motion import Motion
 from dyade.linkage.model import Dyad, DyadKind
 
@@ -19,9 +19,8 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
     if np.ndim(ax) == 0 and np.ndim(cx) == 0:  # both on the frame: a fixed group
         ax, ay = np.full(motion.angle.shape[0], ax), np.full(motion.angle.shape[0], ay)
     b_i, b_j = ends(joint_b, i)
-    arm_i = np.subtract(b_i, a_i)
-    arm_j = np.subtract(b_j, c_j)
-    l_i, l_j = float(np.hypot(*arm_i)), float(np.hypot(*arm_j))
+    arm_i, arm_j = difference(b_i, a_i), difference(b_j, c_j)
+    l_i, l_j = length(arm_i), length(arm_j)
     dx, dy = cx - ax, cy - ay
     dist_sq = dx * dx + dy * dy
     # A on C: no direction, NaN; A a subnormal distance from C: along² overflows to inf,
