@@ -82,12 +82,59 @@ def linkage_jobs(paths) -> list:
     return jobs
 
 
+STUDY = shipped("studies/press-slide-tolerance.toml")
+DRIVE_LINE = [shipped("dyade-16.toml"), "--set", "drive_line.stiffness=1000",
+              "--set", "drive_line.damping=0.04"]
+SPEEDS = ["--speed-range", "3000:4200:50"]
+DRIVE_LINE_CASES = {"resonance": SPEEDS, "stability": SPEEDS, "steady": [],
+                    "map": ["--speed-range", "3000:4200:100", "--map", "stiffness=600:1400:200"]}
+GRID = {"dyad.2.lengths.1": "[170, 180, 190, 200, 210]",
+        "dyad.2.lengths.2": "[140, 145, 150, 155, 160]"}
+COARSE = {"dyad.2.lengths.1": "[80, 190, 200]", "dyad.2.lengths.2": "[150, 155]"}
+SENSITIVITY = {"dyad.2.lengths.1": "{ nominal = 190, tol = 1 }",
+               "dyad.2.lengths.2": "{ nominal = 150, tol = 1 }",
+               "links.4.mass": "{ nominal = 0.9, tol = 0.01 }"}
+
+
+def study_args(case: str, tmp_path) -> list:
+    """`dyade plot study` arguments: the shipped tolerance study's histograms, an output
+    along one parameter of a fourbar grid or a map over two, a sensitivity study's bars."""
+    from tests.test_study import study_file
+
+    if case == "tolerance":
+        return [STUDY]
+    if case == "sensitivity":
+        return [study_file(tmp_path, "fourbar.toml", SENSITIVITY,
+                           "kind = \"sensitivity\"\nrel_step = 0.002")]
+    grid = study_file(tmp_path, "fourbar.toml", COARSE if case == "map-coarse" else GRID)
+    axes = ["--x", "dyad.2.lengths.1"]
+    return [grid, *axes] + (["--y", "dyad.2.lengths.2"] if case.startswith("map") else [])
+
+
 QUICK = [pytest.param("polar", [shipped("dyade-16.toml")], id="polar-dyade-16"),
          pytest.param("mechanism", [shipped("dyade-16.toml")], id="mechanism-dyade-16"),
          pytest.param("polar", [shipped("slider-crank.toml")], id="polar-slider-crank")]
 EVERY = linkage_jobs(SHIPPED) + [pytest.param(kind, args, id=f"{kind}-{k}")
                                  for kind, cases in OTHERS.items()
                                  for k, args in enumerate(cases)]
+
+
+@pytest.mark.parametrize("case", ["map-coarse"])
+def test_a_study_map_is_readable(case, tmp_path, monkeypatch):
+    readable("study", study_args(case, tmp_path), monkeypatch)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("case", ["tolerance", "line", "map", "sensitivity"])
+def test_every_study_figure_is_readable(case, tmp_path, monkeypatch):
+    readable("study", study_args(case, tmp_path), monkeypatch)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("analysis", list(DRIVE_LINE_CASES))
+def test_every_drive_line_figure_is_readable(analysis, monkeypatch):
+    readable("driveline", [*DRIVE_LINE, "--analysis", analysis, *DRIVE_LINE_CASES[analysis]],
+             monkeypatch)
 
 
 def readable(kind: str, args: list, monkeypatch) -> None:
