@@ -94,7 +94,7 @@ def stability(curve, fig: Figure | None = None) -> Figure:
         ax.set_xlim(speed[0], speed[-1])
         ax.set_xlabel("crank speed Ω [rpm]")
         ax.set_ylabel("largest |Floquet multiplier| [-]")
-        ax.legend(loc="lower right", fontsize=8)
+        canvas.legend_above(ax, fontsize=8)
         fig.suptitle("Stability of the periodic motion (linearised about it)")
     return fig
 
@@ -134,7 +134,7 @@ def steady(state, fig: Figure | None = None) -> Figure:
         axes[0].plot(angle, state.shaft_torque, label="drive line", **canvas.line(0))
         axes[0].plot(angle, state.rigid_torque, label="rigid drive", **canvas.line(1))
         axes[0].set_ylabel("shaft torque [N·m]")
-        axes[0].legend(fontsize=8)
+        canvas.legend_above(axes[0], fontsize=8)
         axes[1].plot(angle, state.crank_speed * RPM, **canvas.line(0))
         axes[1].plot(angle, state.rigid_speed * RPM, **canvas.line(1))
         axes[1].set_ylabel("crank speed [rpm]")
@@ -157,7 +157,7 @@ def run_up(run, fig: Figure | None = None) -> Figure:
         axes[0].plot(run.time, run.crank_speed * RPM, label="crank", **canvas.line(0))
         axes[0].plot(run.time, run.motor_speed * RPM, label="motor (reduced)", **canvas.line(1))
         axes[0].set_ylabel("speed [rpm]")
-        axes[0].legend(fontsize=8)
+        canvas.legend_above(axes[0], fontsize=8)
         axes[1].plot(run.time, run.shaft_torque, **canvas.line(0))
         f = run.figures
         axes[1].plot([f["peak_time"]], [f["peak_torque"]], "o", color="k", markersize=4)

@@ -119,7 +119,7 @@ def histograms(result, outputs: list[str], fig: Figure | None = None) -> Figure:
             for key, (suffix, words) in LIMITS.items():
                 if key in limits and name.endswith(suffix):
                     ax.axvline(drawn[0], color=canvas.COLOURS[1], linewidth=1.5, label=words)
-                    ax.legend(fontsize="x-small")
+                    canvas.legend_above(ax, fontsize="x-small")
             ax.set_xlabel(label(result, name), fontsize="small")
             ax.set_ylabel("variants", fontsize="small")
             # few ticks, no offset: 0.99925 beside 0.99950 crowds, '+3.999e2' puzzles
