@@ -81,8 +81,27 @@ def resonance(curve, fig: Figure | None = None) -> Figure:
 
 
 def stability(curve, fig: Figure | None = None) -> Figure:
-    """The largest |Floquet multiplier| against the crank speed, 1 marked, unstable
-    speeds shaded (``resonance_curve``'s result)."""
+    """The largest \\|Floquet multiplier\\| against the crank speed, 1 marked, unstable
+    speeds shaded.
+
+    Parameters
+    ----------
+    curve : ResonanceCurve
+        From ``dyade.linkage.drive_line.resonance_curve``.
+    fig : Figure, optional
+        A figure to draw on (default: a new one).
+
+    Examples
+    --------
+    >>> import dyade
+    >>> from dyade.linkage import drive_line
+    >>> from dyade.plot import drive_line as figures
+    >>> line = dyade.read_mechanism("mechanisms/dyade-16.toml", {
+    ...     "drive_line.stiffness": 1000.0, "drive_line.damping": 0.04})
+    >>> curve = drive_line.resonance_curve(line, [3450.0, 3575.0, 3700.0])
+    >>> figures.stability(curve).axes[0].get_xlabel()
+    'crank speed Ω [rpm]'
+    """
     speed = curve.speed * RPM
     with canvas.style():
         fig = canvas.new(7.0, 3.8, fig)
@@ -126,7 +145,26 @@ def stability_map(result, fig: Figure | None = None) -> Figure:
 
 def steady(state, fig: Figure | None = None) -> Figure:
     """Shaft torque, crank speed and twist over one revolution, next to the rigid
-    drive's torque and speed."""
+    drive's torque and speed.
+
+    Parameters
+    ----------
+    state : SteadyState
+        From ``dyade.linkage.drive_line.steady_state``.
+    fig : Figure, optional
+        A figure to draw on (default: a new one).
+
+    Examples
+    --------
+    >>> import dyade
+    >>> from dyade.linkage import drive_line
+    >>> from dyade.plot import drive_line as figures
+    >>> line = dyade.read_mechanism("mechanisms/dyade-16.toml", {
+    ...     "drive_line.stiffness": 1000.0, "drive_line.damping": 0.04})
+    >>> fig = figures.steady(drive_line.steady_state(line))
+    >>> [ax.get_ylabel() for ax in fig.axes]
+    ['shaft torque [N·m]', 'crank speed [rpm]', 'twist [°]']
+    """
     angle = np.degrees(state.crank_angle)
     with canvas.style():
         fig = canvas.new(7.0, 6.0, fig)

@@ -217,6 +217,15 @@ def question_figure(result, outputs=None, x: str | None = None, y: str | None = 
         Parameters (their --set key paths) along the axes.
     fig : Figure, optional
         A figure to draw on (default: a new one).
+
+    Examples
+    --------
+    >>> import dyade.study
+    >>> from dyade.plot import study as figures
+    >>> result = dyade.study.study("mechanisms/studies/press-slide-tolerance.toml")
+    >>> fig = figures.question_figure(result, ["mu_2_min_deg", "FN_1_4_peak"])
+    >>> [ax.get_xlabel() for ax in fig.axes]
+    ['mu_2_min_deg [deg]', 'FN_1_4_peak [N]']
     """
     chosen = list(outputs or []) or None
     if result.tolerance is not None:
