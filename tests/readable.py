@@ -53,3 +53,30 @@ def clashes(fig) -> list[str]:
     for i, j in zip(*np.nonzero(np.triu(overlap, 1))):
         problems.append(f"{texts[i].get_text()!r} overlaps {texts[j].get_text()!r}")
     return problems
+
+
+def covered_lines(fig) -> list[str]:
+    """The drawn lines a legend inside the axes covers (after a draw): "legend 'drive line,
+    rigid drive' covers 'rigid drive'"; [] when every legend is off the curves."""
+    from matplotlib.transforms import Bbox
+
+    renderer = fig.canvas.get_renderer()
+    problems = []
+    for ax in (ax for ax in fig.axes if ax.get_visible()):
+        legend = ax.get_legend()
+        if legend is None or not legend.get_visible():
+            continue
+        box = Bbox.intersection(legend.get_window_extent(renderer), ax.get_window_extent())
+        if box is None:  # a legend outside its axes covers no curve of them
+            continue
+        entries = ", ".join(t.get_text() for t in legend.get_texts())
+        for line in (line for line in ax.get_lines() if line.get_visible()):
+            path = line.get_transform().transform_path(line.get_path())
+            vertices = path.vertices[np.isfinite(path.vertices).all(axis=1)]
+            if line.get_linestyle() in ("None", "none", "", " "):
+                hit = bool(box.count_contains(vertices)) if len(vertices) else False
+            else:
+                hit = path.intersects_bbox(box, filled=False)
+            if hit:
+                problems.append(f"legend {entries!r} covers {line.get_label()!r}")
+    return problems

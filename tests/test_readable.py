@@ -22,7 +22,7 @@ from dyade.linkage.notes import NoteKind  # noqa: E402
 from dyade.plot import canvas  # noqa: E402
 from tests.conftest import SHIPPED  # noqa: E402
 from tests.helpers import shipped  # noqa: E402
-from tests.readable import clashes, drawn_labels  # noqa: E402
+from tests.readable import clashes, covered_lines, drawn_labels  # noqa: E402
 
 GEARS = [shipped("gears/two-stage.toml"), shipped("gears/friswell-geared.toml")]
 OTHERS = {
@@ -82,6 +82,35 @@ def linkage_jobs(paths) -> list:
     return jobs
 
 
+STUDY = shipped("studies/press-slide-tolerance.toml")
+DRIVE_LINE = [shipped("dyade-16.toml"), "--set", "drive_line.stiffness=1000",
+              "--set", "drive_line.damping=0.04"]
+SPEEDS = ["--speed-range", "3000:4200:50"]
+DRIVE_LINE_CASES = {"resonance": SPEEDS, "stability": SPEEDS, "steady": [],
+                    "map": ["--speed-range", "3000:4200:100", "--map", "stiffness=600:1400:200"]}
+GRID = {"dyad.2.lengths.1": "[170, 180, 190, 200, 210]",
+        "dyad.2.lengths.2": "[140, 145, 150, 155, 160]"}
+COARSE = {"dyad.2.lengths.1": "[80, 190, 200]", "dyad.2.lengths.2": "[150, 155]"}
+SENSITIVITY = {"dyad.2.lengths.1": "{ nominal = 190, tol = 1 }",
+               "dyad.2.lengths.2": "{ nominal = 150, tol = 1 }",
+               "links.4.mass": "{ nominal = 0.9, tol = 0.01 }"}
+
+
+def study_args(case: str, tmp_path) -> list:
+    """`dyade plot study` arguments: the shipped tolerance study's histograms, an output
+    along one parameter of a fourbar grid or a map over two, a sensitivity study's bars."""
+    from tests.test_study import study_file
+
+    if case == "tolerance":
+        return [STUDY]
+    if case == "sensitivity":
+        return [study_file(tmp_path, "fourbar.toml", SENSITIVITY,
+                           "kind = \"sensitivity\"\nrel_step = 0.002")]
+    grid = study_file(tmp_path, "fourbar.toml", COARSE if case == "map-coarse" else GRID)
+    axes = ["--x", "dyad.2.lengths.1"]
+    return [grid, *axes] + (["--y", "dyad.2.lengths.2"] if case.startswith("map") else [])
+
+
 QUICK = [pytest.param("polar", [shipped("dyade-16.toml")], id="polar-dyade-16"),
          pytest.param("mechanism", [shipped("dyade-16.toml")], id="mechanism-dyade-16"),
          pytest.param("polar", [shipped("slider-crank.toml")], id="polar-slider-crank")]
@@ -90,10 +119,35 @@ EVERY = linkage_jobs(SHIPPED) + [pytest.param(kind, args, id=f"{kind}-{k}")
                                  for k, args in enumerate(cases)]
 
 
+@pytest.mark.parametrize("case", ["map-coarse"])
+def test_a_study_map_is_readable(case, tmp_path, monkeypatch):
+    readable("study", study_args(case, tmp_path), monkeypatch)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("case", ["tolerance", "line", "map", "sensitivity"])
+def test_every_study_figure_is_readable(case, tmp_path, monkeypatch):
+    readable("study", study_args(case, tmp_path), monkeypatch)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("analysis", list(DRIVE_LINE_CASES))
+def test_every_drive_line_figure_is_readable(analysis, monkeypatch):
+    readable("driveline", [*DRIVE_LINE, "--analysis", analysis, *DRIVE_LINE_CASES[analysis]],
+             monkeypatch)
+
+
+# the kinds whose legends are checked against the drawn lines too (issue 29, legends that
+# covered curves)
+LEGENDS_OFF_THE_CURVES = {"study", "driveline", "curves"}
+
+
 def readable(kind: str, args: list, monkeypatch) -> None:
     """No label overlaps or leaves the figure, and every informative label is drawn."""
     kept = drawn(kind, args, monkeypatch)
     assert problems_of(kept) == []
+    if kind in LEGENDS_OFF_THE_CURVES:
+        assert [p for fig in kept for p in covered_lines(fig)] == []
     if kind in ("polar", "mechanism"):
         result = dyade.analyse(dyade.read_mechanism(args[0]))
         keeps = (polar_keeps_every_reversal_number_and_crank_angle_mark if kind == "polar"

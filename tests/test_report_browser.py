@@ -41,10 +41,15 @@ def chromium():
         yield running
 
 
-@pytest.mark.parametrize("path", FILES, ids=lambda p: p.stem)
-def test_report_in_chromium(path: Path, chromium, tmp_path):
+LINE = ["--set", "drive_line.stiffness=1000", "--set", "drive_line.damping=0.04"]
+CASES = [pytest.param(path, [], id=path.stem) for path in FILES] + [
+    pytest.param(shipped("dyade-16.toml"), LINE, id="dyade-16-drive-line")]
+
+
+@pytest.mark.parametrize("path, extra", CASES)
+def test_report_in_chromium(path: Path, extra: list, chromium, tmp_path):
     target = tmp_path / f"{path.stem}.html"
-    out = CliRunner().invoke(main, ["report", str(path), "-o", str(target)],
+    out = CliRunner().invoke(main, ["report", str(path), "-o", str(target), *extra],
                              catch_exceptions=False)
     assert out.exit_code == 0, out.output
     page = chromium.page()

@@ -154,3 +154,22 @@ def test_a_study_reports_its_tables_and_question(tmp_path):
     # the shipped study has outputs equal in every variant (a stroke): one bar each, drawn
     out = CliRunner().invoke(main, ["plot", "study", str(path), "-o", str(tmp_path / "s.png")])
     assert out.exit_code == 0, out.output
+
+
+def test_a_drive_line_reports_its_natural_frequency_and_steady_state(tmp_path):
+    """A file with a [drive_line] gets the drive line's section: ω̄ and its range, the VDI
+    2149 ratio and verdict, the steady state next to the rigid drive; one without does not."""
+    from dyade.linkage import drive_line as api
+
+    line = {"drive_line.stiffness": 1000.0, "drive_line.damping": 0.04}
+    page = report_html.report(str(shipped("dyade-16.toml")), line)
+    headings = re.findall(r"<h2>(.*?)</h2>", page)
+    assert "The elastic drive line (dyade driveline)" in headings
+    freq = api.natural_frequency(dyade.read_mechanism(shipped("dyade-16.toml"), line))
+    # ω̄ = √(c/J̄) [rad/s], the ratio Ω/ω̄ with the crank's Ω: what the page prints
+    assert freq.ratio == pytest.approx(dyade.read_mechanism(shipped("dyade-16.toml")).crank.speed
+                                       / freq.omega_bar, rel=1e-12)
+    assert f"{freq.omega_bar * 30 / np.pi:.6g}" in page and f"{freq.ratio:.6g}" in page
+    assert '<figure id="figure-driveline">' in page and "rigid drive" in page
+    plain = report_html.report(str(shipped("dyade-16.toml")))
+    assert "The elastic drive line" not in plain

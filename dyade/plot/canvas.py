@@ -118,6 +118,14 @@ def new(width: float, height: float, fig: Figure | None = None,
     return fig
 
 
+def legend_above(ax, **kwargs):
+    """The axes' legend in one row above them, right-aligned, off the curves (a legend
+    inside the axes hides whatever runs under it); constrained layout makes room."""
+    handles, _ = ax.get_legend_handles_labels()
+    return ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), ncols=max(1, len(handles)),
+                     frameon=False, borderaxespad=0.2, **kwargs)
+
+
 def grid(count: int, most: int = 3) -> tuple[int, int]:
     """Rows and columns for ``count`` panels, at most ``most`` side by side."""
     rows = math.ceil(count / most)

@@ -26,7 +26,7 @@ from dyade.linkage.machine_curve import torque_curve
 from dyade.machine.flywheel import energy_extremes, machine_curve
 from dyade.plot import canvas
 
-WIDTH, PANEL = 7.0, 2.5  # [in] figure width, height of one panel
+WIDTH, PANEL = 8.5, 2.5  # [in] figure width (the legends beside the panels), height of one panel
 
 
 def energy_surplus(angle: np.ndarray, torque: np.ndarray) -> tuple[float, float | None]:
@@ -103,7 +103,9 @@ def figure(result, quantities=None, *, fig: Figure | None = None) -> Figure:
             if unit == "°" and all(name.startswith("mu_") for name in group):
                 _dead_centre_band(ax, result)
                 ax.set_ylabel("transmission angle μ [°]")
-            ax.legend(loc="best", ncols=2 if len(group) > 3 else 1)
+            # beside the panel, not on it: "best" still hid part of a curve (issue 29)
+            ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
+                      fontsize="small")
         fig.suptitle(result.mechanism.name)
     return fig
 

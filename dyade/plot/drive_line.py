@@ -81,8 +81,27 @@ def resonance(curve, fig: Figure | None = None) -> Figure:
 
 
 def stability(curve, fig: Figure | None = None) -> Figure:
-    """The largest |Floquet multiplier| against the crank speed, 1 marked, unstable
-    speeds shaded (``resonance_curve``'s result)."""
+    """The largest \\|Floquet multiplier\\| against the crank speed, 1 marked, unstable
+    speeds shaded.
+
+    Parameters
+    ----------
+    curve : ResonanceCurve
+        From ``dyade.linkage.drive_line.resonance_curve``.
+    fig : Figure, optional
+        A figure to draw on (default: a new one).
+
+    Examples
+    --------
+    >>> import dyade
+    >>> from dyade.linkage import drive_line
+    >>> from dyade.plot import drive_line as figures
+    >>> line = dyade.read_mechanism("mechanisms/dyade-16.toml", {
+    ...     "drive_line.stiffness": 1000.0, "drive_line.damping": 0.04})
+    >>> curve = drive_line.resonance_curve(line, [3450.0, 3575.0, 3700.0])
+    >>> figures.stability(curve).axes[0].get_xlabel()
+    'crank speed Ω [rpm]'
+    """
     speed = curve.speed * RPM
     with canvas.style():
         fig = canvas.new(7.0, 3.8, fig)
@@ -94,7 +113,7 @@ def stability(curve, fig: Figure | None = None) -> Figure:
         ax.set_xlim(speed[0], speed[-1])
         ax.set_xlabel("crank speed Ω [rpm]")
         ax.set_ylabel("largest |Floquet multiplier| [-]")
-        ax.legend(loc="lower right", fontsize=8)
+        canvas.legend_above(ax, fontsize=8)
         fig.suptitle("Stability of the periodic motion (linearised about it)")
     return fig
 
@@ -126,7 +145,26 @@ def stability_map(result, fig: Figure | None = None) -> Figure:
 
 def steady(state, fig: Figure | None = None) -> Figure:
     """Shaft torque, crank speed and twist over one revolution, next to the rigid
-    drive's torque and speed."""
+    drive's torque and speed.
+
+    Parameters
+    ----------
+    state : SteadyState
+        From ``dyade.linkage.drive_line.steady_state``.
+    fig : Figure, optional
+        A figure to draw on (default: a new one).
+
+    Examples
+    --------
+    >>> import dyade
+    >>> from dyade.linkage import drive_line
+    >>> from dyade.plot import drive_line as figures
+    >>> line = dyade.read_mechanism("mechanisms/dyade-16.toml", {
+    ...     "drive_line.stiffness": 1000.0, "drive_line.damping": 0.04})
+    >>> fig = figures.steady(drive_line.steady_state(line))
+    >>> [ax.get_ylabel() for ax in fig.axes]
+    ['shaft torque [N·m]', 'crank speed [rpm]', 'twist [°]']
+    """
     angle = np.degrees(state.crank_angle)
     with canvas.style():
         fig = canvas.new(7.0, 6.0, fig)
@@ -134,7 +172,7 @@ def steady(state, fig: Figure | None = None) -> Figure:
         axes[0].plot(angle, state.shaft_torque, label="drive line", **canvas.line(0))
         axes[0].plot(angle, state.rigid_torque, label="rigid drive", **canvas.line(1))
         axes[0].set_ylabel("shaft torque [N·m]")
-        axes[0].legend(fontsize=8)
+        canvas.legend_above(axes[0], fontsize=8)
         axes[1].plot(angle, state.crank_speed * RPM, **canvas.line(0))
         axes[1].plot(angle, state.rigid_speed * RPM, **canvas.line(1))
         axes[1].set_ylabel("crank speed [rpm]")
@@ -157,7 +195,7 @@ def run_up(run, fig: Figure | None = None) -> Figure:
         axes[0].plot(run.time, run.crank_speed * RPM, label="crank", **canvas.line(0))
         axes[0].plot(run.time, run.motor_speed * RPM, label="motor (reduced)", **canvas.line(1))
         axes[0].set_ylabel("speed [rpm]")
-        axes[0].legend(fontsize=8)
+        canvas.legend_above(axes[0], fontsize=8)
         axes[1].plot(run.time, run.shaft_torque, **canvas.line(0))
         f = run.figures
         axes[1].plot([f["peak_time"]], [f["peak_torque"]], "o", color="k", markersize=4)

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.ticker import MaxNLocator
 
 from dyade.plot import canvas
 
@@ -61,14 +62,29 @@ def versus(result, output: str, x: str, y: str | None = None, fig: Figure | None
                 grid[np.searchsorted(ys, cols[y][i]), np.searchsorted(xs, cols[x][i])] = \
                     cols[output][i]
             mesh = ax.pcolormesh(xs, ys, grid, shading="nearest", cmap="viridis")
-            if xs.size > 1 and ys.size > 1 and np.isfinite(grid).sum() > 3:
-                lines = ax.contour(xs, ys, grid, colors="white", linewidths=0.7)
+            if min(xs.size, ys.size) >= 4 and np.isfinite(grid).sum() > 8:
+                # on a coarser grid the contours crowd into a cell or two and their
+                # labels overlap; the colour bar gives the values
+                lines = ax.contour(xs, ys, grid, levels=MaxNLocator(5).tick_values(
+                                   np.nanmin(grid), np.nanmax(grid))[1:-1], colors="white",
+                                   linewidths=0.7)
                 ax.clabel(lines, fontsize="small")
             fig.colorbar(mesh, ax=ax, label=label(result, output))
             ax.set_xlabel(label(result, x))
             ax.set_ylabel(label(result, y))
         ax.set_title(f"{output}: {result.spec.label}")
     return fig
+
+
+def limit_at(limits: dict, name: str, values: np.ndarray) -> float | None:
+    """Where the study's limit on output ``name`` is drawn (a peak force's on the side of
+    its values), or None."""
+    for key, (suffix, _) in LIMITS.items():
+        if key in limits and name.endswith(suffix):
+            limit = float(limits[key])
+            return limit if suffix != "_peak" or not values.size or values.mean() >= 0 \
+                else -limit
+    return None
 
 
 def histograms(result, outputs: list[str], fig: Figure | None = None) -> Figure:
@@ -83,10 +99,15 @@ def histograms(result, outputs: list[str], fig: Figure | None = None) -> Figure:
             ax = fig.add_subplot(rows, columns, k + 1)
             values = cols[name][ok & np.isfinite(cols[name])]
             bins: int | np.ndarray = max(5, min(40, int(np.sqrt(values.size))))
-            if values.size and np.ptp(values) <= 1e-9 * max(1.0, float(np.abs(values).max())):
-                # one value in every variant (to rounding): one bar, not bins of zero width
+            drawn = [limit_at(limits, name, values)]
+            constant = bool(values.size) and np.ptp(values) <= 1e-9 * max(
+                1.0, float(np.abs(values).max()))
+            if constant:
+                # one value in every variant (to rounding): one bar, not bins of zero width,
+                # wide enough to see beside a limit far off
                 middle = float(np.median(values))
-                half = max(1e-3 * abs(middle), 1e-9)
+                half = max(1e-3 * abs(middle), 1e-9,
+                           *(0.02 * abs(v - middle) for v in drawn if v is not None))
                 bins = np.array([middle - half, middle + half])
                 values = np.clip(values, bins[0], bins[1])
             ax.hist(values, bins=bins, color=canvas.COLOURS[2], alpha=0.7)
@@ -97,12 +118,15 @@ def histograms(result, outputs: list[str], fig: Figure | None = None) -> Figure:
                 ax.axvline(values.mean(), color="black", linewidth=0.8)
             for key, (suffix, words) in LIMITS.items():
                 if key in limits and name.endswith(suffix):
-                    limit = limits[key]
-                    ax.axvline(limit if suffix != "_peak" or values.mean() >= 0 else -limit,
-                               color=canvas.COLOURS[1], linewidth=1.5, label=words)
-                    ax.legend(fontsize="x-small")
+                    ax.axvline(drawn[0], color=canvas.COLOURS[1], linewidth=1.5, label=words)
+                    canvas.legend_above(ax, fontsize="x-small")
             ax.set_xlabel(label(result, name), fontsize="small")
             ax.set_ylabel("variants", fontsize="small")
+            # few ticks, no offset: 0.99925 beside 0.99950 crowds, '+3.999e2' puzzles
+            ax.xaxis.set_major_locator(MaxNLocator(4))
+            ax.ticklabel_format(axis="x", useOffset=False)
+            if constant:
+                ax.set_xticks(sorted({middle, *(v for v in drawn if v is not None)}))
         share = result.tolerance["probability"] if result.tolerance else {}
         words = ", ".join(f"P({k.replace('_', ' ')}) = {v:.3g}" for k, v in share.items())
         fig.suptitle(f"{result.spec.label}: {int(ok.sum())} of {ok.size} variants give "
@@ -193,6 +217,15 @@ def question_figure(result, outputs=None, x: str | None = None, y: str | None = 
         Parameters (their --set key paths) along the axes.
     fig : Figure, optional
         A figure to draw on (default: a new one).
+
+    Examples
+    --------
+    >>> import dyade.study
+    >>> from dyade.plot import study as figures
+    >>> result = dyade.study.study("mechanisms/studies/press-slide-tolerance.toml")
+    >>> fig = figures.question_figure(result, ["mu_2_min_deg", "FN_1_4_peak"])
+    >>> [ax.get_xlabel() for ax in fig.axes]
+    ['mu_2_min_deg [deg]', 'FN_1_4_peak [N]']
     """
     chosen = list(outputs or []) or None
     if result.tolerance is not None:

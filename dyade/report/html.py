@@ -244,6 +244,8 @@ def mechanism_report(mechanism, *, source: str = "") -> str:
             curves.figure(result, [name for name in ("omega_2", "M_motor", "M_drive")
                                    if name in cols]), "drive",
             "The crank's speed from the equation of motion and the motor's torque."))
+    if mechanism.drive_line is not None:
+        page.section("The elastic drive line (dyade driveline)", drive_line_html(mechanism))
     if result.forces is not None:
         page.section("Joint forces: polar diagrams", figure(
             polar.figure(result), "polar",
@@ -254,6 +256,27 @@ def mechanism_report(mechanism, *, source: str = "") -> str:
     page.section("The file in assembly order (dyade describe)",  # reference: last
                  pre(text_of(describe.describe(mechanism, the_plan, tables.skipped(the_plan)))))
     return page.html()
+
+
+def drive_line_html(mechanism) -> str:
+    """The file's [drive_line]: its natural frequency and range over the cycle, the VDI
+    2149 ratio Ω/ω̄ with its verdict, and the periodic steady state next to the rigid
+    drive's (as ``dyade driveline`` gives them)."""
+    from dyade.linkage import drive_line as api
+    from dyade.plot import drive_line as plot
+    from dyade.report import drive_line as words
+
+    freq = api.natural_frequency(mechanism)
+    state = api.steady_state(mechanism)
+    notes = [] if freq.vdi_2149 else [
+        f"Ω/ω̄ = {freq.ratio:.3g} exceeds 0.1 (VDI 2149 Part 1): the rigid drive's model "
+        "does not hold for this line."]
+    parts = [words.summary_table("Natural frequency, VDI 2149", words.frequency_summary(freq)),
+             words.summary_table("Steady state", words.steady_summary(state))]
+    return (notes_html(notes) if notes else "") + table_html_many(parts) + figure(
+        plot.steady(state), "driveline",
+        "Shaft torque, crank speed and twist of the elastic drive line over one revolution, "
+        "next to the rigid drive's torque and speed.")
 
 
 def clearance_html(mechanism, result) -> str:
