@@ -40,6 +40,7 @@ PLAUSIBLE: dict[str, tuple[float, float, str]] = {
     "fluctuation": (1e-6, 1.0, "-"),
     "order": (0.0, 1e4, "-"),
     "teeth": (1, 10_000, "-"),
+    "ratio": (1e-4, 1e4, "-"),  # a gear ratio
 }
 """quantity -> (lowest, highest, unit): what any machine dyade models has"""
 

@@ -64,6 +64,9 @@ KINDS = (
     ("a coupling file", {"J", "c1", "c2", "b1", "b2", "moment", "eta_range", "speed_rpm",
                          "order"},
      "dyade coupling and plot coupling"),
+    ("a study file", {"mechanism", "plan", "parameters", "tolerance", "optimise",
+                      "sensitivity", "outputs"},
+     "dyade study and plot study"),
 )
 """each kind of input file: its own top-level keys and the commands that read it"""
 

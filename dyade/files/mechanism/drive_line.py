@@ -14,8 +14,23 @@ if TYPE_CHECKING:  # the drive line loads only with a [drive_line] table
 DRIVE_LINE_KEYS = {"stiffness", "damping", "ratio", "rotor_inertia", "coupling", "steps"}
 
 
+MAX_STEPS = 100_000
+"""[1/rev] the most integration steps per revolution a drive line may ask for"""
+
+
 class DriveLineReader(UnitReader):
     """Reads the [drive_line] table."""
+
+    def plausible(self, key: str, value: float, quantity: str, unit: str) -> float:
+        """``value`` when within what a machine has (``dyade.limits.PLAUSIBLE``), else
+        refused naming ``key`` and the range."""
+        from dyade.limits import PLAUSIBLE, implausible
+
+        if implausible(quantity, value):
+            low, high, _ = PLAUSIBLE[quantity]
+            raise self.fail(key, f"must lie in {low:g}…{high:g} {unit} (what a machine has), "
+                                 f"got {value:g}.", value, unit)
+        return value
 
     def drive_line(self, table: Any) -> DriveLineData:
         """The [drive_line] table: a shaft (stiffness, damping) or a coupling file, the
@@ -53,14 +68,19 @@ class DriveLineReader(UnitReader):
                                     "drive_line.stiffness", "N·m/rad", positive=True)
             damping = self.number(table.get("damping", 0.0), "drive_line.damping", "N·m·s/rad",
                                   non_negative=True)
-        ratio = self.number(table.get("ratio", 1.0), "drive_line.ratio", "-", positive=True)
-        rotor = (self.number(table["rotor_inertia"], "drive_line.rotor_inertia", "kg·m²",
-                             positive=True) if "rotor_inertia" in table else None)
+            self.plausible("drive_line.stiffness", stiffness, "stiffness", "N·m/rad")
+            if damping:
+                self.plausible("drive_line.damping", damping, "damping", "N·m·s/rad")
+        ratio = self.plausible("drive_line.ratio", self.number(
+            table.get("ratio", 1.0), "drive_line.ratio", "-", positive=True), "ratio", "-")
+        rotor = (self.plausible("drive_line.rotor_inertia", self.number(
+            table["rotor_inertia"], "drive_line.rotor_inertia", "kg·m²", positive=True),
+            "inertia", "kg·m²") if "rotor_inertia" in table else None)
         steps = None
         if "steps" in table:
             steps = self.integer(table["steps"], "drive_line.steps")
-            if steps < 36:
-                raise self.fail("drive_line.steps", f"must be at least 36 steps per revolution, "
-                                                    f"got {steps}.", steps)
+            if not 36 <= steps <= MAX_STEPS:
+                raise self.fail("drive_line.steps", f"must be 36…{MAX_STEPS:,} steps per "
+                                                    f"revolution, got {steps:,}.", steps)
         return DriveLineData(stiffness, damping, ratio, rotor, coupling, name if path else None,
                              steps)
