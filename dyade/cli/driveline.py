@@ -27,6 +27,11 @@ def speed_range(text: str, hint: str) -> list[float]:
     if not (np.isfinite([start, stop, step]).all() and step > 0 and stop >= start):
         raise click.BadParameter(f"needs finite START <= STOP and STEP > 0, got {text!r}.",
                                  param_hint=hint)
+    from dyade.limits import implausible, plausible_range
+
+    if any(implausible("speed_rpm", abs(end)) for end in (start, stop)):
+        raise click.BadParameter(f"speeds must lie in {plausible_range('speed_rpm')} (what a "
+                                 f"machine has), got {text!r}.", param_hint=hint)
     count = int(np.floor((stop - start) / step + 1e-9)) + 1
     if count > 2000:
         raise click.BadParameter(f"asks for {count} speeds; at most 2000.", param_hint=hint)
@@ -81,6 +86,11 @@ def driveline(mechanism_file: str, what: str, speeds_rpm: str | None, speed_rpm:
     from dyade.linkage import drive_line as api
     from dyade.report import drive_line as report
 
+    from dyade.limits import implausible, plausible_range
+
+    if speed_rpm is not None and implausible("speed_rpm", speed_rpm):
+        raise click.BadParameter(f"must lie in {plausible_range('speed_rpm')} (what a machine "
+                                 f"has), got {speed_rpm:g}.", param_hint="--speed-rpm")
     fmt = fmt or infer_format(output)
     mechanism = load(mechanism_file, assignments).mechanism
     notes: list[str] = []
