@@ -63,3 +63,16 @@ def test_output_under_a_file_and_a_missing_folder(tmp_path):
     expect(["driveline", *LINE, "-o", tmp_path / "afile" / "x.csv"], 2, "not a folder")
     expect(["driveline", *LINE, "-o", tmp_path / "new" / "x.csv"], 0)
     assert (tmp_path / "new" / "x.csv").read_text().strip()
+
+
+MAPS = {"stiffness=0:1000:100": "1e-06…", "stiffness=1:1e300:1e299": "1e+13",
+        "damping=1e300:1e301:1e300": "1e+10", "foo=1:2:1": "stiffness or damping",
+        "stiffness=1:2": "START:STOP:STEP", "stiffness=-1:10:1": "positive"}
+
+
+@pytest.mark.parametrize("text", MAPS)
+def test_bad_maps_are_refused(text):
+    expect(["driveline", *LINE, "--analysis", "map", "--speed-range", "300:600:100", "--map",
+            text], 2, "--map", MAPS[text])
+    expect(["plot", "driveline", *LINE, "--analysis", "map", "--speed-range", "300:600:100",
+            "--map", text], 2, "--map")

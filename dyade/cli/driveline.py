@@ -15,8 +15,10 @@ FLAGS = {"speeds_rpm": "--speed-range", "speed_rpm": "--speed-rpm", "stiffness":
 """API parameter -> the flag it comes from"""
 
 
-def speed_range(text: str, hint: str) -> list[float]:
-    """START:STOP:STEP [rpm], STOP included; both ends of one sign (the crank's sense)."""
+def speed_range(text: str, hint: str, quantity: str = "speed_rpm") -> list[float]:
+    """START:STOP:STEP [rpm], STOP included; both ends of one sign (the crank's sense);
+    ``quantity`` (``dyade.limits.PLAUSIBLE``) bounds the ends: a --map's stiffness or
+    damping."""
     import numpy as np
 
     try:
@@ -29,8 +31,9 @@ def speed_range(text: str, hint: str) -> list[float]:
                                  param_hint=hint)
     from dyade.limits import implausible, plausible_range
 
-    if any(implausible("speed_rpm", abs(end)) for end in (start, stop)):
-        raise click.BadParameter(f"speeds must lie in {plausible_range('speed_rpm')} (what a "
+    if any(implausible(quantity, abs(end)) for end in (start, stop) if end or quantity !=
+           "damping"):
+        raise click.BadParameter(f"values must lie in {plausible_range(quantity)} (what a "
                                  f"machine has), got {text!r}.", param_hint=hint)
     count = int(np.floor((stop - start) / step + 1e-9)) + 1
     if count > 2000:
@@ -140,7 +143,7 @@ def driveline(mechanism_file: str, what: str, speeds_rpm: str | None, speed_rpm:
             if name not in ("stiffness", "damping"):
                 raise click.BadParameter(f"maps stiffness or damping, got {name!r}.",
                                          param_hint="--map")
-            values = speed_range(text, "--map")
+            values = speed_range(text, "--map", name)
             result = api.stability_map(mechanism, speeds, **{name: values})
             grid_speed, grid_value = np.meshgrid(result.speed * report.RPM, result.values)
             columns = {"speed_rpm": grid_speed.ravel(), name: grid_value.ravel(),
