@@ -76,3 +76,16 @@ def test_bad_maps_are_refused(text):
             text], 2, "--map", MAPS[text])
     expect(["plot", "driveline", *LINE, "--analysis", "map", "--speed-range", "300:600:100",
             "--map", text], 2, "--map")
+
+
+def test_a_line_too_stiff_to_integrate_is_refused_before_stepping():
+    """1e13 N·m/rad ran past a minute (12.7 million steps per revolution)."""
+    expect(["driveline", *LINE, "--set", "drive_line.stiffness=1e13"], 2,
+           "1.27e+07 steps per revolution", "at most 100,000", "`drive_line.stiffness`")
+
+
+@pytest.mark.parametrize("command", [["driveline"], ["report"], ["analyse"]])
+def test_an_absurd_crank_speed_is_refused_where_read(command):
+    """1e300 rpm: a traceback (OverflowError) in analyse, a RuntimeWarning in report."""
+    expect([*command, SLIDER, "--set", "crank.speed_rpm=1e300"], 2, "`crank.speed_rpm`",
+           "0.01…1e+06 rpm")

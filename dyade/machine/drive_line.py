@@ -52,6 +52,7 @@ NEWTON_TOL = 1e-11  # [-] scaled residual of the revolution map that counts as p
 DIFFERENCE = 1e-6  # [-] central-difference step of the monodromy matrix, per state scale
 STEPS_PER_VIBRATION = 64  # RK4 steps per period of the highest natural frequency
 MIN_STEPS = 720  # steps per revolution at least
+MAX_STEPS = 100_000  # steps per revolution at most (drive_line.steps, the same bound)
 UNSTABLE_MARGIN = 1e-6  # [-] |μ| above 1 + this: unstable
 
 
@@ -186,7 +187,16 @@ def steps_for(line: Line, crank_inertia_min: float, speed_min: float,
     frequency (with the smallest crank inertia) at the lowest speed, at least 720."""
     k = None if stiffness_max is None else np.asarray(stiffness_max).reshape(1, -1)
     top = float(natural_frequencies(line, np.array([crank_inertia_min]), k)[0, -1])
-    return max(MIN_STEPS, int(math.ceil(STEPS_PER_VIBRATION * top / speed_min)))
+    steps = STEPS_PER_VIBRATION * top / speed_min
+    if not steps <= MAX_STEPS:  # refused before a table is made or a step taken
+        from dyade.errors import InputError
+
+        raise InputError(f"the drive line's highest natural frequency, {top:.3g} rad/s, is "
+                         f"{top / speed_min:.3g} times the lowest speed: it would take "
+                         f"{steps:.3g} steps per revolution (at most {MAX_STEPS:,}). A line "
+                         f"this stiff is rigid: drop [drive_line] (or lower "
+                         f"`drive_line.stiffness`), or set `drive_line.steps`.")
+    return max(MIN_STEPS, int(math.ceil(steps)))
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==

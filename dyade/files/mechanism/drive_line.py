@@ -14,10 +14,6 @@ if TYPE_CHECKING:  # the drive line loads only with a [drive_line] table
 DRIVE_LINE_KEYS = {"stiffness", "damping", "ratio", "rotor_inertia", "coupling", "steps"}
 
 
-MAX_STEPS = 100_000
-"""[1/rev] the most integration steps per revolution a drive line may ask for"""
-
-
 class DriveLineReader(UnitReader):
     """Reads the [drive_line] table."""
 
@@ -79,6 +75,8 @@ class DriveLineReader(UnitReader):
         steps = None
         if "steps" in table:
             steps = self.integer(table["steps"], "drive_line.steps")
+            from dyade.machine.drive_line import MAX_STEPS
+
             if not 36 <= steps <= MAX_STEPS:
                 raise self.fail("drive_line.steps", f"must be 36…{MAX_STEPS:,} steps per "
                                                     f"revolution, got {steps:,}.", steps)

@@ -57,6 +57,12 @@ class LinkReader(FrictionReader):
         pivot = self.point_on(FRAME, table.get("pivot", [0.0, 0.0]), "crank.pivot")
         rpm = self.number(self.required(table, "speed_rpm", "crank"), "crank.speed_rpm", "rpm",
                           positive=True)
+        from dyade.limits import PLAUSIBLE, implausible
+
+        if implausible("speed_rpm", rpm):
+            low, high, _ = PLAUSIBLE["speed_rpm"]
+            raise self.fail("crank.speed_rpm", f"must lie in {low:g}…{high:g} rpm (what a "
+                                               f"machine has), got {rpm:g}.", rpm, "rpm")
         direction = table.get("direction", "ccw")
         if direction not in ("ccw", "cw"):
             raise self.fail("crank.direction", f"must be \"ccw\" (counter-clockwise) or \"cw\", "
