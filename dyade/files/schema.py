@@ -230,6 +230,17 @@ class TableReader:
             raise self.fail(f"{path}.{key}" if path else key, "is missing.")
         return table[key]
 
+    def within(self, value: float, key: str, quantity: str, unit: str) -> float:
+        """``value`` when 0 (none) or within what a machine has (``dyade.limits.PLAUSIBLE``
+        of ``quantity``, in SI = ``unit``), else refused naming ``key`` and the range."""
+        from dyade.limits import PLAUSIBLE, implausible
+
+        if value != 0.0 and implausible(quantity, value):
+            low, high, _ = PLAUSIBLE[quantity]
+            raise self.fail(key, f"must lie in {low:g}…{high:g} {unit} (what a machine has), "
+                                 f"got {value:g}.", value, unit)
+        return value
+
     def number(self, value: Any, key: str, unit: str, positive: bool = False,
                non_negative: bool = False) -> float:
         if not is_number(value):

@@ -52,7 +52,6 @@ NEWTON_TOL = 1e-11  # [-] scaled residual of the revolution map that counts as p
 DIFFERENCE = 1e-6  # [-] central-difference step of the monodromy matrix, per state scale
 STEPS_PER_VIBRATION = 64  # RK4 steps per period of the highest natural frequency
 MIN_STEPS = 720  # steps per revolution at least
-MAX_STEPS = 100_000  # steps per revolution at most (drive_line.steps, the same bound)
 UNSTABLE_MARGIN = 1e-6  # [-] |μ| above 1 + this: unstable
 
 
@@ -188,6 +187,8 @@ def steps_for(line: Line, crank_inertia_min: float, speed_min: float,
     k = None if stiffness_max is None else np.asarray(stiffness_max).reshape(1, -1)
     top = float(natural_frequencies(line, np.array([crank_inertia_min]), k)[0, -1])
     steps = STEPS_PER_VIBRATION * top / speed_min
+    from dyade.limits import MAX_STEPS
+
     if not steps <= MAX_STEPS:  # refused before a table is made or a step taken
         from dyade.errors import InputError
 

@@ -17,17 +17,6 @@ DRIVE_LINE_KEYS = {"stiffness", "damping", "ratio", "rotor_inertia", "coupling",
 class DriveLineReader(UnitReader):
     """Reads the [drive_line] table."""
 
-    def plausible(self, key: str, value: float, quantity: str, unit: str) -> float:
-        """``value`` when within what a machine has (``dyade.limits.PLAUSIBLE``), else
-        refused naming ``key`` and the range."""
-        from dyade.limits import PLAUSIBLE, implausible
-
-        if implausible(quantity, value):
-            low, high, _ = PLAUSIBLE[quantity]
-            raise self.fail(key, f"must lie in {low:g}…{high:g} {unit} (what a machine has), "
-                                 f"got {value:g}.", value, unit)
-        return value
-
     def drive_line(self, table: Any) -> DriveLineData:
         """The [drive_line] table: a shaft (stiffness, damping) or a coupling file, the
         gear ratio and the motor's rotor inertia."""
@@ -64,18 +53,19 @@ class DriveLineReader(UnitReader):
                                     "drive_line.stiffness", "N·m/rad", positive=True)
             damping = self.number(table.get("damping", 0.0), "drive_line.damping", "N·m·s/rad",
                                   non_negative=True)
-            self.plausible("drive_line.stiffness", stiffness, "stiffness", "N·m/rad")
+            self.within(stiffness, "drive_line.stiffness", "stiffness", "N·m/rad")
             if damping:
-                self.plausible("drive_line.damping", damping, "damping", "N·m·s/rad")
-        ratio = self.plausible("drive_line.ratio", self.number(
-            table.get("ratio", 1.0), "drive_line.ratio", "-", positive=True), "ratio", "-")
-        rotor = (self.plausible("drive_line.rotor_inertia", self.number(
-            table["rotor_inertia"], "drive_line.rotor_inertia", "kg·m²", positive=True),
-            "inertia", "kg·m²") if "rotor_inertia" in table else None)
+                self.within(damping, "drive_line.damping", "damping", "N·m·s/rad")
+        ratio = self.within(self.number(table.get("ratio", 1.0), "drive_line.ratio", "-",
+                                           positive=True), "drive_line.ratio", "ratio", "-")
+        rotor = (self.within(self.number(table["rotor_inertia"], "drive_line.rotor_inertia",
+                                            "kg·m²", positive=True),
+                                "drive_line.rotor_inertia", "inertia", "kg·m²")
+                 if "rotor_inertia" in table else None)
         steps = None
         if "steps" in table:
             steps = self.integer(table["steps"], "drive_line.steps")
-            from dyade.machine.drive_line import MAX_STEPS
+            from dyade.limits import MAX_STEPS
 
             if not 36 <= steps <= MAX_STEPS:
                 raise self.fail("drive_line.steps", f"must be 36…{MAX_STEPS:,} steps per "

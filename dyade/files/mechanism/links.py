@@ -57,12 +57,7 @@ class LinkReader(FrictionReader):
         pivot = self.point_on(FRAME, table.get("pivot", [0.0, 0.0]), "crank.pivot")
         rpm = self.number(self.required(table, "speed_rpm", "crank"), "crank.speed_rpm", "rpm",
                           positive=True)
-        from dyade.limits import PLAUSIBLE, implausible
-
-        if implausible("speed_rpm", rpm):
-            low, high, _ = PLAUSIBLE["speed_rpm"]
-            raise self.fail("crank.speed_rpm", f"must lie in {low:g}…{high:g} rpm (what a "
-                                               f"machine has), got {rpm:g}.", rpm, "rpm")
+        self.within(rpm, "crank.speed_rpm", "speed_rpm", "rpm")
         direction = table.get("direction", "ccw")
         if direction not in ("ccw", "cw"):
             raise self.fail("crank.direction", f"must be \"ccw\" (counter-clockwise) or \"cw\", "
@@ -88,15 +83,18 @@ class LinkReader(FrictionReader):
                 self.named_points(sub.get("points", {}), f"{path}.points"))
             extra: dict[str, Any] = {}
             if "mass" in sub:
-                extra["mass"] = self.number(sub["mass"], f"{path}.mass", "kg", non_negative=True)
+                extra["mass"] = self.within(self.number(sub["mass"], f"{path}.mass", "kg",
+                                                           non_negative=True),
+                                               f"{path}.mass", "mass", "kg")
             if "centre" in sub:
                 extra["centre"] = self.pair(sub["centre"], f"{path}.centre")
             if "inertia" in sub and "radius_of_gyration" in sub:
                 raise self.fail(f"{path}.inertia", "and `radius_of_gyration` are two ways to say "
                                                    "the same thing: give one of them.")
             if "inertia" in sub:
-                extra["inertia"] = self.number(sub["inertia"], f"{path}.inertia", "kg·m²",
-                                               non_negative=True)
+                extra["inertia"] = self.within(self.number(
+                    sub["inertia"], f"{path}.inertia", "kg·m²", non_negative=True),
+                    f"{path}.inertia", "inertia", "kg·m²")
             if "radius_of_gyration" in sub:
                 radius = self.length_of(sub["radius_of_gyration"], f"{path}.radius_of_gyration",
                                         non_negative=True)
