@@ -58,6 +58,7 @@ def test_a_file_of_another_kind(name, words):
     expect(["driveline", shipped(name)], 2, words)
 
 
+@pytest.mark.slow  # computes the whole result twice (1.5-3.5 s)
 def test_output_under_a_file_and_a_missing_folder(tmp_path):
     (tmp_path / "afile").write_text("x")
     expect(["driveline", *LINE, "-o", tmp_path / "afile" / "x.csv"], 2, "not a folder")

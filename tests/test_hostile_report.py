@@ -40,6 +40,7 @@ def test_bad_overrides(assignment):
     expect(["report", SLIDER, "--set", assignment], 2, SETS[assignment])
 
 
+@pytest.mark.slow  # computes the whole result twice (1.5-3.5 s)
 def test_output_under_a_file_and_a_missing_folder(tmp_path):
     (tmp_path / "afile").write_text("x")
     expect(["report", SLIDER, "-o", tmp_path / "afile" / "r.html"], 2, "is a file, not a folder")
