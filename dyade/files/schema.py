@@ -230,12 +230,15 @@ class TableReader:
             raise self.fail(f"{path}.{key}" if path else key, "is missing.")
         return table[key]
 
-    def within(self, value: float, key: str, quantity: str, unit: str) -> float:
+    def within(self, value: float, key: str, quantity: str, unit: str,
+               floor: bool = True) -> float:
         """``value`` when 0 (none) or within what a machine has (``dyade.limits.PLAUSIBLE``
-        of ``quantity``, in SI = ``unit``), else refused naming ``key`` and the range."""
+        of ``quantity``, in SI = ``unit``), else refused naming ``key`` and the range;
+        without ``floor`` only its top (tiny link masses are the force floor's business)."""
         from dyade.limits import PLAUSIBLE, implausible
 
-        if value != 0.0 and implausible(quantity, value):
+        if value != 0.0 and implausible(quantity, value) and (floor or value > PLAUSIBLE[
+                quantity][1]):
             low, high, _ = PLAUSIBLE[quantity]
             raise self.fail(key, f"must lie in {low:g}…{high:g} {unit} (what a machine has), "
                                  f"got {value:g}.", value, unit)

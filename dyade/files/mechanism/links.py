@@ -85,7 +85,7 @@ class LinkReader(FrictionReader):
             if "mass" in sub:
                 extra["mass"] = self.within(self.number(sub["mass"], f"{path}.mass", "kg",
                                                            non_negative=True),
-                                               f"{path}.mass", "mass", "kg")
+                                               f"{path}.mass", "mass", "kg", floor=False)
             if "centre" in sub:
                 extra["centre"] = self.pair(sub["centre"], f"{path}.centre")
             if "inertia" in sub and "radius_of_gyration" in sub:
@@ -94,7 +94,7 @@ class LinkReader(FrictionReader):
             if "inertia" in sub:
                 extra["inertia"] = self.within(self.number(
                     sub["inertia"], f"{path}.inertia", "kg·m²", non_negative=True),
-                    f"{path}.inertia", "inertia", "kg·m²")
+                    f"{path}.inertia", "inertia", "kg·m²", floor=False)
             if "radius_of_gyration" in sub:
                 radius = self.length_of(sub["radius_of_gyration"], f"{path}.radius_of_gyration",
                                         non_negative=True)
