@@ -89,4 +89,4 @@ def test_a_line_too_stiff_to_integrate_is_refused_before_stepping():
 def test_an_absurd_crank_speed_is_refused_where_read(command):
     """1e300 rpm: a traceback (OverflowError) in analyse, a RuntimeWarning in report."""
     expect([*command, SLIDER, "--set", "crank.speed_rpm=1e300"], 2, "`crank.speed_rpm`",
-           "0.01…1e+06 rpm")
+           "at most 1e+12 rpm")
