@@ -24,6 +24,8 @@ BYTES_PER_VALUE = 90  # [B] per value of a result table: arrays, the table and i
 """measured: dyade-16 (269 columns) and the four-bar (59) at 3 600 and 36 000 positions
 peak at 84-86 B per column and position in `dyade analyse --format csv`"""
 
+MAX_STEPS = 100_000  # integration steps per revolution at most (drive lines)
+
 PLAUSIBLE: dict[str, tuple[float, float, str]] = {
     # quantity: (lowest, highest, unit), SI; 0 is a lower bound only where 0 is allowed
     "speed_rpm": (1e-2, 1e6, "rpm"),
@@ -40,6 +42,7 @@ PLAUSIBLE: dict[str, tuple[float, float, str]] = {
     "fluctuation": (1e-6, 1.0, "-"),
     "order": (0.0, 1e4, "-"),
     "teeth": (1, 10_000, "-"),
+    "ratio": (1e-4, 1e4, "-"),  # a gear ratio
 }
 """quantity -> (lowest, highest, unit): what any machine dyade models has"""
 

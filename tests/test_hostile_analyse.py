@@ -58,3 +58,12 @@ def test_describe_of_a_file_with_many_named_points(tmp_path):
 def test_clearance_with_nothing_to_compute():
     expect(["clearance", FOURBAR], 2, "fourbar.toml: nothing to compute",
            "--stiffness and --clearance")
+
+
+def test_max_memory_reaches_the_equation_of_motion():
+    """--max-memory bounds the [drive]'s grid too: a small bound refuses 100 000 steps,
+    a large one lets through what the default (4 GiB) refuses."""
+    expect(["analyse", DYADE16, *DRIVE, "--set", "drive.steps=100000", "--max-memory", "100"],
+           2, "--max-memory", "100,000 steps per revolution")
+    expect(["analyse", DYADE16, *DRIVE, "--set", "drive.max_revolutions=1000000000",
+            "--run-up", "--max-memory", "1e12"], 0, "crank positions")  # it reaches speed first

@@ -15,8 +15,10 @@ FLAGS = {"speeds_rpm": "--speed-range", "speed_rpm": "--speed-rpm", "stiffness":
 """API parameter -> the flag it comes from"""
 
 
-def speed_range(text: str, hint: str) -> list[float]:
-    """START:STOP:STEP [rpm], STOP included; both ends of one sign (the crank's sense)."""
+def speed_range(text: str, hint: str, quantity: str = "speed_rpm") -> list[float]:
+    """START:STOP:STEP [rpm], STOP included; both ends of one sign (the crank's sense);
+    ``quantity`` (``dyade.limits.PLAUSIBLE``) bounds the ends: a --map's stiffness or
+    damping."""
     import numpy as np
 
     try:
@@ -27,6 +29,12 @@ def speed_range(text: str, hint: str) -> list[float]:
     if not (np.isfinite([start, stop, step]).all() and step > 0 and stop >= start):
         raise click.BadParameter(f"needs finite START <= STOP and STEP > 0, got {text!r}.",
                                  param_hint=hint)
+    from dyade.limits import implausible, plausible_range
+
+    if any(implausible(quantity, abs(end)) for end in (start, stop) if end or quantity !=
+           "damping"):
+        raise click.BadParameter(f"values must lie in {plausible_range(quantity)} (what a "
+                                 f"machine has), got {text!r}.", param_hint=hint)
     count = int(np.floor((stop - start) / step + 1e-9)) + 1
     if count > 2000:
         raise click.BadParameter(f"asks for {count} speeds; at most 2000.", param_hint=hint)
@@ -81,6 +89,11 @@ def driveline(mechanism_file: str, what: str, speeds_rpm: str | None, speed_rpm:
     from dyade.linkage import drive_line as api
     from dyade.report import drive_line as report
 
+    from dyade.limits import implausible, plausible_range
+
+    if speed_rpm is not None and implausible("speed_rpm", speed_rpm):
+        raise click.BadParameter(f"must lie in {plausible_range('speed_rpm')} (what a machine "
+                                 f"has), got {speed_rpm:g}.", param_hint="--speed-rpm")
     fmt = fmt or infer_format(output)
     mechanism = load(mechanism_file, assignments).mechanism
     notes: list[str] = []
@@ -130,7 +143,7 @@ def driveline(mechanism_file: str, what: str, speeds_rpm: str | None, speed_rpm:
             if name not in ("stiffness", "damping"):
                 raise click.BadParameter(f"maps stiffness or damping, got {name!r}.",
                                          param_hint="--map")
-            values = speed_range(text, "--map")
+            values = speed_range(text, "--map", name)
             result = api.stability_map(mechanism, speeds, **{name: values})
             grid_speed, grid_value = np.meshgrid(result.speed * report.RPM, result.values)
             columns = {"speed_rpm": grid_speed.ravel(), name: grid_value.ravel(),

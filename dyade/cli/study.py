@@ -60,9 +60,16 @@ def study(study_file: str, output: str | None, fmt: str | None, resume: bool, jo
     Exit status 2 for a bad study file or an unreachable --scheduler; a variant that
     fails is a row with its reason, not an error.
     """
+    if output == "-":  # standard output: a stream, written at the end
+        output, fmt = None, fmt or "csv"
     fmt = fmt or _format(output)
     if fmt == "table" and output and not output.endswith(".txt"):
         fmt = "csv"
+    if fmt == "parquet" and not output:
+        raise click.UsageError("--format parquet needs -o FILE.parquet (a binary table, not "
+                               "for a terminal).")
+    if output:
+        writable_folder(output)
     if resume and not output:
         raise click.UsageError("--resume needs -o FILE: the rows of the interrupted run.")
     result = run(study_file, output if fmt in ("csv",) else
@@ -77,6 +84,21 @@ def study(study_file: str, output: str | None, fmt: str | None, resume: bool, jo
         console(stderr=True).print(f"wrote {output}: {total} variants"
                                    + (f" ({result.evaluations} computed, {kept} kept from the "
                                       f"interrupted run)" if resume else ""))
+
+
+def writable_folder(output: str) -> None:
+    """Create -o's missing folders before the study runs; exit 2 naming -o when a part of
+    its folder is a file or cannot be made."""
+    folder = os.path.dirname(output)
+    try:
+        if folder:
+            os.makedirs(folder, exist_ok=True)
+    except (FileExistsError, NotADirectoryError):
+        raise click.BadParameter(f"{output}: a part of its folder {folder} is a file, not a "
+                                 f"folder.", param_hint="-o") from None
+    except OSError as err:
+        raise click.BadParameter(f"{output}: cannot make its folder ({err.strerror}).",
+                                 param_hint="-o") from None
 
 
 def _format(output: str | None) -> str:

@@ -64,6 +64,9 @@ KINDS = (
     ("a coupling file", {"J", "c1", "c2", "b1", "b2", "moment", "eta_range", "speed_rpm",
                          "order"},
      "dyade coupling and plot coupling"),
+    ("a study file", {"mechanism", "plan", "parameters", "tolerance", "optimise",
+                      "sensitivity", "outputs"},
+     "dyade study and plot study"),
 )
 """each kind of input file: its own top-level keys and the commands that read it"""
 
@@ -226,6 +229,20 @@ class TableReader:
         if key not in table:
             raise self.fail(f"{path}.{key}" if path else key, "is missing.")
         return table[key]
+
+    def within(self, value: float, key: str, quantity: str, unit: str,
+               floor: bool = True) -> float:
+        """``value`` when 0 (none) or within what a machine has (``dyade.limits.PLAUSIBLE``
+        of ``quantity``, in SI = ``unit``), else refused naming ``key`` and the range;
+        without ``floor`` only its top (tiny link masses are the force floor's business)."""
+        from dyade.limits import PLAUSIBLE, implausible
+
+        if value != 0.0 and implausible(quantity, value) and (floor or value > PLAUSIBLE[
+                quantity][1]):
+            low, high, _ = PLAUSIBLE[quantity]
+            raise self.fail(key, f"must lie in {low:g}…{high:g} {unit} (what a machine has), "
+                                 f"got {value:g}.", value, unit)
+        return value
 
     def number(self, value: Any, key: str, unit: str, positive: bool = False,
                non_negative: bool = False) -> float:

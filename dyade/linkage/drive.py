@@ -89,12 +89,12 @@ def check_drive_size(mechanism: Mechanism, steps: int, run_up: bool) -> None:
     steps) would take more than the memory bound (``dyade.limits``)."""
     check_memory(memory_estimate(mechanism, 2 * steps),
                  f"the equation of motion's grid of {steps:,} steps per revolution",
-                 advice="Give fewer `drive.steps`")
+                 mechanism.max_memory, advice="Give fewer `drive.steps`")
     if run_up:
         revolutions = mechanism.drive.max_revolutions
         check_memory(RUN_UP_BYTES * float(steps) * revolutions + (50 << 20),
                      f"a run-up of up to {revolutions:,} revolutions at {steps:,} steps each",
-                     advice="Give fewer `drive.max_revolutions` or `drive.steps`")
+                     mechanism.max_memory, advice="Give fewer `drive.max_revolutions` or `drive.steps`")
 
 
 def solve(mechanism: Mechanism, crank_angle: FloatArray | None = None, *, run_up: bool = False,

@@ -328,6 +328,9 @@ class Mechanism:
     drive_line: DriveLineData | None = None
     """The elastic element between motor and crank of a ``[drive_line]`` table
     (``dyade.machine.drive_line``); None: a rigid drive."""
+    max_memory: float | None = None
+    """The bound [B] on what one run may take (``dyade.limits``; None: its default), set
+    by ``analyse``'s ``max_memory``: the [drive]'s equation of motion checks it too."""
 
     @property
     def joints(self) -> list[Joint]:

@@ -210,6 +210,8 @@ def configure(mechanism: Mechanism, *, positions: int | None = None,
         mechanism = replace(mechanism, dead_centre_angle=hard, transmission_warning=soft)
     positions = mechanism.sweep.count if positions is None else positions
     check_size(mechanism, positions, max_memory, estimate)
+    if max_memory is not None:  # the [drive]'s grid and run-up are bounded by it too
+        mechanism = replace(mechanism, max_memory=max_memory)
     the_plan = plan if plan is not None else infer_plan(mechanism)
     if constant_speed and the_plan.equation_of_motion:
         the_plan = replace(the_plan, equation_of_motion="")

@@ -186,7 +186,18 @@ def steps_for(line: Line, crank_inertia_min: float, speed_min: float,
     frequency (with the smallest crank inertia) at the lowest speed, at least 720."""
     k = None if stiffness_max is None else np.asarray(stiffness_max).reshape(1, -1)
     top = float(natural_frequencies(line, np.array([crank_inertia_min]), k)[0, -1])
-    return max(MIN_STEPS, int(math.ceil(STEPS_PER_VIBRATION * top / speed_min)))
+    steps = STEPS_PER_VIBRATION * top / speed_min
+    from dyade.limits import MAX_STEPS
+
+    if not steps <= MAX_STEPS:  # refused before a table is made or a step taken
+        from dyade.errors import InputError
+
+        raise InputError(f"the drive line's highest natural frequency, {top:.3g} rad/s, is "
+                         f"{top / speed_min:.3g} times the lowest speed: it would take "
+                         f"{steps:.3g} steps per revolution (at most {MAX_STEPS:,}). A line "
+                         f"this stiff is rigid: drop [drive_line] (or lower "
+                         f"`drive_line.stiffness`), or set `drive_line.steps`.")
+    return max(MIN_STEPS, int(math.ceil(steps)))
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==

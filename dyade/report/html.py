@@ -177,17 +177,11 @@ def report(path: str, overrides: dict[str, Any] | None = None) -> str:
         The file is neither a mechanism nor a gear file, or is not valid.
     """
     import os
-    import tomllib
 
     import dyade
+    from dyade.files.schema import read_toml
 
-    try:
-        with open(path, "rb") as handle:
-            data = tomllib.load(handle)
-    except OSError as error:
-        raise InputError(f"{path}: cannot be read ({error.strerror}).") from None
-    except tomllib.TOMLDecodeError as error:
-        raise InputError(f"{path}: not valid TOML: {error}.") from None
+    data = read_toml(path)  # names the file; a CSV is recognised as one
     source = os.path.basename(os.fspath(path))
     if "crank" in data:
         mechanism = dyade.read_mechanism(path, overrides)
@@ -200,10 +194,12 @@ def report(path: str, overrides: dict[str, Any] | None = None) -> str:
         return gear_report(dyade.read_gears(path, overrides), source=source)
     if "plan" in data and "parameters" in data and not overrides:
         return study_report(path, source=source)
+    from dyade.files.schema import other_kind
+
     raise InputError(f"{path}: neither a mechanism file (no [crank] table), a gear file "
                      f"(no [[shaft]], [[gear]] or [[body]] tables) nor a study file ([plan] "
                      f"and [parameters], without --set): a report is made of one of these "
-                     f"(see mechanisms/README.md).")
+                     f"(see mechanisms/README.md).{other_kind(data, set())}")
 
 
 # -- a mechanism -------------------------------------------------------------------------

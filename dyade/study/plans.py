@@ -4,6 +4,7 @@ calling process, from the plan and its seed: the same rows on any number of work
 from __future__ import annotations
 
 import itertools
+import math
 
 import numpy as np
 
@@ -15,6 +16,7 @@ def variants(spec: Spec) -> np.ndarray:
     a grid varies the last parameter fastest; ``sensitivity`` gives the nominal row,
     then the rows −h and +h of each parameter in turn (``steps``)."""
     params = spec.parameters
+    refuse_too_many(spec)
     if spec.plan == "grid":
         return np.array(list(itertools.product(*(p.values for p in params))), dtype=float
                         ).reshape(-1, len(params))
@@ -43,6 +45,40 @@ def variants(spec: Spec) -> np.ndarray:
             sampler = qmc.LatinHypercube(d=len(params), seed=np.random.default_rng(spec.seed))
         u = sampler.random(spec.samples)
     return np.column_stack([p.quantile(u[:, j]) for j, p in enumerate(params)])
+
+
+def count(spec: Spec) -> int:
+    """How many variants the plan makes, before any is made (an optimiser's are its
+    evaluations, bounded by its own budget: 0 here)."""
+    if spec.plan == "grid":
+        return math.prod(len(p.values) for p in spec.parameters)
+    if spec.plan == "sensitivity":
+        return 1 + 2 * len(spec.parameters)
+    if spec.plan == "optimise":
+        return 0
+    return spec.samples
+
+
+def refuse_too_many(spec: Spec) -> None:
+    """Refuse, before the matrix is allocated or a variant run, a plan whose table
+    would exceed ``dyade.limits.MAX_MEMORY`` (a row of parameters and results per
+    variant at ``BYTES_PER_VALUE`` each): the figure and the keys that make it."""
+    from dyade.errors import InputError
+    from dyade.limits import BYTES_PER_VALUE, MAX_MEMORY, size
+
+    n = count(spec)
+    need = n * (len(spec.parameters) + RESULT_COLUMNS) * BYTES_PER_VALUE
+    if need > MAX_MEMORY:
+        keys = ("`plan.samples`" if spec.plan in ("monte-carlo", "latin-hypercube")
+                else "the lists and ranges of [parameters]")
+        raise InputError(f"{spec.label}: the {spec.plan} plan makes {n:,} variants, whose table "
+                         f"would take about {size(need)} (more than {size(MAX_MEMORY)}). "
+                         f"Ask for fewer with {keys}, or split the study.",
+                         source=spec.label)
+
+
+RESULT_COLUMNS = 64
+"""about how many result columns a variant's row has (analyse's summary, status)"""
 
 
 def steps(spec: Spec) -> np.ndarray:

@@ -121,14 +121,15 @@ def _pair(label: str, key: str, value: Any) -> tuple[float, float]:
 
 
 def _keys(label: str, table: dict, key: str, allowed: set[str]) -> None:
-    from dyade.files.schema import suggest
+    from dyade.files.schema import other_kind, suggest
 
     if not isinstance(table, dict):
         raise fail(label, key, f"must be a table, got {table!r}.")
     for name in table:
         if name not in allowed:
             where = f"{key}.{name}" if key else name
-            raise fail(label, where, f"is not a study key.{suggest(name, allowed)}")
+            hint = "" if key else other_kind(table, allowed)
+            raise fail(label, where, f"is not a study key.{hint or suggest(name, allowed)}")
 
 
 def parameter(label: str, key: str, value: Any, rel_step: float) -> Parameter:

@@ -57,7 +57,7 @@ def driveline_figure(mechanism_file, what, speeds_rpm, map_range, assignments, o
                                        "or damping=START:STOP:STEP.")
             key, text = map_range.split("=", 1)
             result = api.stability_map(mechanism, speed_range(speeds_rpm, "--speed-range"),
-                                       **{key: speed_range(text, "--map")})
+                                       **{key: speed_range(text, "--map", key)})
             made = figures.stability_map(result, fig=fig)
         elif what == "steady":
             made = figures.steady(api.steady_state(mechanism, accuracy=False), fig=fig)

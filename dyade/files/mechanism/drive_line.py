@@ -53,14 +53,22 @@ class DriveLineReader(UnitReader):
                                     "drive_line.stiffness", "N·m/rad", positive=True)
             damping = self.number(table.get("damping", 0.0), "drive_line.damping", "N·m·s/rad",
                                   non_negative=True)
-        ratio = self.number(table.get("ratio", 1.0), "drive_line.ratio", "-", positive=True)
-        rotor = (self.number(table["rotor_inertia"], "drive_line.rotor_inertia", "kg·m²",
-                             positive=True) if "rotor_inertia" in table else None)
+            self.within(stiffness, "drive_line.stiffness", "stiffness", "N·m/rad")
+            if damping:
+                self.within(damping, "drive_line.damping", "damping", "N·m·s/rad")
+        ratio = self.within(self.number(table.get("ratio", 1.0), "drive_line.ratio", "-",
+                                           positive=True), "drive_line.ratio", "ratio", "-")
+        rotor = (self.within(self.number(table["rotor_inertia"], "drive_line.rotor_inertia",
+                                            "kg·m²", positive=True),
+                                "drive_line.rotor_inertia", "inertia", "kg·m²")
+                 if "rotor_inertia" in table else None)
         steps = None
         if "steps" in table:
             steps = self.integer(table["steps"], "drive_line.steps")
-            if steps < 36:
-                raise self.fail("drive_line.steps", f"must be at least 36 steps per revolution, "
-                                                    f"got {steps}.", steps)
+            from dyade.limits import MAX_STEPS
+
+            if not 36 <= steps <= MAX_STEPS:
+                raise self.fail("drive_line.steps", f"must be 36…{MAX_STEPS:,} steps per "
+                                                    f"revolution, got {steps:,}.", steps)
         return DriveLineData(stiffness, damping, ratio, rotor, coupling, name if path else None,
                              steps)

@@ -16,6 +16,8 @@ from dyade.units import rpm_to_rad_per_s
 FRAME_KEYS = {"points"}
 CRANK_KEYS = {"link", "pivot", "length", "speed_rpm", "direction", "points", "pin_radius",
               "friction", "clearance"}
+NUMERIC_RPM = 1e12
+"""[rpm] the highest crank speed read at all (1e300 rpm overflowed into a traceback)"""
 LINK_KEYS = {"points", "mass", "centre", "inertia", "radius_of_gyration"}
 REVOLUTE_KEYS = {"link", "point", "pin_radius", "friction", "clearance"}
 PRISMATIC_KEYS = {"link", "point", "angle", "offset", "guide", "slider_point", "slider_length",
@@ -57,6 +59,10 @@ class LinkReader(FrictionReader):
         pivot = self.point_on(FRAME, table.get("pivot", [0.0, 0.0]), "crank.pivot")
         rpm = self.number(self.required(table, "speed_rpm", "crank"), "crank.speed_rpm", "rpm",
                           positive=True)
+        if rpm > NUMERIC_RPM:  # above the plausible 1e6 rpm a sweep is analysed but not given
+            raise self.fail("crank.speed_rpm", f"must be at most {NUMERIC_RPM:g} rpm (beyond "
+                                               f"it the squares overflow; 0.01…1e+06 rpm is "
+                                               f"what a machine has), got {rpm:g}.", rpm, "rpm")
         direction = table.get("direction", "ccw")
         if direction not in ("ccw", "cw"):
             raise self.fail("crank.direction", f"must be \"ccw\" (counter-clockwise) or \"cw\", "
@@ -82,15 +88,18 @@ class LinkReader(FrictionReader):
                 self.named_points(sub.get("points", {}), f"{path}.points"))
             extra: dict[str, Any] = {}
             if "mass" in sub:
-                extra["mass"] = self.number(sub["mass"], f"{path}.mass", "kg", non_negative=True)
+                extra["mass"] = self.within(self.number(sub["mass"], f"{path}.mass", "kg",
+                                                           non_negative=True),
+                                               f"{path}.mass", "mass", "kg", floor=False)
             if "centre" in sub:
                 extra["centre"] = self.pair(sub["centre"], f"{path}.centre")
             if "inertia" in sub and "radius_of_gyration" in sub:
                 raise self.fail(f"{path}.inertia", "and `radius_of_gyration` are two ways to say "
                                                    "the same thing: give one of them.")
             if "inertia" in sub:
-                extra["inertia"] = self.number(sub["inertia"], f"{path}.inertia", "kg·m²",
-                                               non_negative=True)
+                extra["inertia"] = self.within(self.number(
+                    sub["inertia"], f"{path}.inertia", "kg·m²", non_negative=True),
+                    f"{path}.inertia", "inertia", "kg·m²", floor=False)
             if "radius_of_gyration" in sub:
                 radius = self.length_of(sub["radius_of_gyration"], f"{path}.radius_of_gyration",
                                         non_negative=True)
