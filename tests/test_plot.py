@@ -541,7 +541,7 @@ SPECIAL = {
 }
 
 
-@pytest.mark.parametrize("fmt", ["png", "svg"])
+@pytest.mark.parametrize("fmt", ["png", pytest.param("svg", marks=pytest.mark.slow)])
 def test_every_kind_writes_png_and_svg(fmt, tmp_path):
     magic = {"png": b"\x89PNG", "svg": b"<?xml"}[fmt]
     jobs = [(kind, [shipped(name)]) for kind, name in KINDS] + list(SPECIAL.items())
@@ -557,7 +557,9 @@ def test_every_kind_writes_png_and_svg(fmt, tmp_path):
         [f"{kind}.{fmt}" for kind, _ in KINDS] + [f"{k}.{fmt}" for k in SPECIAL] + ["m.gif"])
 
 
-@pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.stem)
+@pytest.mark.parametrize("path", [path if path.stem == "fourbar" else
+                                  pytest.param(path, marks=pytest.mark.slow) for path in SHIPPED],
+                         ids=lambda p: p.stem)  # one in the default run, every one with slow
 def test_the_commands_run_on_every_shipped_mechanism(path, tmp_path):
     has_forces = dyade.read_mechanism(path).has_dynamics
     for kind in ("polar", "curves", "mechanism"):

@@ -156,6 +156,7 @@ def test_a_study_reports_its_tables_and_question(tmp_path):
     assert out.exit_code == 0, out.output
 
 
+@pytest.mark.slow  # two reports of dyade-16, one with its drive line's steady state: ~8 s
 def test_a_drive_line_reports_its_natural_frequency_and_steady_state(tmp_path):
     """A file with a [drive_line] gets the drive line's section: ω̄ and its range, the VDI
     2149 ratio and verdict, the steady state next to the rigid drive; one without does not."""
