@@ -34,7 +34,7 @@ from dyade.linkage.model import FloatArray, Mechanism
 from dyade.linkage.options import memory_estimate
 from dyade.linkage.reduced import Reduced, reduced
 from dyade.machine import equation
-from dyade.machine.motor import Asynchronous, ConstantTorque, Motor, TorqueSpeedTable
+from dyade.machine.motor import ConstantTorque, Motor, TorqueSpeedTable, operating_speed
 
 MIN_STEPS = 720  # integration steps per revolution unless the file says otherwise
 AT_REST_NUDGE = 1e-6  # [-] share of the top speed at which friction is taken at rest
@@ -220,18 +220,8 @@ def _torque_scale(tables: equation.Tables) -> float:
 def _guess(motor: Motor, tables: equation.Tables, sense: float, nominal: float) -> float:
     """A starting speed [rad/s] for the shooting: where the motor's torque meets the mean
     load, else the crank's nominal speed."""
-    need = sense * equation.cycle_mean(tables.friction - tables.load)
-    if isinstance(motor, Asynchronous):
-        speed = motor.synchronous_speed - need / motor.stiffness
-        return speed if speed > 0.0 else nominal
-    if isinstance(motor, TorqueSpeedTable):
-        w, m = motor.speeds, motor.values
-        crossing = np.flatnonzero((m[:-1] - need) * (m[1:] - need) <= 0.0)
-        if crossing.size:
-            k = crossing[-1]
-            if m[k + 1] != m[k]:
-                return float(w[k] + (need - m[k]) * (w[k + 1] - w[k]) / (m[k + 1] - m[k]))
-    return nominal
+    return operating_speed(motor, sense * equation.cycle_mean(tables.friction - tables.load),
+                           nominal)
 
 
 def _states(path: equation.Path, tables: equation.Tables, motor: Motor, sense: float,

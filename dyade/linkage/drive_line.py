@@ -30,7 +30,7 @@ from dyade.linkage.line_model import (VDI_2149_RATIO, NaturalFrequency, crank_ta
                                      line_data, line_of, natural_frequency, sense_of)
 from dyade.linkage.model import FloatArray, Mechanism
 from dyade.machine import drive_line as engine
-from dyade.machine.motor import Asynchronous, ConstantTorque, Motor, TorqueSpeedTable
+from dyade.machine.motor import ConstantTorque, Motor, operating_speed
 
 RPM = 30.0 / math.pi  # rpm per rad/s
 HARMONIC_SHARE = 1e-3  # [-] harmonics of J or M_L above this share of the largest are labelled
@@ -101,17 +101,8 @@ def _reference_speed(mechanism: Mechanism, motor: Motor | None, tables: engine.T
     nominal = abs(mechanism.crank.speed)
     if motor is None:
         return nominal
-    need = float(np.mean(tables.friction - tables.load))
-    if isinstance(motor, Asynchronous):
-        speed = motor.synchronous_speed - need / motor.stiffness
-        return speed if speed > 0.0 else nominal
-    if isinstance(motor, TorqueSpeedTable):
-        w, m = motor.speeds, motor.values
-        crossing = np.flatnonzero((m[:-1] - need) * (m[1:] - need) <= 0.0)
-        if crossing.size and m[crossing[-1] + 1] != m[crossing[-1]]:
-            k = crossing[-1]
-            return float(w[k] + (need - m[k]) * (w[k + 1] - w[k]) / (m[k + 1] - m[k]))
-        return nominal
+    if not isinstance(motor, ConstantTorque):
+        return operating_speed(motor, float(np.mean(tables.friction - tables.load)), nominal)
     raise DyadeError("a constant-torque motor has no definite steady speed on an elastic drive "
                      "line (its speed drifts until the damping balances the torque): give an "
                      "asynchronous motor or a torque-speed table, or leave out [drive] for an "
