@@ -46,3 +46,15 @@ def resolution(angle_deg) -> int:
         if np.all(np.abs(np.round(angle, digits) - angle) <= 1e-9 * np.maximum(1.0, np.abs(angle))):
             return digits
     return 9
+
+
+class Variants(np.ndarray):
+    """One number per variant of a study, where a mechanism file has one number: a
+    (variants,) float array the file reader takes through its arithmetic, so that a
+    block of variants is read at once (``dyade.study``; ``dyade.linkage.stack.spread``
+    turns each into one value per variant and position). Arithmetic keeps the type;
+    a check the reader cannot make on an array raises, and the block is read variant by
+    variant instead."""
+
+    def __new__(cls, values) -> Variants:
+        return np.asarray(values, dtype=np.float64).reshape(-1).view(cls)

@@ -70,9 +70,14 @@ def mean(angle: FloatArray, values: FloatArray) -> float:
     """The mean of ``values`` over the crank angle ``angle`` [rad]: over the revolution
     if the sweep covers one (each position once), else over the sweep's span (trapezoid
     rule); finite values only (where some are not, the trapezoid rule over those given).
-    NaN if none is; 0 where it is round-off of the values (``dyade.roundoff``)."""
-    angle = np.asarray(angle, dtype=np.float64)
+    NaN if none is; 0 where it is round-off of the values (``dyade.roundoff``). One
+    curve of ``means``."""
     values = np.asarray(values, dtype=np.float64)
+    return float(means(angle, values.reshape(1, -1))[0])
+
+
+def _one(angle: FloatArray, values: FloatArray) -> float:
+    """``mean`` of one curve that is not finite over a whole revolution."""
     keep = np.isfinite(values)
     if not keep.any():
         return float("nan")
@@ -108,7 +113,7 @@ def means(angle: FloatArray, values: FloatArray) -> FloatArray:
         scale = np.max(np.abs(rows), axis=1)
         out[whole] = np.where(np.abs(totals) <= ROUNDOFF * scale, 0.0, totals + 0.0)
     for k in np.flatnonzero(~whole):
-        out[k] = mean(angle, values[k])
+        out[k] = _one(angle, values[k])
     return out
 
 

@@ -50,5 +50,8 @@ def test_variant_yardstick_agrees_with_a_study(tmp_path):
     cols = dyade.study(str(study)).columns()
     want = fourbar_variants(cols["dyad.2.lengths.1"] / 1000, cols["dyad.2.lengths.2"] / 1000,
                             np.deg2rad(np.arange(361.0)), 10 * np.pi)
+    outputs = set(cols) - {"variant", "status", "reason", "dyad.2.lengths.1",
+                           "dyad.2.lengths.2"}
+    assert outputs == set(want)  # the yardstick computes every output the study gives
     for name, values in want.items():
         assert np.allclose(cols[name], values, rtol=1e-9, atol=1e-12), name

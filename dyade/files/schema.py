@@ -14,6 +14,7 @@ import os
 import tomllib
 from typing import Any, NamedTuple
 
+from dyade.arrays import Variants
 from dyade.errors import InputError
 from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS
 
@@ -186,7 +187,10 @@ def fmt(value: float) -> str:
 
 
 def is_number(value: Any) -> bool:
-    return not isinstance(value, bool) and isinstance(value, (int, float))
+    """A number of the file (an int or a float, not a bool), or ``Variants``: one per
+    variant of a block of a study."""
+    return (not isinstance(value, bool) and isinstance(value, (int, float))) or isinstance(
+        value, Variants)
 
 
 class TableReader:
@@ -237,6 +241,10 @@ class TableReader:
         without ``floor`` only its top (tiny link masses are the force floor's business)."""
         from dyade.limits import PLAUSIBLE, implausible
 
+        if isinstance(value, Variants):  # each variant's own check
+            for one in value:
+                self.within(float(one), key, quantity, unit, floor)
+            return value
         if value != 0.0 and implausible(quantity, value) and (floor or value > PLAUSIBLE[
                 quantity][1]):
             low, high, _ = PLAUSIBLE[quantity]
@@ -248,6 +256,10 @@ class TableReader:
                non_negative: bool = False) -> float:
         if not is_number(value):
             raise self.fail(key, f"must be a number [{unit}], got {show(value)}.", value, unit)
+        if isinstance(value, Variants):  # each variant's own check
+            for one in value:
+                self.number(float(one), key, unit, positive, non_negative)
+            return value
         value = float(value)
         if not math.isfinite(value):
             raise self.fail(key, f"must be a finite number [{unit}], got {value}.", value, unit)

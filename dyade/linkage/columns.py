@@ -31,10 +31,11 @@ def _tag(name: tuple[int, int]) -> str:
     return f"{name[0]}_{name[1]}"
 
 
-def kinematic_columns(mech: Mechanism, block: Block, phases: dict[int, Continuous]
-                      ) -> Columns:
+def kinematic_columns(mech: Mechanism, block: Block, phases: dict[int, Continuous],
+                      points: bool = True) -> Columns:
     """Every kinematic column of a block, in contract order; ``phases``: link ->
-    its angle's unwrapping, carried on from the blocks before."""
+    its angle's unwrapping, carried on from the blocks before; without ``points``, not
+    the motion of the revolute joints and named points (x_, y_, vx_, vy_, ax_, ay_)."""
     kin, rows = block.kinematics, block.rows
     motion = kin.motion
     out: Columns = {"angle_deg": np.rad2deg(kin.crank_angle)}
@@ -45,12 +46,14 @@ def kinematic_columns(mech: Mechanism, block: Block, phases: dict[int, Continuou
     for joint in mech.joints:
         tag = _tag(joint.name)
         if isinstance(joint, Revolute):
+            if not points:
+                continue
             for prefix, value in zip(POINT, motion.point_motion(*joint_anchor(joint))):
                 out[f"{prefix}_{tag}"] = value
         elif isinstance(joint, Prismatic):
             s, v, a = travel(joint, motion)
             out[f"s_{tag}"], out[f"v_{tag}"], out[f"a_{tag}"] = s, v, a
-    for name, link, local in mech.named_points:
+    for name, link, local in mech.named_points if points else ():
         for prefix, value in zip(POINT, motion.point_motion(link, local)):
             out[f"{prefix}_{name}"] = value
     for col, dyad in enumerate(mech.dyads):
@@ -124,8 +127,12 @@ class Continuous:
         self.state = self.pending
 
 
-def force_columns(mech: Mechanism, block: Block) -> Columns:
-    """Joint forces, drive torque and power, shaking force; empty where invalid."""
+def force_columns(mech: Mechanism, block: Block, machine: bool = True, own: bool = True
+                  ) -> Columns:
+    """Joint forces, drive torque and power, shaking force; empty where invalid; with
+    ``machine``, the linkage reduced to the crank (J_red, dJ_red, M_load). Without
+    ``own``, a column may be a view of the block's forces (for a caller that lets the
+    block go)."""
     forces = block.forces
     if forces is None:
         return {}
@@ -152,7 +159,7 @@ def force_columns(mech: Mechanism, block: Block) -> Columns:
             out[f"FR_{_tag(name)}"] = value
         out["P_friction"] = rubbing.power
     invalid = ~(forces.valid & block.valid)
-    out = {key: _blank(invalid, value) for key, value in out.items()}
+    out = {key: _blank(invalid, value, not own) for key, value in out.items()}
     # the self-locking figures stay where friction is what makes the forces invalid
     dead = invalid & ~rubbing.blocked if rubbing is not None else invalid
     for name, lock in (block.locking or {}).items():
@@ -164,11 +171,12 @@ def force_columns(mech: Mechanism, block: Block) -> Columns:
     if rubbing is not None:
         for number, det in sorted(rubbing.determinant.items()):
             out[f"friction_det_{number}"] = _blank(dead, det)
-    machine = reduced(mech, block.kinematics)
     missing = ~block.valid  # from the kinematics: not given where it is not
-    out["J_red"], out["dJ_red"], out["M_load"] = (_blank(missing, machine.inertia, True),
-                                                  _blank(missing, machine.slope, True),
-                                                  _blank(missing, machine.load, True))
+    if machine:
+        line = reduced(mech, block.kinematics)
+        out["J_red"], out["dJ_red"], out["M_load"] = (_blank(missing, line.inertia, True),
+                                                      _blank(missing, line.slope, True),
+                                                      _blank(missing, line.load, True))
     if block.drive is not None:
         out["t"], out["M_motor"] = (block.drive.time.copy(),
                                     _blank(missing, block.drive.motor_torque))
@@ -185,9 +193,13 @@ def _blank(mask: FloatArray, values: FloatArray, fresh: bool = False) -> FloatAr
     return values if fresh else values.copy()
 
 
-def columns(mech: Mechanism, block: Block, phases: dict[int, Continuous]) -> Columns:
-    """All columns of a block, in contract order."""
-    return kinematic_columns(mech, block, phases) | force_columns(mech, block)
+def columns(mech: Mechanism, block: Block, phases: dict[int, Continuous],
+            points: bool = True, machine: bool = True, own: bool = True) -> Columns:
+    """All columns of a block, in contract order (without ``points``, not the motion of
+    the revolute joints and named points: ``kinematic_columns``; without ``machine``
+    and ``own``: ``force_columns``)."""
+    return (kinematic_columns(mech, block, phases, points)
+            | force_columns(mech, block, machine, own))
 
 
 PLAUSIBLE = 1e12  # [SI] no machine has a value beyond this: a row with one is not given

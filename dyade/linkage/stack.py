@@ -6,6 +6,10 @@ sweep of the engine computes them all (issue 26, "Speed").
 turns a number that differs into an (variants·positions,) array, each variant's value
 repeated over its positions; what is not a number (the dyads' kinds, links, variants,
 the names) must be the same in every variant, else ``NotStackable``.
+
+A block of variants read at once (``dyade.arrays.Variants`` where the file has a
+number, one per variant) becomes such a mechanism by ``spread``; ``pick`` takes one
+variant out of it again, and ``same`` compares two mechanisms number by number.
 """
 
 from __future__ import annotations
@@ -15,6 +19,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from dyade.arrays import Variants
 from dyade.linkage.model import Mechanism
 
 
@@ -70,3 +75,71 @@ def _stack(values: list, positions: int, where: str):
             return first
         raise NotStackable(f"{where}: a table that differs between variants")
     raise NotStackable(f"{where}: {type(first).__name__} differs between variants")
+
+
+def spread(mechanism: Mechanism, positions: int) -> Mechanism:
+    """The mechanism of a block of variants read at once (``Variants`` for the numbers
+    that differ) as ``stack`` gives it: each ``Variants`` an array of one value per
+    (variant, position), variant-major."""
+    return _map(mechanism, lambda v: np.repeat(np.asarray(v), positions))
+
+
+def pick(mechanism: Mechanism, index: int) -> Mechanism:
+    """Variant ``index`` of a block read at once: each ``Variants`` its number."""
+    return _map(mechanism, lambda v: float(v[index]))
+
+
+def _map(value, leaf):
+    """``value`` with ``leaf(v)`` for every ``Variants`` v in it (the rest shared)."""
+    if isinstance(value, Variants):
+        return leaf(value)
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        changes = {}
+        for f in dataclasses.fields(value):
+            part = getattr(value, f.name)
+            mapped = _map(part, leaf)
+            if mapped is not part:
+                changes[f.name] = mapped
+        return dataclasses.replace(value, **changes) if changes else value
+    if isinstance(value, dict):
+        items = {k: _map(v, leaf) for k, v in value.items()}
+        return items if any(items[k] is not v for k, v in value.items()) else value
+    if isinstance(value, tuple) and not hasattr(value, "_fields"):
+        parts = tuple(_map(v, leaf) for v in value)
+        return parts if any(p is not v for p, v in zip(parts, value)) else value
+    return value
+
+
+def same(a, b, rtol: float = 1e-14, where: str = "mechanism") -> str:
+    """"" when ``a`` and ``b`` hold the same structure and numbers (to ``rtol``:
+    numpy's and Python's arithmetic may round a last bit apart), else where they differ."""
+    if dataclasses.is_dataclass(a) and not isinstance(a, type):
+        if type(a) is not type(b):
+            return f"{where}: of different types"
+        for f in dataclasses.fields(a):
+            problem = same(getattr(a, f.name), getattr(b, f.name), rtol, f"{where}.{f.name}")
+            if problem:
+                return problem
+        return ""
+    if isinstance(a, dict):
+        if not isinstance(b, dict) or a.keys() != b.keys():
+            return f"{where}: different keys"
+        return next((p for k in a if (p := same(a[k], b[k], rtol, f"{where}[{k}]"))), "")
+    if isinstance(a, tuple) and not hasattr(a, "_fields"):
+        if not isinstance(b, tuple) or len(a) != len(b):
+            return f"{where}: different lengths"
+        return next((p for k, (x, y) in enumerate(zip(a, b))
+                     if (p := same(x, y, rtol, f"{where}[{k}]"))), "")
+    if type(a) is float and type(b) is float:  # (most of a mechanism: fast)
+        return "" if a == b or abs(a - b) <= rtol * max(abs(a), abs(b)) else \
+            f"{where}: {a!r} against {b!r}"
+    numbers = (float, int, np.floating, np.ndarray)
+    if isinstance(a, numbers) and not isinstance(a, bool):
+        if not isinstance(b, numbers) or isinstance(b, bool) or np.shape(a) != np.shape(b):
+            return f"{where}: {a!r} against {b!r}"
+        x, y = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
+        ok = (x == y) | (np.abs(x - y) <= rtol * np.maximum(np.abs(x), np.abs(y)))
+        return "" if np.all(ok | (np.isnan(x) & np.isnan(y))) else f"{where}: {a!r} against {b!r}"
+    if callable(a) or a is b:
+        return "" if a is b or a == b else f"{where}: differs"
+    return "" if type(a) is type(b) and a == b else f"{where}: {a!r} against {b!r}"

@@ -26,30 +26,85 @@ def time_ratio(angle_deg: np.ndarray, output: np.ndarray) -> float | None:
     """Time ratio of a quick-return output over one crank revolution at constant speed:
     the longer of the two crank-angle spans between its extreme positions over the
     shorter (1 for a symmetric drive). None unless the positions cover a revolution and
-    the output has exactly one maximum and one minimum per revolution."""
-    keep = np.isfinite(output)
-    if not keep.all() or not full_cycle(angle_deg):
-        return None
-    cycle = output[:-1] if angle_deg[-1] - angle_deg[0] >= 360.0 - 1e-9 else output
-    rises = np.diff(np.append(cycle, cycle[0])) > 0
-    if np.count_nonzero(rises != np.roll(rises, 1)) != 2:  # one rise, one fall
-        return None
+    the output has exactly one maximum and one minimum per revolution. One curve of
+    ``time_ratios``."""
+    ratio = float(time_ratios(angle_deg, np.asarray(output, dtype=np.float64)[None, :])[0])
+    return None if np.isnan(ratio) else ratio
+
+
+def time_ratios(angle_deg: np.ndarray, output: np.ndarray) -> np.ndarray:
+    """``time_ratio`` of every row of ``output`` (variants, positions), all at the crank
+    angles ``angle_deg``; NaN where there is none."""
+    ratio = np.full(output.shape[0], np.nan)
+    keep = np.isfinite(output).all(axis=1)
+    if not keep.any() or not full_cycle(angle_deg):
+        return ratio
+    cycle = output[:, :-1] if angle_deg[-1] - angle_deg[0] >= 360.0 - 1e-9 else output
+    rises = np.diff(np.concatenate((cycle, cycle[:, :1]), axis=1), axis=1) > 0
+    keep &= np.count_nonzero(rises != np.roll(rises, 1, axis=1), axis=1) == 2  # one rise, one fall
     step = float(angle_deg[1] - angle_deg[0])
-    top, bottom = _vertex(angle_deg, cycle, step, 1.0), _vertex(angle_deg, cycle, step, -1.0)
+    top, bottom = _vertices(angle_deg, cycle, step, 1.0), _vertices(angle_deg, cycle, step, -1.0)
     forward = (top - bottom) % 360.0
-    spans = sorted((forward, 360.0 - forward))
-    return spans[1] / spans[0] if spans[0] > 0 else None
+    short, long = np.minimum(forward, 360.0 - forward), np.maximum(forward, 360.0 - forward)
+    keep &= short > 0
+    np.divide(long, short, out=ratio, where=keep)
+    return ratio
 
 
-def _vertex(angle_deg: np.ndarray, cycle: np.ndarray, step: float, sign: float) -> float:
-    """Crank angle [°] of the maximum (sign +1) or minimum (−1) of a periodic sampled
-    output, refined by the parabola through it and its two neighbours (error ∝ step³
-    instead of half a step)."""
-    k = int(np.argmax(sign * cycle))
-    before, here, after = cycle[k - 1], cycle[k], cycle[(k + 1) % cycle.size]
+def _vertices(angle_deg: np.ndarray, cycle: np.ndarray, step: float, sign: float
+              ) -> np.ndarray:
+    """Crank angle [°] of the maximum (sign +1) or minimum (−1) of each row of periodic
+    sampled outputs, refined by the parabola through it and its two neighbours (error ∝
+    step³ instead of half a step)."""
+    rows = np.arange(cycle.shape[0])
+    k = np.argmax(sign * np.where(np.isnan(cycle), -sign * np.inf, cycle), axis=1)
+    before, here, after = (cycle[rows, k - 1], cycle[rows, k],
+                           cycle[rows, (k + 1) % cycle.shape[1]])
     curvature = before - 2.0 * here + after
-    shift = 0.5 * (before - after) / curvature if curvature != 0.0 else 0.0
-    return float(angle_deg[k] + shift * step)
+    shift = np.zeros(rows.size)
+    np.divide(0.5 * (before - after), curvature, out=shift, where=curvature != 0.0)
+    return angle_deg[k] + shift * step
+
+
+def least_transmission(mu: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The smallest distance [°] of transmission angles ``mu`` (variants, positions)
+    [°] from a dead centre (0° or 180°) per row, and the position where it lies (NaN,
+    0 where a row has none)."""
+    off = np.minimum(mu, 180.0 - mu)  # the angle to the nearer dead centre
+    k = np.argmin(np.where(np.isnan(off), np.inf, off), axis=1)
+    return np.take_along_axis(off, k[:, None], axis=1)[:, 0], k
+
+
+def strokes(travel: np.ndarray) -> np.ndarray:
+    """The stroke [m] of each row of slider travels (variants, positions): its range,
+    NaN where it does not move (or has no value)."""
+    high, low = np.fmax.reduce(travel, axis=1), np.fmin.reduce(travel, axis=1)
+    stroke = high - low
+    reach = np.maximum(np.fmax.reduce(np.abs(travel), axis=1), 1e-300)
+    return np.where(stroke > 1e-12 * reach, stroke, np.nan)
+
+
+def swings(phi_deg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The swing [°] of each row of link angles (variants, positions) [°] and the angles
+    turned (unwrapped); NaN where the link turns round, does not move or a value is
+    missing."""
+    turned = np.rad2deg(np.unwrap(np.deg2rad(phi_deg), axis=1))
+    swing = turned.max(axis=1) - turned.min(axis=1)
+    moves = np.isfinite(phi_deg).all(axis=1) & (swing > 1e-9) & (swing < 359.0)
+    return np.where(moves, swing, np.nan), turned
+
+
+def peaks(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The value of largest magnitude of each row (variants, positions), signed, and its
+    position (NaN, 0 where a row has none)."""
+    k = np.argmax(np.where(np.isnan(values), -np.inf, np.abs(values)), axis=1)
+    return np.take_along_axis(values, k[:, None], axis=1)[:, 0], k
+
+
+def pivoted(mechanism, link: int) -> bool:
+    """The link turns about a frame pivot (a rocker, or a crank that turns round)."""
+    return any(isinstance(j, Revolute) and 1 in j.links and link in j.links
+               for j in mechanism.joints)
 
 
 def motion_figures(result: Outcome, cols: Columns, at=None) -> dict[str, Any]:
@@ -63,31 +118,27 @@ def motion_figures(result: Outcome, cols: Columns, at=None) -> dict[str, Any]:
     mechanism = result.mechanism
     out: dict[str, Any] = {"transmission": {}, "strokes": {}, "swings": {}}
     for dyad in mechanism.dyads:
-        mu = cols[f"mu_{dyad.number}_deg"]
-        if not np.isfinite(mu).any():
-            continue
-        off = np.minimum(mu, 180.0 - mu)  # the angle to the nearer dead centre
-        k = int(np.nanargmin(off))
-        out["transmission"][str(dyad.number)] = {"min_deg": off[k], "at_deg": at[k]}
+        least, k = least_transmission(cols[f"mu_{dyad.number}_deg"][None, :])
+        if not np.isnan(least[0]):
+            out["transmission"][str(dyad.number)] = {"min_deg": least[0], "at_deg": at[k[0]]}
     for joint in mechanism.joints:
         a, b = joint.name
         if isinstance(joint, Revolute):
             continue
-        travel = cols[f"s_{a}_{b}"]
-        stroke = float(np.nanmax(travel) - np.nanmin(travel))
-        if stroke > 1e-12 * max(float(np.nanmax(np.abs(travel))), 1e-300):
+        travel = cols[f"s_{a}_{b}"][None, :]
+        stroke = strokes(travel)[0]
+        if not np.isnan(stroke):
+            ratio = time_ratios(angle, travel)[0]
             out["strokes"][f"{a}_{b}"] = {"stroke": stroke,
-                                         "time_ratio": time_ratio(angle, travel)}
+                                         "time_ratio": None if np.isnan(ratio) else ratio}
     for link in mechanism.moving_links[1:]:
-        pivoted = any(isinstance(j, Revolute) and 1 in j.links and link in j.links
-                      for j in mechanism.joints)
-        phi = cols[f"phi_{link}_deg"]
-        if not pivoted or not np.isfinite(phi).all():
+        if not pivoted(mechanism, link):
             continue
-        turned = np.rad2deg(np.unwrap(np.deg2rad(phi)))
-        swing = float(turned.max() - turned.min())
-        if 1e-9 < swing < 359.0:
-            out["swings"][str(link)] = {"swing_deg": swing, "time_ratio": time_ratio(angle, turned)}
+        swing, turned = swings(cols[f"phi_{link}_deg"][None, :])
+        if not np.isnan(swing[0]):
+            ratio = time_ratios(angle, turned)[0]
+            out["swings"][str(link)] = {"swing_deg": swing[0],
+                                        "time_ratio": None if np.isnan(ratio) else ratio}
     return out
 
 
@@ -114,21 +165,17 @@ def summary(result: Outcome, cols: Columns, extremes: bool = True) -> dict[str, 
         out["columns"] = {name: _extreme(at, values)
                           for name, values in cols.items() if name != "angle_deg"}
     if result.forces_valid is not None:
-        torque = cols["M_drive"]
-        given = torque[np.isfinite(torque)]  # none where the forces are nowhere given
-        out["drive"] = {"M_max": given.max() if given.size else np.nan,
-                        "M_min": given.min() if given.size else np.nan,
-                        "M_rms": cycle.rms(radians, torque),
-                        "P_mean": cycle.mean(radians, cols["P_drive"])}
-        peaks = {}
-        for joint in result.mechanism.joints:
-            a, b = joint.name
-            name = f"F_{a}_{b}" if isinstance(joint, Revolute) else f"FN_{a}_{b}"
-            values = np.abs(cols[name])
-            if np.isfinite(values).any():
-                k = int(np.nanargmax(values))
-                peaks[name] = {"value": cols[name][k], "at_deg": at[k]}
-        out["joint_peaks"] = peaks
+        torque = cols["M_drive"][None, :]  # NaN where the forces are not given
+        out["drive"] = {"M_max": np.fmax.reduce(torque, axis=1)[0],
+                        "M_min": np.fmin.reduce(torque, axis=1)[0],
+                        "M_rms": cycle.rmss(radians, torque)[0],
+                        "P_mean": cycle.means(radians, cols["P_drive"][None, :])[0]}
+        joint_peaks = {}
+        for name in joint_force_names(result.mechanism):
+            value, k = peaks(cols[name][None, :])
+            if not np.isnan(value[0]):
+                joint_peaks[name] = {"value": value[0], "at_deg": at[k[0]]}
+        out["joint_peaks"] = joint_peaks
     if result.rubbing is not None:
         rows = result.rows & result.forces_valid
         out["friction"] = {"P_mean": cycle.mean(radians, cols["P_friction"]),
@@ -153,6 +200,13 @@ def summary(result: Outcome, cols: Columns, extremes: bool = True) -> dict[str, 
                                            for r in c.reversals]}
                             for c in result.clearance]
     return plain(out)
+
+
+def joint_force_names(mechanism) -> list[str]:
+    """The column of each joint's force: F_a_b of a revolute joint, FN_a_b (the normal
+    force) of a prismatic one."""
+    return [f"F_{a}_{b}" if isinstance(j, Revolute) else f"FN_{a}_{b}"
+            for j in mechanism.joints for a, b in (j.name,)]
 
 
 def motion_summary(result: Outcome) -> dict[str, Any]:

@@ -170,17 +170,10 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
     outputs, cost = run.probe(evaluator, matrix, nominal,
                               precise=(jobs > 1 or executor is not None) and block_size is None)
     units.update({name: unit(name) for name in outputs})
-    path = run.journal_path(None if output is None else os.fspath(output))
-    try:
-        table, evaluated = run.execute(spec, evaluator, matrix, outputs, path, jobs=jobs,
-                                       executor=executor, resume=resume, size=block_size,
-                                       cost=cost, progress=progress)
-    except BaseException:
-        if output is None:
-            os.unlink(path)
-        raise
-    if output is None:
-        os.unlink(path)
+    path = None if output is None else os.fspath(output)
+    table, evaluated = run.execute(spec, evaluator, matrix, outputs, path, jobs=jobs,
+                                   executor=executor, resume=resume, size=block_size,
+                                   cost=cost, progress=progress)
     result = Study(spec, params, outputs, table, evaluated, units=units)
     if spec.question == "sensitivity":
         result.sensitivity = questions.sensitivity(table, spec, outputs, plans.steps(spec))
@@ -218,8 +211,8 @@ def _optimise(spec, evaluator, params, units, jobs, executor) -> Study:
     outputs = list(out)
     units.update({name: unit(name) for name in outputs})
     names = tables.header(params, outputs)
-    row = ["0", *(tables.cell(v) for v in optimum["x"]), status, reason,
-           *(tables.cell(out[n]) for n in outputs)]
+    row = [0, *(float(v) for v in optimum["x"]), status, reason,
+           *(float(out[n]) for n in outputs)]
     return Study(spec, params, outputs, tables.columns_of(names, [row]),
                  optimum["evaluations"], optimum=optimum, units=units)
 

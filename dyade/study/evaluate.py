@@ -43,35 +43,21 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
     """The key results of a sweep (a ``dyade.Result``) as named numbers: what ``analyse``'s
     summary gives (drive torque and power, joint peaks, smallest transmission angles,
     strokes, swings and time ratios, friction power, self-locking), the shaking force and
-    moment, and ``extras`` (``flywheel``: the inertia for ``fluctuation``;
-    ``clearance``: the peak force and amplification per clearance joint). NaN where the
-    summary gives no value (a time ratio of an output that does not swing once)."""
-    from dyade import cycle
+    moment (``figures`` of the one sweep), and ``extras`` (``flywheel``: the inertia for
+    ``fluctuation``; ``clearance``: the peak force and amplification per clearance
+    joint). NaN where the summary gives no value (a time ratio of an output that does
+    not swing once)."""
     from dyade.linkage.summary import summary
 
     cols = result.columns()
-    s = summary(result, cols, extremes=False)
-    out: dict[str, float] = {}
-    for dyad, figures in s["transmission"].items():
-        out[f"mu_{dyad}_min_deg"] = figures["min_deg"]
-    for joint, figures in s["strokes"].items():
-        out[f"stroke_{joint}"] = figures["stroke"]
-        out[f"time_ratio_{joint}"] = figures["time_ratio"]
-    for link, figures in s["swings"].items():
-        out[f"swing_{link}_deg"] = figures["swing_deg"]
-        out[f"time_ratio_{link}"] = figures["time_ratio"]
-    if "drive" in s:
-        drive = s["drive"]
-        out.update(M_drive_max=drive["M_max"], M_drive_min=drive["M_min"],
-                   M_drive_rms=drive["M_rms"], P_drive_mean=drive["P_mean"])
-        for name, peak in s["joint_peaks"].items():
-            out[f"{name}_peak"] = peak["value"]
-        angle = cols["angle_deg"]
-        force = np.hypot(cols["Fx_shake"], cols["Fy_shake"])
-        out["F_shake_max"] = float(np.nanmax(force)) if np.isfinite(force).any() else math.nan
-        out["F_shake_rms"] = cycle.rms(np.deg2rad(angle), force)
-        moment = np.abs(cols["M_shake"])
-        out["M_shake_max"] = float(np.nanmax(moment)) if np.isfinite(moment).any() else math.nan
+    rows = {name: values[None, :] for name, values in cols.items()}
+    out = {name: float(values[0]) for name, values in figures(
+        result.mechanism, cols["angle_deg"], rows, result.forces_valid is not None).items()}
+    if (result.rubbing is not None or result.locking or result.drive is not None
+            or "clearance" in extras):
+        s = summary(result, cols, extremes=False)
+    else:
+        s = {}
     if "friction" in s:
         out["P_friction_mean"] = s["friction"]["P_mean"]
     for joint, lock in s.get("self_locking", {}).items():
@@ -81,12 +67,11 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
         out[f"lock_stop_{joint}_deg"] = float(angles[-1]) if len(angles) else math.nan
         margin = cols.get(f"lock_margin_{joint}")
         if margin is not None:
-            out[f"lock_margin_{joint}_min"] = (float(np.nanmin(margin))
-                                               if np.isfinite(margin).any() else math.nan)
+            out[f"lock_margin_{joint}_min"] = float(np.fmin.reduce(margin))
     if "motion" in s:
         out["speed_mean_rpm"] = s["motion"]["speed_mean_rpm"]
         out["fluctuation"] = s["motion"]["fluctuation"]
-    if "flywheel" in extras and "drive" in s:
+    if "flywheel" in extras and result.forces_valid is not None:
         from dyade.linkage.machine_curve import torque_curve
         from dyade.machine.flywheel import size_flywheel
 
@@ -102,15 +87,86 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
     return {name: math.nan if value is None else float(value) for name, value in out.items()}
 
 
+def figures(mechanism, angle_deg: np.ndarray, cols: dict[str, np.ndarray], forces: bool
+            ) -> dict[str, np.ndarray]:
+    """The key results of the kinematics and the forces of variants of ``mechanism``
+    (columns of (variants, positions), all at the crank angles ``angle_deg``), each a
+    (variants,) array, by the summary's own functions (``dyade.linkage.summary``): the
+    smallest transmission angle per dyad, stroke and time ratio per slider, swing and
+    time ratio per rocker; with ``forces`` the drive torque's peak, trough and RMS, the
+    mean drive power, each joint's peak force, the shaking force's peak and RMS and the
+    shaking moment's peak. A figure no variant has (a slider that never moves) is left
+    out; NaN for a variant without it."""
+    from dyade import cycle
+    from dyade.linkage import summary as figures_
+    from dyade.linkage.model import Revolute
+
+    out: dict[str, np.ndarray] = {}
+
+    def given(name: str, values: np.ndarray) -> bool:
+        if np.isnan(values).all():
+            return False
+        out[name] = values
+        return True
+
+    for dyad in mechanism.dyads:
+        given(f"mu_{dyad.number}_min_deg",
+              figures_.least_transmission(cols[f"mu_{dyad.number}_deg"])[0])
+    for joint in mechanism.joints:
+        if isinstance(joint, Revolute):
+            continue
+        tag = "{}_{}".format(*joint.name)
+        travel = cols[f"s_{tag}"]
+        stroke = figures_.strokes(travel)
+        if given(f"stroke_{tag}", stroke):
+            out[f"time_ratio_{tag}"] = np.where(np.isnan(stroke), np.nan,
+                                                figures_.time_ratios(angle_deg, travel))
+    for link in mechanism.moving_links[1:]:
+        if not figures_.pivoted(mechanism, link):
+            continue
+        swing, turned = figures_.swings(cols[f"phi_{link}_deg"])
+        if given(f"swing_{link}_deg", swing):
+            out[f"time_ratio_{link}"] = np.where(np.isnan(swing), np.nan,
+                                                 figures_.time_ratios(angle_deg, turned))
+    if not forces:
+        return out
+    radians = np.deg2rad(angle_deg)
+    torque = cols["M_drive"]
+    out.update(M_drive_max=np.fmax.reduce(torque, axis=1),
+               M_drive_min=np.fmin.reduce(torque, axis=1),
+               M_drive_rms=cycle.rmss(radians, torque),
+               P_drive_mean=cycle.means(radians, cols["P_drive"]))
+    for name in figures_.joint_force_names(mechanism):
+        given(f"{name}_peak", figures_.peaks(cols[name])[0])
+    force = np.hypot(cols["Fx_shake"], cols["Fy_shake"])
+    out.update(F_shake_max=np.fmax.reduce(force, axis=1), F_shake_rms=cycle.rmss(radians, force),
+               M_shake_max=np.fmax.reduce(np.abs(cols["M_shake"]), axis=1))
+    return out
+
+
 def status_of(values: dict[str, float]) -> str:
     """"locks" where any joint self-locks, else "ok"."""
     return LOCKS if any(v == 1.0 for k, v in values.items() if k.startswith("locks_")) else OK
 
 
+STACK = 200
+"""variants swept together (``dyade.linkage.variants``): 72 200 positions of a four-bar,
+its arrays in the cache"""
+
+
 class Evaluator:
-    """The study's variants, evaluated one after another: ``evaluator(block)`` for a
-    block of (variant number, values) gives one row per variant (a class, not a closure:
-    it pickles for the processes of any executor)."""
+    """The study's variants: ``evaluator(block)`` for a block of (variant number,
+    values) gives one row per variant (a class, not a closure: it pickles for the
+    processes of any executor).
+
+    A block is read and swept together, ``STACK`` variants at a time, where the plan
+    allows (``dyade.linkage.variants``: no friction, [drive] or clearance data, no
+    extra outputs, parameters that are numbers of the file): the file read once with
+    ``Variants`` at the parameters' key paths (checked against the first and the last
+    variant read alone), the variants × positions swept in one run, the key results
+    by the summary's own functions over (variants, positions). Every variant that is
+    not clean there (it does not close, comes near a dead centre, is refused, ...) and
+    every block that cannot be stacked is evaluated alone (``one``)."""
 
     def __init__(self, path: str, data: dict[str, Any], keys: tuple[str, ...],
                  extras: tuple[str, ...] = (), fluctuation: float = 0.02) -> None:
@@ -118,6 +174,12 @@ class Evaluator:
         self.extras, self.fluctuation = extras, fluctuation
         self.calls = 0
         """variants evaluated by this object (in this process)"""
+        self.together = 0
+        """of these, variants evaluated in a stacked sweep"""
+        self.stacks = not extras and not any(_whole(key) for key in keys)
+        """whether blocks are worth stacking (cleared on the first that cannot be)"""
+        self.stages: bool | None = None
+        """whether the file's stages can be stacked (None: not known yet)"""
 
     def mechanism(self, values) -> Any:
         """The variant's mechanism: the file's data (with the study's fixed overrides)
@@ -157,9 +219,117 @@ class Evaluator:
                 if k.startswith("locks_") and v == 1.0)
         return status, reason, out
 
+    def read_together(self, values: np.ndarray):
+        """The block's variants (rows of ``values``) read at once: a mechanism with
+        ``Variants`` where they differ; None where the reader cannot take them so (a
+        value it checks in a way an array does not pass, a refused variant) or the
+        result is not each variant's own mechanism (the first and the last compared
+        with their own reading), or the variants' plans differ."""
+        from dyade.arrays import Variants
+        from dyade.errors import InputError
+        from dyade.files.mechanism import NUMBERING, build, set_dotted
+        from dyade.linkage.plan import plan
+        from dyade.linkage.stack import pick, same
+
+        data = copy.deepcopy(self.data)
+        label = self.path.rsplit("/", 1)[-1]
+        try:
+            for key, column in zip(self.keys, values.T):
+                set_dotted(data, key, Variants(column), label, "parameter", NUMBERING)
+            together = build(data, self.path)
+            dynamics = np.zeros(len(values), dtype=bool)  # masses that vanish in some
+            for link in together.links.values():          # variants: plans that differ
+                dynamics |= (np.asarray(link.mass) > 0.0) | (np.asarray(link.inertia) > 0.0)
+            if dynamics.any() and not dynamics.all() and not (together.loads
+                                                              or together.springs):
+                return None
+            for index in (0, len(values) - 1):
+                alone = self.mechanism(values[index])
+                if same(pick(together, index), alone) or plan(alone) != plan(together):
+                    return None
+        except (InputError, ValueError, TypeError):  # read variant by variant instead
+            return None
+        return together
+
+    def stages_stack(self, values: np.ndarray) -> bool:
+        """Whether the file's stages let variants be swept together (decided on the
+        first variant that reads; ``variants.stackable``)."""
+        from dyade.errors import InputError
+        from dyade.linkage import variants
+        from dyade.linkage.plan import plan
+
+        if self.stages is None:
+            for row in values:
+                try:
+                    self.stages = variants.stackable(plan(self.mechanism(row)))
+                except InputError:
+                    continue
+                self.stacks = self.stacks and self.stages
+                break
+        return bool(self.stages)
+
+    def read_each(self, values: np.ndarray) -> tuple[list[int], Any]:
+        """The block's variants read one by one and stacked (``stack.stack``): (the
+        variants read, their stacked mechanism), or ([], None) where fewer than two are
+        read or they differ in more than numbers."""
+        from dyade.errors import InputError
+        from dyade.linkage.plan import plan
+        from dyade.linkage.stack import NotStackable, stack
+
+        read, mechanisms = [], []
+        for index, row in enumerate(values):
+            try:
+                mechanisms.append(self.mechanism(row))
+            except InputError:  # refused: its own evaluation says why
+                continue
+            read.append(index)
+        if len(read) < 2 or len({plan(m) for m in mechanisms}) > 1:
+            return [], None  # (variants whose stages differ are swept each alone)
+        try:
+            return read, stack(mechanisms, mechanisms[0].sweep.count)
+        except NotStackable:
+            return [], None
+
+    def swept_together(self, values: np.ndarray) -> dict[int, tuple[str, str, dict]]:
+        """Variant (row of ``values``) -> its row, for the clean variants of one sweep of
+        them all (``dyade.linkage.variants``); empty where the block is not stacked.
+        The variants are read at once (``read_together``), else one by one."""
+        from dyade.linkage import variants
+        from dyade.linkage.stack import spread
+
+        if not self.stacks or len(values) < 2 or not self.stages_stack(values):
+            return {}
+        together = self.read_together(values)
+        if together is not None:
+            read, stacked = list(range(len(values))), spread(together, together.sweep.count)
+        else:
+            read, stacked = self.read_each(values)
+            if stacked is None:
+                return {}
+        try:
+            swept = variants.sweep(stacked, len(read))
+        except (ValueError, TypeError):  # NotStackable, or a number the engine takes
+            self.stacks = False          # as one: every block variant by variant
+            return {}
+        out = figures(stacked, swept.angle_deg, swept.columns, swept.forces)
+        clean = np.flatnonzero(swept.clean)
+        self.calls += clean.size
+        self.together += clean.size
+        names = list(out)
+        table = np.column_stack([out[name][clean] for name in names]).tolist()
+        return {read[i]: (OK, "", dict(zip(names, row)))
+                for i, row in zip(clean.tolist(), table)}
+
     def __call__(self, block: tuple[int, np.ndarray]) -> list[tuple[int, str, str, dict]]:
         first, values = block
-        return [(first + i, *self.one(row)) for i, row in enumerate(values)]
+        rows = []
+        parts = -(-len(values) // STACK)  # as many sweeps as needed, of equal size
+        for indices in np.array_split(np.arange(len(values)), max(parts, 1)):
+            start, part = int(indices[0]) if indices.size else 0, values[indices]
+            done = self.swept_together(part)
+            rows += [(first + start + i, *(done[i] if i in done else self.one(row)))
+                     for i, row in enumerate(part)]
+        return rows
 
 
 def _whole(key: str) -> bool:

@@ -14,7 +14,7 @@ import numpy as np
 
 from dyade.errors import InputError
 from dyade.study import tables
-from dyade.study.evaluate import FAILED, Evaluator
+from dyade.study.evaluate import FAILED, STACK, Evaluator
 from dyade.study.spec import Spec
 
 TASK_TIME = 0.1
@@ -48,8 +48,9 @@ KEY_PROBLEMS = ("unknown key", "are numbered", "is a value, not a table")
 def probe(evaluator: Evaluator, matrix: np.ndarray, nominal, precise: bool = True
           ) -> tuple[list[str], float]:
     """The output names (of the nominal variant, else of the first that gives outputs)
-    and the time one variant takes [s]: with ``precise``, of a second evaluation (the
-    first loads modules), for the block size of parallel runs."""
+    and the time one variant takes [s], for the block size: of a second evaluation
+    with ``precise`` (the first loads modules); where the evaluator sweeps variants
+    together, of a trial block of the first variants (their share of a block's time)."""
     started = time.perf_counter()
     status, _, out = evaluator.one(nominal)
     cost = time.perf_counter() - started
@@ -64,22 +65,38 @@ def probe(evaluator: Evaluator, matrix: np.ndarray, nominal, precise: bool = Tru
         evaluator.calls -= 1
         if out:
             break
+    trial = matrix[:TRIAL]
+    if len(trial) > 1 and evaluator.stacks and evaluator.stages_stack(trial):
+        calls, together = evaluator.calls, evaluator.together
+        started = time.perf_counter()
+        evaluator((0, trial))
+        if evaluator.together > together:  # (else: variant by variant, as measured)
+            cost = (time.perf_counter() - started) / len(trial)
+        evaluator.calls, evaluator.together = calls, together
     return list(out), cost
 
 
-def block_size(count: int, cost: float, workers: int) -> int:
-    """Variants per block: at least ``TASK_TIME`` of work, but every worker busy."""
+TRIAL = 64
+"""variants of the trial block that measures a stacked sweep's cost per variant"""
+
+
+def block_size(count: int, cost: float, workers: int, stack: int = 1) -> int:
+    """Variants per block: at least ``TASK_TIME`` of work, but every worker busy; a
+    whole number of sweeps of ``stack`` variants where the evaluator sweeps them
+    together (and that keeps every worker busy)."""
     size = max(1, math.ceil(TASK_TIME / max(cost, 1e-6)))
+    size = stack * math.ceil(size / stack)
     if workers > 1:
         size = min(size, max(1, math.ceil(count / workers)))
     return size
 
 
 def execute(spec: Spec, evaluator: Evaluator, matrix: np.ndarray, outputs: list[str],
-            journal_path: str, *, jobs: int = 1, executor=None, resume: bool = False,
+            journal_path: str | None, *, jobs: int = 1, executor=None, resume: bool = False,
             size: int | None = None, cost: float = 0.01,
             progress: Callable[[int, int], None] | None = None) -> tuple[dict, int]:
-    """Evaluate the rows of ``matrix`` not yet in the journal; (the whole table as named
+    """Evaluate the rows of ``matrix`` not yet in the journal (a CSV at
+    ``journal_path``; None: the rows are kept here only); (the whole table as named
     columns, the variants evaluated by this call)."""
     from dyade import parallel
 
@@ -89,7 +106,7 @@ def execute(spec: Spec, evaluator: Evaluator, matrix: np.ndarray, outputs: list[
     rows = dict(journal.done)
     for index, row in rows.items():  # the plan still gives these values?
         if index >= len(matrix) or any(
-                float(row[1 + j]) != matrix[index, j] for j in range(len(params))):
+                row[1 + j] != matrix[index, j] for j in range(len(params))):
             journal.close()
             raise InputError(f"{spec.label}: resuming: variant {index} of {journal_path} has "
                              f"other parameter values than this plan gives (its seed, "
@@ -97,7 +114,7 @@ def execute(spec: Spec, evaluator: Evaluator, matrix: np.ndarray, outputs: list[
                              f"elsewhere.", source=journal_path)
     todo = [i for i in range(len(matrix)) if i not in rows]
     workers = jobs if executor is None else max(jobs, 2)
-    size = size or block_size(len(todo), cost, workers)
+    size = size or block_size(len(todo), cost, workers, STACK if evaluator.stacks else 1)
     blocks = []
     for k in range(0, len(todo), size):  # consecutive runs of variants not done
         chunk = todo[k:k + size]
@@ -116,12 +133,12 @@ def execute(spec: Spec, evaluator: Evaluator, matrix: np.ndarray, outputs: list[
         if progress is not None:
             progress(done, len(matrix))
         for block in results:
-            lines = [[str(index), *(tables.cell(v) for v in matrix[index]), status, reason,
-                      *(tables.cell(out.get(name, math.nan)) for name in outputs)]
+            lines = [[index, *matrix[index].tolist(), status, reason,
+                      *[out.get(name, math.nan) for name in outputs]]
                      for index, status, reason, out in block]
             journal.write(lines)
             for line in lines:
-                rows[int(line[0])] = line
+                rows[line[0]] = line
             evaluated += len(lines)
             done += len(lines)
             if progress is not None:
@@ -140,12 +157,4 @@ def _lost(block, reason: str):
     return [(first + i, FAILED, f"{reason} (rerun it alone)", {}) for i in range(len(values))]
 
 
-def journal_path(output: str | None) -> str:
-    """Where the rows stream to: ``output`` (CSV), else a temporary file."""
-    if output is not None:
-        return output
-    import tempfile
 
-    handle, path = tempfile.mkstemp(suffix=".csv", prefix="dyade-study-")
-    os.close(handle)
-    return path

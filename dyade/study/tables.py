@@ -30,13 +30,19 @@ def cell(value: Any) -> str:
 
 class Journal:
     """The CSV a study streams to: a header, then one line per variant, a block at a
-    time, flushed; ``done``: the rows already there (``--resume``)."""
+    time, flushed; ``done``: the rows already there (``--resume``), as ``typed``
+    gives them. Without a path, nothing is written (the rows are the caller's)."""
 
-    def __init__(self, path: str, names: list[str], resume: bool, label: str = "study") -> None:
+    def __init__(self, path: str | None, names: list[str], resume: bool,
+                 label: str = "study") -> None:
         self.path, self.names = path, names
-        self.done: dict[int, list[str]] = {}
+        self.done: dict[int, list] = {}
+        self.handle = None
+        if path is None:
+            return
         if resume and os.path.exists(path) and os.path.getsize(path) > 0:
-            self.done = _read_rows(path, names, label)
+            self.done = {index: typed(names, row)
+                         for index, row in _read_rows(path, names, label).items()}
             self._trim()
             self.handle = open(path, "a", newline="", encoding="utf-8")
         else:
@@ -52,12 +58,25 @@ class Journal:
             if data and not data.endswith(b"\n"):
                 handle.truncate(data.rfind(b"\n") + 1)
 
-    def write(self, rows: list[list[str]]) -> None:
-        self.writer.writerows(rows)
+    def write(self, rows: list[list]) -> None:
+        """Rows of typed values (the variant, the parameters, status and reason, the
+        outputs): each number as the shortest text that reads back to it (``cell``)."""
+        if self.handle is None:
+            return
+        self.writer.writerows([[str(row[0]), *[v if isinstance(v, str) else repr(v)
+                                               for v in row[1:]]] for row in rows])
         self.handle.flush()
 
     def close(self) -> None:
-        self.handle.close()
+        if self.handle is not None:
+            self.handle.close()
+
+
+def typed(names: list[str], row: list[str]) -> list:
+    """A row of the CSV as values: the variant an int, the words as they are, the rest
+    floats (an empty cell NaN)."""
+    return [int(v) if name == "variant" else v if name in TEXT
+            else float(v) if v != "" else np.nan for name, v in zip(names, row)]
 
 
 def _read_rows(path: str, names: list[str], label: str) -> dict[int, list[str]]:
@@ -85,11 +104,12 @@ def read_csv(path: str) -> dict[str, np.ndarray]:
     """A study's CSV as named columns (numbers as floats, ``variant`` as integers)."""
     with open(path, newline="", encoding="utf-8") as handle:
         rows = list(csv.reader(handle))
-    return columns_of(rows[0], rows[1:])
+    return columns_of(rows[0], [typed(rows[0], row) for row in rows[1:]])
 
 
-def columns_of(names: list[str], rows: list[list[str]]) -> dict[str, np.ndarray]:
-    rows = sorted(rows, key=lambda r: int(r[0]))
+def columns_of(names: list[str], rows: list[list]) -> dict[str, np.ndarray]:
+    """Typed rows (``typed``) as named columns, in the order of their variants."""
+    rows = sorted(rows, key=lambda r: r[0])
     out: dict[str, np.ndarray] = {}
     for k, name in enumerate(names):
         values = [r[k] for r in rows]
@@ -98,7 +118,7 @@ def columns_of(names: list[str], rows: list[list[str]]) -> dict[str, np.ndarray]
         elif name in TEXT:
             out[name] = np.array(values, dtype=object)
         else:
-            out[name] = np.array([float(v) if v != "" else np.nan for v in values], dtype=float)
+            out[name] = np.array(values, dtype=float)
     return out
 
 

@@ -57,7 +57,7 @@ def fourbar(phi: np.ndarray, omega: float, R3: float | np.ndarray = R3,  # noqa:
     f23x, f23y = M3 * g3x + fx, M3 * g3y + fy
     torque = ax * f23y - ay * f23x
     return {"phi3": phi3, "phi4": phi4, "omega3": w3, "omega4": w4, "alpha3": a3,
-            "alpha4": a4, "F34x": fx, "F34y": fy, "F23x": f23x, "F23y": f23y, "M_drive": torque}
+            "alpha4": a4, "a3x": g3x, "a3y": g3y, "a4x": g4x, "a4y": g4y, "F34x": fx, "F34y": fy, "F23x": f23x, "F23y": f23y, "M_drive": torque}
 
 
 SR2, SL3, SE = 0.04, 0.16, 0.01  # [m] crank, conrod, guide offset (mechanisms/slider-crank.toml)
@@ -94,18 +94,56 @@ def slider_crank(phi: np.ndarray, omega: float) -> dict[str, np.ndarray]:
 def fourbar_variants(r3: np.ndarray, r4: np.ndarray, phi: np.ndarray, omega: float
                      ) -> dict[str, np.ndarray]:
     """Key results of four-bar variants (coupler ``r3``, rocker ``r4`` [m], each (V,))
-    over crank angles ``phi`` (P,), as ``dyade study`` gives them: the drive torque's
-    peak, trough and RMS over the cycle (trapezoid rule), the peak forces in joints
-    (2,3) and (3,4), and the smallest transmission angle [°]; one (variants × positions)
-    broadcast."""
+    over crank angles ``phi`` (P,, one revolution, 0 to 2π), every one ``dyade study``
+    gives for the shipped four-bar: the drive torque's peak, trough and RMS and the mean
+    drive power over the cycle (the periodic trapezoid rule), the peak force of every
+    joint, the smallest transmission angle [°], the rocker's swing [°] and time ratio,
+    the shaking force's peak and RMS and the shaking moment's peak; one (variants ×
+    positions) broadcast."""
     out = fourbar(phi[None, :], omega, r3[:, None], r4[:, None])
+    cycle = slice(0, -1)  # 360° repeats 0°: each position once
+    turn = phi[-1] - phi[0]
+
+    def mean(values):  # over the revolution: the periodic trapezoid rule
+        return values[:, cycle].sum(axis=1) / (phi.size - 1) if turn else values.mean(axis=1)
+
     torque = out["M_drive"]
-    span = phi[-1] - phi[0]
-    mean_square = np.sum((torque[:, 1:] ** 2 + torque[:, :-1] ** 2) * np.diff(phi), axis=1) / (
-        2.0 * span)
     mu = np.rad2deg(np.abs(np.remainder(out["phi3"] - out["phi4"] + np.pi, 2 * np.pi) - np.pi))
+    # the frame's load: minus the rate of change of the moving links' momentum (crank
+    # massless, no gravity); its moment about the crank pivot
+    c3, s3, c4, s4 = (np.cos(out["phi3"]), np.sin(out["phi3"]), np.cos(out["phi4"]),
+                      np.sin(out["phi4"]))
+    g3x, g3y = R2 * np.cos(phi) + G3 * c3, R2 * np.sin(phi) + G3 * s3
+    g4x, g4y = B0 + G4 * c4, G4 * s4
+    f3x, f3y = M3 * out["a3x"], M3 * out["a3y"]
+    f4x, f4y = M4 * out["a4x"], M4 * out["a4y"]
+    shake = np.hypot(f3x + f4x, f3y + f4y)
+    moment = (g3x * f3y - g3y * f3x + J3 * out["alpha3"] + g4x * f4y - g4y * f4x
+              + J4 * out["alpha4"])
+    f14 = np.hypot(f4x - out["F34x"], f4y - out["F34y"])  # the rocker: m4·a4 = F14 + F34
+    rocker = np.rad2deg(np.unwrap(out["phi4"], axis=1))
+    top, bottom = _vertex(rocker[:, cycle], 1.0), _vertex(rocker[:, cycle], -1.0)
+    forward = np.rad2deg((top - bottom) * (phi[1] - phi[0])) % 360.0
+    short = np.minimum(forward, 360.0 - forward)
     return {"M_drive_max": torque.max(axis=1), "M_drive_min": torque.min(axis=1),
-            "M_drive_rms": np.sqrt(mean_square),
+            "M_drive_rms": np.sqrt(mean(torque * torque)),
+            "P_drive_mean": mean(torque * omega),
+            "F_1_2_peak": np.hypot(out["F23x"], out["F23y"]).max(axis=1),
             "F_2_3_peak": np.hypot(out["F23x"], out["F23y"]).max(axis=1),
             "F_3_4_peak": np.hypot(out["F34x"], out["F34y"]).max(axis=1),
-            "mu_2_min_deg": np.minimum(mu, 180.0 - mu).min(axis=1)}
+            "F_1_4_peak": f14.max(axis=1),
+            "mu_2_min_deg": np.minimum(mu, 180.0 - mu).min(axis=1),
+            "swing_4_deg": rocker.max(axis=1) - rocker.min(axis=1),
+            "time_ratio_4": (360.0 - short) / short,
+            "F_shake_max": shake.max(axis=1), "F_shake_rms": np.sqrt(mean(shake * shake)),
+            "M_shake_max": np.abs(moment).max(axis=1)}
+
+
+def _vertex(values: np.ndarray, sign: float) -> np.ndarray:
+    """The position (in steps, fractional) of each row's maximum (sign +1) or minimum
+    (−1) of a periodic sampled curve, by the parabola through it and its neighbours."""
+    rows = np.arange(values.shape[0])
+    k = np.argmax(sign * values, axis=1)
+    before, here, after = (values[rows, k - 1], values[rows, k],
+                           values[rows, (k + 1) % values.shape[1]])
+    return k + 0.5 * (before - after) / (before - 2.0 * here + after)

@@ -8,8 +8,11 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import numpy as np
+
+from dyade.arrays import Variants
 from dyade.files.mechanism.friction import FrictionReader
-from dyade.files.schema import show, suggest
+from dyade.files.schema import is_number, show, suggest
 from dyade.linkage.model import CRANK, FRAME, Crank, Dyad, Link, Prismatic, Revolute, Vec
 from dyade.units import rpm_to_rad_per_s
 
@@ -34,14 +37,14 @@ class LinkReader(FrictionReader):
 
     def pair(self, value: Any, key: str) -> Vec:
         if (not isinstance(value, list) or len(value) != 2
-                or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)):
+                or not all(is_number(v) for v in value)):
             raise self.fail(key, f"must be a pair of numbers [ξ, η] [{self.length_unit}], "
                                  f"got {show(value)}.", value, self.length_unit)
-        if not all(math.isfinite(v) for v in value):
+        if not all(np.isfinite(v).all() for v in value):
             raise self.fail(key, f"must be a pair of finite numbers [ξ, η] "
                                  f"[{self.length_unit}], got {show(value)}.", value,
                             self.length_unit)
-        return (float(value[0]) * self.length, float(value[1]) * self.length)
+        return (_real(value[0]) * self.length, _real(value[1]) * self.length)
 
     def named_points(self, table: Any, key: str) -> dict[str, Vec]:
         if not isinstance(table, dict):
@@ -59,7 +62,7 @@ class LinkReader(FrictionReader):
         pivot = self.point_on(FRAME, table.get("pivot", [0.0, 0.0]), "crank.pivot")
         rpm = self.number(self.required(table, "speed_rpm", "crank"), "crank.speed_rpm", "rpm",
                           positive=True)
-        if rpm > NUMERIC_RPM:  # above the plausible 1e6 rpm a sweep is analysed but not given
+        if np.max(rpm) > NUMERIC_RPM:  # above the plausible 1e6 rpm a sweep is analysed but not given
             raise self.fail("crank.speed_rpm", f"must be at most {NUMERIC_RPM:g} rpm (beyond "
                                                f"it the squares overflow; 0.01…1e+06 rpm is "
                                                f"what a machine has), got {rpm:g}.", rpm, "rpm")
@@ -184,3 +187,8 @@ class LinkReader(FrictionReader):
                                     f"already joins; two joints between the same links are "
                                     f"not a dyad chain.")
                 seen[name] = f"joint {letter} of dyad {dyad.number}"
+
+
+def _real(value: Any) -> float | Variants:
+    """A number of the file as a float (``Variants`` as they are)."""
+    return value if isinstance(value, Variants) else float(value)

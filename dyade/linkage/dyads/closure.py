@@ -92,9 +92,13 @@ def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: Float
 
 
 def scalar(value):
-    """A plain float for a number; an array (a variant's number per position,
-    ``dyade.linkage.stack``) as it is."""
-    return float(value) if np.ndim(value) == 0 else value
+    """A plain float for a number, or for an array (a variant's number per position,
+    ``dyade.linkage.stack``) that holds one number throughout (an angle of 0 of links of
+    different lengths); another array as it is."""
+    if np.ndim(value) == 0:
+        return float(value)
+    first = value.flat[0]
+    return float(first) if (value == first).all() else value
 
 
 def is_nought(value) -> bool:

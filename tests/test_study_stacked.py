@@ -1,0 +1,188 @@
+"""A study's variants swept together (``dyade.linkage.variants``, issue 26 "Fast by
+design"): every row the stacked sweep gives equals the row of the variant evaluated
+alone (its own reading, ``analyse`` and summary) to 1e-12; the variants it cannot
+vouch for (refused, not closing, near a dead centre) are evaluated alone; stages that
+couple positions (friction) are never stacked."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from dyade.files.mechanism import load_data
+from dyade.linkage.stack import pick, same
+from dyade.study.evaluate import Evaluator
+from tests.helpers import shipped
+
+
+def _pair(name, keys, data=None):
+    data = data if data is not None else load_data(shipped(name))
+    together = Evaluator(str(shipped(name)), data, keys)
+    alone = Evaluator(str(shipped(name)), data, keys)
+    alone.stacks = False
+    return together, alone
+
+
+def _assert_same_rows(rows, want):
+    assert [r[:3] for r in rows] == [w[:3] for w in want]
+    for (_, _, _, got), (_, _, _, expected) in zip(rows, want):
+        assert set(got) == set(expected)
+        for name, value in expected.items():
+            if np.isnan(value):
+                assert np.isnan(got[name]), name
+            else:
+                assert got[name] == pytest.approx(value, rel=1e-12, abs=1e-12 * abs(value)), name
+
+
+def _uniform(rng, bounds, count):
+    return np.column_stack([rng.uniform(lo, hi, count) for lo, hi in bounds])
+
+
+CASES = {
+    "four-bar lengths": ("fourbar.toml", ("dyad.2.lengths.1", "dyad.2.lengths.2"),
+                         [(190, 210), (140, 160)]),
+    "slider-crank": ("slider-crank.toml", ("dyad.2.length", "crank.length", "links.4.mass"),
+                     [(150, 170), (36, 44), (0.3, 0.8)]),
+    "dyade-16 (every kind)": ("dyade-16.toml", ("dyad.2.lengths.2", "dyad.7.lengths.1",
+                                                "frame.points.C0.2"),
+                              [(146, 154), (158, 163), (-144, -136)]),
+    "slotted lever": ("slotted-lever.toml", ("dyad.2.B.offset",), [(-4, 5)]),
+}
+
+
+@pytest.mark.parametrize("case", list(CASES))
+def test_a_stacked_block_gives_the_rows_of_each_variant_alone(case):
+    name, keys, bounds = CASES[case]
+    values = _uniform(np.random.default_rng(7), bounds, 24)
+    together, alone = _pair(name, keys)
+    rows = together((5, values))
+    assert together.together == 24 and together.calls == 24  # all in one sweep
+    _assert_same_rows(rows, alone((5, values)))
+
+
+def test_masses_centres_and_the_speed_stack_too():
+    data = load_data(shipped("fourbar.toml"))
+    data["links"]["2"] = {"mass": 0.6, "centre": [0.0, 0.0]}
+    keys = ("links.2.centre.1", "links.2.centre.2", "links.4.centre.1", "links.3.mass",
+            "crank.speed_rpm")
+    values = _uniform(np.random.default_rng(3), [(-100, 50), (-20, 20), (-150, 0), (0.5, 2),
+                                                 (100, 600)], 30)
+    together, alone = _pair("fourbar.toml", keys, data)
+    rows = together((0, values))
+    assert together.together == 30
+    _assert_same_rows(rows, alone((0, values)))
+
+
+def test_variants_it_cannot_vouch_for_are_evaluated_alone():
+    """Refused (a negative length: the block is read variant by variant and stacked),
+    not closing, and at a dead centre (coupler + rocker = frame + crank: the rigid model
+    has no value there, the single run leaves those positions out with a note)."""
+    values = np.array([[200, 150], [-5, 150], [100, 150], [170, 130], [195, 152],
+                       [250, 150], [201, 151]], dtype=float)
+    together, alone = _pair("fourbar.toml", ("dyad.2.lengths.1", "dyad.2.lengths.2"))
+    rows = together((0, values))
+    want = alone((0, values))
+    _assert_same_rows(rows, want)
+    assert [r[1] for r in rows] == ["ok", "refused", "does not close", "ok", "ok", "ok", "ok"]
+    assert together.together == 4  # 170/130 touches a dead centre: alone
+    assert np.isnan(rows[3][3]["mu_2_min_deg"]) or rows[3][3]["mu_2_min_deg"] < 2.0
+
+
+def test_friction_is_swept_variant_by_variant(monkeypatch):
+    """A file with friction (its Newton solve couples nothing but needs each variant's
+    own μ and loads) is never stacked: the stacked sweep does not even run."""
+    from dyade.linkage import variants
+
+    def forbidden(*args, **kwargs):
+        raise AssertionError("a friction study was stacked")
+
+    monkeypatch.setattr(variants, "sweep", forbidden)
+    data = load_data(shipped("fourbar.toml"), {"friction.coefficient": 0.1,
+                                               "friction.pin_radius": 10})
+    together = Evaluator(str(shipped("fourbar.toml")), data, ("dyad.2.lengths.1",))
+    rows = together((0, np.array([[198.0], [202.0]])))
+    assert [r[1] for r in rows] == ["ok", "ok"] and together.together == 0
+    assert "P_friction_mean" in rows[0][3]
+
+
+def test_the_block_read_at_once_is_each_variant_read_alone():
+    data = load_data(shipped("fourbar.toml"))
+    data["links"]["2"] = {"mass": 0.6, "centre": [0.0, 0.0]}
+    keys = ("dyad.2.lengths.1", "links.2.centre.1", "links.3.inertia", "crank.speed_rpm",
+            "crank.length")
+    values = _uniform(np.random.default_rng(5), [(190, 210), (-60, 0), (0.002, 0.006),
+                                                 (200, 400), (45, 55)], 12)
+    evaluator = Evaluator(str(shipped("fourbar.toml")), data, keys)
+    together = evaluator.read_together(values)
+    assert together is not None
+    for index, row in enumerate(values):
+        assert same(pick(together, index), evaluator.mechanism(row), rtol=0.0) == ""
+
+
+def test_a_reading_that_differs_is_not_used(monkeypatch):
+    """The block read at once is checked against its first and last variant read alone:
+    a reader that took an array differently would be caught (here: a mechanism that is
+    one bit off) and the block read variant by variant."""
+    evaluator = Evaluator(str(shipped("fourbar.toml")), load_data(shipped("fourbar.toml")),
+                          ("dyad.2.lengths.1",))
+    values = np.array([[199.0], [201.0]])
+    assert evaluator.read_together(values) is not None
+    build = evaluator.mechanism
+
+    def off(row):
+        import dataclasses
+
+        mechanism = build(row)
+        crank = dataclasses.replace(mechanism.crank, length=mechanism.crank.length * (1 + 1e-12))
+        return dataclasses.replace(mechanism, crank=crank)
+
+    monkeypatch.setattr(evaluator, "mechanism", off)
+    assert evaluator.read_together(values) is None
+
+
+def test_a_study_sweeps_its_variants_in_blocks(tmp_path):
+    """The API's study of 1000 four-bar variants: every variant in a stacked sweep, in
+    blocks of whole sweeps."""
+    import dyade
+    from dyade.study import run
+
+    path = tmp_path / "study.toml"
+    path.write_text(f'mechanism = "{shipped("fourbar.toml")}"\n[plan]\nkind = "monte-carlo"\n'
+                    f'samples = 1000\nseed = 2\n[parameters]\n'
+                    f'"dyad.2.lengths.1" = {{ uniform = [195, 205] }}\n')
+    calls = []
+    original = run.Evaluator.swept_together
+
+    def counting(self, values):
+        calls.append(len(values))
+        return original(self, values)
+
+    import unittest.mock
+
+    with unittest.mock.patch.object(run.Evaluator, "swept_together", counting):
+        result = dyade.study(str(path))
+    assert (result.columns()["status"] == "ok").all()
+    assert sum(calls) >= 1000 and max(calls) <= 200 and min(calls) > 1
+
+
+def test_a_variant_beyond_the_plausible_is_evaluated_alone():
+    """At 3e7 rpm the accelerations pass 1e12 (``columns.PLAUSIBLE``): a single run
+    gives those rows no forces, so the stacked sweep must not give a number for them."""
+    values = np.array([[300.0], [2e6], [3e7]])
+    together, alone = _pair("fourbar.toml", ("crank.speed_rpm",))
+    rows = together((0, values))
+    _assert_same_rows(rows, alone((0, values)))
+    assert np.isnan(rows[2][3]["M_drive_max"]) and together.together <= 2
+
+
+def test_kinematics_only_variants_at_a_dead_centre_are_evaluated_alone():
+    """Without masses only the kinematics is swept: the dead-centre band itself (not the
+    forces' validity) keeps the 170.03/130 variant (smallest transmission angle 1.6°,
+    inside the 2° band, not singular) out of the stacked sweep."""
+    data = load_data(shipped("fourbar.toml"))
+    del data["links"]
+    values = np.array([[200.0, 150.0], [170.03, 130.0], [195.0, 152.0]])
+    together, alone = _pair("fourbar.toml", ("dyad.2.lengths.1", "dyad.2.lengths.2"), data)
+    rows = together((0, values))
+    _assert_same_rows(rows, alone((0, values)))
+    assert together.together == 2 and "M_drive_max" not in rows[0][3]
