@@ -176,6 +176,18 @@ def summary(result: Outcome, cols: Columns, extremes: bool = True) -> dict[str, 
             if not np.isnan(value[0]):
                 joint_peaks[name] = {"value": value[0], "at_deg": at[k[0]]}
         out["joint_peaks"] = joint_peaks
+    out.update(stage_figures(result, cols))
+    return plain(out)
+
+
+def stage_figures(result: Outcome, cols: Columns) -> dict[str, Any]:
+    """The summary's figures of the stages beyond the kinematics and the forces, where
+    the sweep ran them: friction (its mean power, iterations, worst residual),
+    self-locking (per slider and joint: whether and where), the crank's motion from the
+    equation of motion, the clearance check."""
+    angle = cols["angle_deg"]
+    radians = np.deg2rad(angle)
+    out: dict[str, Any] = {}
     if result.rubbing is not None:
         rows = result.rows & result.forces_valid
         out["friction"] = {"P_mean": cycle.mean(radians, cols["P_friction"]),
@@ -199,7 +211,7 @@ def summary(result: Outcome, cols: Columns, extremes: bool = True) -> dict[str, 
                                             "amplification": r.amplification}
                                            for r in c.reversals]}
                             for c in result.clearance]
-    return plain(out)
+    return out
 
 
 def joint_force_names(mechanism) -> list[str]:

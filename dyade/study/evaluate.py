@@ -1,5 +1,7 @@
-"""One variant: the mechanism file with the study's overrides, swept by
-``dyade.analyse``, its summary flattened to named key results (``key_results``).
+"""The study's variants: each one's mechanism file with the study's overrides, swept by
+``dyade.analyse`` and its summary flattened to named key results (``key_results``), or
+a block of them read at once and swept together (``Evaluator``,
+``dyade.linkage.variants``), their key results by the same functions (``figures``).
 
 A variant that cannot be built (the reader refuses a value), does not close over the
 sweep (``AssemblyError``) or fails otherwise is a row with its status and reason and no
@@ -47,17 +49,13 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
     ``fluctuation``; ``clearance``: the peak force and amplification per clearance
     joint). NaN where the summary gives no value (a time ratio of an output that does
     not swing once)."""
-    from dyade.linkage.summary import summary
+    from dyade.linkage.summary import stage_figures
 
     cols = result.columns()
     rows = {name: values[None, :] for name, values in cols.items()}
     out = {name: float(values[0]) for name, values in figures(
         result.mechanism, cols["angle_deg"], rows, result.forces_valid is not None).items()}
-    if (result.rubbing is not None or result.locking or result.drive is not None
-            or "clearance" in extras):
-        s = summary(result, cols, extremes=False)
-    else:
-        s = {}
+    s = stage_figures(result, cols)
     if "friction" in s:
         out["P_friction_mean"] = s["friction"]["P_mean"]
     for joint, lock in s.get("self_locking", {}).items():
@@ -103,33 +101,56 @@ def figures(mechanism, angle_deg: np.ndarray, cols: dict[str, np.ndarray], force
 
     out: dict[str, np.ndarray] = {}
 
+    def each(rows: list[np.ndarray], function) -> list:
+        """``function`` of the rows of several (variants, positions) arrays in one call
+        (they share the crank angles): its results split again, one per array."""
+        if not rows:
+            return []
+        count = rows[0].shape[0]
+        results = function(np.concatenate(rows))
+        results = results if isinstance(results, tuple) else (results,)
+        return [tuple(r[k * count:(k + 1) * count] for r in results)
+                for k in range(len(rows))]
+
     def given(name: str, values: np.ndarray) -> bool:
         if np.isnan(values).all():
             return False
         out[name] = values
         return True
 
-    for dyad in mechanism.dyads:
-        given(f"mu_{dyad.number}_min_deg",
-              figures_.least_transmission(cols[f"mu_{dyad.number}_deg"])[0])
-    for joint in mechanism.joints:
-        if isinstance(joint, Revolute):
-            continue
-        tag = "{}_{}".format(*joint.name)
-        travel = cols[f"s_{tag}"]
-        stroke = figures_.strokes(travel)
+    for dyad, (least, _) in zip(mechanism.dyads, each(
+            [cols[f"mu_{dyad.number}_deg"] for dyad in mechanism.dyads],
+            figures_.least_transmission)):
+        given(f"mu_{dyad.number}_min_deg", least)
+    sliders = ["{}_{}".format(*joint.name) for joint in mechanism.joints
+               if not isinstance(joint, Revolute)]
+    rockers = [link for link in mechanism.moving_links[1:] if figures_.pivoted(mechanism, link)]
+    strokes = each([cols[f"s_{tag}"] for tag in sliders], figures_.strokes)
+    swings = each([cols[f"phi_{link}_deg"] for link in rockers], figures_.swings)
+    outputs = [cols[f"s_{tag}"] for tag in sliders] + [turned for _, turned in swings]
+    ratios = each(outputs, lambda rows: figures_.time_ratios(angle_deg, rows))
+    for tag, (stroke,), (ratio,) in zip(sliders, strokes, ratios):
         if given(f"stroke_{tag}", stroke):
-            out[f"time_ratio_{tag}"] = np.where(np.isnan(stroke), np.nan,
-                                                figures_.time_ratios(angle_deg, travel))
-    for link in mechanism.moving_links[1:]:
-        if not figures_.pivoted(mechanism, link):
-            continue
-        swing, turned = figures_.swings(cols[f"phi_{link}_deg"])
+            out[f"time_ratio_{tag}"] = np.where(np.isnan(stroke), np.nan, ratio)
+    for link, (swing, _), (ratio,) in zip(rockers, swings, ratios[len(sliders):]):
         if given(f"swing_{link}_deg", swing):
-            out[f"time_ratio_{link}"] = np.where(np.isnan(swing), np.nan,
-                                                 figures_.time_ratios(angle_deg, turned))
+            out[f"time_ratio_{link}"] = np.where(np.isnan(swing), np.nan, ratio)
     if not forces:
         return out
+    radians = np.deg2rad(angle_deg)
+    torque = cols["M_drive"]
+    force = np.hypot(cols["Fx_shake"], cols["Fy_shake"])
+    (rms, shake_rms), (mean,) = (each([torque, force], lambda rows: cycle.rmss(radians, rows)),
+                                 each([cols["P_drive"]], lambda rows: cycle.means(radians, rows)))
+    out.update(M_drive_max=np.fmax.reduce(torque, axis=1),
+               M_drive_min=np.fmin.reduce(torque, axis=1), M_drive_rms=rms[0],
+               P_drive_mean=mean[0])
+    names = figures_.joint_force_names(mechanism)
+    for name, (peak, _) in zip(names, each([cols[name] for name in names], figures_.peaks)):
+        given(f"{name}_peak", peak)
+    out.update(F_shake_max=np.fmax.reduce(force, axis=1), F_shake_rms=shake_rms[0],
+               M_shake_max=np.fmax.reduce(np.abs(cols["M_shake"]), axis=1))
+    return out
     radians = np.deg2rad(angle_deg)
     torque = cols["M_drive"]
     out.update(M_drive_max=np.fmax.reduce(torque, axis=1),
@@ -149,8 +170,8 @@ def status_of(values: dict[str, float]) -> str:
     return LOCKS if any(v == 1.0 for k, v in values.items() if k.startswith("locks_")) else OK
 
 
-STACK = 200
-"""variants swept together (``dyade.linkage.variants``): 72 200 positions of a four-bar,
+STACK = 120
+"""variants swept together (``dyade.linkage.variants``): 43 320 positions of a four-bar,
 its arrays in the cache"""
 
 
