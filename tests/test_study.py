@@ -479,3 +479,60 @@ def test_pareto_front_keeps_the_non_dominated_within_bounds():
     assert list(np.flatnonzero(front)) == [0, 1, 2]
     front = pareto(columns, [("a", 1.0), ("b", -1.0)], {"c": (-1.0, 1.0)})  # max b
     assert list(np.flatnonzero(front)) == [0]
+
+
+def test_sensitivity_from_a_grid_is_the_difference_of_its_neighbours(tmp_path):
+    """A grid with a [sensitivity] table: the central differences about its middle point
+    (its neighbours along each parameter) — the same derivatives as a sensitivity plan
+    with the grid's spacing as its step, and as single runs."""
+    grid = study_file(tmp_path, "fourbar.toml",
+                      {"dyad.2.lengths.1": "[199.6, 200, 200.4]",
+                       "links.4.mass": "[0.89, 0.9, 0.91]"},
+                      "kind = \"grid\"", extra="[sensitivity]\n")
+    by_grid = {(r["parameter"], r["output"]): r for r in dyade.study(grid).sensitivity}
+    plan = study_file(tmp_path, "fourbar.toml",
+                      {"dyad.2.lengths.1": "{ nominal = 200, step = 0.4 }",
+                       "links.4.mass": "{ nominal = 0.9, step = 0.01 }"},
+                      "kind = \"sensitivity\"")
+    by_plan = {(r["parameter"], r["output"]): r for r in dyade.study(plan).sensitivity}
+    assert by_grid.keys() == by_plan.keys()
+    for key, row in by_plan.items():
+        assert by_grid[key]["step"] == pytest.approx(row["step"], rel=1e-12)
+        assert by_grid[key]["nominal"] == pytest.approx(row["nominal"], rel=1e-15)
+        assert by_grid[key]["derivative"] == pytest.approx(row["derivative"], rel=1e-9,
+                                                           abs=1e-12), key
+    runs = [dyade.analyse(dyade.read_mechanism(shipped("fourbar.toml"), {
+        "dyad.2.lengths.1": 200, "links.4.mass": mass})).summary()["drive"]["M_rms"]
+        for mass in (0.89, 0.91)]
+    assert by_grid[("links.4.mass", "M_drive_rms")]["derivative"] == pytest.approx(
+        (runs[1] - runs[0]) / 0.02, rel=1e-9)
+
+
+def test_sensitivity_from_a_grid_needs_a_middle_value(tmp_path):
+    path = study_file(tmp_path, "fourbar.toml", {"dyad.2.lengths.1": "[199, 201]"},
+                      "kind = \"grid\"", extra="[sensitivity]\n")
+    out = CliRunner().invoke(main, ["study", path])
+    assert out.exit_code == 2 and "parameters.dyad.2.lengths.1" in out.output
+    assert "odd number" in out.output and "Traceback" not in out.output
+
+
+def test_coupling_extra_is_the_drive_lines_resonance(tmp_path):
+    """`extra = ["coupling"]`: ω̄ of the file's [drive_line] with the linkage's mean
+    reduced inertia J̄ (ω̄² = k/J̄ with an ideal motor), the first-order resonance speed
+    ω̄·30/π and Ω/ω̄; a file without [drive_line] is refused naming the fix."""
+    path = study_file(tmp_path, "slider-crank.toml", {"drive_line.stiffness": "[500, 2000]"},
+                      fixed={"links.2.inertia": 0.01}, extra='[outputs]\nextra = ["coupling"]\n')
+    cols = dyade.study(path).columns()
+    mean_inertia = dyade.cycle.mean(*(lambda c: (np.deg2rad(c["angle_deg"]), c["J_red"]))(
+        dyade.analyse(dyade.read_mechanism(shipped("slider-crank.toml"), {
+            "links.2.inertia": 0.01})).columns()))
+    for k, omega, rpm, ratio in zip((500, 2000), cols["omega_bar"], cols["resonance_speed_rpm"],
+                                    cols["speed_ratio"]):
+        assert omega ** 2 * mean_inertia == pytest.approx(k, rel=2e-3)
+        assert rpm == pytest.approx(omega * 30 / math.pi, rel=1e-12)
+        assert ratio == pytest.approx(1500 * math.pi / 30 / omega, rel=1e-12)
+    assert cols["omega_bar"][1] / cols["omega_bar"][0] == pytest.approx(2.0, rel=1e-9)
+    bare = study_file(tmp_path, "slider-crank.toml", {"crank.speed_rpm": "[500, 600]"},
+                      extra='[outputs]\nextra = ["coupling"]\n')
+    out = CliRunner().invoke(main, ["study", bare])
+    assert out.exit_code == 2 and "[drive_line]" in out.output and "outputs.extra" in out.output

@@ -10,6 +10,8 @@ close", "refused", "failed"), then every key result of ``analyse``'s summary
 
 The variants run in blocks of at least 0.1 s of work, here, on ``jobs`` processes or on
 any ``concurrent.futures.Executor`` (a Dask cluster's: ``Client(address).get_executor()``);
+within a block they are read at once and swept together where the file allows
+(``dyade.study.evaluate.Evaluator``, ``dyade.linkage.variants``);
 the rows stream to ``output`` block by block, and ``resume`` computes only the blocks
 not yet there. The plan's rows are made here from its seed: the same table on any
 number of workers.
@@ -176,7 +178,8 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
                                    cost=cost, progress=progress)
     result = Study(spec, params, outputs, table, evaluated, units=units)
     if spec.question == "sensitivity":
-        result.sensitivity = questions.sensitivity(table, spec, outputs, plans.steps(spec))
+        result.sensitivity = questions.sensitivity(table, spec, outputs,
+                                                   plans.differences(spec))
     if spec.question == "tolerance":
         result.tolerance = questions.tolerance(table, outputs, spec.tolerance)
     if spec.question == "optimise":  # several objectives over a sampled plan

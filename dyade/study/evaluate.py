@@ -18,7 +18,8 @@ import numpy as np
 
 UNITS = {"M_drive_max": "N·m", "M_drive_min": "N·m", "M_drive_rms": "N·m", "P_drive_mean": "W",
          "P_friction_mean": "W", "F_shake_max": "N", "F_shake_rms": "N", "M_shake_max": "N·m",
-         "flywheel_inertia": "kg·m²", "speed_mean_rpm": "rpm", "fluctuation": "-"}
+         "flywheel_inertia": "kg·m²", "speed_mean_rpm": "rpm", "fluctuation": "-",
+         "omega_bar": "rad/s", "resonance_speed_rpm": "rpm", "speed_ratio": "-"}
 """units of the outputs with fixed names; the others by their prefix (``unit``)"""
 
 OK, LOCKS, OPEN, REFUSED, FAILED = "ok", "locks", "does not close", "refused", "failed"
@@ -47,7 +48,9 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
     strokes, swings and time ratios, friction power, self-locking), the shaking force and
     moment (``figures`` of the one sweep), and ``extras`` (``flywheel``: the inertia for
     ``fluctuation``; ``clearance``: the peak force and amplification per clearance
-    joint). NaN where the summary gives no value (a time ratio of an output that does
+    joint; ``coupling``: the elastic drive line's lowest natural frequency ω̄ with the
+    linkage's mean reduced inertia, the crank speed of its first-order resonance
+    Ω = ω̄ and the operating speed's ratio Ω/ω̄ of VDI 2149). NaN where the summary gives no value (a time ratio of an output that does
     not swing once)."""
     from dyade.linkage.summary import stage_figures
 
@@ -75,6 +78,12 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
 
         out["flywheel_inertia"] = size_flywheel(torque_curve(result.mechanism),
                                                 fluctuation).flywheel
+    if "coupling" in extras:  # the elastic drive line's resonance (``[drive_line]``)
+        from dyade.linkage.line_model import natural_frequency
+
+        line = natural_frequency(result.mechanism)
+        out.update(omega_bar=line.omega_bar, resonance_speed_rpm=line.omega_bar * 30.0 / math.pi,
+                   speed_ratio=line.ratio)
     if "clearance" in extras:
         for check in s.get("clearance", []):
             joint = check["joint"]

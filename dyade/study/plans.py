@@ -87,3 +87,26 @@ def steps(spec: Spec) -> np.ndarray:
     return np.array([p.step if p.step is not None else
                      spec.rel_step * (abs(p.nominal) if p.nominal != 0 else 1.0)
                      for p in spec.parameters])
+
+
+def differences(spec: Spec) -> tuple[int, list[tuple[int, int, float, float]]]:
+    """Where the sensitivity's central differences read the table: (the row of the
+    nominal variant, per parameter (the row at −h, the row at +h, h, the nominal
+    value)). A ``sensitivity`` plan: its nominal row, then −h and +h of each parameter
+    (``steps``); a grid: its middle point (each parameter's middle value) and its
+    neighbours along each parameter (h: half their distance)."""
+    params = spec.parameters
+    if spec.plan != "grid":
+        h = steps(spec)
+        return 0, [(1 + 2 * j, 2 + 2 * j, float(h[j]), p.nominal)
+                   for j, p in enumerate(params)]
+    sizes = [len(p.values) for p in params]
+    strides = [math.prod(sizes[j + 1:]) for j in range(len(params))]  # the last fastest
+    middle = [size // 2 for size in sizes]
+    centre = sum(m * stride for m, stride in zip(middle, strides))
+    out = []
+    for j, p in enumerate(params):
+        below, above = p.values[middle[j] - 1], p.values[middle[j] + 1]
+        out.append((centre - strides[j], centre + strides[j], 0.5 * (above - below),
+                    p.values[middle[j]]))
+    return centre, out

@@ -18,20 +18,23 @@ ZERO = 1e-9
 power of a machine without losses comes out at 1e-16 W): no normalised sensitivity"""
 
 
-def sensitivity(columns: dict, spec: Spec, outputs: list[str], h: np.ndarray) -> list[dict]:
-    """d output / d parameter by central differences (the rows −h, +h of each
-    parameter after the nominal row), and normalised: (dy/y)/(dx/x) [% per %]; NaN where
-    the output is numerically zero (below ``ZERO``)."""
+def sensitivity(columns: dict, spec: Spec, outputs: list[str],
+                layout: tuple[int, list[tuple[int, int, float, float]]]) -> list[dict]:
+    """d output / d parameter by central differences — of the rows −h and +h of each
+    parameter about the nominal row, where ``layout`` (``plans.differences``) finds them
+    in the table: a sensitivity plan's, or a grid's neighbours of its middle point —
+    and normalised: (dy/y)/(dx/x) [% per %]; NaN where the output is numerically zero
+    (below ``ZERO``)."""
     rows = []
-    y0 = {name: columns[name][0] for name in outputs}
-    for j, p in enumerate(spec.parameters):
-        minus, plus = 1 + 2 * j, 2 + 2 * j
+    centre, pairs = layout
+    y0 = {name: columns[name][centre] for name in outputs}
+    for p, (minus, plus, h, nominal) in zip(spec.parameters, pairs):
         for name in outputs:
-            derivative = (columns[name][plus] - columns[name][minus]) / (2.0 * h[j])
-            normalised = (derivative * p.nominal / y0[name]
+            derivative = (columns[name][plus] - columns[name][minus]) / (2.0 * h)
+            normalised = (derivative * nominal / y0[name]
                           if abs(y0[name]) > ZERO and np.isfinite(y0[name]) else math.nan)
-            rows.append({"parameter": p.key, "output": name, "nominal": p.nominal,
-                         "step": float(h[j]), "value": float(y0[name]),
+            rows.append({"parameter": p.key, "output": name, "nominal": float(nominal),
+                         "step": float(h), "value": float(y0[name]),
                          "derivative": float(derivative), "normalised": float(normalised)})
     return rows
 

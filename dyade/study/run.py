@@ -32,12 +32,20 @@ def evaluator_for(spec: Spec) -> Evaluator:
                           spec.extras, spec.fluctuation)
     nominal = [p.nominal for p in spec.parameters]
     try:
-        evaluator.mechanism(nominal)
+        mechanism = evaluator.mechanism(nominal)
     except InputError as err:  # a key path that is not there; a value is the rows' to say
         text = str(err)
         if any(words in text for words in KEY_PROBLEMS):
             raise InputError(f"{spec.label}: [parameters]: {text}", source=spec.label,
                              key=err.key) from None
+    else:
+        if "coupling" in spec.extras and mechanism.drive_line is None:
+            raise InputError(f"{spec.label}: `outputs.extra` asks for \"coupling\" (the drive "
+                             f"line's resonance speed), but {os.path.basename(spec.mechanism)} "
+                             f"has no [drive_line] table: give it one (`drive_line.stiffness` "
+                             f"[N·m/rad] or `drive_line.coupling` = a coupling file), e.g. "
+                             f"`set = {{ \"drive_line.stiffness\" = 1000 }}` in the study "
+                             f"file.", source=spec.label, key="outputs.extra")
     return evaluator
 
 

@@ -356,8 +356,18 @@ def parse(data: dict[str, Any], label: str = "study", directory: str = ".") -> S
     optimise: dict[str, Any] = {}
     if kind == "sensitivity" or "sensitivity" in data:
         question = "sensitivity"
-        kind = "sensitivity"
         _keys(label, data.get("sensitivity", {}), "sensitivity", set())
+        if kind == "grid" and "kind" in plan:  # the differences of the grid's neighbours
+            for p in params:
+                if len(p.values) < 3 or len(p.values) % 2 == 0:
+                    raise fail(label, f"parameters.{p.key}", f"has {len(p.values)} values: a "
+                                                             f"grid's sensitivity takes the "
+                                                             f"differences about its middle "
+                                                             f"value, so give an odd number, "
+                                                             f"at least 3 (or plan.kind = "
+                                                             f"\"sensitivity\").")
+        else:
+            kind = "sensitivity"
     if "tolerance" in data:
         question = "tolerance"
         table = data["tolerance"]

@@ -81,13 +81,13 @@ def test_dyade16_friction_single_runs(benchmark):
 @pytest.mark.parametrize("jobs", [1, 2])
 def test_study_jobs(benchmark, tmp_path, jobs):
     """A study of about 10 s on one core: dyade-16 with friction (variant by variant),
-    400 variants."""
+    600 variants."""
     path = tmp_path / "dyade16-jobs.toml"
     path.write_text(f'mechanism = "{shipped("dyade-16.toml")}"\nset = {{ {FRICTION} }}\n'
-                    f'[parameters]\n"dyad.2.lengths.2" = {{ range = [140, 160], count = 400 }}\n')
+                    f'[parameters]\n"dyad.2.lengths.2" = {{ range = [140, 160], count = 600 }}\n')
     result = benchmark.pedantic(dyade.study, args=(str(path),), kwargs={"jobs": jobs},
                                 rounds=1, iterations=1)
-    assert len(result.columns()["variant"]) == 400
+    assert len(result.columns()["variant"]) == 600
 
 
 @pytest.fixture(scope="module")
