@@ -312,6 +312,9 @@ def test_json_and_table_outputs(tmp_path):
     ({"dyad.2.lengths.1": "{ uniform = [190, 210] }"}, "", "a grid needs a list or a range"),
     ({"dyad.2.lengths.1": "{ range = [190, 210] }"}, "", "a grid needs its values"),
     ({"links.4.mass": "[1]"}, "kind = \"monte-karlo\"", "Did you mean `monte-carlo`"),
+    ({"crank.speed_rpm": "{ range = [-100, 300], count = 3 }"}, "",
+     "is a crank speed and must stay positive"),
+    ({"links.4.mass": "[-0.5, 1]"}, "", "is a mass and must not be negative"),
 ])
 def test_bad_study_files_exit_2(tmp_path, parameters, plan, message):
     path = study_file(tmp_path, "fourbar.toml", parameters, plan)
@@ -536,3 +539,13 @@ def test_coupling_extra_is_the_drive_lines_resonance(tmp_path):
                       extra='[outputs]\nextra = ["coupling"]\n')
     out = CliRunner().invoke(main, ["study", bare])
     assert out.exit_code == 2 and "[drive_line]" in out.output and "outputs.extra" in out.output
+
+
+def test_a_mass_may_be_zero_as_in_the_mechanism_file(tmp_path):
+    """A massless link is a mechanism file's ordinary case: a study over a mass may
+    start at 0 (the variant's single run agrees)."""
+    path = study_file(tmp_path, "fourbar.toml", {"links.4.mass": "[0, 0.9]"})
+    cols = dyade.study(path).columns()
+    assert list(cols["status"]) == ["ok", "ok"]
+    alone = dyade.analyse(dyade.read_mechanism(shipped("fourbar.toml"), {"links.4.mass": 0}))
+    assert cols["M_drive_rms"][0] == pytest.approx(alone.summary()["drive"]["M_rms"], rel=1e-12)

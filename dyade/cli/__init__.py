@@ -142,7 +142,7 @@ def main() -> None:
     """Kinematics and kinetostatics of planar linkages built from dyads.
 
     A mechanism file (TOML) lists the frame points, the crank (link 2) and the dyads in
-    assembly order; see mechanisms/README.md for every key. Start with
+    assembly order; see docs/reference/mechanism-file.md for every key. Start with
 
     \b
         dyade describe mechanisms/fourbar.toml

@@ -200,6 +200,6 @@ class Job(NamedTuple):
         if len(names) == 1:
             raise click.BadParameter(f"no column matches {', '.join(self.columns)}; the "
                                      f"columns are {', '.join(list(every)[:12])}, … "
-                                     f"(mechanisms/README.md lists them).",
+                                     f"(docs/reference/mechanism-file.md lists them).",
                                      param_hint="--columns")
         return writers.Chosen(every, names)

@@ -61,7 +61,7 @@ def gears(gear_file: str, shapes: int | None, speed_range: str | None, harmonics
         dyade gears mechanisms/gears/two-stage.toml --speed-range 0:3000:10
         dyade gears mechanisms/gears/two-stage.toml --frequency-range 10:1000:1 --format csv
 
-    mechanisms/gears/README.md documents every key of a gear-drive file.
+    docs/reference/gear-file.md documents every key of a gear-drive file.
     """
     from dyade.cli.common import read_gear_file
     from dyade.report import gears as report

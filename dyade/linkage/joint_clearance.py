@@ -186,7 +186,7 @@ def needs_forces(result, what: str) -> None:
     springs), for ``what`` needs them."""
     if result.forces_valid is None:
         raise InputError(f"{what} needs joint forces: the file has no masses, loads or "
-                         f"springs (add mass data, see mechanisms/README.md).")
+                         f"springs (add mass data, see docs/reference/mechanism-file.md).")
 
 
 def _revolute(mechanism, name: tuple[int, int]) -> Revolute:

@@ -22,7 +22,7 @@ def line_data(mechanism: Mechanism):
     if mechanism.drive_line is None:
         raise InputError(f"{mechanism.name}: no [drive_line] table: give the elastic element "
                          f"between motor and crank (`drive_line.stiffness` [N·m/rad], or "
-                         f"`drive_line.coupling` = a coupling file), see mechanisms/README.md.",
+                         f"`drive_line.coupling` = a coupling file), see docs/guide/drive-line.md.",
                          key="drive_line")
     return mechanism.drive_line
 

@@ -199,7 +199,7 @@ def report(path: str, overrides: dict[str, Any] | None = None) -> str:
     raise InputError(f"{path}: neither a mechanism file (no [crank] table), a gear file "
                      f"(no [[shaft]], [[gear]] or [[body]] tables) nor a study file ([plan] "
                      f"and [parameters], without --set): a report is made of one of these "
-                     f"(see mechanisms/README.md).{other_kind(data, set())}")
+                     f"(see docs/reference/mechanism-file.md).{other_kind(data, set())}")
 
 
 # -- a mechanism -------------------------------------------------------------------------

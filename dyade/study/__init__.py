@@ -1,6 +1,6 @@
 """Design studies: many variants of one mechanism file, one row each (``dyade study``).
 
-A study file (TOML; ``mechanisms/README.md``, "Design studies") names a mechanism file,
+A study file (TOML; ``docs/reference/study-file.md``) names a mechanism file,
 the parameters by the dotted key paths of ``--set`` (each a list, a range or a
 distribution), the plan (grid, Latin hypercube, Monte Carlo, sensitivity, optimise)
 and what to ask of the table. ``study(...)`` runs it and gives a ``Study``: one row per

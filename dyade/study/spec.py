@@ -2,7 +2,7 @@
 values, ranges or distributions, the plan, the outputs and the question.
 
 Every error names the study file and the key, what was expected and what was found
-(``mechanisms/README.md``, "Design studies", documents every key).
+(``docs/reference/study-file.md`` documents every key).
 """
 
 from __future__ import annotations
@@ -218,25 +218,35 @@ def parameter(label: str, key: str, value: Any, rel_step: float) -> Parameter:
     return out
 
 
+QUANTITY = {"length": "a length", "lengths": "a length", "slider_length": "a length",
+            "slider_height": "a length", "pin_radius": "a length", "mass": "a mass",
+            "inertia": "a moment of inertia", "speed_rpm": "a crank speed"}
+"""what a key of ``POSITIVE`` is, for the messages"""
+
+
 def _positive(label: str, p: Parameter) -> None:
     """Refuse a parameter of a positive quantity whose values may reach zero or below
-    (a normal distribution: within 6 sd, unless truncated above 0)."""
+    (a normal distribution: within 6 sd, unless truncated above 0); a mass or an
+    inertia may be 0 (a massless link), not below."""
     parts = [part for part in p.key.split(".") if not part.isdigit()]
     if not parts or parts[-1] not in POSITIVE:
         return
+    what = QUANTITY[parts[-1]]
+    zero = parts[-1] in ("mass", "inertia")  # 0 allowed, as in the mechanism file
+    bound = "must not be negative" if zero else "must stay positive"
     where = f"parameters.{p.key}"
     if p.kind == "normal":
         low = max(p.low, p.nominal - 6.0 * p.sd)
-        if low <= 0:
-            raise fail(label, where, f"is a length, mass or inertia: a normal distribution "
+        if low < 0 or (low == 0 and not zero):
+            raise fail(label, where, f"is {what} and {bound}: a normal distribution "
                                      f"(nominal {p.nominal:g}, sd {p.sd:g}) reaches "
-                                     f"{p.nominal - 6 * p.sd:g} ≤ 0 within 6 sd. Refused: give "
+                                     f"{p.nominal - 6 * p.sd:g} within 6 sd. Refused: give "
                                      f"truncate = [low, high] with low > 0, or a smaller sd.")
     else:
         low = min(p.values) if p.values else p.low
-        if low <= 0:
-            raise fail(label, where, f"is a length, mass or inertia and must stay positive; "
-                                     f"its values reach {low:g}. Refused.")
+        if low < 0 or (low == 0 and not zero):
+            raise fail(label, where, f"is {what} and {bound}; its values reach {low:g}. "
+                                     f"Refused.")
 
 
 def read(path: str | os.PathLike) -> Spec:
