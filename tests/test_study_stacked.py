@@ -91,21 +91,24 @@ def test_variants_it_cannot_vouch_for_are_evaluated_alone():
     assert np.isnan(rows[3][3]["mu_2_min_deg"]) or rows[3][3]["mu_2_min_deg"] < 2.0
 
 
-def test_friction_is_swept_variant_by_variant(monkeypatch):
-    """A file with friction (its Newton solve couples nothing but needs each variant's
-    own μ and loads) is never stacked: the stacked sweep does not even run."""
+@pytest.mark.parametrize("overrides, output", [
+    ({"friction.coefficient": 0.1, "friction.pin_radius": 10}, "P_friction_mean"),
+    ({"drive_line.stiffness": 1000.0}, "M_drive_rms")])
+def test_friction_and_drive_lines_are_swept_variant_by_variant(monkeypatch, overrides, output):
+    """A file with friction (each variant's own Newton solve) or an elastic drive line
+    (whose check a single sweep makes per variant) is never stacked: the stacked sweep
+    does not even run."""
     from dyade.linkage import variants
 
     def forbidden(*args, **kwargs):
-        raise AssertionError("a friction study was stacked")
+        raise AssertionError("the study was stacked")
 
     monkeypatch.setattr(variants, "sweep", forbidden)
-    data = load_data(shipped("fourbar.toml"), {"friction.coefficient": 0.1,
-                                               "friction.pin_radius": 10})
+    data = load_data(shipped("fourbar.toml"), overrides)
     together = Evaluator(str(shipped("fourbar.toml")), data, ("dyad.2.lengths.1",))
     rows = together((0, np.array([[198.0], [202.0]])))
     assert [r[1] for r in rows] == ["ok", "ok"] and together.together == 0
-    assert "P_friction_mean" in rows[0][3]
+    assert output in rows[0][3]
 
 
 def test_the_block_read_at_once_is_each_variant_read_alone():

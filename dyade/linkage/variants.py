@@ -12,8 +12,8 @@ reduced to the crank: ``reach``). A caller sweeps every other variant alone, whi
 gives it its notes, its reason or its gaps exactly as ``analyse`` does.
 
 Stages that couple the positions of a variant (friction's Newton solve with its
-coupling between blocks, the equation of motion) are not stacked: ``sweep`` raises
-``NotStackable`` for a plan that calls for them. The clearance check reads the joint
+coupling between blocks, the equation of motion) and the drive line's check are not
+stacked: ``sweep`` raises ``NotStackable`` for a plan that calls for them. The clearance check reads the joint
 forces after the sweep and changes none of its columns: it is not run here (a caller
 that wants its peaks evaluates each variant alone).
 """
@@ -53,7 +53,7 @@ def sweep(stacked: Mechanism, count: int) -> Swept:
     is not stacked (friction, a [drive])."""
     the_plan = plan(stacked)
     if not stackable(the_plan):
-        raise NotStackable("friction or a [drive]: swept variant by variant")
+        raise NotStackable("friction, a [drive] or a [drive_line]: swept variant by variant")
     angle = stacked.sweep.angles()
     positions = angle.shape[0]
     kin = kinematics.sweep(stacked, np.tile(angle, count))
@@ -79,9 +79,10 @@ def sweep(stacked: Mechanism, count: int) -> Swept:
 
 
 def stackable(the_plan: Plan) -> bool:
-    """Whether variants with this plan are swept together: not with friction or an
-    equation of motion."""
-    return not (the_plan.friction or the_plan.equation_of_motion)
+    """Whether variants with this plan are swept together: not with friction, an
+    equation of motion or an elastic drive line (whose check a single sweep makes, and
+    may refuse, per variant)."""
+    return not (the_plan.friction or the_plan.equation_of_motion or the_plan.drive_line)
 
 
 def reach(mechanism: Mechanism, motion, count: int, machine: bool) -> FloatArray:
