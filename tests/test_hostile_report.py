@@ -13,14 +13,20 @@ SLIDER = shipped("slider-crank.toml")
 
 FILES = {  # a file report cannot read -> words of the message (exit 2)
     "torque/engine.csv": ("a CSV file", "dyade flywheel"),
-    "coupling/stiff-coupling.toml": ("neither a mechanism file", "a coupling file",
-                                     "dyade coupling"),
 }
 
 
 @pytest.mark.parametrize("name", FILES)
 def test_files_of_another_kind(name):
     expect(["report", shipped(name)], 2, *FILES[name])
+
+
+def test_a_coupling_file_takes_no_set(tmp_path):
+    """A coupling file's report is of the file as it stands (its keys are flat; --set
+    edits mechanism files): refused, nothing written."""
+    expect(["report", shipped("coupling/stiff-coupling.toml"), "--set", "J=0.02", "-o",
+            tmp_path / "r.html"], 2, "neither a mechanism file", "without --set")
+    assert not (tmp_path / "r.html").exists()
 
 
 def test_bad_toml_and_missing_files(tmp_path):

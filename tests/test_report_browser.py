@@ -26,7 +26,8 @@ from tests.helpers import shipped  # noqa: E402
 pytestmark = [pytest.mark.slow, pytest.mark.browser]
 
 FILES = SHIPPED + [shipped("gears/two-stage.toml"), shipped("gears/friswell-geared.toml"),
-                   shipped("studies/press-slide-tolerance.toml")]
+                   shipped("studies/press-slide-tolerance.toml"),
+                   shipped("coupling/stiff-coupling.toml")]
 SHOTS = os.environ.get("DYADE_REPORT_SHOTS")
 """a folder to keep each report's screenshot in (to look at them), else none kept"""
 
@@ -60,7 +61,7 @@ def test_report_in_chromium(path: Path, extra: list, chromium, tmp_path):
                           "return [s.closest('figure').id, r.width, r.height]; })")
     assert len(sizes) >= 1
     assert all(width > 50 and height > 50 for _, width, height in sizes), sizes
-    if path.parent.name not in ("gears", "studies"):
+    if path.parent.name not in ("gears", "studies", "coupling"):  # a linkage: its motion
         before = page.evaluate("document.getElementById('motion').innerHTML")
         assert page.evaluate("document.getElementById('motion').getAttribute('data-frame')") == "0"
         page.evaluate("document.getElementById('motion-slider').focus()")

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import re
+import tomllib
 
 import numpy as np
 import pytest
@@ -89,6 +90,31 @@ def test_motion_frames_are_the_analysis_one_per_position(tmp_path):
         xy = np.array(pin["xy"]).reshape(count, 2)
         assert np.allclose(x0 + xy[:, 0] / scale, cols[f"x_{a}_{b}"], atol=tolerance, rtol=0)
         assert np.allclose(y1 - xy[:, 1] / scale, cols[f"y_{a}_{b}"], atol=tolerance, rtol=0)
+
+
+def test_a_coupling_reports_its_resonance_and_transfer_functions(tmp_path):
+    """The shipped stiff coupling: ω_t = sqrt((c1 + c2)/J) and the peak of V_φ as
+    ``dyade coupling`` computes them, its two operating points, one figure, the same
+    bytes twice, nothing from outside; a bad eta_range is refused naming the key."""
+    path = shipped("coupling/stiff-coupling.toml")
+    page = write(path, tmp_path, "a.html")
+    assert write(path, tmp_path / "elsewhere", "b.html") == page and outside(page) == []
+    assert re.findall(r"<h2>(.*?)</h2>", page) == [
+        "Torsional resonance", "Notes", "Transfer functions and phases", "Tables"]
+    coupling = dyade.read_coupling(path)
+    data = tomllib.loads(path.read_text())
+    assert coupling.natural_frequency == pytest.approx(
+        np.sqrt((data["c1"] + data["c2"]) / data["J"]), rel=1e-12)
+    assert f'<td class="number">{coupling.natural_frequency:.5g}</td>' in page
+    peak = dyade.coupling_response(coupling, np.arange(0, 3.001, 0.01)).transfer["V_phi"].max()
+    assert f"{peak:.5g} at η" in page
+    assert all(f'<td class="number">{rpm:.5g}</td>' in page for rpm in data["speed_rpm"])
+    assert page.count("</figure>") == 1
+    bad = tmp_path / "bad.toml"
+    bad.write_text(path.read_text().replace('eta_range = "0:3:0.01"', 'eta_range = "0:3:x"'))
+    out = CliRunner().invoke(main, ["report", str(bad), "-o", str(tmp_path / "r.html")])
+    assert out.exit_code == 2 and "`eta_range` must be START:STOP:STEP" in out.output
+    assert not (tmp_path / "r.html").exists()
 
 
 def test_not_a_mechanism_nor_a_gear_file_is_bad_input(tmp_path):

@@ -114,27 +114,11 @@ jobs_option = click.option(
 
 
 def value_range(text: str, hint: str, unit: str, positive_start: bool = False) -> list[float]:
-    """Parse START:STOP:STEP into the list of values (STOP included)."""
-    import math
-
-    import numpy as np
+    """Parse START:STOP:STEP into the list of values (STOP included;
+    ``dyade.files.schema.value_range``), a bad one refused naming the option."""
+    from dyade.files.schema import value_range as values
 
     try:
-        start, stop, step = (float(part) for part in text.split(":"))
-    except ValueError:
-        raise click.BadParameter(f"must be START:STOP:STEP{unit}, got {text!r}.",
-                                 param_hint=hint) from None
-    low = "0 < START" if positive_start else "0 <= START"
-    if not all(math.isfinite(v) for v in (start, stop, step)):
-        raise click.BadParameter(f"needs finite numbers, got {text!r}.", param_hint=hint)
-    if not (step > 0 and stop >= start and (start > 0 if positive_start else start >= 0)):
-        raise click.BadParameter(f"needs {low} <= STOP and STEP > 0, got {text!r}.",
-                                 param_hint=hint)
-    with np.errstate(over="ignore"):
-        count_f = np.floor((stop - start) / step + 1e-9) + 1
-    if not count_f <= MAX_VALUES:
-        shown = f"{count_f:.0f}" if np.isfinite(count_f) else "too many"
-        raise click.BadParameter(f"asks for {shown} values; at most {MAX_VALUES}.",
-                                 param_hint=hint)
-    count = int(count_f)
-    return (start + step * np.arange(count)).tolist()
+        return values(text, unit, positive_start, MAX_VALUES)
+    except ValueError as err:
+        raise click.BadParameter(str(err), param_hint=hint) from None

@@ -1,4 +1,5 @@
-"""``dyade report``: the design report of a mechanism or gear file, one HTML page."""
+"""``dyade report``: the design report of a mechanism, gear, study or coupling file, one
+HTML page."""
 
 from __future__ import annotations
 
@@ -16,10 +17,12 @@ from dyade.cli.options import set_option
               help="The HTML file to write  [default: NAME-report.html here].")
 @set_option
 def report(file: str, output: str | None, assignments: tuple[str, ...]) -> None:
-    """The design report of FILE (a mechanism or a gear file) as one self-contained HTML
-    page to read, share or print: what `dyade describe` says, the key results, the notes
-    on where the model holds, the figures of `dyade plot` and the motion with a
-    crank-angle slider; for a gear file its modes, Campbell diagram and mode shapes.
+    """The design report of FILE (a mechanism, gear, study or coupling file) as one
+    self-contained HTML page to read, share or print: what `dyade describe` says, the key
+    results, the notes on where the model holds, the figures of `dyade plot` and the
+    motion with a crank-angle slider; for a gear file its modes, Campbell diagram and mode
+    shapes; for a study its tables and the figure of its question; for a coupling file
+    its torsional resonance, transfer functions and phases.
 
     The page needs no network (figures inline as SVG, no external scripts or fonts) and
     the same file gives the same bytes. Needs the plot extra: pip install "dyade[plot]".

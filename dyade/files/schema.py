@@ -165,6 +165,31 @@ def set_dotted(data: dict[str, Any], dotted: str, value: Any, label: str = "",
                              source=label, key=dotted)
 
 
+def value_range(text: str, unit: str = "", positive_start: bool = False,
+                most: int = 10_000_000) -> list[float]:
+    """START:STOP:STEP as the list of its values (STOP included, to within 1e-9 of a
+    step); ``ValueError`` saying what is wrong (``unit`` shown in the expected form):
+    not three finite numbers, START below 0 (or 0 with ``positive_start``), STOP below
+    START, STEP not positive, or more than ``most`` values."""
+    import numpy as np
+
+    try:
+        start, stop, step = (float(part) for part in text.split(":"))
+    except ValueError:
+        raise ValueError(f"must be START:STOP:STEP{unit}, got {text!r}.") from None
+    low = "0 < START" if positive_start else "0 <= START"
+    if not all(math.isfinite(v) for v in (start, stop, step)):
+        raise ValueError(f"needs finite numbers, got {text!r}.")
+    if not (step > 0 and stop >= start and (start > 0 if positive_start else start >= 0)):
+        raise ValueError(f"needs {low} <= STOP and STEP > 0, got {text!r}.")
+    with np.errstate(over="ignore"):
+        count_f = np.floor((stop - start) / step + 1e-9) + 1
+    if not count_f <= most:
+        shown = f"{count_f:.0f}" if np.isfinite(count_f) else "too many"
+        raise ValueError(f"asks for {shown} values; at most {most}.")
+    return (start + step * np.arange(int(count_f))).tolist()
+
+
 def suggest(key: str, allowed: set[str] | dict) -> str:
     """" Did you mean `x`?" for a misspelt key, else the allowed keys."""
     import difflib  # only for a misspelt key

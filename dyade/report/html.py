@@ -22,6 +22,7 @@ from __future__ import annotations
 import html
 import io
 import json
+import os
 import re
 from typing import Any
 
@@ -156,13 +157,15 @@ DECIMALS = 1  # [px] coordinates of the motion's data
 
 
 def report(path: str, overrides: dict[str, Any] | None = None) -> str:
-    """The design report of a mechanism or gear file as one self-contained HTML page.
+    """The design report of a mechanism, gear, study or coupling file as one
+    self-contained HTML page.
 
     Parameters
     ----------
     path : str
-        A mechanism file (with a ``[crank]`` table) or a gear file (``[[shaft]]``,
-        ``[[gear]]`` … tables).
+        A mechanism file (with a ``[crank]`` table), a gear file (``[[shaft]]``,
+        ``[[gear]]`` … tables), a study file (``[plan]`` and ``[parameters]``) or a
+        coupling file (``J``, ``c1``, ``c2``).
     overrides : dict, optional
         Dotted keys and values that replace the file's (as ``--set``).
 
@@ -174,7 +177,7 @@ def report(path: str, overrides: dict[str, Any] | None = None) -> str:
     Raises
     ------
     InputError
-        The file is neither a mechanism nor a gear file, or is not valid.
+        The file is none of these kinds, or is not valid.
     """
     import os
 
@@ -194,12 +197,15 @@ def report(path: str, overrides: dict[str, Any] | None = None) -> str:
         return gear_report(dyade.read_gears(path, overrides), source=source)
     if "plan" in data and "parameters" in data and not overrides:
         return study_report(path, source=source)
+    if any(key in data for key in ("J", "c1", "c2")) and not overrides:
+        return coupling_report(path, source=source)
     from dyade.files.schema import other_kind
 
     raise InputError(f"{path}: neither a mechanism file (no [crank] table), a gear file "
-                     f"(no [[shaft]], [[gear]] or [[body]] tables) nor a study file ([plan] "
-                     f"and [parameters], without --set): a report is made of one of these "
-                     f"(see docs/reference/mechanism-file.md).{other_kind(data, set())}")
+                     f"(no [[shaft]], [[gear]] or [[body]] tables), a study file ([plan] "
+                     f"and [parameters]) nor a coupling file (J, c1, c2), the last two "
+                     f"without --set: a report is made of one of these (see "
+                     f"docs/reference/mechanism-file.md).{other_kind(data, set())}")
 
 
 # -- a mechanism -------------------------------------------------------------------------
@@ -387,6 +393,54 @@ def study_report(path, *, source: str = "") -> str:
     page.section("The question", figure(plot.question_figure(result), "study",
                                         "The figure of the study's question (as dyade plot "
                                         "study draws it)."))
+    return page.html()
+
+
+# -- a stiff coupling -------------------------------------------------------------------
+def coupling_report(path, *, source: str = "") -> str:
+    """The design report of a coupling file (see ``report``): the torsional resonance
+    (Strümpfel), its notes, the transfer functions and phases against η with the
+    operating points, and their tables (as ``dyade coupling`` gives them)."""
+    import numpy as np
+
+    from dyade.files.coupling import PARAMETERS, load_data, read_coupling
+    from dyade.files.schema import value_range
+    from dyade.plot import coupling as plot
+    from dyade.report import coupling as report_
+    from dyade.vibration import coupling as engine
+
+    name = os.path.basename(os.fspath(path))
+    data = load_data(path)
+    model = read_coupling(path)
+    try:
+        eta = np.array(value_range(data.get("eta_range", "0:3:0.01")))
+    except ValueError as err:
+        raise InputError(f"{name}: `eta_range` {err}", source=os.fspath(path),
+                         key="eta_range") from None
+    try:
+        response = engine.response(model, eta)
+        amplitudes = (engine.amplitudes(model, response, moment=data["moment"])
+                      if "moment" in data else None)
+        operating = None
+        if "speed_rpm" in data:
+            speeds = data["speed_rpm"]
+            operating = engine.operating_points(model, speeds if isinstance(speeds, list)
+                                                else [speeds], order=data.get("order", 1.0))
+    except InputError as err:
+        raise err.naming({p: f"{name}: `{k}`" for k, p in PARAMETERS.items()}) from None
+    cols, names = report_.columns(response, amplitudes)
+    tables = report_.tables(model, response, cols, names, operating)
+    first = 2 if operating is not None else 1  # the summary and the operating points
+    page = Page(f"{data.get('name', 'Stiff coupling')}: design report", source)
+    page.section("Torsional resonance", table_html_many(tables[:first]))
+    notes = report_.notes(model, response, eta)
+    page.section("Notes", notes_html(notes) if notes else
+                 '<p class="none">None: the coupling is damped on both sides.</p>')
+    page.section("Transfer functions and phases", figure(
+        plot.figure(model, response, operating), "coupling",
+        "The transfer functions V against the tuning ratio η = Ω/ω_t and their phases "
+        "(lead over the exciting moment), the resonance and the operating points marked."))
+    page.section("Tables", table_html_many(tables[first:]))
     return page.html()
 
 
