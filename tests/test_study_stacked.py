@@ -225,3 +225,32 @@ def test_random_chains_stacked_as_each_variant_alone(data, picks, scatter):
     alone = Evaluator("random.toml", data, tuple(keys))
     alone.stacks = False
     _assert_same_rows(together((0, values)), alone((0, values)))
+
+
+def test_a_variant_has_the_figures_it_has_alone():
+    """A slotted lever whose crank (200 mm) passes its pivot distance turns its lever
+    right round: no swing, no time ratio — its row has none of those keys, beside a
+    variant that has them (from the review of the stacked path)."""
+    together, alone = _pair("slotted-lever.toml", ("crank.length",))
+    values = np.array([[60.0], [200.0]])
+    rows = together((0, values))
+    _assert_same_rows(rows, alone((0, values)))
+    assert together.together == 2
+    assert "swing_4_deg" in rows[0][3] and "swing_4_deg" not in rows[1][3]
+
+
+def test_a_dead_centre_band_that_differs_between_variants():
+    """`sweep.dead_centre` as a parameter: each variant is judged by its own band (a
+    kinematics-only file of four dyads at two positions, where one band per position
+    once lined up with the dyads instead)."""
+    data = load_data(shipped("dyade-16.toml"))
+    data["sweep"] = {"start": 161, "stop": 162, "step": 1}
+    data["links"] = {}
+    for key in ("load", "spring", "gravity"):
+        data.pop(key)
+    data["dyad"] = [data["dyad"][i] for i in (0, 1, 5, 3)]
+    data["crank"]["points"] = {k: data["crank"]["points"][k] for k in ("P2", "P4", "P5")}
+    together, alone = _pair("dyade-16.toml", ("sweep.dead_centre",), data)
+    values = np.array([[31.0], [2.0]])
+    _assert_same_rows(together((0, values)), alone((0, values)))
+    assert together.together == 1  # the 31° band holds a dyad: that variant alone

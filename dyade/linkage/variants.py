@@ -57,7 +57,8 @@ def sweep(stacked: Mechanism, count: int) -> Swept:
     angle = stacked.sweep.angles()
     positions = angle.shape[0]
     kin = kinematics.sweep(stacked, np.tile(angle, count))
-    hard = np.sin(stacked.dead_centre_angle)
+    hard = np.sin(stacked.dead_centre_angle)  # one, or one per position (a parameter)
+    hard = hard[:, None] if np.ndim(hard) else hard
     well = kin.closes.all(axis=1) & kin.valid & (kin.conditioning > hard).all(axis=1)
     forces = kinetostatics.solve(stacked, kin) if the_plan.kinetostatics else None
     if forces is not None:

@@ -94,8 +94,8 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
     return {name: math.nan if value is None else float(value) for name, value in out.items()}
 
 
-def figures(mechanism, angle_deg: np.ndarray, cols: dict[str, np.ndarray], forces: bool
-            ) -> dict[str, np.ndarray]:
+def figures(mechanism, angle_deg: np.ndarray, cols: dict[str, np.ndarray], forces: bool,
+            presence: dict[str, str] | None = None) -> dict[str, np.ndarray]:
     """The key results of the kinematics and the forces of variants of ``mechanism``
     (columns of (variants, positions), all at the crank angles ``angle_deg``), each a
     (variants,) array, by the summary's own functions (``dyade.linkage.summary``): the
@@ -103,7 +103,10 @@ def figures(mechanism, angle_deg: np.ndarray, cols: dict[str, np.ndarray], force
     time ratio per rocker; with ``forces`` the drive torque's peak, trough and RMS, the
     mean drive power, each joint's peak force, the shaking force's peak and RMS and the
     shaking moment's peak. A figure no variant has (a slider that never moves) is left
-    out; NaN for a variant without it."""
+    out; NaN for a variant without it. ``presence`` (filled if given): the figures a
+    variant has only where it has a value, each -> the figure whose value decides (a
+    time ratio goes with its stroke or swing), as ``key_results`` of the variant alone
+    gives them."""
     from dyade import cycle
     from dyade.linkage import summary as figures_
     from dyade.linkage.model import Revolute
@@ -121,10 +124,13 @@ def figures(mechanism, angle_deg: np.ndarray, cols: dict[str, np.ndarray], force
         return [tuple(r[k * count:(k + 1) * count] for r in results)
                 for k in range(len(rows))]
 
+    presence = {} if presence is None else presence
+
     def given(name: str, values: np.ndarray) -> bool:
         if np.isnan(values).all():
             return False
         out[name] = values
+        presence[name] = name
         return True
 
     for dyad, (least, _) in zip(mechanism.dyads, each(
@@ -141,9 +147,11 @@ def figures(mechanism, angle_deg: np.ndarray, cols: dict[str, np.ndarray], force
     for tag, (stroke,), (ratio,) in zip(sliders, strokes, ratios):
         if given(f"stroke_{tag}", stroke):
             out[f"time_ratio_{tag}"] = np.where(np.isnan(stroke), np.nan, ratio)
+            presence[f"time_ratio_{tag}"] = f"stroke_{tag}"
     for link, (swing, _), (ratio,) in zip(rockers, swings, ratios[len(sliders):]):
         if given(f"swing_{link}_deg", swing):
             out[f"time_ratio_{link}"] = np.where(np.isnan(swing), np.nan, ratio)
+            presence[f"time_ratio_{link}"] = f"swing_{link}_deg"
     if not forces:
         return out
     radians = np.deg2rad(angle_deg)
@@ -158,18 +166,6 @@ def figures(mechanism, angle_deg: np.ndarray, cols: dict[str, np.ndarray], force
     for name, (peak, _) in zip(names, each([cols[name] for name in names], figures_.peaks)):
         given(f"{name}_peak", peak)
     out.update(F_shake_max=np.fmax.reduce(force, axis=1), F_shake_rms=shake_rms[0],
-               M_shake_max=np.fmax.reduce(np.abs(cols["M_shake"]), axis=1))
-    return out
-    radians = np.deg2rad(angle_deg)
-    torque = cols["M_drive"]
-    out.update(M_drive_max=np.fmax.reduce(torque, axis=1),
-               M_drive_min=np.fmin.reduce(torque, axis=1),
-               M_drive_rms=cycle.rmss(radians, torque),
-               P_drive_mean=cycle.means(radians, cols["P_drive"]))
-    for name in figures_.joint_force_names(mechanism):
-        given(f"{name}_peak", figures_.peaks(cols[name])[0])
-    force = np.hypot(cols["Fx_shake"], cols["Fy_shake"])
-    out.update(F_shake_max=np.fmax.reduce(force, axis=1), F_shake_rms=cycle.rmss(radians, force),
                M_shake_max=np.fmax.reduce(np.abs(cols["M_shake"]), axis=1))
     return out
 
@@ -341,14 +337,20 @@ class Evaluator:
         except (ValueError, TypeError):  # NotStackable, or a number the engine takes
             self.stacks = False          # as one: every block variant by variant
             return {}
-        out = figures(stacked, swept.angle_deg, swept.columns, swept.forces)
+        presence: dict[str, str] = {}
+        out = figures(stacked, swept.angle_deg, swept.columns, swept.forces, presence)
         clean = np.flatnonzero(swept.clean)
         self.calls += clean.size
         self.together += clean.size
         names = list(out)
         table = np.column_stack([out[name][clean] for name in names]).tolist()
-        return {read[i]: (OK, "", dict(zip(names, row)))
-                for i, row in zip(clean.tolist(), table)}
+        rows = {}
+        for i, values in zip(clean.tolist(), table):
+            row = dict(zip(names, values))  # the figures this variant has, as alone
+            row = {name: value for name, value in row.items()
+                   if name not in presence or row[presence[name]] == row[presence[name]]}
+            rows[read[i]] = (status_of(row), "", row)
+        return rows
 
     def __call__(self, block: tuple[int, np.ndarray]) -> list[tuple[int, str, str, dict]]:
         first, values = block
