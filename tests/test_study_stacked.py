@@ -50,6 +50,9 @@ CASES = {
                                                 "frame.points.C0.2"),
                               [(146, 154), (158, 163), (-144, -136)]),
     "slotted lever": ("slotted-lever.toml", ("dyad.2.B.offset",), [(-4, 5)]),
+    "dyade-16 masses (gravity, loads, springs)": (
+        "dyade-16.toml", ("links.8.mass", "links.3.inertia", "links.5.mass"),
+        [(0.5, 1.5), (0.001, 0.01), (0.2, 2.0)]),
 }
 
 

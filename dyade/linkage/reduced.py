@@ -69,17 +69,17 @@ def reduced(mechanism: Mechanism, kin: kinematics.Kinematics) -> Reduced:
         if number == FRAME or not link.has_mass:
             continue
         w, a = motion.omega[:, number], motion.alpha[:, number]
-        if link.mass:
+        if np.any(link.mass):  # (a number, or one per position: variants of a study)
             x, y, vx, vy, ax, ay = motion.point_motion(number, link.centre)
             energy += link.mass * (vx * vx + vy * vy)
             rate += link.mass * (vx * ax + vy * ay)
             if gravity.any():  # the weight m·g at the centre
-                weight_x, weight_y = link.mass * gravity
+                weight_x, weight_y = link.mass * gravity[0], link.mass * gravity[1]
                 fx, fy, moment = external[number]
                 fx += weight_x
                 fy += weight_y
                 moment += x * weight_y - y * weight_x
-        if link.inertia:
+        if np.any(link.inertia):
             spin = link.inertia * w
             energy += spin * w
             rate += spin * a
