@@ -61,7 +61,7 @@ def dyade16_study(tmp_path):
 
 
 def test_dyade16_friction_study(benchmark, dyade16_study):
-    result = benchmark.pedantic(dyade.study, args=(dyade16_study,), rounds=3, iterations=1)
+    result = benchmark.pedantic(dyade.study, args=(dyade16_study,), rounds=5, warmup_rounds=1)
     assert len(result.columns()["variant"]) == 40
 
 
@@ -75,7 +75,7 @@ def test_dyade16_friction_single_runs(benchmark):
                                              dict(overrides, **{"dyad.2.lengths.2": length}))
             dyade.analyse(mechanism)
 
-    benchmark.pedantic(each, rounds=3, iterations=1)
+    benchmark.pedantic(each, rounds=5, warmup_rounds=1)
 
 
 @pytest.mark.parametrize("jobs", [1, 2])
