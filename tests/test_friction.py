@@ -58,6 +58,16 @@ def test_tiny_friction_tends_to_the_frictionless_solution():
         assert np.max(np.abs(rubbed - plain)) < bound * np.max(np.abs(plain))
 
 
+def assert_energy_balance(mechanism, kin, result, valid) -> None:
+    """M_drive·Ω − dE/dt + P_loads = P_friction ≥ 0 at the ``valid`` positions."""
+    balance = (result.forces.drive_torque * mechanism.crank.speed
+               - kinetic_energy_rate(mechanism, kin.motion)
+               + applied_power(mechanism, kin.motion, kin.crank_angle))
+    scale = np.max(np.abs(result.forces.drive_torque[valid] * mechanism.crank.speed))
+    assert np.allclose(balance[valid], result.power[valid], rtol=1e-8, atol=1e-8 * scale)
+    assert np.all(result.power[valid] >= 0.0)
+
+
 @pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.stem)
 def test_energy_identity_with_friction_everywhere(path):
     # M_drive·Ω − dE/dt + P_loads = P_friction ≥ 0 at every valid crank position
@@ -66,12 +76,7 @@ def test_energy_identity_with_friction_everywhere(path):
     result = friction.solve(mechanism, kin)
     valid = result.forces.valid
     assert valid.sum() > 0.8 * valid.size
-    balance = (result.forces.drive_torque * mechanism.crank.speed
-               - kinetic_energy_rate(mechanism, kin.motion)
-               + applied_power(mechanism, kin.motion, kin.crank_angle))
-    scale = np.max(np.abs(result.forces.drive_torque[valid] * mechanism.crank.speed))
-    assert np.allclose(balance[valid], result.power[valid], rtol=1e-8, atol=1e-8 * scale)
-    assert np.all(result.power[valid] >= 0.0)
+    assert_energy_balance(mechanism, kin, result, valid)
     assert np.mean(result.power[valid]) > 0.0
 
 
@@ -416,12 +421,7 @@ def test_energy_and_coulomb_laws_hold_on_the_shipped_files_with_friction(path):
     result = friction.solve(mechanism, kin)
     valid = result.forces.valid
     assert valid.sum() > 0.3 * valid.size
-    balance = (result.forces.drive_torque * mechanism.crank.speed
-               - kinetic_energy_rate(mechanism, kin.motion)
-               + applied_power(mechanism, kin.motion, kin.crank_angle))
-    scale = np.max(np.abs(result.forces.drive_torque[valid] * mechanism.crank.speed))
-    assert np.allclose(balance[valid], result.power[valid], rtol=1e-8, atol=1e-8 * scale)
-    assert np.all(result.power[valid] >= 0.0)
+    assert_energy_balance(mechanism, kin, result, valid)
     for name, (error, wrong_sense) in coulomb_law_errors(mechanism, kin, result).items():
         assert error < 1e-9, name
         assert not wrong_sense, name

@@ -16,29 +16,23 @@ FLAGS = {"speeds_rpm": "--speed-range", "speed_rpm": "--speed-rpm", "stiffness":
 
 
 def speed_range(text: str, hint: str, quantity: str = "speed_rpm") -> list[float]:
-    """START:STOP:STEP [rpm], STOP included; both ends of one sign (the crank's sense);
-    ``quantity`` (``dyade.limits.PLAUSIBLE``) bounds the ends: a --map's stiffness or
-    damping."""
-    import numpy as np
-
-    try:
-        start, stop, step = (float(part) for part in text.split(":"))
-    except ValueError:
-        raise click.BadParameter(f"must be START:STOP:STEP [rpm], got {text!r}.",
-                                 param_hint=hint) from None
-    if not (np.isfinite([start, stop, step]).all() and step > 0 and stop >= start):
-        raise click.BadParameter(f"needs finite START <= STOP and STEP > 0, got {text!r}.",
-                                 param_hint=hint)
+    """START:STOP:STEP [rpm], STOP included (``dyade.files.schema.range_parts``,
+    ``range_values``); both ends of one sign (the crank's sense); ``quantity``
+    (``dyade.limits.PLAUSIBLE``) bounds the ends: a --map's stiffness or damping."""
+    from dyade.files.schema import range_parts, range_values
     from dyade.limits import implausible, plausible_range
 
-    if any(implausible(quantity, abs(end)) for end in (start, stop) if end or quantity !=
-           "damping"):
-        raise click.BadParameter(f"values must lie in {plausible_range(quantity)} (what a "
-                                 f"machine has), got {text!r}.", param_hint=hint)
-    count = int(np.floor((stop - start) / step + 1e-9)) + 1
-    if count > 2000:
-        raise click.BadParameter(f"asks for {count} speeds; at most 2000.", param_hint=hint)
-    return (start + step * np.arange(count)).tolist()
+    try:
+        start, stop, step = range_parts(text, " [rpm]")
+        if not (step > 0 and stop >= start):
+            raise ValueError(f"needs START <= STOP and STEP > 0, got {text!r}.")
+        if any(implausible(quantity, abs(end)) for end in (start, stop)
+               if end or quantity != "damping"):
+            raise ValueError(f"values must lie in {plausible_range(quantity)} (what a "
+                             f"machine has), got {text!r}.")
+        return range_values(start, stop, step, 2000, "speeds")
+    except ValueError as err:
+        raise click.BadParameter(str(err), param_hint=hint) from None
 
 
 @main.command()

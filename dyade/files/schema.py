@@ -167,27 +167,40 @@ def set_dotted(data: dict[str, Any], dotted: str, value: Any, label: str = "",
 
 def value_range(text: str, unit: str = "", positive_start: bool = False,
                 most: int = 10_000_000) -> list[float]:
-    """START:STOP:STEP as the list of its values (STOP included, to within 1e-9 of a
-    step); ``ValueError`` saying what is wrong (``unit`` shown in the expected form):
-    not three finite numbers, START below 0 (or 0 with ``positive_start``), STOP below
-    START, STEP not positive, or more than ``most`` values."""
-    import numpy as np
+    """START:STOP:STEP as the list of its values (``range_parts``, ``range_values``);
+    ``ValueError`` saying what is wrong (``unit`` shown in the expected form): not three
+    finite numbers, START below 0 (or 0 with ``positive_start``), STOP below START, STEP
+    not positive, or more than ``most`` values."""
+    start, stop, step = range_parts(text, unit)
+    low = "0 < START" if positive_start else "0 <= START"
+    if not (step > 0 and stop >= start and (start > 0 if positive_start else start >= 0)):
+        raise ValueError(f"needs {low} <= STOP and STEP > 0, got {text!r}.")
+    return range_values(start, stop, step, most)
 
+
+def range_parts(text: str, unit: str = "") -> tuple[float, float, float]:
+    """START:STOP:STEP as three finite numbers; ``ValueError`` saying what is wrong."""
     try:
         start, stop, step = (float(part) for part in text.split(":"))
     except ValueError:
         raise ValueError(f"must be START:STOP:STEP{unit}, got {text!r}.") from None
-    low = "0 < START" if positive_start else "0 <= START"
     if not all(math.isfinite(v) for v in (start, stop, step)):
         raise ValueError(f"needs finite numbers, got {text!r}.")
-    if not (step > 0 and stop >= start and (start > 0 if positive_start else start >= 0)):
-        raise ValueError(f"needs {low} <= STOP and STEP > 0, got {text!r}.")
+    return start, stop, step
+
+
+def range_values(start: float, stop: float, step: float, most: int, what: str = "values"
+                 ) -> list[float]:
+    """START, START + STEP, … up to STOP (included to within 1e-9 of a step);
+    ``ValueError`` for more than ``most`` of them (``what`` they are, in the message)."""
+    import numpy as np
+
     with np.errstate(over="ignore"):
-        count_f = np.floor((stop - start) / step + 1e-9) + 1
-    if not count_f <= most:
-        shown = f"{count_f:.0f}" if np.isfinite(count_f) else "too many"
-        raise ValueError(f"asks for {shown} values; at most {most}.")
-    return (start + step * np.arange(int(count_f))).tolist()
+        count = np.floor((stop - start) / step + 1e-9) + 1
+    if not count <= most:
+        shown = f"{count:.0f}" if np.isfinite(count) else "too many"
+        raise ValueError(f"asks for {shown} {what}; at most {most}.")
+    return (start + step * np.arange(int(count))).tolist()
 
 
 def suggest(key: str, allowed: set[str] | dict) -> str:

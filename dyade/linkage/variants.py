@@ -129,7 +129,7 @@ def _radius(mechanism: Mechanism, link: int, count: int) -> float | FloatArray:
     """The largest distance of a point of ``link`` (a joint's or a named one) from its
     origin [m]: one, or one per variant where the points differ between variants."""
     points = [local for joint in mechanism.joints
-              for number, local in zip(joint_links(joint), joint_points(joint))
+              for number, local in zip(joint.links, _joint_points(joint))
               if number == link]
     points += [local for _, number, local in mechanism.named_points if number == link]
     radius = 0.0
@@ -144,13 +144,8 @@ def each(value, count: int) -> float | FloatArray:
     return value if np.ndim(value) == 0 else np.asarray(value).reshape(count, -1)[:, 0]
 
 
-def joint_links(joint: Joint) -> tuple[int, int]:
-    """The two links of a joint, in the order of ``joint_points``."""
-    return joint.links if isinstance(joint, Revolute) else (joint.carrier, joint.slider)
-
-
-def joint_points(joint: Joint) -> tuple:
-    """A joint's link-fixed points: a revolute joint's two, a prismatic joint's guide
-    point on the carrier and slider point on the slider."""
+def _joint_points(joint: Joint) -> tuple:
+    """A joint's link-fixed points, in the order of ``joint.links``: a revolute joint's
+    two, a prismatic joint's guide point on the carrier and slider point on the slider."""
     return joint.points if isinstance(joint, Revolute) else (joint.guide_point,
                                                               joint.slider_point)

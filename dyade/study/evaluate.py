@@ -50,8 +50,8 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
     ``fluctuation``; ``clearance``: the peak force and amplification per clearance
     joint; ``coupling``: the elastic drive line's lowest natural frequency ω̄ with the
     linkage's mean reduced inertia, the crank speed of its first-order resonance
-    Ω = ω̄ and the operating speed's ratio Ω/ω̄ of VDI 2149). NaN where the summary gives no value (a time ratio of an output that does
-    not swing once)."""
+    Ω = ω̄ and the operating speed's ratio Ω/ω̄ of VDI 2149). NaN where the summary
+    gives no value (a time ratio of an output that does not swing once)."""
     from dyade.linkage.summary import stage_figures
 
     cols = result.columns()
@@ -157,15 +157,14 @@ def figures(mechanism, angle_deg: np.ndarray, cols: dict[str, np.ndarray], force
     radians = np.deg2rad(angle_deg)
     torque = cols["M_drive"]
     force = np.hypot(cols["Fx_shake"], cols["Fy_shake"])
-    (rms, shake_rms), (mean,) = (each([torque, force], lambda rows: cycle.rmss(radians, rows)),
-                                 each([cols["P_drive"]], lambda rows: cycle.means(radians, rows)))
+    (rms,), (shake_rms,) = each([torque, force], lambda rows: cycle.rmss(radians, rows))
     out.update(M_drive_max=np.fmax.reduce(torque, axis=1),
-               M_drive_min=np.fmin.reduce(torque, axis=1), M_drive_rms=rms[0],
-               P_drive_mean=mean[0])
+               M_drive_min=np.fmin.reduce(torque, axis=1), M_drive_rms=rms,
+               P_drive_mean=cycle.means(radians, cols["P_drive"]))
     names = figures_.joint_force_names(mechanism)
     for name, (peak, _) in zip(names, each([cols[name] for name in names], figures_.peaks)):
         given(f"{name}_peak", peak)
-    out.update(F_shake_max=np.fmax.reduce(force, axis=1), F_shake_rms=shake_rms[0],
+    out.update(F_shake_max=np.fmax.reduce(force, axis=1), F_shake_rms=shake_rms,
                M_shake_max=np.fmax.reduce(np.abs(cols["M_shake"]), axis=1))
     return out
 
@@ -197,6 +196,8 @@ class Evaluator:
     def __init__(self, path: str, data: dict[str, Any], keys: tuple[str, ...],
                  extras: tuple[str, ...] = (), fluctuation: float = 0.02) -> None:
         self.path, self.data, self.keys = path, data, keys
+        self.label = path.rsplit("/", 1)[-1]
+        """the file's name, in messages"""
         self.extras, self.fluctuation = extras, fluctuation
         self.calls = 0
         """variants evaluated by this object (in this process)"""
@@ -213,11 +214,10 @@ class Evaluator:
         from dyade.files.mechanism import NUMBERING, build, set_dotted
 
         data = copy.deepcopy(self.data)
-        label = self.path.rsplit("/", 1)[-1]
         for key, value in zip(self.keys, values):
             value = float(value)
             set_dotted(data, key, int(value) if value.is_integer() and _whole(key) else value,
-                       label, "parameter", NUMBERING)
+                       self.label, "parameter", NUMBERING)
         return build(data, self.path)
 
     def one(self, values) -> tuple[str, str, dict[str, float]]:
@@ -258,10 +258,9 @@ class Evaluator:
         from dyade.linkage.stack import pick, same
 
         data = copy.deepcopy(self.data)
-        label = self.path.rsplit("/", 1)[-1]
         try:
             for key, column in zip(self.keys, values.T):
-                set_dotted(data, key, Variants(column), label, "parameter", NUMBERING)
+                set_dotted(data, key, Variants(column), self.label, "parameter", NUMBERING)
             together = build(data, self.path)
             dynamics = np.zeros(len(values), dtype=bool)  # masses that vanish in some
             for link in together.links.values():          # variants: plans that differ
@@ -345,10 +344,10 @@ class Evaluator:
         names = list(out)
         table = np.column_stack([out[name][clean] for name in names]).tolist()
         rows = {}
-        for i, values in zip(clean.tolist(), table):
-            row = dict(zip(names, values))  # the figures this variant has, as alone
+        for i, numbers in zip(clean.tolist(), table):
+            row = dict(zip(names, numbers))  # the figures this variant has, as alone
             row = {name: value for name, value in row.items()
-                   if name not in presence or row[presence[name]] == row[presence[name]]}
+                   if name not in presence or not math.isnan(row[presence[name]])}
             rows[read[i]] = (status_of(row), "", row)
         return rows
 

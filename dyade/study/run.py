@@ -163,6 +163,3 @@ def _lost(block, reason: str):
     """Rows for a block whose worker process ended without a result."""
     first, values = block
     return [(first + i, FAILED, f"{reason} (rerun it alone)", {}) for i in range(len(values))]
-
-
-

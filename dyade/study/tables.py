@@ -63,8 +63,7 @@ class Journal:
         outputs): each number as the shortest text that reads back to it (``cell``)."""
         if self.handle is None:
             return
-        self.writer.writerows([[str(row[0]), *[v if isinstance(v, str) else repr(v)
-                                               for v in row[1:]]] for row in rows])
+        self.writer.writerows([[cell(v) for v in row] for row in rows])
         self.handle.flush()
 
     def close(self) -> None:

@@ -5,7 +5,6 @@ are refused."""
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
@@ -62,7 +61,7 @@ class LinkReader(FrictionReader):
         pivot = self.point_on(FRAME, table.get("pivot", [0.0, 0.0]), "crank.pivot")
         rpm = self.number(self.required(table, "speed_rpm", "crank"), "crank.speed_rpm", "rpm",
                           positive=True)
-        if np.max(rpm) > NUMERIC_RPM:  # above the plausible 1e6 rpm a sweep is analysed but not given
+        if np.max(rpm) > NUMERIC_RPM:  # beyond the plausible 1e6 rpm: analysed, not given
             raise self.fail("crank.speed_rpm", f"must be at most {NUMERIC_RPM:g} rpm (beyond "
                                                f"it the squares overflow; 0.01…1e+06 rpm is "
                                                f"what a machine has), got {rpm:g}.", rpm, "rpm")
