@@ -116,13 +116,16 @@ class InputError(DyadeError, ValueError):
 
     def naming(self, names: dict[str, str]) -> InputError:
         """The same error with its parameters named as the user gave them: ``names`` maps
-        a parameter to a flag (``--J``) or to a file key (``coupling.toml: `J```). Errors
-        from files, and parameters not in ``names``, are returned unchanged."""
-        if not self.parameters or not all(p in names for p in self.parameters):
+        a parameter to a flag (``--J``), to a file key (``coupling.toml: `J```) or to the
+        API option it came from; the new names are the error's parameters (so that the
+        command line can name an API option by its flag). Errors from files are returned
+        unchanged, and so are parameters not in ``names``."""
+        if not self.parameters or not any(p in names for p in self.parameters):
             return self
-        err = type(self)(f"{' and '.join(names[p] for p in self.parameters)} {self.reason}",
-                         key=self.key, value=self.value, unit=self.unit, reason=self.reason)
-        err.parameters = self.parameters
+        err = type(self)(f"{' and '.join(names.get(p, p) for p in self.parameters)} "
+                         f"{self.reason}", key=self.key, value=self.value, unit=self.unit,
+                         reason=self.reason)
+        err.parameters = tuple(names.get(p, p) for p in self.parameters)
         return err
 
 

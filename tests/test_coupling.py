@@ -177,7 +177,7 @@ def test_c2_zero_and_c1_zero():
     (["--J", "1", "--c1", "-1", "--c2", "1"], "--c1 must be a non-negative number"),
     (["--J", "1", "--c1", "1", "--c2", "1", "--b2", "-0.1"], "--b2 must be a non-negative number"),
     (["--J", "1", "--c1", "0", "--c2", "0"], "c1 + c2 > 0"),
-    (["--J", "1", "--c1", "1"], "missing --c2"),
+    (["--J", "1", "--c1", "1"], "--c2 must be given"),
     (["--J", "1", "--c1", "1", "--c2", "1", "--moment", "0"], "--moment must be a positive"),
     (["--J", "1", "--c1", "1", "--c2", "1", "--eta-range", "3:1:0.1"], "--eta-range"),
 ])

@@ -120,12 +120,18 @@ JSON_RUNS = {
 }
 
 
+ANALYSIS = {"analyse": "sweep", "clearance": "clearance-check"}
+"""command -> the registry entry it runs, where the names differ"""
+
+
 @pytest.mark.parametrize("command", JSON_RUNS)
 def test_every_json_has_one_shape_and_loads_as_a_table(command):
     pandas = pytest.importorskip("pandas")
     obj = json.loads(run(*JSON_RUNS[command]).stdout)
-    assert list(obj) == ["columns", "units", "summary", "warnings", "meta"]
-    assert obj["meta"]["command"] == command and set(obj["units"]) == set(obj["columns"])
+    assert list(obj) == ["columns", "units", "summary", "notes", "analysis", "options", "meta",
+                         "schema"]
+    assert obj["analysis"] == ANALYSIS.get(command, command)
+    assert set(obj["units"]) == set(obj["columns"])
     frame = pandas.DataFrame(obj["columns"])
     assert len(frame) > 0 and list(frame.columns) == list(obj["columns"])
 

@@ -1,46 +1,26 @@
-"""Coupling results -> columns, notes and rich tables."""
+"""A ``coupling`` Outcome (``dyade.analyses.coupling``) -> rich tables."""
 
 from __future__ import annotations
 
 import math
-from typing import Any
-
 import numpy as np
 
+from dyade.report.format import number
 from dyade.vibration import coupling as engine
-
-COLUMNS = ["eta", "V_phi", "V_psi", "V_q", "V_r", "alpha_deg", "beta_deg", "gamma_deg",
-           "delta_deg"]
-MOMENT_COLUMNS = ["phi_hat", "psi_hat", "MQ_hat", "phir_hat"]
-
-
-def columns(resp, amplitudes: dict | None = None) -> tuple[dict[str, Any], list[str]]:
-    """The response as named columns (phases in degrees) and their order; with the
-    physical ``amplitudes`` of a given exciting moment."""
-    cols: dict[str, Any] = {"eta": resp.eta}
-    cols.update(resp.transfer)
-    for name in ("alpha", "beta", "gamma", "delta"):
-        cols[f"{name}_deg"] = np.degrees(resp.phase[name])
-    names = list(COLUMNS)
-    if amplitudes is not None:
-        cols.update(amplitudes)
-        names += MOMENT_COLUMNS
-    return cols, names
 
 
 def fmt(value: float, digits: int = 5) -> str:
-    if value != value:
-        return "—"
-    if value == math.inf:
-        return "∞"
-    return f"{value:.{digits}g}"
+    """A value to ``digits`` significant digits (``dyade.report.format``)."""
+    return number(value, spec=f".{digits}g")
 
 
-def tables(model, resp, cols, names, operating):
+def tables(outcome):
     """The summary, the operating points and the transfer functions, phases and
-    amplitudes (every k-th row to about 40) as rich tables."""
+    amplitudes (every k-th row to about 40) of a ``coupling`` Outcome as rich tables."""
     from rich.table import Table
 
+    model, resp, operating = outcome.result
+    cols, names = outcome.columns, list(outcome.columns)
     summary = Table(title="Stiff coupling: torsional resonance (Strümpfel, eqs. (4)–(9))",
                     title_justify="left")
     summary.add_column("quantity")
@@ -101,50 +81,3 @@ def ordinal(n: int) -> str:
     """1st, 2nd, 3rd, 4th, …, 11th, 12th, 13th, 21st."""
     suffix = "th" if 10 <= n % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(n % 10, "th")
     return f"{n}{suffix}"
-
-
-UNITS = {"eta": "-", "V_phi": "-", "V_psi": "-", "V_q": "-", "V_r": "-", "alpha_deg": "°",
-         "beta_deg": "°", "gamma_deg": "°", "delta_deg": "°", "phi_hat": "rad",
-         "psi_hat": "rad", "MQ_hat": "N·m", "phir_hat": "rad"}
-
-
-def summary(model, resp, operating) -> dict[str, Any]:
-    """The figures of the model and of the response, for JSON."""
-    out: dict[str, Any] = {"omega_t": model.natural_frequency,
-                           "f_t_Hz": model.natural_frequency / (2 * math.pi),
-                           "D": model.damping_ratio, "kappa": model.kappa,
-                           "eta0": model.resonance(),
-                           "eta_unbounded": engine.undamped_resonance(model), "peaks": {}}
-    for name, peak in engine.peaks(resp, model).items():
-        out["peaks"][name] = (None if peak is None else
-                              {"value": None if math.isinf(peak[0]) else peak[0],
-                               "eta": peak[1], "unbounded": math.isinf(peak[0])})
-    if operating is not None:
-        out["operating_points"] = {"order": operating.order,
-                                   "speed_rpm": operating.speeds_rpm, "eta": operating.eta,
-                                   **{name: values for name, values in
-                                      operating.response.transfer.items()}}
-    return out
-
-
-def notes(model, resp, eta) -> list[str]:
-    """Notes on undamped and degenerate cases."""
-    out = []
-    if resp.unbounded.any():
-        where = ", ".join(f"{e:.6g}" for e in eta[resp.unbounded][:5])
-        out.append(f"note: no damping on the secondary side acts at η = {where}: that is the "
-                  f"undamped resonance, where φ̂, ψ̂ and M̂_Q are unbounded (∞ in the table, "
-                  f"empty in CSV) and their phases undefined.")
-    if model.b1 + model.b2 == 0.0:
-        out.append("note: b1 + b2 = 0: an undamped coupling (D = 0).")
-    if model.c2 == 0.0:
-        out.append("note: c2 = 0: V_q is normalised by c2t and is not defined (empty); with "
-                  "--moment, M̂_Q is given.")
-    if model.c1 == 0.0:
-        out.append("note: c1 = 0: V_ψ and V_r are normalised by c1t and are not defined (empty); "
-                  "with --moment, ψ̂ and φ̂_r are given.")
-    zero_psi = np.isfinite(resp.transfer["V_psi"]) & (resp.transfer["V_psi"] == 0.0)
-    if zero_psi.any():
-        out.append(f"note: ψ̂ = 0 at η = {eta[zero_psi][0]:.6g} (undamped anti-resonance): its "
-                  f"phase β is undefined there (empty).")
-    return out

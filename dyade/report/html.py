@@ -401,39 +401,17 @@ def coupling_report(path, *, source: str = "") -> str:
     """The design report of a coupling file (see ``report``): the torsional resonance
     (Strümpfel), its notes, the transfer functions and phases against η with the
     operating points, and their tables (as ``dyade coupling`` gives them)."""
-    import numpy as np
-
-    from dyade.files.coupling import PARAMETERS, load_data, read_coupling
-    from dyade.files.schema import value_range
+    from dyade.analyses import REGISTRY
     from dyade.plot import coupling as plot
     from dyade.report import coupling as report_
-    from dyade.vibration import coupling as engine
 
-    name = os.path.basename(os.fspath(path))
-    data = load_data(path)
-    model = read_coupling(path)
-    try:
-        eta = np.array(value_range(data.get("eta_range", "0:3:0.01")))
-    except ValueError as err:
-        raise InputError(f"{name}: `eta_range` {err}", source=os.fspath(path),
-                         key="eta_range") from None
-    try:
-        response = engine.response(model, eta)
-        amplitudes = (engine.amplitudes(model, response, moment=data["moment"])
-                      if "moment" in data else None)
-        operating = None
-        if "speed_rpm" in data:
-            speeds = data["speed_rpm"]
-            operating = engine.operating_points(model, speeds if isinstance(speeds, list)
-                                                else [speeds], order=data.get("order", 1.0))
-    except InputError as err:
-        raise err.naming({p: f"{name}: `{k}`" for k, p in PARAMETERS.items()}) from None
-    cols, names = report_.columns(response, amplitudes)
-    tables = report_.tables(model, response, cols, names, operating)
+    outcome = REGISTRY["coupling"](path)
+    model, response, operating = outcome.result
+    tables = report_.tables(outcome)
     first = 2 if operating is not None else 1  # the summary and the operating points
-    page = Page(f"{data.get('name', 'Stiff coupling')}: design report", source)
+    page = Page(f"{outcome.meta.get('name') or 'Stiff coupling'}: design report", source)
     page.section("Torsional resonance", table_html_many(tables[:first]))
-    notes = report_.notes(model, response, eta)
+    notes = outcome.notes
     page.section("Notes", notes_html(notes) if notes else
                  '<p class="none">None: the coupling is damped on both sides.</p>')
     page.section("Transfer functions and phases", figure(

@@ -14,8 +14,7 @@ from dyade.cli.plot.output import figure_for, finish, output_options, single_tar
 @coupling_options
 @click.option("--log", is_flag=True, help="A logarithmic axis for the transfer functions.")
 @output_options()
-def coupling_figure(coupling_file, inertia, c1, c2, b1, b2, eta_range, moment, speeds, order,
-                    log, output, fmt, show, dpi) -> None:
+def coupling_figure(coupling_file, log, output, fmt, show, dpi, **options) -> None:
     """The stiff coupling's transfer functions V_φ, V_ψ, V_q, V_r against η with their
     phases (Strümpfel), η0 and the operating points marked; an undamped resonance is a
     gap, never a spike. The options and file of `dyade coupling`:
@@ -25,9 +24,8 @@ def coupling_figure(coupling_file, inertia, c1, c2, b1, b2, eta_range, moment, s
     name = (f"{os.path.splitext(coupling_file.name)[0]}-coupling" if coupling_file
             else "coupling")
     target, announce = single_target(output, fmt, show, dpi, name)
-    model, _, response, _, operating, _ = solve(coupling_file, inertia, c1, c2, b1, b2,
-                                                eta_range, moment, speeds, order)
+    model, response, operating = solve(coupling_file, options).result
     from dyade.plot import coupling as figure
 
     finish(figure.figure(model, response, operating, log=log, fig=figure_for(target)),
-            target, announce)
+           target, announce)

@@ -1,0 +1,90 @@
+"""The one number formatter and the one cell rule of every writer (issue 36).
+
+Tables (``number``): 6 significant digits, round-off of the run's scale as 0, a value
+not given as ``MISSING`` (—), flags as yes/no, never a Python repr. CSV and JSON
+(``cell``): 15 significant digits, a value not given as an empty cell (JSON: null),
+flags 1/0. Units: ``display`` turns an SI unit into the one a table shows (lengths in
+the mechanism file's length unit unless ``--units si``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from dyade.analyses.base import MISSING
+from dyade.roundoff import is_roundoff
+from dyade.units import LENGTH_FACTORS
+
+FLAG = "1/0"
+"""the CSV/JSON unit of a flag column; tables say yes or no"""
+
+
+def number(value: Any, scale: float = 0.0, spec: str = ".6g") -> str:
+    """A value as a table shows it: ``spec`` (6 significant digits), round-off of
+    ``scale`` as 0 (``dyade.roundoff``), not given (None, NaN) as ``MISSING``, ±inf as
+    ∞, flags yes/no, text as it is.
+
+    >>> import numpy as np
+    >>> [number(v) for v in (np.float64(3600.0), 0.1 + 0.2, None, float("nan"), True, -0.0)]
+    ['3600', '0.3', '—', '—', 'yes', '0']
+    """
+    if value is None:
+        return MISSING
+    if isinstance(value, str):
+        return value
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        return flag(value)
+    value = float(value)
+    if math.isnan(value):
+        return MISSING
+    if math.isinf(value):
+        return "∞" if value > 0 else "−∞"
+    if is_roundoff(value, scale):
+        return "0"
+    return f"{value + 0.0:{spec}}"
+
+
+def flag(value: Any) -> str:
+    """A flag in a table: yes or no."""
+    return "yes" if value else "no"
+
+
+def cell(value: Any) -> str:
+    """One CSV field: 15 significant digits, empty for a value not given (None, NaN,
+    ±inf), 1/0 for flags, text as it is (quoted where it holds a comma or a quote)."""
+    if value is None:
+        return ""
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        return "1" if value else "0"
+    if isinstance(value, str):
+        return '"' + value.replace('"', '""') + '"' if any(c in value for c in ',"\n') else value
+    value = float(value)
+    return f"{value + 0.0:.15g}" if math.isfinite(value) else ""
+
+
+def display(unit: str, length_unit: str = "m") -> tuple[float, str]:
+    """Factor and unit to show a value of SI ``unit`` with lengths in ``length_unit``
+    (m, m/s, m/s² become mm, mm/s, mm/s² for "mm")."""
+    if length_unit == "m" or unit not in ("m", "m/s", "m/s²"):
+        return 1.0, unit
+    return 1.0 / LENGTH_FACTORS[length_unit], length_unit + unit[1:]
+
+
+def with_unit(value: Any, unit: str, scale: float = 0.0) -> str:
+    """``"3600 rpm"``: a figure and its unit for a sentence; a value not given alone."""
+    text = number(value, scale)
+    return text if text == MISSING or not unit or unit == "-" else f"{text} {unit}"
+
+
+def where(place: Any) -> str:
+    """Where a figure occurs, for a table: ``{"angle_deg": 37.0}`` -> ``"37°"``."""
+    if not place:
+        return ""
+    parts = []
+    for key, value in dict(place).items():
+        unit = {"deg": "°", "rpm": " rpm", "hz": " Hz", "s": " s"}.get(key.rpartition("_")[2], "")
+        name = key.rpartition("_")[0] if unit else key
+        shown = number(value)
+        parts.append(f"{shown}{unit}" if name in ("angle", "") else f"{name} {shown}{unit}")
+    return ", ".join(parts)
