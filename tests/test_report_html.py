@@ -200,3 +200,46 @@ def test_a_drive_line_reports_its_natural_frequency_and_steady_state(tmp_path):
     assert '<figure id="figure-driveline">' in page and "rigid drive" in page
     plain = report_html.report(str(shipped("dyade-16.toml")))
     assert "The elastic drive line" not in plain
+
+
+# -- issue 36: the report takes the commands' options -----------------------------------
+SHORT = ["--set", "dyad.2.lengths=[200,60]"]
+"""the four-bar with its rocker shortened: it closes for crank angles 0°-95° and
+265°-360° only (|A B0| ranges 200..300 mm, coupler + rocker = 260 mm)"""
+
+
+def test_a_mechanism_that_closes_over_part_of_the_turn_needs_allow_partial(tmp_path):
+    out = CliRunner().invoke(main, ["report", str(shipped("fourbar.toml")), *SHORT, "-o",
+                                    str(tmp_path / "r.html")], catch_exceptions=False)
+    assert out.exit_code == 1
+    assert "--allow-partial" in out.output and "allow_partial=True" not in out.output
+    assert "96.0°–264.0°" in out.output
+    assert not (tmp_path / "r.html").exists()
+
+
+def test_a_partial_mechanism_is_reported_over_the_part_that_closes(tmp_path):
+    page = write(shipped("fourbar.toml"), tmp_path, "r.html", *SHORT, "--allow-partial")
+    # said in the notes ...
+    assert "cannot close for crank angles 96.0°–264.0°" in page
+    assert "192 of 361 kept" in page
+    # ... shaded in the figures (the curves' partial band) ...
+    assert 'id="curves-note-partial"' in page
+    # ... and the motion is the part that closes: one frame per closed position
+    data = motion(page)
+    angles = np.array(data["angles"])
+    assert angles.size == 192
+    assert not np.any((angles > 95.5) & (angles < 264.5))
+    # the API gives the same page
+    api = report_html.report(str(shipped("fourbar.toml")), {"dyad.2.lengths": [200, 60]},
+                             allow_partial=True)
+    assert api.replace(str(shipped("")), "") == page.replace(str(shipped("")), "")
+
+
+def test_the_report_sweeps_as_asked_and_refuses_options_that_do_not_apply(tmp_path):
+    page = write(shipped("fourbar.toml"), tmp_path, "r.html", "--start", "0", "--stop", "90",
+                 "--step", "2")
+    assert motion(page)["angles"] == pytest.approx(np.arange(0, 92, 2))
+    out = CliRunner().invoke(main, ["report", str(shipped("coupling/stiff-coupling.toml")),
+                                    "--allow-partial", "-o", str(tmp_path / "c.html")],
+                             catch_exceptions=False)
+    assert out.exit_code == 2 and "--allow-partial apply to a mechanism file" in out.output

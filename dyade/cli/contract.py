@@ -53,10 +53,16 @@ def flags(entry: Analysis) -> dict[str, str]:
 
 def options_of(entry: Analysis, params: dict[str, Any]) -> dict[str, Any]:
     """The API options among a command's click parameters (a flag not given: absent)."""
-    names = {option.api for option in entry.every_option}
+    return options_of_declared(entry.every_option, params)
+
+
+def options_of_declared(options, params: dict[str, Any]) -> dict[str, Any]:
+    """The API options of the declarations ``options`` among a command's click
+    parameters (a flag not given, or a flag not set: absent)."""
+    names = {option.api for option in options}
     return {name: (tuple(value) if isinstance(value, list) else value)
             for name, value in params.items()
-            if name in names and value is not None and value != ()}
+            if name in names and value is not None and value != () and value is not False}
 
 
 def run(entry: Analysis, source: Any, params: dict[str, Any], what: str = "", **extra):

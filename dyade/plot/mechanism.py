@@ -446,7 +446,11 @@ def figure(result, *, at_deg=None, fig: Figure | None = None, **renamed) -> Figu
         angle = result.crank_angle[result.rows]
         span = angle[-1] - angle[0]
         full = span >= 2 * np.pi - 1.5 * result.mechanism.sweep.step
-        at = angle[0] + span * (np.arange(4) / 4 if full else np.arange(3) / 2)
+        if result.rows.all():
+            at = angle[0] + span * (np.arange(4) / 4 if full else np.arange(3) / 2)
+        else:  # a sweep with gaps (allow_partial): positions where it closes, spread
+            k = np.linspace(0, angle.size - 1, 5)[:4] if full else np.linspace(0, angle.size - 1, 3)
+            at = angle[np.unique(np.round(k).astype(int))]
     at = np.atleast_1d(np.asarray(at, dtype=float))
     placed = geometry(result, analyse_si(result.mechanism, crank_angle=at, plan=Plan()))
     width = panel_width(placed)

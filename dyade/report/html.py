@@ -156,7 +156,7 @@ MOTION_WIDTH = 640.0  # [px] the motion's drawing
 DECIMALS = 1  # [px] coordinates of the motion's data
 
 
-def report(path: str, overrides: dict[str, Any] | None = None) -> str:
+def report(path: str, overrides: dict[str, Any] | None = None, **options: Any) -> str:
     """The design report of a mechanism, gear, study or coupling file as one
     self-contained HTML page.
 
@@ -168,6 +168,11 @@ def report(path: str, overrides: dict[str, Any] | None = None) -> str:
         coupling file (``J``, ``c1``, ``c2``).
     overrides : dict, optional
         Dotted keys and values that replace the file's (as ``--set``).
+    **options
+        The options of the analyses the report composes, by their API names, as the
+        commands take them: for a mechanism ``start_deg``, ``stop_deg``, ``step_deg``
+        and ``allow_partial`` (a mechanism that closes over part of the turn is
+        reported over that part, the gaps shaded in the figures and said in the notes).
 
     Returns
     -------
@@ -177,7 +182,8 @@ def report(path: str, overrides: dict[str, Any] | None = None) -> str:
     Raises
     ------
     InputError
-        The file is none of these kinds, or is not valid.
+        The file is none of these kinds, or is not valid, or an option does not apply
+        to its kind.
     """
     import os
 
@@ -188,11 +194,15 @@ def report(path: str, overrides: dict[str, Any] | None = None) -> str:
     source = os.path.basename(os.fspath(path))
     if "crank" in data:
         mechanism = dyade.read_mechanism(path, overrides)
-        page = mechanism_report(mechanism, source=source)
+        page = mechanism_report(mechanism, source=source, **options)
         # the page names the file, not where it lies: the same file gives the same bytes
         for where in sorted({os.fspath(path), os.path.abspath(path)}, key=len, reverse=True):
             page = page.replace(html.escape(where), html.escape(source))
         return page
+    given = sorted(name for name, value in options.items() if value not in (None, False))
+    if given:
+        raise InputError.parameter(tuple(given), f"apply to a mechanism file; {source} is "
+                                                 f"not one.")
     if any(key in data for key in ("shaft", "gear", "body")):
         return gear_report(dyade.read_gears(path, overrides), source=source)
     if "plan" in data and "parameters" in data and not overrides:
@@ -209,8 +219,11 @@ def report(path: str, overrides: dict[str, Any] | None = None) -> str:
 
 
 # -- a mechanism -------------------------------------------------------------------------
-def mechanism_report(mechanism, *, source: str = "") -> str:
-    """The design report of a mechanism (see ``report``)."""
+def mechanism_report(mechanism, *, source: str = "", start_deg: float | None = None,
+                     stop_deg: float | None = None, step_deg: float | None = None,
+                     allow_partial: bool = False) -> str:
+    """The design report of a mechanism (see ``report``), over the sweep the options
+    give (``dyade.analyse``'s)."""
     import dyade
     from dyade.linkage.plan import plan
     from dyade.linkage.summary import summary as summarise
@@ -218,7 +231,9 @@ def mechanism_report(mechanism, *, source: str = "") -> str:
     from dyade.report import describe, tables
     from dyade.report.notes import say
 
-    result = dyade.analyse(mechanism)
+    result = dyade.analyse(mechanism, start_deg=start_deg, stop_deg=stop_deg,
+                           step_deg=step_deg, allow_partial=allow_partial)
+    mechanism = result.mechanism  # with the sweep asked for
     cols = result.columns()
     summary = summarise(result, cols)
     the_plan = plan(mechanism)

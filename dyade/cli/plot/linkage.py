@@ -161,7 +161,8 @@ def _angles(texts: tuple[str, ...]) -> list[float] | None:
 @click.option("--at", "at", multiple=True, metavar="DEG,...",
               help="Crank angles [°] to draw the linkage at, one panel each: --at 0,90,180  "
                    "[default: 0°, 90°, 180°, 270° from the start of a full turn, else the "
-                   "sweep's start, middle and end].")
+                   "sweep's start, middle and end; with --allow-partial, positions where it "
+                   "closes, spread over the sweep].")
 @output_options()
 def mechanism(mechanism_files, start, stop, step, assignments, allow_partial, at, output, fmt,
               show, dpi) -> None:
