@@ -7,7 +7,13 @@ joint with clearance (Dresig & Thümmel), the torsional resonance of a stiff cou
 (Strümpfel) and the vibration of multistage gear drives as rigid finite elements
 (Berczyński, Maćkowiak & Marchelek).
 
-The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``,
+Every command is an entry of one registry, run the same way from Python:
+``dyade.run(name, source, **options)`` -> ``Outcome`` (``dyade.REGISTRY`` lists the
+entries, each with its options declared once: ``REGISTRY["sweep"].options``); the
+Outcome holds the columns with their units, the summary's figures (value, unit, where),
+the notes, and ``to_document()``, the JSON that ``--format json`` writes.
+
+The engine's API, one package per analysis (``dyade.linkage``, ``dyade.clearance``,
 ``dyade.vibration``, ``dyade.machine``), with the everyday functions re-exported here:
 
 - ``read_mechanism(path, overrides=None)``, ``build_mechanism(data)`` -> ``Mechanism``
@@ -69,6 +75,11 @@ __version__ = "0.1.0"
 ``dynamic``), the installed metadata and ``dyade --version`` say the same"""
 
 _EXPORTS = {
+    "run": "dyade.analyses",
+    "REGISTRY": "dyade.analyses",
+    "Outcome": "dyade.analyses.base",
+    "Figure": "dyade.analyses.base",
+    "Option": "dyade.analyses.base",
     "read_mechanism": "dyade.files.mechanism",
     "build_mechanism": ("dyade.files.mechanism", "build"),
     "plan": "dyade.linkage.plan",
@@ -113,8 +124,8 @@ _EXPORTS = {
     "MissingExtra": "dyade.errors",
 }
 
-_SUBMODULES = {"clearance", "errors", "files", "linkage", "machine", "plot", "study",
-               "units", "vibration"}
+_SUBMODULES = {"analyses", "clearance", "errors", "files", "linkage", "machine", "plot",
+               "study", "units", "vibration"}
 """packages of the API, loaded on first attribute access (``dyade.clearance``)"""
 
 __all__ = sorted(_EXPORTS) + ["__version__"]

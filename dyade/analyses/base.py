@@ -36,7 +36,9 @@ MISSING = "—"
 UNIT_SUFFIX = {"°": "deg", "rpm": "rpm", "MB": "mb", "s": "s", "Hz": "hz", "%": "percent"}
 """unit -> the suffix the API name of an option in that unit carries: ``--step`` [°] is
 ``step_deg``, ``--max-memory`` [MB] ``max_memory_mb``, ``--max-time`` [s]
-``max_time_s``. Options in other units (SI, or none) keep their name."""
+``max_time_s``, ``--speed`` [rpm] ``speed_rpm``. Options in other units (SI, or none)
+keep their name. A flag never carries its unit (its help says it); the API name always
+does."""
 
 
 def api_name(flag: str, unit: str) -> str:
@@ -45,7 +47,7 @@ def api_name(flag: str, unit: str) -> str:
     "friction_tol"``."""
     base = flag.lstrip("-").replace("-", "_")
     suffix = UNIT_SUFFIX.get(unit)
-    return f"{base}_{suffix}" if suffix and not base.endswith("_" + suffix) else base
+    return f"{base}_{suffix}" if suffix else base
 
 
 def flag_name(name: str, unit: str) -> str:
@@ -81,7 +83,9 @@ class Option:
     positive: bool = False
     """a number that must be above 0"""
     study: bool = True
-    """a study file may vary it (``[study.options]``)"""
+    """a study file may vary it"""
+    old: tuple[str, ...] = ()
+    """former flags, still accepted for one release but not shown (``--speed-rpm``)"""
 
     @property
     def api(self) -> str:
