@@ -62,6 +62,42 @@ REGISTRY = Registry()
 
 
 def run(name: str, source=None, **options):
-    """Run the analysis ``name`` of the registry on ``source`` with ``options`` (API
-    names): ``dyade.run("sweep", "mechanisms/fourbar.toml", step_deg=1)`` -> ``Outcome``."""
+    """Run an analysis of the registry: what its command does, as a Python function.
+
+    Parameters
+    ----------
+    name : str
+        The entry (``list(dyade.analyses.REGISTRY)``): ``"sweep"`` (``dyade analyse``),
+        ``"coupling"``, ``"gear-modes"``, ``"driveline-steady"``, …
+    source : str, os.PathLike or model object, optional
+        The input file (a mechanism, gear, coupling or study file) or its model (a
+        ``Mechanism``, ``GearDrive``, ``Coupling``); None where the options hold the
+        whole input.
+    **options
+        The entry's options by their API names: the command line's flags with the unit
+        in the name (``--step`` is ``step_deg``, ``--speed`` [rpm] ``speed_rpm``,
+        ``--max-memory`` [MB] ``max_memory_mb``); ``REGISTRY[name].options`` lists them
+        with unit, default and help.
+
+    Returns
+    -------
+    Outcome
+        Columns with their units, the summary's figures (value, unit, where), the notes;
+        ``.to_document()`` is the JSON the command's ``--format json`` writes.
+
+    Raises
+    ------
+    InputError
+        A bad file or option (an old option name: naming its new one).
+    DyadeError
+        The analysis cannot give what was asked (every position withheld, …).
+
+    Examples
+    --------
+    >>> import dyade
+    >>> outcome = dyade.run("coupling", "mechanisms/coupling/stiff-coupling.toml")
+    >>> figure = outcome.summary["omega_t"]
+    >>> round(figure.value, 1), figure.unit
+    (2886.8, 'rad/s')
+    """
     return REGISTRY[name](source, **options)

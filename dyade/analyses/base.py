@@ -190,6 +190,15 @@ class Outcome:
     can draw it. ``meta`` says what was analysed (the file, the mechanism's name).
     ``result`` keeps the engine's own result for the figures and the report (not
     written by any writer).
+
+    Examples
+    --------
+    >>> import dyade
+    >>> outcome = dyade.run("coupling", None, J=1.0, c1=1.0, c2=1.0, b1=0.05, b2=0.05)
+    >>> outcome.units["V_phi"], outcome.summary["V_phi_max"].where
+    ('-', {'eta': 0.71})
+    >>> sorted(outcome.to_document())[:4]
+    ['analysis', 'columns', 'meta', 'notes']
     """
 
     analysis: str
