@@ -25,12 +25,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.errors import DyadeError, InputError
-from dyade.linkage.line_model import (VDI_2149_RATIO, NaturalFrequency, crank_tables,  # noqa: F401
-                                     line_data, line_of, natural_frequency, sense_of)
-from dyade.linkage.model import FloatArray, Mechanism
+from dyade.linkage.drive import crank_tables, natural_frequency
 from dyade.machine import drive_line as engine
-from dyade.machine.motor import ConstantTorque, Motor, operating_speed
+from dyade.machine.drive_line import line_data, line_of, sense_of
+from dyade.machine.motor import operating_speed
+from dyade.model.drive import ConstantTorque, Motor
+from dyade.model.mechanism import Mechanism
 
 RPM = 30.0 / math.pi  # rpm per rad/s
 HARMONIC_SHARE = 1e-3  # [-] harmonics of J or M_L above this share of the largest are labelled

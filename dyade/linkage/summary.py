@@ -10,8 +10,8 @@ import numpy as np
 from dyade import cycle
 from dyade.arrays import plain, resolution
 from dyade.linkage.columns import Columns
-from dyade.linkage.model import Revolute
 from dyade.linkage.verdicts import Outcome
+from dyade.model.mechanism import Revolute
 
 
 def full_cycle(angle_deg: np.ndarray) -> bool:

@@ -29,7 +29,7 @@ import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.errors import DyadeError
-from dyade.machine.motor import ConstantTorque, Motor
+from dyade.model.drive import ConstantTorque, Motor
 
 NEWTON_MAX_ITER = 50  # most shooting iterations
 NEUTRAL = 1e-12  # [-] |dP/dE0 − 1| below this: the revolution map does not depend on E0

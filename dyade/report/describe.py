@@ -15,8 +15,8 @@ import numpy as np
 from rich.markup import escape
 from rich.tree import Tree
 
-from dyade.linkage.model import CRANK, FRAME, Mechanism, Prismatic, Revolute
 from dyade.linkage.plan import Plan
+from dyade.model.mechanism import CRANK, FRAME, Mechanism, Prismatic, Revolute
 from dyade.report.effects import effects
 from dyade.units import LENGTH_FACTORS
 

@@ -7,9 +7,9 @@ from rich.table import Table
 
 from dyade.linkage.plan import Plan
 from dyade.linkage.verdicts import Outcome as Result
-from dyade.linkage.model import FRAME, Mechanism, Prismatic, Revolute
 from dyade.linkage.columns import Columns, unit_of
 from dyade import cycle
+from dyade.model.mechanism import FRAME, Mechanism, Prismatic, Revolute
 from dyade.roundoff import ROUNDOFF, is_roundoff
 from dyade.units import LENGTH_FACTORS
 

@@ -79,7 +79,7 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
         out["flywheel_inertia"] = size_flywheel(torque_curve(result.mechanism),
                                                 fluctuation).flywheel
     if "coupling" in extras:  # the elastic drive line's resonance (``[drive_line]``)
-        from dyade.linkage.line_model import natural_frequency
+        from dyade.linkage.drive import natural_frequency
 
         line = natural_frequency(result.mechanism)
         out.update(omega_bar=line.omega_bar, resonance_speed_rpm=line.omega_bar * 30.0 / math.pi,
@@ -109,7 +109,7 @@ def figures(mechanism, angle_deg: np.ndarray, cols: dict[str, np.ndarray], force
     gives them."""
     from dyade import cycle
     from dyade.linkage import summary as figures_
-    from dyade.linkage.model import Revolute
+    from dyade.model.mechanism import Revolute
 
     out: dict[str, np.ndarray] = {}
 
