@@ -42,6 +42,7 @@ from dyade.machine import drive_line as line_engine, equation
 from dyade.machine.motor import operating_speed
 from dyade.model.drive import ConstantTorque, Motor, TorqueSpeedTable
 from dyade.model.mechanism import Mechanism
+from dyade.units import RAD_PER_S_TO_RPM
 
 MIN_STEPS = 720  # integration steps per revolution unless the file says otherwise
 AT_REST_NUDGE = 1e-6  # [-] share of the top speed at which friction is taken at rest
@@ -283,7 +284,7 @@ def _check_table(motor: Motor, path: equation.Path, tables: equation.Tables) -> 
         return
     speeds = np.sqrt(2.0 * path.energy / tables.inertia[(2 * np.arange(path.energy.size))
                                                         % tables.inertia.size])
-    rpm = 30.0 / math.pi
+    rpm = RAD_PER_S_TO_RPM
     if not (motor.covers(float(speeds.min())) and motor.covers(float(speeds.max()))):
         raise DyadeError(f"the crank speed runs from {speeds.min() * rpm:.4g} to "
                          f"{speeds.max() * rpm:.4g} rpm, outside the motor's torque-speed "

@@ -17,7 +17,8 @@ interpolant crosses zero.
 >>> import numpy as np
 >>> theta = np.deg2rad(np.arange(0.0, 360.0, 1.0))        # one revolution
 >>> engine = 10000 + 2000 * np.sin(2 * theta) - 1800 * np.cos(2 * theta)   # [N·m]
->>> curve = excess_curve(theta, engine, speed=250 * np.pi / 30)   # against a constant load
+>>> from dyade.units import RPM                             # [rad/s per rpm]
+>>> curve = excess_curve(theta, engine, speed=250 * RPM)   # against a constant load
 >>> result = size_flywheel(curve, 0.005)
 >>> round(result.power / 1e3, 3), round(result.delta_energy, 3), round(result.flywheel, 2)
 (261.799, 2690.725, 785.17)
@@ -34,6 +35,7 @@ import numpy as np
 from dyade.arrays import FloatArray
 from dyade.cycle import integrals, mean as cycle_mean, segments
 from dyade.errors import DyadeError, InputError
+from dyade.units import rpm_to_rad_per_s
 
 if TYPE_CHECKING:
     from dyade.model.torque_table import TorqueTable
@@ -147,7 +149,7 @@ def torque_curve(angle_deg, drive, load=None, *, speed_rpm: float | None = None,
                                    unit="rpm")
     try:
         angle = np.deg2rad(np.asarray(angle_deg, dtype=np.float64))
-        speed = float(speed_rpm) * math.pi / 30.0
+        speed = rpm_to_rad_per_s(float(speed_rpm))
     except (TypeError, ValueError):
         raise InputError.parameter(("angle_deg", "speed_rpm"), "must be numbers [°], [rpm]."
                                    ) from None

@@ -34,6 +34,7 @@ import numpy as np
 from dyade.arrays import FloatArray
 from dyade.errors import InputError
 from dyade.model.coupling import Coupling
+from dyade.units import RPM
 
 UNBOUNDED_RTOL = 1e-14  # [-] |denominator| below this share of its terms: exactly singular
 
@@ -191,7 +192,7 @@ def operating_points(coupling: Coupling, speeds_rpm, *, order: float = 1.0) -> O
     if np.any(~np.isfinite(speeds) | (speeds <= 0)):
         raise InputError.parameter("speeds_rpm", "(operating speeds) must be positive [rpm].",
                                    unit="rpm")
-    omega = order * speeds * 2 * np.pi / 60
+    omega = order * speeds * RPM
     eta = omega / coupling.natural_frequency
     return OperatingPoints(speeds, float(order), eta, response(coupling, eta))
 
