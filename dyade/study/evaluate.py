@@ -80,9 +80,10 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
                                                 fluctuation).flywheel
     if "coupling" in extras:  # the elastic drive line's resonance (``[drive_line]``)
         from dyade.linkage.drive import natural_frequency
+        from dyade.units import RAD_PER_S_TO_RPM
 
         line = natural_frequency(result.mechanism)
-        out.update(omega_bar=line.omega_bar, resonance_speed_rpm=line.omega_bar * 30.0 / math.pi,
+        out.update(omega_bar=line.omega_bar, resonance_speed_rpm=line.omega_bar * RAD_PER_S_TO_RPM,
                    speed_ratio=line.ratio)
     if "clearance" in extras:
         for check in s.get("clearance", []):
