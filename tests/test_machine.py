@@ -18,7 +18,7 @@ from dyade.cli import main
 from dyade.errors import DyadeError, InputError
 from dyade.files import mechanism as toml_input
 from dyade.linkage import kinematics, kinetostatics
-from dyade.linkage.model import Load
+from dyade.model.mechanism import Load
 from tests.conftest import SHIPPED
 from tests.global_solve import global_forces
 from tests.helpers import mechanism_from, read_csv, shipped

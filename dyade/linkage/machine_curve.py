@@ -9,10 +9,10 @@ import numpy as np
 
 from dyade.cycle import mean as cycle_mean
 from dyade.errors import DyadeError, InputError
-from dyade.linkage.model import Mechanism
 from dyade.linkage.options import check_size, radians
 from dyade.linkage.sweep import analyse_si
 from dyade.machine.flywheel import TorqueCurve, machine_curve
+from dyade.model.mechanism import Mechanism
 
 FINE_STEP = math.radians(0.1)  # [rad] largest default step of a torque curve
 

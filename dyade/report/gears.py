@@ -9,8 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from dyade.model.gears import DOFS
 from dyade.roundoff import EIGEN_ROUNDOFF, clean
-from dyade.vibration.gears.model import DOFS
 
 MOTIONS = ("torsion", "lateral", "axial")
 MODEL = {"rfe": "rigid finite elements, six coordinates per body",

@@ -8,6 +8,7 @@ from typing import Any
 from rich.table import Table
 
 from dyade.roundoff import clean
+from dyade.units import RAD_PER_S_TO_RPM
 
 FLYWHEEL_COLUMNS = ["speed_rpm", "P_mean", "M_mean", "delta_E", "J_machine", "J_flywheel",
                     "fluctuation", "angle_max_speed_deg", "angle_min_speed_deg"]
@@ -27,7 +28,7 @@ COUNTERWEIGHT_UNITS = {"link": "", "first_moment": "kg·m", "angle_deg": "°", "
 
 def flywheel_row(result) -> dict[str, Any]:
     """A ``Flywheel`` as the command's keys (SI, speed in rpm, angles in degrees)."""
-    return {"speed_rpm": result.speed * 30.0 / math.pi, "P_mean": result.power,
+    return {"speed_rpm": result.speed * RAD_PER_S_TO_RPM, "P_mean": result.power,
             "M_mean": result.mean_torque, "delta_E": result.delta_energy,
             "J_machine": result.machine_inertia, "J_flywheel": result.flywheel,
             "fluctuation": result.fluctuation,
