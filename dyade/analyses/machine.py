@@ -64,7 +64,7 @@ COUNTERWEIGHTS = {  # column -> (unit, description): one row per counterweight
 }
 
 WITHHOLDING = {
-    "implausible": "values beyond what any machine has (1e12 in SI units)",
+    "implausible": "values beyond what any machine has, 1e12 in SI units",
     "dead_centre": "dead centres",
     "partial": "positions where the mechanism does not close",
     "forces_invalid": "forces not valid",
@@ -77,7 +77,7 @@ WITHHOLDING = {
 
 def withholding(notes) -> str:
     """Why a sweep's positions are withheld, from its notes (``dyade.linkage.notes``):
-    "values beyond what any machine has (1e12 in SI units)"."""
+    "values beyond what any machine has, 1e12 in SI units"."""
     kinds = dict.fromkeys(str(getattr(note, "kind", "")) for note in notes)
     return "; ".join(WITHHOLDING[kind] for kind in kinds if kind in WITHHOLDING)
 
@@ -133,9 +133,10 @@ def flywheel(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     if fluctuation is not None:
         check_plausible("fluctuation", fluctuation, "fluctuation")
     if inertia is not None and not 0.0 <= inertia <= PLAUSIBLE["inertia"][1]:
-        raise InputError.parameter("inertia", f"must lie in 0…{PLAUSIBLE['inertia'][1]:g} kg·m² "
-                                              f"(what a machine has), got {inertia:g}.",
-                                   value=inertia, unit="kg·m²")
+        most = PLAUSIBLE["inertia"][1]
+        raise InputError.parameter("inertia", f"must lie in 0…{most:g} kg·m² (what a machine "
+                                              f"has), got {inertia:g}.", value=inertia,
+                                   unit="kg·m²")
     speed_rpm, step_deg = options.get("speed_rpm"), options.get(STEP.api)
     mechanism_only = [name for name in ("set", START.api, STEP.api) if options.get(name)
                       not in (None, ())]
@@ -178,7 +179,7 @@ def flywheel(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
 def mechanism_curve(source: Any, options: dict[str, Any], budget: Budget):
     """The torque curve of a mechanism (file, text or ``Mechanism``) at its constant crank
     speed, its size and time checked before the sweep."""
-    from dyade.errors import InputError
+    from dyade.errors import DyadeError, InputError
     from dyade.linkage.machine_curve import FINE_STEP, torque_curve
     from dyade.linkage.options import check_size
 
@@ -200,6 +201,11 @@ def mechanism_curve(source: Any, options: dict[str, Any], budget: Budget):
         return torque_curve(mechanism, step_deg=step_deg, max_memory=budget.max_memory)
     except InputError as err:
         raise err.naming({"max_memory": "max_memory_mb"}) from None
+    except DyadeError as err:
+        if not hasattr(err, "notes"):
+            raise
+        none_given(mechanism.name, "no crank position of the revolution has its drive torque "
+                                   "given, so no flywheel can be sized from it", err.notes)
 
 
 # -- balance ------------------------------------------------------------------------------
@@ -268,10 +274,15 @@ def balance(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                     description=f"{name} largest, before")
         outcome.add(f"{name}_peak_after", entry["after"], "N",
                     description=f"{name} largest, with the counterweights")
-    if not given.all():
-        outcome.notes.append(f"the figures are over the {int(given.sum())} of {given.size} "
-                             f"positions where the kinematics is given "
-                             f"({withholding(result.before.notes) or 'the others withheld'}).")
+    forces = result.before.columns()["forces_valid"] == 1.0
+    for mask, what in ((given, "the figures are over the {} of {} positions where the "
+                                "kinematics is given"),
+                       (forces, "the drive torque, the shaking moment and the joint forces "
+                                "are over the {} of {} positions where the forces are given")):
+        if not mask.all():
+            why = withholding(result.before.notes) or "the others withheld"
+            outcome.notes.append(f"{what.format(int(mask.sum()), mask.size)} ({why}).")
+            break
     return outcome
 
 

@@ -158,8 +158,9 @@ def outcome_of(result) -> Outcome:
         if name != "ok" and where.size:
             first = int(where[0])
             reason = str(cols["reason"][first]).rstrip(".")
+            because = f": {reason}" if reason else ""
             outcome.notes.append(f"{where.size} of {count} variants {words} (the first, variant "
-                                 f"{int(cols['variant'][first])}{': ' + reason if reason else ''}).")
+                                 f"{int(cols['variant'][first])}{because}).")
     if result.sensitivity is not None:
         sensitivities(outcome, result)
     elif result.tolerance is not None:

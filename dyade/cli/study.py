@@ -119,7 +119,8 @@ def solve(study_file: str, params: dict, journal: str | None, resume: bool):
     from dyade.cli.output import console, flags
 
     options = contract.options_of(ENTRY, params)
-    options.update(journal=journal, resume=resume)
+    options.update({"journal": journal} if journal else {})
+    options.update({"resume": True} if resume else {})
     err = console(stderr=True)
     names = contract.flags(ENTRY) | {"journal": "-o", "jobs": "-j"}
     with flags(names), bar() as tick:

@@ -66,11 +66,11 @@ def torque_curve(mechanism: Mechanism, *, step_deg: float | None = None,
     cols = result.columns()
     torque, inertia = cols["M_drive"], cols["J_red"]  # NaN where not given
     if not np.isfinite(torque).any():  # the rule every analysis shares: exit 1, say so
-        kinds = ", ".join(dict.fromkeys(str(note.kind).replace("_", " ")
-                                        for note in result.notes))
-        raise DyadeError(f"{mechanism.name}: no crank position of the revolution has its drive "
-                         f"torque given (every one is withheld{f': {kinds}' if kinds else ''}), "
-                         f"so no flywheel can be sized from it: nothing to report.")
+        err = DyadeError(f"{mechanism.name}: no crank position of the revolution has its drive "
+                         f"torque given (every one is withheld by the sweep's notes), so no "
+                         f"flywheel can be sized from it: nothing to report.")
+        err.notes = result.notes  # why (``dyade.linkage.notes``), for the caller to word
+        raise err
     if not np.all(np.isfinite(torque)):
         raise DyadeError(f"{mechanism.name}: the drive torque is not given over the whole "
                          f"revolution (a dead centre), so no flywheel can be sized from it.")
