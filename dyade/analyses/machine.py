@@ -210,8 +210,8 @@ def mechanism_curve(source: Any, options: dict[str, Any], budget: Budget):
 
 # -- balance ------------------------------------------------------------------------------
 BEFORE_AFTER = (
-    ("F_inertia_max", "N", "shaking force of the inertia forces, largest"),
-    ("F_inertia_rms", "N", "shaking force of the inertia forces, RMS"),
+    ("F_inertia_max", "N", "shaking force, largest"),
+    ("F_inertia_rms", "N", "shaking force, RMS"),
     ("M_shake_max", "N·m", "shaking moment M_shake, largest"),
     ("M_shake_rms", "N·m", "shaking moment M_shake, RMS"),
     ("M_drive_peak", "N·m", "drive torque M_drive, largest"),
