@@ -273,6 +273,25 @@ def jsonable(value: Any) -> Any:
     return value
 
 
+def cell(value: Any) -> str:
+    """One CSV field, the one rule of every CSV dyade writes (``report.format`` re-exports
+    it; a study's journal writes by it too): 15 significant digits, empty for a value not
+    given (None, NaN, ±inf), 1/0 for flags, text as it is (quoted where it holds a comma,
+    a quote or a line break).
+
+    >>> [cell(v) for v in (300.0, 0.1 + 0.2, float("nan"), True, -0.0, "a, b")]
+    ['300', '0.3', '', '1', '0', '"a, b"']
+    """
+    if value is None:
+        return ""
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        return "1" if value else "0"
+    if isinstance(value, str):
+        return '"' + value.replace('"', '""') + '"' if any(c in value for c in ',"\n') else value
+    value = float(value)
+    return f"{value + 0.0:.15g}" if math.isfinite(value) else ""
+
+
 @dataclass
 class Budget:
     """The bounds of one run and its progress, as every analysis gets them.
