@@ -8,7 +8,7 @@ joint with clearance (Dresig & Thümmel), the torsional resonance of a stiff cou
 (Berczyński, Maćkowiak & Marchelek).
 
 Every command is an entry of one registry, run the same way from Python:
-``run(name, source, **options)`` -> ``Outcome`` (``dyade.analyses.REGISTRY`` lists the
+``run(name, source, **options)`` -> ``Outcome`` (``dyade.registry.REGISTRY`` lists the
 entries, each with its options declared once: ``REGISTRY["sweep"].options``); the
 Outcome holds the columns with their units, the summary's figures (value, unit, where),
 the notes, and ``to_document()``, the JSON that ``--format json`` writes.
@@ -77,7 +77,7 @@ __version__ = "0.1.0"
 ``dynamic``), the installed metadata and ``dyade --version`` say the same"""
 
 _EXPORTS = {
-    "run": "dyade.analyses",
+    "run": "dyade.registry",
     "Outcome": "dyade.analyses.base",
     "read_mechanism": "dyade.files.mechanism",
     "build_mechanism": ("dyade.files.mechanism", "build"),

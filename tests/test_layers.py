@@ -258,6 +258,9 @@ ANALYSES = ("dyade.analyses",)
 """the contract and its entries: above the engine and the readers, below cli, report, plot
 and study"""
 STUDY = ("dyade.study",)
+REGISTRY = "dyade.registry"
+"""the one registry of every command's entry: the analyses and the study's entry (which
+evaluates the others); above the study, below cli, report and plot"""
 PLOTTING = ("matplotlib",)
 
 FACADE = "dyade"
@@ -328,6 +331,16 @@ RULES = {
         lambda name, imp: within(imp.target, *CLI, *REPORT, *PLOT, *STUDY),
         "is an analysis entry and imports the command line, a writer, a figure or the "
         "study, which are above it"),
+    "only cli, report, plot and the facade look up the registry": (
+        lambda name: not within(name, *CLI, *REPORT, *PLOT) and name not in (
+            FACADE, ENTRY_POINT, REGISTRY),
+        lambda name, imp: imp.target == REGISTRY,
+        "imports dyade.registry, which names every entry, the study's too: from below the "
+        "study that points up (an analysis entry imports the module it needs)"),
+    "the registry sits above the study and below cli, report and plot": (
+        lambda name: name == REGISTRY,
+        lambda name, imp: within(imp.target, *CLI, *REPORT, *PLOT),
+        "is the registry and imports the command line, a writer or a figure"),
     "only cli, report and plot import the package facade": (
         lambda name: not within(name, *CLI, *REPORT, *PLOT) and name not in (FACADE, ENTRY_POINT),
         lambda name, imp: imp.target == FACADE,

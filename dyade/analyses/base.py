@@ -1,7 +1,7 @@
 """The contract every analysis keeps (issue 36): its options declared once, and one
 ``Outcome`` for what it found.
 
-An analysis is an ``Analysis`` entry of the registry (``dyade.analyses.REGISTRY``): a
+An analysis is an ``Analysis`` entry of the registry (``dyade.registry.REGISTRY``): a
 name, a one-line purpose, its ``Option`` declarations and a function from (an input,
 options) to an ``Outcome``. The command line's options, the API's keyword arguments,
 the study's keys and the report's section all come from the declarations; the table,

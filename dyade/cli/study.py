@@ -1,5 +1,5 @@
 """``dyade study``: many variants of one mechanism file, one row each; the registry's
-``study`` entry (``dyade.analyses.study``)."""
+``study`` entry (``dyade.study.entry``)."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import os
 
 import click
 
-from dyade.analyses.study import ENTRIES
+from dyade.study.entry import ENTRIES
 from dyade.cli import contract, main
 
 ENTRY = ENTRIES["study"]

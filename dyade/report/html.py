@@ -416,7 +416,7 @@ def coupling_report(path, *, source: str = "") -> str:
     """The design report of a coupling file (see ``report``): the torsional resonance
     (Strümpfel), its notes, the transfer functions and phases against η with the
     operating points, and their tables (as ``dyade coupling`` gives them)."""
-    from dyade.analyses import REGISTRY
+    from dyade.registry import REGISTRY
     from dyade.plot import coupling as plot
     from dyade.report import coupling as report_
 

@@ -1,4 +1,4 @@
-"""The ``study`` Outcome (``dyade.analyses.study``) as tables: the variants' status
+"""The ``study`` Outcome (``dyade.study.entry``) as tables: the variants' status
 counts and the outputs' ranges, the sensitivity (normalised), the tolerance statistics
 and failure probabilities, the optimum and the Pareto front."""
 
@@ -9,14 +9,14 @@ from collections import Counter
 import numpy as np
 from rich.table import Table
 
-from dyade.analyses.study import STATISTICS, identifier
+from dyade.study.entry import STATISTICS, identifier
 from dyade.report.format import number
 
 
 def tables(outcome) -> list:
     """The tables of a ``study`` Outcome (or of a ``Study``) for the terminal."""
     if not hasattr(outcome, "summary"):  # a Study of dyade.study
-        from dyade.analyses.study import outcome_of
+        from dyade.study.entry import outcome_of
 
         outcome = outcome_of(outcome)
     result, cols, figures = outcome.result, outcome.columns, outcome.summary

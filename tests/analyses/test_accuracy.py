@@ -9,7 +9,7 @@ import json
 import pytest
 from click.testing import CliRunner
 
-from dyade.analyses import REGISTRY
+from dyade.registry import REGISTRY
 from dyade.analyses.accuracy import RTOL, converged
 from dyade.analyses.base import jsonable
 from dyade.cli import main

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from dyade.analyses import REGISTRY
+from dyade.registry import REGISTRY
 from dyade.analyses.base import jsonable
 from dyade.cli import main
 from tests.helpers import shipped

@@ -16,7 +16,7 @@ import re
 import pytest
 from click.testing import CliRunner
 
-from dyade.analyses import ENTRIES, REGISTRY
+from dyade.registry import ENTRIES, REGISTRY
 from dyade.analyses.base import SCHEMA_VERSION, UNIT_SUFFIX, api_name, flag_name, jsonable
 from dyade.cli import main
 from tests.helpers import shipped

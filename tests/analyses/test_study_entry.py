@@ -1,4 +1,4 @@
-"""The ``study`` entry (``dyade.analyses.study``): the command line writes the entry's
+"""The ``study`` entry (``dyade.study.entry``): the command line writes the entry's
 Outcome, its summary is the study's answers with units, its CSV and journal follow the
 one cell rule of every CSV, and the bounds of a run hold."""
 
@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from dyade.analyses import REGISTRY
+from dyade.registry import REGISTRY
 from dyade.analyses.base import cell, jsonable
 from dyade.cli import main
 from tests.helpers import shipped

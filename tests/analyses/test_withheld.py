@@ -56,7 +56,7 @@ def test_a_run_whose_every_position_is_withheld_exits_1_saying_so(command):
     ("flywheel", {"fluctuation": 0.02}),
 ])
 def test_the_api_raises_the_same(name, options):
-    from dyade.analyses import REGISTRY
+    from dyade.registry import REGISTRY
     from dyade.errors import DyadeError, InputError
 
     words = r"every position is withheld: values beyond what any machine has, 1e12 in SI " \
@@ -68,7 +68,7 @@ def test_the_api_raises_the_same(name, options):
 
 def test_positions_partly_given_are_a_note_not_an_error():
     # at 1e6 rpm the forces pass 1e12 at part of the turn only: a result, and a note
-    from dyade.analyses import REGISTRY
+    from dyade.registry import REGISTRY
 
     outcome = REGISTRY["balance"](FOURBAR, set=("crank.speed_rpm=1e6",))
     forces = dyade.analyse(dyade.read_mechanism(FOURBAR, {"crank.speed_rpm": 1e6})
