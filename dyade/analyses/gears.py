@@ -45,8 +45,8 @@ CHECK = Option("check", bool, study=False,
                     "null-space solution: its frequencies, their relative difference and its "
                     "extra zero eigenvalues (one per mesh)")
 SPEED_RANGE = Option("speed-range", str, "rpm", metavar="START:STOP:STEP",
-                     help="Input speeds of the Campbell diagram  [default: 0 to 1.5 × the "
-                          "file's [speed] rpm, in 200 steps]")
+                     help="Input speeds of the Campbell diagram (default: 0 to 1.5 × the "
+                          "file's [speed] rpm, in 200 steps)")
 HARMONICS = Option("harmonics", int, default=3, metavar="N",
                    help="Tooth-mesh harmonics in the Campbell diagram")
 FREQUENCY_RANGE = Option("frequency-range", str, "Hz", metavar="START:STOP:STEP",
@@ -54,7 +54,7 @@ FREQUENCY_RANGE = Option("frequency-range", str, "Hz", metavar="START:STOP:STEP"
                               "(harmonic torques, transmission errors)")
 DOF = Option("dof", str, multiple=True, metavar="BODY.DOF",
              help="Coordinate of the forced response (repeatable), DOF one of ux uy uz rx ry "
-                  "rz in the body's own axes  [default: rx of every body]")
+                  "rz in the body's own axes (default: rx of every body)")
 
 
 @dataclass

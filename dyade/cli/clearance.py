@@ -35,12 +35,8 @@ def clearance_options(command):
     """Decorate a command with the options of the three clearance entries, each once
     (``-j``, shared with batches of files, is the command's), shared with ``dyade plot
     clearance``."""
-    seen = {"jobs"}
-    for entry in (SPEEDS, CHECK, PEAK):
-        for option in reversed(entry.every_option):
-            if option.api not in seen:
-                seen.add(option.api)
-                command = contract.click_option(option)(command)
+    for option in reversed(contract.declared((SPEEDS, PEAK), skip=("jobs",))):
+        command = contract.click_option(option)(command)
     return command
 
 

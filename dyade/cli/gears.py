@@ -30,18 +30,13 @@ def gear_options(entries, skip: tuple[str, ...] = ()):
     """Decorate a command with the options of the gear ``entries``, each once (the former
     flags of ``RENAMED`` as hidden aliases), less those in ``skip`` (API names)."""
     def decorate(command):
-        seen = set(skip)
-        for entry in reversed(entries):
-            for option in reversed(entry.every_option):
-                if option.api in seen:
-                    continue
-                seen.add(option.api)
-                if option.api in RENAMED:
-                    command = click.option(option.flag, option.api, cls=Renamed,
-                                           old=(RENAMED[option.api],), metavar=option.metavar,
-                                           help=option.text)(command)
-                else:
-                    command = contract.click_option(option)(command)
+        for option in reversed(contract.declared(entries, skip)):
+            if option.api in RENAMED:
+                command = click.option(option.flag, option.api, cls=Renamed,
+                                       old=(RENAMED[option.api],), metavar=option.metavar,
+                                       help=option.text)(command)
+            else:
+                command = contract.click_option(option)(command)
         return command
 
     return decorate
