@@ -96,7 +96,9 @@ def test_cli_reproduces_the_paper_as_csv():
                              catch_exceptions=False)
     assert out.exit_code == 0
     cols = read_csv(out.stdout)
-    assert list(cols) == ["mass", "stiffness", "clearance", "slope", "t1", "v1", "tau", "f_tau", "F_max"]
+    assert list(cols) == ["mass", "stiffness", "clearance", "slope", "t1", "v1", "tau", "f_tau",
+                          "F_max", "F_clearance", "F_rigid_share"]
+    assert cols["F_clearance"][0] + cols["F_rigid_share"][0] == pytest.approx(cols["F_max"][0])
     assert cols["F_max"][0] == pytest.approx(2182, abs=1)
     assert cols["tau"][0] == pytest.approx(3.0285, abs=5e-5)
 
@@ -177,13 +179,13 @@ def test_non_positive_inputs_are_rejected(flag, value):
     out = CliRunner().invoke(main, ["clearance", *[x for kv in args.items() for x in kv]],
                              catch_exceptions=False)
     assert out.exit_code == 2
-    assert f"{flag} must be a positive number" in out.output
+    assert f"'{flag}': must be positive" in out.output
 
 
 def test_missing_standalone_input_is_a_usage_error():
     out = CliRunner().invoke(main, ["clearance", "--mass", "3.6", "--stiffness", "1e7"],
                              catch_exceptions=False)
-    assert out.exit_code == 2 and "--clearance, --slope" in out.output
+    assert out.exit_code == 2 and "--clearance and --slope must be given" in out.output
 
 
 def test_synthetic_reversals_and_slope():

@@ -84,18 +84,6 @@ def load(path: str, assignments: tuple[str, ...] = (), sweep: SweepOptions = Swe
         return Loaded(with_sweep(mechanism, start, stop, step), text, overrides, label)
 
 
-def read_gear_file(path: str, assignments: tuple[str, ...] = ()):
-    """A gear drive ("-": standard input) with --set overrides, and the name that
-    messages give its file."""
-    from dyade.files import gears as reader
-    from dyade.files import schema
-
-    overrides = dict(schema.parse_assignment(a) for a in assignments)
-    text, label = read_input(path)
-    data = schema.load_data(label, overrides, "--set", text)
-    return reader.build_gears(data, None if path == "-" else path), os.path.basename(label)
-
-
 def save_as(loaded: Loaded, path: str) -> None:
     """Write the effective mechanism (after --set) as TOML, atomically: the input's text
     with the overridden values replaced, its comments and layout kept."""

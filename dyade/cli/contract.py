@@ -9,7 +9,7 @@ from typing import Any
 
 import click
 
-from dyade.analyses.base import Analysis, Option
+from dyade.analyses.base import COMMON, Analysis, Option
 from dyade.cli.options import FINITE, POSITIVE, Renamed
 
 TYPES = {float: FINITE, int: int, str: str}
@@ -114,3 +114,15 @@ def notes(outcome, prefix: str = "") -> None:
     err = console(stderr=True)
     for note in outcome.notes:
         err.print(f"{prefix}{note}", markup=False)
+
+
+def declared(entries, skip: tuple[str, ...] = ()) -> list:
+    """The options of ``entries``, each once, in the entries' order, the common ones
+    (``--max-memory``, ``--max-time``) last; less those in ``skip`` (API names)."""
+    out, seen = [], set(skip) | {option.api for option in COMMON}
+    for entry in entries:
+        for option in entry.options:
+            if option.api not in seen:
+                seen.add(option.api)
+                out.append(option)
+    return out + [option for option in COMMON if option.api not in skip]

@@ -96,17 +96,6 @@ def value_range_checked(text: str, hint: str, unit: str, quantity: str,
     return values
 
 
-def modes_asked(asked: int, available: int, most: int | None = None) -> tuple[int, str]:
-    """The one rule for ``--modes N`` (N ≥ 1, by the option's type): N, or all there are
-    (at most ``most``), with a note saying so when N asks for more."""
-    given = min(asked, available, most if most is not None else asked)
-    if given == asked:
-        return given, ""
-    why = (f"the drive has {available} elastic mode{'s' * (available != 1)}"
-           if given == available else f"a figure shows at most {most}")
-    return given, f"--modes {asked}: {why}; giving the first {given}."
-
-
 jobs_option = click.option(
     "-j", "--jobs", type=click.IntRange(min=0), default=1, show_default=True, metavar="N",
     help="Analyse several files (or speeds) on N processes at once (0: all cores); the "

@@ -8,7 +8,8 @@ from dataclasses import replace
 import numpy as np
 
 from dyade.errors import InputError
-from dyade.linkage.joint_clearance import MAX_WANDER_DEG, JointCheck, check_mechanism, needs_forces
+from dyade.linkage.joint_clearance import (MAX_WANDER_DEG, MISSING, JointCheck, check_mechanism,
+                                          needs_forces)
 from dyade.linkage.options import radians
 from dyade.linkage.sweep import analyse
 from dyade.model.mechanism import ClearanceData, Mechanism, Revolute
@@ -17,7 +18,8 @@ from dyade.units import RPM
 
 def check(mechanism: Mechanism, *, joints=None, stiffness: float | None = None,
           clearance: float | None = None, mass: float | None = None,
-          max_wander_deg: float = MAX_WANDER_DEG, result=None, **renamed) -> list[JointCheck]:
+          max_wander_deg: float = MAX_WANDER_DEG, result=None, allow_partial: bool = False,
+          **renamed) -> list[JointCheck]:
     """The clearance check of a mechanism's revolute joints over its cycle.
 
     Parameters
@@ -37,6 +39,9 @@ def check(mechanism: Mechanism, *, joints=None, stiffness: float | None = None,
         apply (forces of at least 25 % of the peak count).
     result : Result, optional
         An analysis of ``mechanism`` to reuse (default: analysed here).
+    allow_partial : bool
+        Where ``mechanism`` closes over part of the sweep only, check the forces where it
+        closes (as ``dyade.analyse`` does) instead of failing.
     **renamed
         The former ``max_wander`` [rad] is refused with an ``InputError`` naming
         ``max_wander_deg``.
@@ -45,7 +50,9 @@ def check(mechanism: Mechanism, *, joints=None, stiffness: float | None = None,
     -------
     list of JointCheck
         One per joint, in the order asked: its line of action, whether the model
-        applies (else why not), and every reversal with its peak force.
+        applies (else why not), and every reversal with its peak force. Where the sweep
+        gives the forces at no position (all withheld), every check says so
+        (``missing == "forces"``).
 
     Examples
     --------
@@ -65,8 +72,11 @@ def check(mechanism: Mechanism, *, joints=None, stiffness: float | None = None,
     if joints is None:
         joints = [j.name for j in mechanism.joints if isinstance(j, Revolute)]
     joints = [(a, b) if a < b else (b, a) for a, b in joints]
-    result = analyse(mechanism) if result is None else result
+    result = analyse(mechanism, allow_partial=allow_partial) if result is None else result
     needs_forces(result, "the clearance check")
+    if not np.any(result.forces_valid[result.rows]):  # every position withheld
+        return [JointCheck(name, np.nan, np.nan, False, MISSING["forces"], (), "", "forces")
+                for name in joints]
     return check_mechanism(mechanism, result, result.forces.revolute, joints, override, mass,
                            max_wander)
 
@@ -87,7 +97,7 @@ def speed_study(mechanism: Mechanism, speeds_rpm, progress=None, workers: int = 
         Processes that check the speeds (the same results, in the same order).
     **options
         As for ``check_clearance`` (``joints``, ``stiffness``, ``clearance``, ``mass``,
-        ``max_wander_deg``).
+        ``max_wander_deg``, ``allow_partial``).
 
     Returns
     -------

@@ -23,7 +23,9 @@ MISSING = {
     "data": ("no clearance data: give {stiffness} and {clearance}, or "
              "`clearance = {{ gap = …, stiffness = … }}` in its joint table"),
     "mass": ("no reduced mass: give {mass} or `clearance.mass` (links {a} and {b} have no "
-             "mass to estimate it from)")}
+             "mass to estimate it from)"),
+    "forces": ("no crank position of the sweep has its joint forces given (every position "
+               "is withheld: `dyade analyse` says why)")}
 """why a joint cannot be checked: what is missing -> the reason, its inputs as fields"""
 MAX_WANDER_DEG = 20.0  # [°] largest direction change off the line of action (API default)
 MAX_WANDER = np.deg2rad(MAX_WANDER_DEG)  # [rad] the same, inside the engine
@@ -62,7 +64,8 @@ class JointCheck:
     reversals: tuple[Reversal, ...]
     mass_source: str
     missing: str = ""
-    """what the check lacks: "data" (clearance data), "mass" or "" (see ``MISSING``)"""
+    """what the check lacks: "data" (clearance data), "mass", "forces" (the sweep gives
+    them at no position) or "" (see ``MISSING``)"""
 
 
 def line_of_action(force: FloatArray) -> tuple[float, float]:

@@ -27,6 +27,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from dyade.plot import canvas
+from dyade.vibration.gears.campbell import default_speeds  # noqa: F401  (its home: the engine)
 
 WEAK = 1e-4  # [-] κ below this share of the largest: the mode hardly loads the mesh
 SIZES = (12.0, 110.0)  # [pt²] marker areas at κ = WEAK·largest and at the largest
@@ -35,17 +36,6 @@ MESH_STYLE = ("-", (0, (6, 2)), (0, (6, 1.5, 1, 1.5)), (0, (3, 1.5)))
 ZOOM = 600.0  # [Hz] a second panel enlarges the frequencies below this …
 ZOOM_ABOVE = 1.5  # [-] … where the diagram reaches this many times higher
 """dash pattern of each mesh's tooth-mesh lines (repeats after four meshes)"""
-
-
-def default_speeds(rpm: float, points: int = 200) -> np.ndarray:
-    """Input speeds [rpm] from 0 to 1.5 × the operating speed ``rpm``, rounded up to two
-    significant digits, in ``points`` equal steps."""
-    if not (math.isfinite(rpm) and rpm > 0.0):
-        raise ValueError(f"an operating speed must be positive, got {rpm!r}")
-    top = 1.5 * rpm
-    unit = 10.0 ** (math.floor(math.log10(top)) - 1)
-    stop = math.ceil(top / unit - 1e-9) * unit
-    return np.linspace(0.0, stop, points + 1)
 
 
 def importance(diagram) -> np.ndarray:

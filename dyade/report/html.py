@@ -298,26 +298,27 @@ def drive_line_html(mechanism) -> str:
 
 def clearance_html(mechanism, result) -> str:
     """f(τ) of every reversal of the joints with clearance data, the peak force over
-    0.5–1.5 times the crank speed (5 speeds), and the worst reversal simulated."""
-    import dyade
-    from dyade import clearance as engine
+    0.5–1.5 times the crank speed (5 speeds), and the worst reversal simulated: the
+    Outcomes of the ``clearance-check`` and ``clearance-speeds`` entries, each run once,
+    over the positions where the mechanism closes (those of the report's sweep
+    ``result``, which has succeeded: ``allow_partial`` changes nothing where it closes
+    everywhere)."""
+    from dyade.registry import REGISTRY
     from dyade.plot import clearance as plot
-    from dyade.units import RPM
 
-    checks = dyade.check_clearance(mechanism, result=result)
-    cases = plot.cases(checks)
-    rpm = abs(mechanism.crank.speed) / RPM
-    speeds = np.round(np.linspace(0.5, 1.5, 5) * rpm, 6)
-    lines = plot.speed_lines(dyade.clearance_speed_study(mechanism, speeds))
-    history = None
-    if cases:
-        worst = max(cases, key=lambda case: case.peak.force)
-        p = worst.peak
-        history = plot.History(worst, engine.simulate(p.mass, p.stiffness,
-                                                      clearance=p.clearance, slope=p.slope,
-                                                      history=True))
-    fig = plot.figure(cases, speeds=lines, history=history, title=mechanism.name,
-                      operating=plot.operating_points(cases, rpm))
+    partial = not bool(np.all(result.rows))
+    check = REGISTRY["clearance-check"](mechanism, simulate=True, allow_partial=partial)
+    checked = check.result
+    rpm = checked.speed_rpm
+    speeds = REGISTRY["clearance-speeds"](
+        mechanism, speed_range_rpm=f"{0.5 * rpm:.6g}:{1.5 * rpm:.6g}:{0.25 * rpm:.6g}",
+        allow_partial=partial)
+    cases = plot.cases(checked.study[0][1])
+    worst = checked.history
+    history = (None if worst is None else
+               plot.History(plot.Case(worst.label, worst.peak), worst.simulation))
+    fig = plot.figure(cases, speeds=plot.speed_lines(speeds.result.study), history=history,
+                      title=mechanism.name, operating=plot.operating_points(cases, rpm))
     return figure(fig, "clearance", "The clearance peak force of each reversal on f(τ), the "
                   "peak against crank speed with the operating point, and the worst reversal "
                   "simulated next to the closed form.")
@@ -370,25 +371,25 @@ def motion_html(result) -> str:
 # -- a gear drive ------------------------------------------------------------------------
 def gear_report(drive, *, source: str = "") -> str:
     """The design report of a gear drive (see ``report``): its modes, Campbell diagram
-    and mode shapes."""
-    import dyade
+    and mode shapes, from the Outcomes of the ``gear-modes`` and ``gear-campbell``
+    entries (each run once; the Campbell diagram reuses the modes)."""
+    from dyade.registry import REGISTRY
     from dyade.plot import campbell as campbell_plot, modes as modes_plot
     from dyade.report import gears
 
-    modes = dyade.gear_modes(drive)
+    outcome = REGISTRY["gear-modes"](drive)
+    modes = outcome.result.modes
     page = Page(f"{drive.name}: design report", source)
     page.section("Natural frequencies and energy shares",
-                 "".join(table_html(part) if not isinstance(part, str) else
-                         f"<p>{html.escape(part)}</p>" for part in gears.mode_tables(modes)))
-    page.section("Notes", notes_html(gears.mode_notes(modes)))
-    if drive.speed is not None:
-        diagram = dyade.campbell(drive, campbell_plot.default_speeds(drive.speed.rpm),
-                                 modes=modes)
+                 table_html_many(gears.mode_tables(outcome)))
+    page.section("Notes", notes_html(outcome.notes))
+    if drive.speed is not None and drive.speed.rpm:
+        campbell = REGISTRY["gear-campbell"](modes)  # 0 to 1.5 × the file's speed
         page.section("Campbell diagram", figure(
-            campbell_plot.figure(diagram), "campbell",
+            campbell_plot.figure(campbell.result), "campbell",
             "Natural frequencies against the input speed, the excitation lines and their "
             "crossings, sized by the modal mesh stiffness.") + table_html_many(
-            gears.campbell_tables(diagram)))
+            gears.campbell_tables(campbell)))
     page.section("Mode shapes", figure(modes_plot.figure(modes, 4), "modes",
                                        "The first elastic mode shapes along each shaft line."))
     return page.html()

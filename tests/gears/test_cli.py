@@ -7,6 +7,7 @@ import io
 import json
 
 import numpy as np
+import pytest
 from click.testing import CliRunner
 
 import dyade
@@ -57,27 +58,37 @@ def test_two_stage_prints_modes_with_energy_shares():
 
 
 def test_mode_shapes():
-    rows = _run(TWO_STAGE, "--modes", "2", "--format", "csv").stdout.strip().splitlines()
-    assert rows[0] == "mode,body,ux,uy,uz,rx,ry,rz"
-    assert len(rows) == 1 + 2 * 9  # 6 bodies + 3 shaft segments
+    cols = read_csv(_run(TWO_STAGE, "--modes", "2", "--format", "csv").stdout)
+    shapes = [name for name in cols if name.endswith(("_ux", "_uy", "_uz", "_rx", "_ry", "_rz"))]
+    assert len(shapes) == 6 * 9  # 6 bodies + 3 shaft segments, six coordinates each
+    assert cols["motor_rx"].size == 51  # one row per elastic mode ...
+    values = np.array([cols[name] for name in shapes])
+    assert np.all(np.isfinite(values[:, :2])) and np.all(np.isnan(values[:, 2:]))  # ... 2 shapes
+    # M-orthonormal: φᵀMφ = 1 with the bodies' masses and inertias
+    modes = dyade.gear_modes(dyade.read_gears(TWO_STAGE))
+    phi = values[:, :2]
+    assert np.allclose(phi.T @ (modes.system.mass[:, None] * phi), np.eye(2), atol=1e-9)
 
 
 def test_campbell_resonances_lie_on_their_lines():
     _run(TWO_STAGE, "--campbell", "0:3000:10")
     text = _run(TWO_STAGE, "--campbell", "0:3000:10", "--format", "json").stdout
     data = json.loads(text)
-    assert list(data) == ["columns", "units", "summary", "warnings", "meta"]  # one shape
-    lines = {name: np.array(v) for name, v in data["summary"]["lines_Hz"].items()}
-    speeds = np.array(data["summary"]["speeds_rpm"])
+    assert list(data) == ["columns", "units", "summary", "notes", "analysis", "options", "meta",
+                          "schema"]  # one shape
+    assert data["analysis"] == "gear-campbell"
+    summary = {name: figure["value"] for name, figure in data["summary"].items()}
+    slope = dict(zip(summary["lines"], summary["line_slopes"]))
+    offset = dict(zip(summary["lines"], summary["line_offsets"]))
     resonances = data["columns"]
-    assert len(resonances["speed_rpm"]) > 10
+    assert len(resonances["speed_rpm"]) == summary["resonances"] > 10
     for speed, f, order in zip(resonances["speed_rpm"], resonances["f_Hz"], resonances["order"]):
         assert 0 <= speed <= 3000
-        assert np.interp(speed, speeds, lines[order]) == np.float64(f) or abs(
-            np.interp(speed, speeds, lines[order]) - f) < 1e-9 * f
+        assert abs(offset[order] + slope[order] * speed - f) < 1e-9 * f  # on its line
+        assert f in summary["natural_frequencies"]
     # the first stage's tooth-mesh line: 20 teeth at the motor's speed
-    assert np.allclose(lines["stage1 ×1"], 20 * speeds / 60)
-    assert np.allclose(lines["stage2 ×1"], 20 * speeds / 3 / 60)
+    assert slope["stage1 ×1"] == pytest.approx(20 / 60) and offset["stage1 ×1"] == 0
+    assert slope["stage2 ×1"] == pytest.approx(20 / 3 / 60)
 
 
 def test_response_and_check_run():
@@ -86,9 +97,11 @@ def test_response_and_check_run():
     assert cols["f_Hz"].size == 991 and np.all(np.isfinite(cols["F_stage1_N"]))
     _run(TWO_STAGE, "--response", "10:1000:1")
     run = _run(TWO_STAGE, "--check", "--format", "json")
-    summary = json.loads(run.stdout)["summary"]
-    assert summary["extra_zeros"] == summary["meshes"] == 2 and summary["rigid_zeros"] == 1
+    data = json.loads(run.stdout)
+    summary = {name: figure["value"] for name, figure in data["summary"].items()}
+    assert summary["extra_zeros"] == summary["ideal_meshes"] == 2 and summary["rigid_zeros"] == 1
     assert summary["largest_rel_diff"] < 1e-9
+    assert max(data["columns"]["rel_diff"]) == summary["largest_rel_diff"]
     assert "one per mesh" in _run(TWO_STAGE, "--check").stdout
 
 

@@ -17,6 +17,7 @@ for ideal meshes, which store no strain energy.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -76,6 +77,17 @@ class Campbell:
     """(orders, s) each line's frequency at each speed [Hz]"""
     crossings: tuple[Crossing, ...]
     """ordered by speed"""
+
+
+def default_speeds(rpm: float, points: int = 200) -> np.ndarray:
+    """Input speeds [rpm] from 0 to 1.5 × the operating speed ``rpm``, rounded up to two
+    significant digits, in ``points`` equal steps."""
+    if not (math.isfinite(rpm) and rpm > 0.0):
+        raise ValueError(f"an operating speed must be positive, got {rpm!r}")
+    top = 1.5 * rpm
+    unit = 10.0 ** (math.floor(math.log10(top)) - 1)
+    stop = math.ceil(top / unit - 1e-9) * unit
+    return np.linspace(0.0, stop, points + 1)
 
 
 def shaft_lines(drive: GearDrive) -> list[tuple[str, list[str]]]:
