@@ -264,7 +264,7 @@ def test_skipped_stages_do_not_run(monkeypatch):
 
 
 def test_the_spool_gives_back_every_column():
-    from dyade.report.spool import Spool
+    from dyade.analyses.spool import Spool
 
     mechanism = dyade.read_mechanism(SHIPPED[0])
     whole = dyade.analyse(mechanism).columns()
