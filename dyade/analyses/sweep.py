@@ -142,36 +142,43 @@ class Sweep:
         return self.result if self.result is not None else self.run.outcome
 
     def outcome(self, columns=None, extremes=True) -> Outcome:
-        """The Outcome of the sweep, its notes worded; with ``columns`` (a mapping of
-        every column: a ``Spool``, the sweep's own), the columns, their units and the
-        summary (``extremes``: of every column, or of those it names). A sweep that
-        gives no position its kinematics is refused (``DyadeError``,
-        ``base.withheld``)."""
-        from dyade.analyses.base import withheld
-        from dyade.analyses.describe import stages
-        from dyade.analyses.notes import say
+        """The Outcome of the sweep (``outcome_of``), once every block was taken."""
+        return outcome_of(self.verdicts, columns, self.options, self.loaded.label,
+                          single=bool(self.at), extremes=extremes)
 
-        verdicts = self.verdicts
-        mechanism = verdicts.mechanism
-        out = Outcome("sweep", figures=FIGURES, result=verdicts,
-                      meta={"name": mechanism.name, "source": self.loaded.label or None,
-                            "positions": int(verdicts.rows.sum()),
-                            "stages": stages(verdicts.plan)})
-        out.options = {name: value for name, value in self.options.items() if value is not None}
-        out.notes = [say(note, mechanism) for note in verdicts.notes]
-        withheld(out, verdicts.valid[verdicts.rows],
-                 f"{mechanism.name}: no position of the sweep has its kinematics given")
-        if columns is not None:
-            from dyade.linkage.columns import unit_of
-            from dyade.linkage.summary import figures
 
-            out.columns = columns
-            out.units = {name: unit_of(name) for name in columns}
-            out.summary = {name: Figure(name, stat.value, stat.unit, stat.where,
-                                        stat.description)
-                           for name, stat in figures(verdicts, columns, extremes,
-                                                     sweep=not self.at).items()}
-        return out
+def outcome_of(verdicts, columns=None, options: dict[str, Any] | None = None,
+               label: str = "", single: bool = False, extremes=True) -> Outcome:
+    """The Outcome of a sweep from its verdicts and notes (``verdicts``: a
+    ``linkage.verdicts.Outcome``, or the ``Result`` of ``dyade.analyse``), its notes
+    worded; with ``columns`` (a mapping of every column: a ``Spool``, or the Result's
+    own), the columns, their units and the summary (``extremes``: of every column, or of
+    those it names; ``single``: the positions are single ones, not a sweep). A sweep
+    that gives no position its kinematics is refused (``DyadeError``,
+    ``base.withheld``). ``options``: those it ran with (API names), ``label``: its
+    file as messages name it."""
+    from dyade.analyses.base import withheld
+    from dyade.analyses.describe import stages
+    from dyade.analyses.notes import say
+
+    mechanism = verdicts.mechanism
+    out = Outcome("sweep", figures=FIGURES, result=verdicts,
+                  meta={"name": mechanism.name, "source": label or None,
+                        "positions": int(verdicts.rows.sum()), "stages": stages(verdicts.plan)})
+    out.options = {name: value for name, value in (options or {}).items() if value is not None}
+    out.notes = [say(note, mechanism) for note in verdicts.notes]
+    withheld(out, verdicts.valid[verdicts.rows],
+             f"{mechanism.name}: no position of the sweep has its kinematics given")
+    if columns is not None:
+        from dyade.linkage.columns import unit_of
+        from dyade.linkage.summary import figures
+
+        out.columns = columns
+        out.units = {name: unit_of(name) for name in columns}
+        out.summary = {name: Figure(name, stat.value, stat.unit, stat.where, stat.description)
+                       for name, stat in figures(verdicts, columns, extremes,
+                                                 sweep=not single).items()}
+    return out
 
 
 def locks(outcome: Outcome) -> bool:

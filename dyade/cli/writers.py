@@ -53,12 +53,12 @@ def streamed(job, source, path: str, output: str | None) -> None:
     time. Nothing is written where no position has its kinematics given (exit 1, saying
     why); with --fail-on-lock the output is written, then exit 1 where it self-locks."""
     from dyade.analyses.base import budget
-    from dyade.analyses.sweep import Sweep, refuse_lock
-    from dyade.cli.analyse import ENTRY
+    from dyade.analyses.sweep import ENTRIES, Sweep, refuse_lock
 
     label = os.path.basename(path)
-    with named(ENTRY), progress(f"{label}: analysing") as tick:
-        checked = ENTRY.checked(job.options)
+    entry = ENTRIES["sweep"]
+    with named(entry), progress(f"{label}: analysing") as tick:
+        checked = entry.checked(job.options)
         sweep = Sweep(source, checked, budget(checked, progress=tick,
                                               told=lambda text: say(text)))
         names = job.chosen(sweep.first)  # a wrong --columns fails before any output
