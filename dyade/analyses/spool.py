@@ -95,6 +95,11 @@ class Spool(Mapping):
     def close(self) -> None:
         self.file.close()
 
+    def __del__(self) -> None:  # collected: the temporary file goes with it
+        file = getattr(self, "file", None)
+        if file is not None:
+            file.close()
+
     def __enter__(self) -> "Spool":
         return self
 

@@ -60,6 +60,26 @@ OPTIONS = (inputs.SET, *inputs.SWEEP, AT, inputs.ALLOW_PARTIAL, FRICTION_TOL,
 FIGURES = ("curves", "mechanism", "polar", "animate")
 """the figures of a sweep (``dyade plot KIND``)"""
 
+ENGINE_NAMES = {"max_memory": "max_memory_mb", "crank_angle_deg": AT.api,
+                "sweep": "the sweep (start_deg, stop_deg, step_deg)"}
+"""the engine's parameters (``dyade.analyse_in_blocks``) -> the entry's options, in errors"""
+
+def named(err):
+    """An error of the engine with its parameters named as the entry's options
+    (``ENGINE_NAMES``), the fix it suggests too (``crank_angle_deg=[...]`` is
+    ``at_deg=[...]``)."""
+    from dyade.errors import InputError
+
+    if not err.parameters:
+        return err
+    renamed = err.naming(ENGINE_NAMES)
+    reason = (renamed.reason or "").replace("crank_angle_deg=[...]", f"{AT.api}=[...]")
+    out = InputError(str(renamed).replace("crank_angle_deg=[...]", f"{AT.api}=[...]"),
+                     key=renamed.key, value=renamed.value, unit=renamed.unit, reason=reason)
+    out.parameters = renamed.parameters
+    return out
+
+
 SECOND = 8e6
 """values (positions × columns) a sweep computes and writes in about a second; a
 quarter of that with friction (measured: self-locking.toml, dyade-16.toml)"""
@@ -86,7 +106,6 @@ class Sweep:
 
     def __init__(self, source: Any, options: dict[str, Any], budget: Budget) -> None:
         from dyade.errors import InputError
-        from dyade.linkage.sweep import analyse, analyse_in_blocks
 
         self.options = options
         self.at = options.get(AT.api) or ()
@@ -102,6 +121,15 @@ class Sweep:
             raise InputError.parameter(BLOCK_SIZE.api, f"must be a whole number of positions "
                                                        f"≥ 0 (0: all at once), got {size}.",
                                        value=size)
+        try:
+            self.start(source, options, budget, size)
+        except InputError as err:
+            raise named(err) from None
+
+    def start(self, source: Any, options: dict[str, Any], budget: Budget, size) -> None:
+        """Read the file and compute the first block (``__init__``)."""
+        from dyade.linkage.sweep import analyse, analyse_in_blocks
+
         self.loaded = inputs.load(source, options)
         common = dict(allow_partial=bool(options.get(inputs.ALLOW_PARTIAL.api)),
                       friction_tol=options.get(FRICTION_TOL.api),

@@ -31,7 +31,10 @@ def named(entry):
         if not err.parameters:
             raise
         named = err.naming(names)
-        text = re.sub(r"crank_angle_deg=\[\.\.\.\]|at_deg=\[\.\.\.\]", "--at DEG", str(named))
+        text = str(named)
+        if str(err).startswith(", ".join(err.parameters) + ": "):  # "a, b: reason"
+            text = f"{' and '.join(named.parameters)}: {named.reason}"
+        text = re.sub(r"crank_angle_deg=\[\.\.\.\]|at_deg=\[\.\.\.\]", "--at DEG", text)
         text = re.sub(r"\b(" + "|".join(map(re.escape, names)) + r")\b",
                       lambda match: names[match.group(1)], text)
         out = InputError(text, key=named.key, value=named.value, unit=named.unit,
