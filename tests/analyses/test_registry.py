@@ -26,6 +26,9 @@ RUNS = {
     "coupling": (shipped("coupling/stiff-coupling.toml"), {"speed_rpm": (1450.0, 2900.0)},
                  ["coupling", str(shipped("coupling/stiff-coupling.toml")),
                   "--speed", "1450", "--speed-rpm", "2900"]),
+    "sweep": (shipped("self-locking.toml"), {"step_deg": 2.0},
+              ["analyse", str(shipped("self-locking.toml")), "--step", "2"]),
+    "describe": (shipped("dyade-16.toml"), {}, ["describe", str(shipped("dyade-16.toml"))]),
 }
 """an invocation of each entry, from Python and from the command line"""
 
