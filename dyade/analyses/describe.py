@@ -17,10 +17,7 @@ from typing import Any, NamedTuple
 
 from dyade.analyses import inputs
 from dyade.analyses.base import Analysis, Budget, Outcome
-
-STAGES = ("kinematics", "kinetostatics", "friction", "self_locking", "clearance",
-          "equation_of_motion", "drive_line")
-"""the stages of a sweep, in the order it runs them (``dyade.linkage.plan.Plan``)"""
+from dyade.analyses.sweep import STAGES, stages
 
 LOOP_STEP_DEG = 0.5  # [°] the loop's stroke, swing and time ratio: one revolution at this step
 
@@ -30,11 +27,6 @@ class Described(NamedTuple):
 
     mechanism: Any
     plan: Any
-
-
-def stages(the_plan) -> list[str]:
-    """The stages a sweep of ``the_plan`` runs, by name (``STAGES``)."""
-    return [name for name in STAGES if getattr(the_plan, name)]
 
 
 def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:

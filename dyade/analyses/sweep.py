@@ -26,18 +26,19 @@ AT = Option("at", float, "°", multiple=True, metavar="DEG",
 FRICTION_TOL = Option("friction-tol", float, positive=True,
                       help="Accept a position's friction solution when a fixed-point step "
                            "would change its joint forces or friction loads by less than "
-                           "this  [default: file's [friction] tol, 1e-9]")
+                           "this (default: the file's [friction] tol, 1e-9)")
 FRICTION_MAX_ITER = Option("friction-max-iter", int, positive=True, metavar="N",
-                           help="Most passes of the friction solution per dyad and position "
-                                "(positions not solved are said)  [default: file's "
-                                "[friction] max_iter, 50]")
+                           help="Most passes of the friction solution per dyad and position; "
+                                "positions not solved are said (default: the file's "
+                                "[friction] max_iter, 50)")
 DEAD_CENTRE = Option("dead-centre", float, "°", metavar="DEG",
                      help="Hard band: within this of a dead centre (transmission angle 0° or "
-                          "180°) nothing is given  [default: file's [sweep] dead_centre, 2]")
+                          "180°) nothing is given (default: the file's [sweep] dead_centre, "
+                          "2°)")
 TRANSMISSION_WARNING = Option("transmission-warning", float, "°", metavar="DEG",
                               help="Soft band: transmission angles below this are said in a "
-                                   "note  [default: file's [sweep] transmission_warning, 40 "
-                                   "(H. Alt's rule)]")
+                                   "note (default: the file's [sweep] transmission_warning, "
+                                   "40°, H. Alt's rule)")
 RUN_UP = Option("run-up", bool,
                 help="With a [drive] table: the run-up from rest at the start angle, "
                      "revolution after revolution until the speed repeats, instead of the "
@@ -47,15 +48,26 @@ CONSTANT_SPEED = Option("constant-speed", bool,
                         help="Ignore the [drive] table: the crank at its constant speed_rpm "
                              "(to compare with the real speed)")
 BLOCK_SIZE = Option("block-size", int, metavar="N", study=False,
-                    help="Compute the sweep N positions at a time, in memory that does not "
-                         "grow with the sweep (0: all at once); the columns wait in a "
-                         "temporary file (8 B per value, in TMPDIR)  [default: 2048]")
+                    help="Compute the sweep N positions at a time (default 2048; 0: all at "
+                         "once), in memory that does not grow with the sweep; CSV rows are "
+                         "written as they come, for the other formats the columns wait in a "
+                         "temporary file (8 B per value, in TMPDIR)")
 FAIL_ON_LOCK = Option("fail-on-lock", bool, study=False,
                       help="Fail (exit status 1) when the mechanism self-locks; otherwise "
                            "self-locking is a finding, reported")
 OPTIONS = (inputs.SET, *inputs.SWEEP, AT, inputs.ALLOW_PARTIAL, FRICTION_TOL,
            FRICTION_MAX_ITER, DEAD_CENTRE, TRANSMISSION_WARNING, RUN_UP, CONSTANT_SPEED,
            BLOCK_SIZE, FAIL_ON_LOCK)
+
+STAGES = ("kinematics", "kinetostatics", "friction", "self_locking", "clearance",
+          "equation_of_motion", "drive_line")
+"""the stages of a sweep, in the order it runs them (``dyade.linkage.plan.Plan``)"""
+
+
+def stages(the_plan) -> list[str]:
+    """The stages a sweep of ``the_plan`` runs, by name (``STAGES``)."""
+    return [name for name in STAGES if getattr(the_plan, name)]
+
 
 FIGURES = ("curves", "mechanism", "polar", "animate")
 """the figures of a sweep (``dyade plot KIND``)"""
@@ -186,7 +198,6 @@ def outcome_of(verdicts, columns=None, options: dict[str, Any] | None = None,
     ``base.withheld``). ``options``: those it ran with (API names), ``label``: its
     file as messages name it."""
     from dyade.analyses.base import withheld
-    from dyade.analyses.describe import stages
     from dyade.analyses.notes import say
 
     mechanism = verdicts.mechanism

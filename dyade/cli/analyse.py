@@ -8,6 +8,7 @@ from typing import Any, NamedTuple
 
 import click
 
+from dyade.analyses import inputs
 from dyade.analyses.sweep import AT, ENTRIES, FAIL_ON_LOCK
 from dyade.cli import contract, main, writers
 from dyade.cli.batch import SUFFIX, SWEEP, batch
@@ -15,6 +16,10 @@ from dyade.cli.common import infer_format
 from dyade.cli.options import MECHANISM_FILE, jobs_option
 
 ENTRY = ENTRIES["sweep"]
+EARLIER = tuple(option.api for option in (inputs.SET, *inputs.SWEEP, AT))
+"""the options --help lists before --at: the file's and the sweep's"""
+LATER = tuple(option.api for option in ENTRY.every_option if option.api not in EARLIER[:-1])
+"""the others, listed after it"""
 
 
 def angles(ctx, param, values: tuple[str, ...]) -> tuple[float, ...]:
@@ -49,8 +54,9 @@ def angles(ctx, param, values: tuple[str, ...]) -> tuple[float, ...]:
 @click.option("-o", "--output", type=click.Path(writable=True),
               help="Write to this file instead of standard output; with several input files a "
                    "directory, which gets one result per input (NAME.csv, NAME.json, NAME.txt).")
-@contract.declare(ENTRY, skip=(AT.api,))
+@contract.declare(ENTRY, skip=LATER)
 @click.option("--at", AT.api, multiple=True, metavar="DEG", callback=angles, help=AT.text)
+@contract.declare(ENTRY, skip=EARLIER)
 @click.option("--save-as", type=click.Path(dir_okay=False, writable=True),
               help="Write the effective mechanism (after --set) to this TOML file, to keep a "
                    "variant; one input file only.")
@@ -116,12 +122,13 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str | None, output: str | Non
         raise DyadeError(f"{len(failures)} of {len(mechanism_files)} files failed:\n{lines}")
 
 
-ANALYSES = ("dyade.analyses.sweep", "dyade.analyses.inputs", "dyade.analyses.spool",
-            "dyade.analyses.notes", "dyade.analyses.describe")
+ANALYSES = ("dyade.analyses.sweep", "dyade.analyses.inputs", "dyade.analyses.notes")
 NEEDS = {"csv": SWEEP + ANALYSES + ("dyade.report.csv_rows",),
-         "json": SWEEP + ANALYSES + ("dyade.linkage.summary", "dyade.report.document"),
-         "parquet": SWEEP + ANALYSES + ("dyade.study.tables",),
-         "table": SWEEP + ANALYSES + ("dyade.linkage.summary", "dyade.report.tables")}
+         "json": SWEEP + ANALYSES + ("dyade.analyses.spool", "dyade.linkage.summary",
+                                     "dyade.report.document"),
+         "parquet": SWEEP + ANALYSES + ("dyade.analyses.spool", "dyade.study.tables"),
+         "table": SWEEP + ANALYSES + ("dyade.analyses.spool", "dyade.linkage.summary",
+                                      "dyade.report.tables")}
 """modules ``analyse`` needs for every file, by output format"""
 
 

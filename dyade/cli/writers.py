@@ -7,7 +7,6 @@ from its Outcome, whose columns wait in a ``Spool`` on disk; each as a
 from __future__ import annotations
 
 import os
-import re
 import sys
 from collections.abc import Mapping
 from contextlib import contextmanager
@@ -30,6 +29,8 @@ def named(entry):
     except InputError as err:
         if not err.parameters:
             raise
+        import re
+
         named = err.naming(names)
         text = str(named)
         if str(err).startswith(", ".join(err.parameters) + ": "):  # "a, b: reason"
@@ -79,7 +80,6 @@ def write_csv(sweep, names: list[str], output: str | None):
     """The CSV of a sweep under way, row by row as its blocks come (the blocks before
     the first that gives a position are held back, on disk: a sweep that gives none
     writes nothing); its Outcome (no summary)."""
-    from dyade.analyses.spool import Spool
     from dyade.report import csv_rows
 
     held = None
@@ -96,7 +96,10 @@ def write_csv(sweep, names: list[str], output: str | None):
 
         for cols in sweep.blocks():
             if not started and not cols["kinematics_valid"].any():
-                held = Spool(()) if held is None else held
+                if held is None:
+                    from dyade.analyses.spool import Spool
+
+                    held = Spool(())
                 held.add(cols)
                 continue
             if not started:
