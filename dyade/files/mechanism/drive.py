@@ -1,5 +1,5 @@
 """The [drive] table: the motor's characteristic, a flywheel on the crank and the
-settings of the equation of motion (``dyade.machine``)."""
+settings of the equation of motion, read into ``dyade.model.drive.Drive``."""
 
 from __future__ import annotations
 

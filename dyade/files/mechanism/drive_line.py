@@ -1,5 +1,5 @@
 """The [drive_line] table: the elastic element between the motor and the crank shaft
-(``dyade.machine.drive_line``)."""
+(``dyade.model.drive_line.DriveLineData``)."""
 
 from __future__ import annotations
 
