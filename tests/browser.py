@@ -3,7 +3,7 @@
 Chromium started with ``--remote-debugging-pipe`` reads protocol commands from its file
 descriptor 3 and writes replies and events to 4, each a JSON message ended by a NUL byte;
 no websocket, no port, no extra package (selenium or playwright would add a dependency
-and a driver for what a hundred lines do). Used by tests/test_report_browser.py.
+and a driver for what a hundred lines do). Used by tests/report/test_browser.py.
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """Readable figures: the drawn text labels of a figure neither overlap each other nor leave
-the figure (issue 29). Used by tests/test_readable.py on every plot kind and shipped example.
+the figure (issue 29). Used by tests/plot/test_readable.py on every plot kind and shipped example.
 """
 
 from __future__ import annotations

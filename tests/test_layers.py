@@ -676,3 +676,26 @@ def test_the_upward_rules_catch_any_module_above():
                                                           Import("dyade", 1, True))
     assert facade[0]("dyade.model.mechanism") and facade[0]("dyade.analyses.base")
     assert not facade[0]("dyade.report.document") and not facade[0]("dyade")
+
+
+# -- tests/ mirrors the package (issue 36) -----------------------------------------------
+TEST_ONLY = {"benchmarks", "golden"}
+"""folders of tests/ that mirror no package: the speed runs and the golden run"""
+
+
+def test_the_tests_mirror_the_package_folder_by_folder():
+    tests = ROOT / "tests"
+    packages = {path.parent.relative_to(PACKAGE) for path in PACKAGE.rglob("__init__.py")}
+    top = {p for p in packages if len(p.parts) == 1}
+    missing = sorted(str(p) for p in top if not (tests / p).is_dir())
+    assert not missing, f"tests/ has no folder for the packages {missing}"
+    astray = sorted(str(path.relative_to(tests)) for path in tests.rglob("test_*.py")
+                    if path.parent != tests
+                    and path.parent.relative_to(tests).parts[0] not in TEST_ONLY
+                    and path.parent.relative_to(tests) not in packages)
+    assert not astray, f"test modules in folders that mirror no package folder: {astray}"
+    top_level = {path.stem.removeprefix("test_") for path in tests.glob("test_*.py")}
+    modules = {path.stem for path in PACKAGE.glob("*.py")} | {"api", "docs", "doctests",
+                                                              "readme", "layers"}
+    assert top_level <= modules, (f"top-level tests of no top-level module: "
+                                  f"{sorted(top_level - modules)}")

@@ -135,4 +135,4 @@ WORDS = {NoteKind.PARTIAL: _partial, NoteKind.DEAD_CENTRE: _dead_centre,
           NoteKind.RUN_UP_NOT_SETTLED: _run_up_not_settled,
           NoteKind.CLEARANCE_NOT_APPLICABLE: _clearance_not_applicable,
           NoteKind.DRIVE_LINE_SOFT: _drive_line_soft}
-"""every kind of note -> its words (tests/test_notes.py: none missing)"""
+"""every kind of note -> its words (tests/linkage/test_notes.py: none missing)"""

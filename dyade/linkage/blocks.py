@@ -48,7 +48,7 @@ def friction_coupling(mechanism: Mechanism, crank_angle: FloatArray,
 
     None when one block holds every position: ``friction.solve`` then takes the very same
     figures from that block's sample positions as it goes, without solving them twice
-    (tests/test_pipeline.py checks the bits)."""
+    (tests/linkage/test_pipeline.py checks the bits)."""
     n = crank_angle.shape[0]
     if n <= size:
         return None

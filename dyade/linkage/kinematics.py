@@ -69,7 +69,7 @@ class Group:
     a, b, c (n,) along S_A, S_B, S_C [rad/s or m/s], on demand (``rate``);
     ``entries``, the entries (k, c) of M⁻¹, (n,) arrays or plain zeros, NaN where the
     dyad is not usable, each formed as the general 3×3 inverse forms it (to the bit:
-    ``tests/test_fast_paths.py``).
+    ``tests/linkage/test_fast_paths.py``).
     """
 
     __slots__ = ("links", "known", "joints", "on", "units", "usable", "loop", "rates",

@@ -398,12 +398,13 @@ def study_report(path, *, source: str = "") -> str:
     """The design report of a study file (see ``report``): its tables and the figure of
     its question."""
     from dyade.plot import study as plot
+    from dyade.registry import REGISTRY
     from dyade.report.study import tables
-    from dyade.study import study
 
-    result = study(path)
+    outcome = REGISTRY["study"](path)
+    result = outcome.result
     page = Page(f"Study {result.spec.label}: design report", source)
-    page.section("Results", table_html_many(tables(result)))
+    page.section("Results", table_html_many(tables(outcome)))
     page.section("The question", figure(plot.question_figure(result), "study",
                                         "The figure of the study's question (as dyade plot "
                                         "study draws it)."))

@@ -18,7 +18,7 @@ import dyade
 from dyade.cli import main
 from dyade.linkage.summary import renamed
 from tests.helpers import shipped
-from tests.test_study import FRICTION, study_file
+from tests.study.test_study import FRICTION, study_file
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -122,7 +122,7 @@ SUMMARY_TABLES = ("transmission", "strokes", "swings", "columns", "drive.", "joi
 
 def test_the_docs_table_of_old_names_is_the_codes(tmp_path):
     from dyade.study.evaluate import RENAMED
-    from tests.test_machine import _drive_file
+    from tests.machine.test_machine import _drive_file
 
     (tmp_path / "asynchronous").mkdir()
     rows = old_and_new()

@@ -1,5 +1,5 @@
 """The row-by-row CSV writer dyade had before issue 17: the yardstick of the block writer
-(speed in tests/benchmarks, bytes in tests/test_csv.py)."""
+(speed in tests/benchmarks, bytes in tests/report/test_csv.py)."""
 
 from __future__ import annotations
 

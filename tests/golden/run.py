@@ -35,7 +35,7 @@ Normalisation (mask_times / normalise below), found by diffing two runs of the b
     same length ending in <T>), so alignment is still compared.
 Everything else must be byte-identical.
 
-The hostile cases are written out here, not imported from tests/test_hostile.py: the run
+The hostile cases are written out here, not imported from tests/cli/test_hostile.py: the run
 must give the same commands to an old tree and a new one, whatever their tests say. A per-command wall-time list goes to
 OUTDIR.timings.tsv (beside OUTDIR, not in it).
 """
@@ -323,13 +323,13 @@ def build_cases(tree: Path) -> list[Case]:
     add("init-fourbar-file", ["init", "fourbar", WRITTEN / "init" / "f.toml"],
         scratch=WRITTEN / "init")
 
-    # -- hostile input (tests/test_hostile.py) ---------------------------------------------------
+    # -- hostile input (tests/cli/test_hostile.py) ---------------------------------------------------
     cases.extend(hostile_cases(tree, add_name=names))
     return cases
 
 
 def hostile_cases(tree: Path, add_name: set[str]) -> list[Case]:
-    """The CLI invocations of tests/test_hostile.py, with its files at fixed paths."""
+    """The CLI invocations of tests/cli/test_hostile.py, with its files at fixed paths."""
     out: list[Case] = []
     FOURBAR = (tree / "mechanisms/fourbar.toml").read_text(encoding="utf-8")
     COUPLING = (tree / "mechanisms/coupling/stiff-coupling.toml").read_text(encoding="utf-8")
@@ -502,7 +502,7 @@ def setup_targets_dir():
 
 
 def run_sigterm(case, tree, python, env):
-    """tests/test_hostile.py::test_sigterm_leaves_no_partial_file: SIGTERM while writing;
+    """tests/cli/test_hostile.py::test_sigterm_leaves_no_partial_file: SIGTERM while writing;
     the exit status must be 143 and the target folder empty. Records rc, stderr and the
     files left in the folder."""
     directory = HOSTILE / "sigterm"

@@ -26,7 +26,7 @@ def clearance_figure(mechanism_file, output, fmt, show, dpi, **options) -> None:
     largest peak). The options and file of `dyade clearance`:
 
         dyade plot clearance --mass 3.6 --stiffness 1e7 --clearance 1e-4 --slope 360000 \\
-            --speed-rpm 300 --speed-range 100:600:50 --simulate
+            --speed 300 --speed-range 100:600:50 --simulate
     """
     entry = entry_for(bool(mechanism_file), options)
     name = (f"{os.path.splitext(os.path.basename(mechanism_file))[0]}-clearance"

@@ -23,8 +23,8 @@ from dyade.report.notes import say
 from dyade.linkage import friction, kinematics, kinetostatics, motion as joints, sweep as analysis
 from tests.helpers import TEMPLATES, mechanism_from, shipped
 from tests.strategies import dyad_files
-from tests.test_friction import block_pressure, coulomb_law_errors, with_friction
-from tests.test_kinetostatics import with_masses
+from tests.linkage.test_friction import block_pressure, coulomb_law_errors, with_friction
+from tests.linkage.test_kinetostatics import with_masses
 
 # The pushed block (README, "Friction and self-locking"): crank r, rod l (massless, its
 # pins frictionless: a two-force member), a block of length L and height H in a guide

@@ -99,7 +99,7 @@ SENSITIVITY = {"dyad.2.lengths.1": "{ nominal = 190, tol = 1 }",
 def study_args(case: str, tmp_path) -> list:
     """`dyade plot study` arguments: the shipped tolerance study's histograms, an output
     along one parameter of a fourbar grid or a map over two, a sensitivity study's bars."""
-    from tests.test_study import study_file
+    from tests.study.test_study import study_file
 
     if case == "tolerance":
         return [STUDY]

@@ -22,7 +22,7 @@ from dyade.model.mechanism import Load
 from tests.conftest import SHIPPED
 from tests.global_solve import global_forces
 from tests.helpers import mechanism_from, read_csv, shipped
-from tests.test_kinetostatics import applied_power, with_masses
+from tests.linkage.test_kinetostatics import applied_power, with_masses
 
 RPM = math.pi / 30.0
 

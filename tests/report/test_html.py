@@ -1,6 +1,6 @@
 """`dyade report` (issue 29): one self-contained HTML page per mechanism or gear file.
 
-The page is checked as text here (the browser checks are tests/test_report_browser.py):
+The page is checked as text here (the browser checks are tests/report/test_browser.py):
 the same file gives the same bytes, nothing in it points outside the page, it holds the
 sections the file calls for, and the motion's frames are the analysis: each pin of each
 frame, mapped back from the drawing's coordinates, is the CSV's joint position.
@@ -156,7 +156,7 @@ def test_every_shipped_file_reports(path, tmp_path):
 
 @pytest.mark.slow
 def test_a_drive_reports_its_speed_and_motor(tmp_path):
-    from tests.test_machine import FLYWHEEL_ONLY
+    from tests.machine.test_machine import FLYWHEEL_ONLY
 
     path = tmp_path / "drive.toml"
     path.write_text('name = "Flywheel drive"\n' + FLYWHEEL_ONLY)

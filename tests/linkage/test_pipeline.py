@@ -27,7 +27,7 @@ from dyade.linkage.options import with_sweep
 from tests.benchmarks.test_benchmarks import FRICTION, _with_friction
 from tests.conftest import MECHANISMS, SHIPPED
 from tests.helpers import mechanism_from, shipped
-from tests.test_machine import _driven
+from tests.machine.test_machine import _driven
 
 SET = [arg for key, value in FRICTION.items() for arg in ("--set", f"{key}={value}")]
 """μ = 0.1 in every joint (pins r_z = 5 mm, sliders 40 × 20 mm), on the command line"""
@@ -327,7 +327,7 @@ def test_the_command_line_gives_the_same_bytes_in_any_block_size(label, fmt, ext
 def test_a_driven_json_gives_its_motion_summary_in_any_block_size(tmp_path):
     import json
 
-    from tests.test_machine import _drive_file
+    from tests.machine.test_machine import _drive_file
 
     path = _drive_file(tmp_path, {"motor": "asynchronous", "rated_torque": 4.0,
                                   "rated_speed_rpm": 290, "synchronous_speed_rpm": 302})

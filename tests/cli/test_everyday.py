@@ -386,7 +386,7 @@ def test_missing_folders_are_created_and_unwritable_targets_are_named(tmp_path):
 def test_a_full_disk_is_an_error_not_a_traceback(args):
     """Standard output on a full disk (/dev/full): one line naming the problem, exit 1
     (it was a Python traceback from the writer, or from rich)."""
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     with open("/dev/full", "w") as full:
         done = subprocess.run([sys.executable, "-m", "dyade", *args], cwd=root, stdout=full,
                               stderr=subprocess.PIPE, text=True, timeout=60)
@@ -398,7 +398,7 @@ def test_the_command_in_a_process_has_the_output_and_exit_status_of_main(tmp_pat
     """``python -m dyade`` (as the console script, ``dyade.cli:main``): the bytes and the
     exit status are those of ``main`` run in this process (standard output buffered, as
     it is unless PYTHONUNBUFFERED is set)."""
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     cases = [(["analyse", "mechanisms/dyade-16.toml", "--format", "csv"], 0),
              (["analyse", "mechanisms/missing.toml"], 2),
              (["analyse", "mechanisms/self-locking.toml", "--fail-on-lock", "--format", "json"],

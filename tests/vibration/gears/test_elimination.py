@@ -11,7 +11,7 @@ import dyade
 from dyade.vibration.gears.elimination import check, eliminated
 from dyade.vibration.gears.assembly import assemble
 from dyade.vibration.gears.modes import gear_modes
-from tests.gears.drives import build, random_drives
+from tests.vibration.gears.drives import build, random_drives
 from tests.helpers import shipped
 
 

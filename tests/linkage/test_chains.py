@@ -17,7 +17,7 @@ from dyade.linkage import motion as joints
 from dyade.linkage.columns import PLAUSIBLE
 from tests.helpers import kinematics_at, read_csv
 from tests.strategies import chained_files
-from tests.test_kinetostatics import applied_power, kinetic_energy_rate
+from tests.linkage.test_kinetostatics import applied_power, kinetic_energy_rate
 
 H = 1e-6  # [rad] central-difference step of the crank angle
 

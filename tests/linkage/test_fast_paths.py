@@ -19,7 +19,7 @@ from dyade.linkage.motion import Motion
 from tests import previous_closures
 from tests.helpers import kinematics_at, mechanism_from, shipped
 from tests.strategies import chained_files, dyad_files
-from tests.test_kinetostatics import _compare, with_masses
+from tests.linkage.test_kinetostatics import _compare, with_masses
 
 SLIDING = ["RRP", "RPR", "PRP", "PPR"]
 ANGLES = np.deg2rad(np.arange(0.0, 360.0, 15.0))

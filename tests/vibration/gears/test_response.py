@@ -11,7 +11,7 @@ import dyade
 from dyade.vibration.gears.assembly import assemble
 from dyade.vibration.gears.modes import NullSpace, multipliers
 from dyade.vibration.gears.response import excitation_vectors
-from tests.gears.drives import build, single_stage
+from tests.vibration.gears.drives import build, single_stage
 from tests.helpers import shipped
 
 

@@ -11,7 +11,7 @@ import pytest
 import dyade
 from dyade.model.gears import mesh_frame, plane_of_action
 from dyade.vibration.gears.assembly import assemble
-from tests.gears.drives import build, single_stage
+from tests.vibration.gears.drives import build, single_stage
 from tests.helpers import shipped
 
 T_OUT = 800.0  # [N·m] the load's braking torque

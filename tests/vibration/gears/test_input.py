@@ -11,7 +11,7 @@ from click.testing import CliRunner
 
 import dyade
 from dyade.cli import main
-from tests.gears.drives import single_stage
+from tests.vibration.gears.drives import single_stage
 
 
 def _break(change):

@@ -13,7 +13,7 @@ from scipy.optimize import brentq
 
 import dyade
 from dyade.vibration.gears.modes import gear_modes
-from tests.gears.drives import build, single_stage, two_stage_data, with_pressure_angle
+from tests.vibration.gears.drives import build, single_stage, two_stage_data, with_pressure_angle
 
 
 def _stiffened(data, scale):

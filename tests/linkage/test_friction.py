@@ -1,6 +1,6 @@
 """Coulomb friction: limits, energy, the laws read back, hand solutions, the direct
 solution against the fixed-point iteration, convergence, notes and the command line.
-(Self-locking: tests/test_self_locking.py.)"""
+(Self-locking: tests/linkage/test_self_locking.py.)"""
 
 from __future__ import annotations
 
@@ -18,7 +18,7 @@ from dyade.cli import main
 from tests import fixed_point
 from tests.conftest import SHIPPED
 from tests.helpers import TEMPLATES, shipped
-from tests.test_kinetostatics import applied_power, kinetic_energy_rate, with_masses
+from tests.linkage.test_kinetostatics import applied_power, kinetic_energy_rate, with_masses
 
 
 def with_friction(mechanism, mu, pin=0.005, length=0.04, height=0.02):
