@@ -33,6 +33,7 @@ ENTRIES = {
     "driveline-steady": "dyade.analyses.drive_line",
     "driveline-resonance": "dyade.analyses.drive_line",
     "driveline-stability": "dyade.analyses.drive_line",
+    "driveline-map": "dyade.analyses.drive_line",
     "driveline-run-up": "dyade.analyses.drive_line",
     "study": "dyade.analyses.study",
 }
