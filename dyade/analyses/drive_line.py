@@ -42,6 +42,9 @@ MOST_SPEEDS = 2000  # the most speeds (or map values) one run takes
 VDI_2149_WORDS = ("Ω/ω̄ = {ratio:.3g} exceeds {limit:g} (VDI 2149 Part 1): the rigid drive's "
                   "model does not hold for this line.")
 """the VDI 2149 note, worded here only"""
+NO_STATE = ("the crank would stop or turn back within the cycle, or the shooting did not "
+            "converge")
+"""why a speed has no periodic state"""
 
 # the time estimate of a run (measured on a 2-core machine, issue 36): the shooting's
 # RK4 step costs about SECONDS_PER_STEP, plus SECONDS_PER_LANE_STEP for each lane (a
@@ -147,7 +150,7 @@ def vdi_note(ratio: float) -> str:
     """The note of a line too soft for the rigid model (VDI 2149 Part 1)."""
     from dyade.linkage.line_model import VDI_2149_RATIO
 
-    return "note: " + VDI_2149_WORDS.format(ratio=ratio, limit=VDI_2149_RATIO)
+    return VDI_2149_WORDS.format(ratio=ratio, limit=VDI_2149_RATIO)
 
 
 def set_columns(outcome: Outcome, columns: dict[str, Any]) -> None:
@@ -162,7 +165,7 @@ def set_columns(outcome: Outcome, columns: dict[str, Any]) -> None:
 
 
 def friction_note(shaft, what: str) -> list[str]:
-    return ([f"note: joint friction is left out of the {what} (the steady state takes it, by "
+    return ([f"joint friction is left out of the {what} (the steady state takes it, by "
              f"passes at the vibrating crank's motion)."] if shaft.friction else [])
 
 
@@ -352,11 +355,12 @@ def curve(name: str):
                                         progress=ticker(budget, ITERATIONS))
         except InputError as err:
             raise naming(err) from None
+        withheld(Outcome(name, notes=[NO_STATE]), found.converged,
+                 "no speed of the range has a periodic state of the drive line")
         outcome.notes += friction_note(shaft, what)
         if not found.converged.all():
-            outcome.notes.append(f"note: no periodic state at {int((~found.converged).sum())} "
-                                 f"speeds (the crank would stop or turn back, or the shooting "
-                                 f"did not converge): left empty.")
+            outcome.notes.append(f"no periodic state at {int((~found.converged).sum())} speeds "
+                                 f"({NO_STATE}): left empty.")
         speed = rpm(found.speed)
         set_columns(outcome, {"speed_rpm": speed, "eta": found.eta,
                               "peak_torque": found.peak_torque,
@@ -364,8 +368,6 @@ def curve(name: str):
                               "twist_amplitude_deg": np.degrees(found.twist_amplitude),
                               "fluctuation": found.fluctuation, "floquet": found.stability,
                               "unstable": found.unstable})
-        withheld(outcome, found.converged, f"no speed of {SPEED_RANGE.api} has a periodic "
-                                           f"state of the drive line")
         add = outcome.add
         for k, at, kind in found.resonances:
             add(f"{kind}_k{k}_rpm", rpm(at), "rpm", {"eta": at / found.omega_bar},
@@ -433,13 +435,13 @@ def stability_map(source: Any, options: dict[str, Any], budget: Budget) -> Outco
     grid_speed, grid_value = np.meshgrid(rpm(found.speed), found.values)
     stability = found.stability.ravel()
     given = np.isfinite(stability)
+    withheld(Outcome("driveline-map", notes=[NO_STATE]), given,
+             "no cell of the map has a periodic state of the drive line")
     if not given.all():
-        outcome.notes.append(f"note: no periodic state in {int((~given).sum())} cells (the "
-                             f"crank would stop or turn back, or the shooting did not "
-                             f"converge): left empty.")
+        outcome.notes.append(f"no periodic state in {int((~given).sum())} cells ({NO_STATE}): "
+                             f"left empty.")
     set_columns(outcome, {"speed_rpm": grid_speed.ravel(), parameter: grid_value.ravel(),
                           "floquet": stability, "unstable": found.unstable.ravel()})
-    withheld(outcome, given, "no cell of the map has a periodic state of the drive line")
     k = int(np.nanargmax(stability))
     outcome.add("stability_max", float(stability[k]), "-",
                 {"speed_rpm": grid_speed.ravel()[k], parameter: grid_value.ravel()[k]},

@@ -92,4 +92,4 @@ def driveline(mechanism_file: str, what: str, fmt: str | None, output: str | Non
 
         tables = report.tables(outcome)
     contract.emit(outcome, fmt, output, tables)
-    contract.notes(outcome)
+    contract.notes(outcome, "note: ")
