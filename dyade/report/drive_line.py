@@ -83,5 +83,5 @@ def tables(outcome, columns: bool = True) -> list:
     if columns:
         parameter = next((n for n in ("stiffness", "damping") if n in outcome.columns), "")
         parts.append(columns_table(outcome, TITLES[outcome.analysis].format(parameter=parameter),
-                                   most=60))
+                                   most=61))  # a revolution of 720 steps: every 12th (6°)
     return [part for part in parts if part is not None]
