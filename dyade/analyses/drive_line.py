@@ -23,7 +23,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from dyade.analyses.base import Analysis, Budget, Option, Outcome, withheld
+from dyade.analyses.base import MAX_MEMORY, Analysis, Budget, Option, Outcome, withheld
 from dyade.analyses.inputs import SET, load
 
 SPEED_RANGE = Option("speed-range", str, "rpm", metavar="START:STOP:STEP",
@@ -190,6 +190,15 @@ def shooting_seconds(steps: int, lanes: int, dimension: int, iterations: int = I
                                        + SECONDS_PER_LANE_STEP * lanes * (2 * dimension + 1))
 
 
+def orbit_values(line) -> int:
+    """float64 values per lane and step of a kept orbit (``engine.Orbit``: the state,
+    the quadratures, the element torques, the acceleration), twice for the arrays made
+    from them."""
+    from dyade.machine import drive_line as engine
+
+    return 2 * (line.dimension + engine.QUADRATURES + line.elements + 1)
+
+
 def steps_of(shaft, line, speed: float, stiffness_max=None) -> int:
     """RK4 steps per revolution of a run at the lowest ``speed`` [rad/s] (as the engine
     chooses them; a line too stiff to integrate is refused here, before any step)."""
@@ -338,6 +347,7 @@ def curve(name: str):
         import numpy as np
 
         from dyade.errors import InputError
+        from dyade.limits import check_memory
         from dyade.linkage import drive_line as api
         from dyade.units import RPM
 
@@ -348,6 +358,9 @@ def curve(name: str):
             line = shaft.ideal_line
             low = min(abs(s) for s in speeds) * RPM
             steps = steps_of(shaft, line, low) if low > 0 else 0
+            check_memory((steps + 1) * len(speeds) * orbit_values(line) * 8.0,
+                         f"the orbits of {len(speeds):,} speeds over {steps:,} steps",
+                         budget.max_memory, "Ask for fewer speeds", MAX_MEMORY.api)
             budget.time(shooting_seconds(steps, len(speeds), line.dimension),
                         f"the {what} at {len(speeds):,} speeds ({steps:,} steps per "
                         f"revolution)")

@@ -198,8 +198,8 @@ def test_the_old_flag_still_works_and_the_api_names_carry_the_unit():
 
 
 def test_a_long_run_is_bounded_before_it_starts_and_shows_progress(monkeypatch):
-    """--max-time refuses on the estimate (nothing integrated); a run reports progress
-    through its Newton iterations."""
+    """--max-time and --max-memory refuse on the estimates (nothing integrated); a run
+    reports progress through its Newton iterations."""
     from dyade.linkage import drive_line as api
 
     source, options = CASES["driveline-resonance"]
@@ -207,6 +207,8 @@ def test_a_long_run_is_bounded_before_it_starts_and_shows_progress(monkeypatch):
     monkeypatch.setattr(api, "resonance_curve", lambda *a, **k: pytest.fail("it ran"))
     with pytest.raises(InputError, match="max_time_s"):
         REGISTRY["driveline-resonance"](source, **options, max_time_s=1e-3)
+    with pytest.raises(InputError, match="max_memory_mb .* the orbits of 3 speeds"):
+        REGISTRY["driveline-resonance"](source, **options, max_memory_mb=0.01)
     monkeypatch.setattr(api, "resonance_curve", real)
     ticks = []
     REGISTRY["driveline-resonance"](source, **options, progress=lambda done, total: ticks.append(
