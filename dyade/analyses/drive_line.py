@@ -61,7 +61,8 @@ FREQUENCY = {
     "omega_bar": ("rad/s", "ω̄: the lowest natural frequency with the mean reduced "
                            "inertia J̄"),
     "resonance_speed_rpm": ("rpm", "ω̄ as a crank speed (Ω = ω̄)"),
-    "omega_min": ("rad/s", "the lowest natural frequency's smallest value over the cycle (J(φ) largest)"),
+    "omega_min": ("rad/s", "the lowest natural frequency's smallest value over the cycle "
+                           "(J(φ) largest)"),
     "omega_max": ("rad/s", "… and its largest (J(φ) smallest)"),
     "inertia_mean": ("kg·m²", "J̄: the crank shaft's mean reduced moment of inertia"),
     "speed_rpm": ("rpm", "the crank's operating speed Ω (the file's)"),
