@@ -21,6 +21,7 @@ ENTRIES = {
     "driveline-steady": "dyade.analyses.drive_line",
     "driveline-resonance": "dyade.analyses.drive_line",
     "driveline-stability": "dyade.analyses.drive_line",
+    "driveline-map": "dyade.analyses.drive_line",
     "driveline-run-up": "dyade.analyses.drive_line",
 }
 """entry name -> the module that defines it (in its ``ENTRIES`` dict)"""

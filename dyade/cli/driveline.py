@@ -1,64 +1,67 @@
-"""``dyade driveline``: a linkage driven through an elastic shaft or coupling."""
+"""``dyade driveline``: a linkage driven through an elastic shaft or coupling; each
+``--analysis`` is an entry of the registry (``dyade.analyses.drive_line``)."""
 
 from __future__ import annotations
 
 import click
 
-from dyade.cli import main
-from dyade.cli.common import infer_format, load
-from dyade.cli.options import MECHANISM_FILE, POSITIVE, Renamed, set_option
-from dyade.cli.output import console, flags, show, write_json, write_rows
+from dyade.analyses.base import COMMON
+from dyade.analyses.drive_line import ENTRIES, MAP, SPEED_RANGE, SPEED_RPM
+from dyade.analyses.inputs import SET
+from dyade.cli import contract, main
+from dyade.cli.options import MECHANISM_FILE, Renamed
 
-ANALYSES = click.Choice(["steady", "resonance", "stability", "map", "run-up"])
-FLAGS = {"speeds_rpm": "--speed-range", "speed_rpm": "--speed-rpm", "stiffness": "--map",
-         "damping": "--map"}
-"""API parameter -> the flag it comes from"""
+ANALYSES = ("frequency", "steady", "resonance", "stability", "map", "run-up")
+"""``--analysis`` -> the entry ``driveline-<analysis>``"""
 
 
-def speed_range(text: str, hint: str, quantity: str = "speed_rpm") -> list[float]:
-    """START:STOP:STEP [rpm], STOP included (``dyade.files.schema.range_parts``,
-    ``range_values``); both ends of one sign (the crank's sense); ``quantity``
-    (``dyade.limits.PLAUSIBLE``) bounds the ends: a --map's stiffness or damping."""
-    from dyade.files.schema import range_parts, range_values
-    from dyade.limits import implausible, plausible_range
+def driveline_options(command):
+    """Decorate a command with the options of every drive-line entry, each declared once
+    (``--speed-range`` keeps its old name ``--speeds-rpm`` as a hidden alias)."""
+    for option in reversed((SET, SPEED_RANGE, SPEED_RPM, MAP, *COMMON)):
+        if option is SPEED_RANGE:
+            command = click.option(option.flag, option.api, cls=Renamed, old=("--speeds-rpm",),
+                                   metavar=option.metavar, help=option.text)(command)
+        else:
+            command = contract.click_option(option)(command)
+    return command
 
-    try:
-        start, stop, step = range_parts(text, " [rpm]")
-        if not (step > 0 and stop >= start):
-            raise ValueError(f"needs START <= STOP and STEP > 0, got {text!r}.")
-        if any(implausible(quantity, abs(end)) for end in (start, stop)
-               if end or quantity != "damping"):
-            raise ValueError(f"values must lie in {plausible_range(quantity)} (what a "
-                             f"machine has), got {text!r}.")
-        return range_values(start, stop, step, 2000, "speeds")
-    except ValueError as err:
-        raise click.BadParameter(str(err), param_hint=hint) from None
+
+def solve(what: str, mechanism_file: str, params: dict):
+    """The entry of ``--analysis what`` run on the file with the command's options; an
+    option that is not the entry's is refused naming the analyses it is for."""
+    import sys
+
+    from dyade.analyses.inputs import Text
+
+    entry = ENTRIES[f"driveline-{what}"]
+    own = {option.api for option in entry.every_option}
+    for option in (SPEED_RANGE, SPEED_RPM, MAP):
+        if params.get(option.api) is not None and option.api not in own:
+            users = [name.removeprefix("driveline-") for name, other in ENTRIES.items()
+                     if option in other.options]
+            raise click.UsageError(f"{option.flag} is for --analysis {' and '.join(users)}, "
+                                   f"not {what}.")
+    source = Text(sys.stdin.read()) if mechanism_file == "-" else mechanism_file
+    return contract.run(entry, source, params)
 
 
 @main.command()
 @click.argument("mechanism_file", type=MECHANISM_FILE)
-@click.option("--analysis", "what", type=ANALYSES, default="steady", show_default=True,
-              help="steady: the periodic state at the operating speed next to the rigid "
-                   "drive's; resonance: peak shaft torque, twist and speed fluctuation over "
-                   "--speed-range; stability: the Floquet multipliers over --speed-range; map: "
-                   "the largest multiplier over --speed-range × --map; run-up: from rest "
-                   "under the [drive] motor.")
-@click.option("--speed-range", "speeds_rpm", cls=Renamed, old=("--speeds-rpm",),
-              metavar="START:STOP:STEP",
-              help="Crank speeds of an ideal motor [rpm] for resonance, stability and map.")
-@click.option("--speed-rpm", type=POSITIVE, metavar="RPM",
-              help="The ideal motor's speed for steady [rpm] [default: the crank's].")
-@click.option("--map", "map_range", metavar="stiffness|damping=START:STOP:STEP",
-              help="The line's parameter and values for --analysis map [N·m/rad or "
-                   "N·m·s/rad].")
-@set_option
+@click.option("--analysis", "what", type=click.Choice(ANALYSES), default="steady",
+              show_default=True,
+              help="frequency: ω̄ over the cycle; steady: the periodic state at the operating "
+                   "speed next to the rigid drive's; resonance: peak shaft torque, twist and "
+                   "speed fluctuation over --speed-range; stability: the Floquet multipliers "
+                   "over --speed-range; map: the largest multiplier over --speed-range × "
+                   "--map; run-up: from rest under the [drive] motor.")
+@driveline_options
 @click.option("--format", "fmt", type=click.Choice(["table", "csv", "json"]), default=None,
               help="table, csv or json. [default: table on stdout; with -o: from its suffix]")
 @click.option("-o", "--output", type=click.Path(writable=True, dir_okay=False),
               help="Write to this file instead of standard output.")
-def driveline(mechanism_file: str, what: str, speeds_rpm: str | None, speed_rpm: float | None,
-              map_range: str | None, assignments: tuple[str, ...], fmt: str | None,
-              output: str | None) -> None:
+def driveline(mechanism_file: str, what: str, fmt: str | None, output: str | None,
+              **params) -> None:
     """The elastic drive line of MECHANISM_FILE ([drive_line] table): motor → shaft or
     coupling → the linkage's crank shaft with its reduced inertia J(φ).
 
@@ -76,105 +79,17 @@ def driveline(mechanism_file: str, what: str, speeds_rpm: str | None, speed_rpm:
     Resonance curves, stability charts and maps scan an ideal motor's speed (a [drive]
     motor is replaced by one); steady state and run-up use the [drive] motor if the file
     has one. Forced resonances lie near Ω = ω̄/k, parametric instability near
-    Ω = 2ω̄/k, k a harmonic of J(φ) or M_L(φ). A run-up that never reaches speed exits 1.
+    Ω = 2ω̄/k, k a harmonic of J(φ) or M_L(φ). A run-up that never reaches speed, and a
+    scan where no speed has a periodic state, exit 1.
     """
-    import numpy as np
+    from dyade.cli.common import infer_format
 
-    from dyade.linkage import drive_line as api
-    from dyade.report import drive_line as report
-
-    from dyade.limits import implausible, plausible_range
-
-    if speed_rpm is not None and implausible("speed_rpm", speed_rpm):
-        raise click.BadParameter(f"must lie in {plausible_range('speed_rpm')} (what a machine "
-                                 f"has), got {speed_rpm:g}.", param_hint="--speed-rpm")
     fmt = fmt or infer_format(output)
-    mechanism = load(mechanism_file, assignments).mechanism
-    notes: list[str] = []
-    with flags(FLAGS):
-        freq = api.natural_frequency(mechanism)
-        summary = {"natural_frequency": report.frequency_summary(freq)}
-        if not freq.vdi_2149:
-            notes.append(f"Ω/ω̄ = {freq.ratio:.3g} exceeds 0.1 (VDI 2149 Part 1): the rigid "
-                         f"drive's model does not hold for this line.")
-        if what != "steady" and api.has_friction(mechanism):
-            notes.append(f"joint friction is left out of the {what} (the steady state takes "
-                         f"it, by passes at the vibrating crank's motion).")
-        speeds = None
-        if what in ("resonance", "stability", "map"):
-            if not speeds_rpm:
-                raise click.UsageError(f"--analysis {what} needs --speed-range START:STOP:STEP.")
-            speeds = speed_range(speeds_rpm, "--speed-range")
-        elif speeds_rpm:
-            raise click.UsageError(f"--speed-range is for resonance, stability and map, not "
-                                   f"{what}.")
-        if map_range and what != "map":
-            raise click.UsageError("--map is for --analysis map.")
-        if speed_rpm is not None and what != "steady":
-            raise click.UsageError("--speed-rpm is for --analysis steady.")
-        if what == "steady":
-            state = api.steady_state(mechanism, speed_rpm=speed_rpm)
-            columns = report.steady_columns(state)
-            summary["steady"] = report.steady_summary(state)
-            title = "Periodic steady state of the drive line, next to the rigid drive"
-        elif what in ("resonance", "stability"):
-            curve = api.resonance_curve(mechanism, speeds)
-            columns = report.resonance_columns(curve)
-            summary["resonances"] = report.resonance_labels(curve)
-            summary["unstable_rpm"] = report.unstable_ranges(columns["speed_rpm"],
-                                                             curve.unstable)
-            summary["steps_per_revolution"] = curve.steps
-            if not curve.converged.all():
-                notes.append(f"no periodic state at {int((~curve.converged).sum())} speeds "
-                             f"(the crank would stop or turn back, or the shooting did not "
-                             f"converge): left empty.")
-            title = "Resonance curve and Floquet multipliers (ideal motor)"
-        elif what == "map":
-            if not map_range or "=" not in map_range:
-                raise click.UsageError("--analysis map needs --map stiffness=START:STOP:STEP "
-                                       "or damping=START:STOP:STEP.")
-            name, text = map_range.split("=", 1)
-            if name not in ("stiffness", "damping"):
-                raise click.BadParameter(f"maps stiffness or damping, got {name!r}.",
-                                         param_hint="--map")
-            values = speed_range(text, "--map", name)
-            result = api.stability_map(mechanism, speeds, **{name: values})
-            grid_speed, grid_value = np.meshgrid(result.speed * report.RPM, result.values)
-            columns = {"speed_rpm": grid_speed.ravel(), name: grid_value.ravel(),
-                       "floquet": result.stability.ravel(),
-                       "unstable": result.unstable.ravel().astype(float)}
-            title = f"Largest Floquet multiplier over speed × {name}"
-        else:
-            run = api.run_up(mechanism)
-            columns = {"time": run.time, "angle_deg": np.degrees(run.crank_angle),
-                       "crank_speed_rpm": run.crank_speed * report.RPM,
-                       "motor_speed_rpm": run.motor_speed * report.RPM,
-                       "shaft_torque": run.shaft_torque, "twist_deg": np.degrees(run.twist)}
-            summary["run_up"] = dict(run.figures)
-            title = "Run-up from rest"
-    names = list(columns)
-    if fmt == "csv":
-        table = np.column_stack([np.asarray(columns[n], dtype=float) for n in names]) + 0.0
-        write_rows([dict(zip(names, row)) for row in table.tolist()], names, output)
-    elif fmt == "json":
-        from dyade.report.document import document
+    outcome = solve(what, mechanism_file, params)
+    tables = None
+    if fmt == "table":
+        from dyade.report import drive_line as report
 
-        write_json(document("driveline", columns, report.UNITS, summary, notes,
-                            mechanism=mechanism.name, analysis=what), output)
-    else:
-        parts = [report.summary_table("Natural frequency, VDI 2149",
-                                      summary["natural_frequency"])]
-        for key in ("steady", "run_up"):
-            if key in summary:
-                parts.append(report.summary_table(key.replace("_", "-"), summary[key]))
-        if "resonances" in summary:
-            parts.append(report.summary_table("Resonances expected in the range (rpm)", {
-                f"{row['kind']} k={row['harmonic']}": row["speed_rpm"]
-                for row in summary["resonances"]} | {"unstable [rpm]": str(
-                    [(round(a, 4), round(b, 4)) for a, b in summary["unstable_rpm"]])}))
-        count = len(columns[names[0]])
-        parts.append(report.table(title, columns, every=max(1, count // 60)))
-        show(parts, output)
-    err = console(stderr=True)
-    for note in notes:
-        err.print(f"note: {note}", markup=False)
+        tables = report.tables(outcome)
+    contract.emit(outcome, fmt, output, tables)
+    contract.notes(outcome, "note: ")

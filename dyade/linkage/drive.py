@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -399,6 +400,55 @@ def crank_tables(mechanism: Mechanism, steps: int) -> line_engine.Tables:
     return tables
 
 
+@dataclass(eq=False)  # holds arrays: no meaningful ==
+class CrankShaft:
+    """The linkage as the crank shaft of its drive line, built once per analysis and
+    passed on (``crank_shaft``): the file's line, the tables J(φ), dJ/du, s·M_L on the
+    coarsest grid (``MIN_STEPS``), and, found on first use, whether joint friction
+    enters, the line with an ideal motor and the natural frequency."""
+
+    mechanism: Mechanism
+    line: line_engine.Line
+    """the line of the file: its ``[drive]`` motor, or an ideal motor without one"""
+    tables: line_engine.Tables
+    """the crank shaft on ``MIN_STEPS`` steps per revolution, friction zero (never
+    changed: ``tables_at`` hands out tables to integrate with)"""
+
+    def tables_at(self, steps: int) -> line_engine.Tables:
+        """The crank shaft on ``steps`` steps per revolution, with a friction torque of
+        its own (zero; the friction passes replace it): the coarse tables' values when
+        ``steps`` is theirs, else computed."""
+        if steps == self.tables.steps:
+            coarse = self.tables
+            return line_engine.Tables(coarse.inertia, coarse.slope, coarse.load,
+                                      np.zeros(2 * steps))
+        return crank_tables(self.mechanism, steps)
+
+    @cached_property
+    def friction(self) -> bool:
+        """True when the sweep of the mechanism runs the friction solution (its plan)."""
+        from dyade.linkage.plan import plan
+
+        return bool(plan(self.mechanism).friction)
+
+    @cached_property
+    def ideal_line(self) -> line_engine.Line:
+        """The line with an ideal motor (what the scans over speed drive)."""
+        return self.line if self.line.ideal else line_engine.line_of(self.mechanism, ideal=True)
+
+    @cached_property
+    def frequency(self) -> NaturalFrequency:
+        """ω̄, its range over the cycle and Ω/ω̄ (``natural_frequency``), once."""
+        return natural_frequency(self.mechanism, shaft=self)
+
+
+def crank_shaft(mechanism: Mechanism) -> CrankShaft:
+    """The crank shaft of ``mechanism``'s drive line (``CrankShaft``): its line and its
+    tables on ``MIN_STEPS`` steps per revolution."""
+    line = line_engine.line_of(mechanism)
+    return CrankShaft(mechanism, line, crank_tables(mechanism, line_engine.MIN_STEPS))
+
+
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class NaturalFrequency:
     """The natural frequencies of the drive line and the VDI 2149 check."""
@@ -429,13 +479,16 @@ class NaturalFrequency:
         return self.ratio <= VDI_2149_RATIO
 
 
-def natural_frequency(mechanism: Mechanism) -> NaturalFrequency:
+def natural_frequency(mechanism: Mechanism, *, shaft: CrankShaft | None = None
+                      ) -> NaturalFrequency:
     """ω̄, the range of the lowest natural frequency over the cycle, and Ω/ω̄.
 
     Parameters
     ----------
     mechanism : Mechanism
         With a ``[drive_line]`` table (else ``InputError``).
+    shaft : CrankShaft, optional
+        Its crank shaft, when the caller has it already (``crank_shaft``).
 
     Returns
     -------
@@ -452,9 +505,9 @@ def natural_frequency(mechanism: Mechanism) -> NaturalFrequency:
     >>> round(f.omega_bar, 2), round(f.ratio, 4), f.vdi_2149     # [rad/s], [-]
     (300.8, 0.5222, False)
     """
-    line = line_engine.line_of(mechanism)
-    steps = line_engine.MIN_STEPS
-    tables = crank_tables(mechanism, steps)
+    shaft = shaft or crank_shaft(mechanism)
+    line, tables = shaft.line, shaft.tables
+    steps = tables.steps
     inertia = tables.inertia[0::2]
     mean = float(np.mean(tables.inertia))
     every = line_engine.natural_frequencies(line, np.concatenate(([mean], inertia)))[:, 0]

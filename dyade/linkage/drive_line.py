@@ -21,13 +21,14 @@ over speed and the run-up leave it out (the command line notes that).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.errors import DyadeError, InputError
-from dyade.linkage.drive import crank_tables, natural_frequency
+from dyade.linkage.drive import CrankShaft, crank_shaft, crank_tables, natural_frequency
 from dyade.machine import drive_line as engine
 from dyade.machine.drive_line import line_data, line_of, sense_of
 from dyade.machine.motor import operating_speed
@@ -38,21 +39,21 @@ from dyade.units import RAD_PER_S_TO_RPM
 HARMONIC_SHARE = 1e-3  # [-] harmonics of J or M_L above this share of the largest are labelled
 
 
-def _steps(mechanism: Mechanism, line: engine.Line, speed_min: float,
+def _steps(shaft: CrankShaft, line: engine.Line, speed_min: float,
            stiffness_max: FloatArray | None = None) -> tuple[int, engine.Tables]:
-    data = line_data(mechanism)
-    coarse = crank_tables(mechanism, engine.MIN_STEPS)
-    steps = data.steps or engine.steps_for(line, float(np.min(coarse.inertia)), speed_min,
-                                           stiffness_max)
-    return steps, (coarse if steps == engine.MIN_STEPS else crank_tables(mechanism, steps))
+    coarse = shaft.tables
+    steps = line_data(shaft.mechanism).steps or engine.steps_for(
+        line, float(np.min(coarse.inertia)), speed_min, stiffness_max)
+    return steps, shaft.tables_at(steps)
 
 
-def resonances(mechanism: Mechanism, omega_bar: float, low: float, high: float
-               ) -> list[tuple[int, float, str]]:
+def resonances(mechanism: Mechanism, omega_bar: float, low: float, high: float, *,
+               shaft: CrankShaft | None = None) -> list[tuple[int, float, str]]:
     """The speeds [rad/s] within [low, high] where resonances are to be expected: forced
     at Ω = ω̄/k for each harmonic k present in J(φ) or M_L(φ), parametric at Ω = 2ω̄/k
-    for each harmonic k of J(φ). (k, speed, "forced" | "parametric"), by speed."""
-    tables = crank_tables(mechanism, engine.MIN_STEPS)
+    for each harmonic k of J(φ). (k, speed, "forced" | "parametric"), by speed.
+    ``shaft``: the mechanism's crank shaft, when the caller has it."""
+    tables = shaft.tables if shaft is not None else crank_tables(mechanism, engine.MIN_STEPS)
     out = []
     for values, kinds in ((tables.inertia, ("forced", "parametric")),
                           (tables.load, ("forced",))):
@@ -111,12 +112,16 @@ def _reference_speed(mechanism: Mechanism, motor: Motor | None, tables: engine.T
                      "ideal motor at the crank's speed. A run-up works with it.")
 
 
-def _solve(line: engine.Line, tables: engine.Tables, lanes: engine.Lanes) -> engine.Periodic:
-    return engine.periodic(line, tables, lanes, engine.linear_guess(line, tables, lanes))
+def _solve(line: engine.Line, tables: engine.Tables, lanes: engine.Lanes,
+           progress: Callable[[int], None] | None = None) -> engine.Periodic:
+    return engine.periodic(line, tables, lanes, engine.linear_guess(line, tables, lanes),
+                           progress)
 
 
 def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
-                 steps: int | None = None, accuracy: bool = True) -> SteadyState:
+                 steps: int | None = None, accuracy: bool = True,
+                 shaft: CrankShaft | None = None,
+                 progress: Callable[[int], None] | None = None) -> SteadyState:
     """The periodic steady state at the operating speed (the ideal motor's speed
     ``speed_rpm``, default the crank's), by shooting, next to the rigid drive's.
 
@@ -135,6 +140,11 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
         highest natural frequency, at least 720).
     accuracy : bool
         Also solve with half the steps and report the change (``figures["accuracy"]``).
+    shaft : CrankShaft, optional
+        The mechanism's crank shaft (``crank_shaft``), when the caller has it: its line,
+        tables and natural frequency are not computed again.
+    progress : callable, optional
+        ``progress(iteration)`` hears each Newton iteration of the shooting.
 
     Returns
     -------
@@ -159,25 +169,27 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
         No periodic state (the crank would stop or turn back in the cycle, or the
         shooting does not converge).
     """
-    line = line_of(mechanism)
+    shaft = shaft or crank_shaft(mechanism)
+    line = shaft.line
     if speed_rpm is not None and not line.ideal:
         raise InputError.parameter("speed_rpm", "is for an ideal motor; a [drive] motor finds "
                                                 "its own speed.")
-    probe = crank_tables(mechanism, engine.MIN_STEPS)
+    probe = shaft.tables
     speed = _reference_speed(mechanism, line.motor, probe) if speed_rpm is None else abs(
         speed_rpm) / RAD_PER_S_TO_RPM
     if not speed > 0.0:
         raise InputError.parameter("speed_rpm", f"must be a positive speed, got {speed_rpm}.")
     n = steps or line_data(mechanism).steps or engine.steps_for(line, float(np.min(probe.inertia)),
                                                             speed)
-    tables = crank_tables(mechanism, n)
+    tables = shaft.tables_at(n)
     lanes = engine.Lanes.of(line, [speed])
-    solution, orbit, passes = _with_friction(mechanism, line, tables, lanes)
-    out = _steady(mechanism, line, tables, lanes, orbit, solution)
+    solution, orbit, passes = _with_friction(shaft, tables, lanes, progress=progress)
+    out = _steady(shaft, tables, lanes, orbit, solution)
     out.figures.update(passes)
     if accuracy:
-        coarse_tables = crank_tables(mechanism, max(n // 2, 36))
-        coarse, _, _ = _with_friction(mechanism, line, coarse_tables, lanes, strict=False)
+        coarse_tables = shaft.tables_at(max(n // 2, 36))
+        coarse, _, _ = _with_friction(shaft, coarse_tables, lanes, strict=False,
+                                      progress=progress)
         if coarse.converged[0]:
             coarse_orbit = engine.integrate(line, coarse_tables, lanes, coarse.start)
             fine = orbit.torque[::2, 0, -1] if n % 2 == 0 else None
@@ -195,15 +207,16 @@ def has_friction(mechanism: Mechanism) -> bool:
     return bool(plan(mechanism).friction)
 
 
-def _with_friction(mechanism: Mechanism, line: engine.Line, tables: engine.Tables,
-                   lanes: engine.Lanes, strict: bool = True
+def _with_friction(shaft: CrankShaft, tables: engine.Tables, lanes: engine.Lanes,
+                   strict: bool = True, progress: Callable[[int], None] | None = None
                    ) -> tuple[engine.Periodic, engine.Orbit, dict]:
     """The periodic state of one lane; with joint friction by passes, as for the rigid
     [drive] (``dyade.linkage.drive``): solve with the friction torque M_F frozen (zero at
     first), compute it anew from the kinetostatics with friction at the resulting crank
     speed and acceleration, until it changes by less than ``[friction] tol`` of the
     largest torque. ``tables.friction`` is left holding it."""
-    solution = _solve(line, tables, lanes)
+    mechanism, line = shaft.mechanism, shaft.line
+    solution = _solve(line, tables, lanes, progress)
     if strict and not solution.converged[0]:
         raise DyadeError(f"no periodic steady state of the drive line at "
                          f"{lanes.speed[0] * RAD_PER_S_TO_RPM:.5g} rpm: the crank would stop or "
@@ -211,7 +224,7 @@ def _with_friction(mechanism: Mechanism, line: engine.Line, tables: engine.Table
                          f"residual {solution.residual[0]:.2g}); the model does not describe that "
                          f"motion.")
     orbit = engine.integrate(line, tables, lanes, solution.start)
-    if not has_friction(mechanism):
+    if not shaft.friction:
         return solution, orbit, {}
     change, count = math.inf, 0
     for count in range(1, mechanism.friction_max_iter + 1):
@@ -220,7 +233,7 @@ def _with_friction(mechanism: Mechanism, line: engine.Line, tables: engine.Table
         change = float(np.max(np.abs(new - tables.friction)))
         scale = max(float(np.max(np.abs(new))), float(np.max(np.abs(orbit.torque[:, 0, -1]))))
         tables.friction = new
-        solution = _solve(line, tables, lanes)
+        solution = _solve(line, tables, lanes, progress)
         if not solution.converged[0]:
             if strict:
                 raise DyadeError("no periodic steady state of the drive line with joint "
@@ -252,7 +265,8 @@ def friction_torque(mechanism: Mechanism, tables: engine.Tables, speed: FloatArr
     return sense * drive - (inertia * acceleration + 0.5 * slope * speed ** 2 - load)
 
 
-def _steady(mechanism, line, tables, lanes, orbit, solution) -> SteadyState:
+def _steady(shaft: CrankShaft, tables, lanes, orbit, solution) -> SteadyState:
+    mechanism, line = shaft.mechanism, shaft.line
     sense = sense_of(mechanism)
     steps = tables.steps
     u = orbit.step * np.arange(steps + 1)
@@ -265,7 +279,7 @@ def _steady(mechanism, line, tables, lanes, orbit, solution) -> SteadyState:
     # motion with the rotor's inertia on the crank
     inertia, slope, load = tables.inertia[0::2], tables.slope[0::2], tables.load[0::2]
     rub = np.zeros(steps)  # the rigid drive's friction: at constant speed
-    if has_friction(mechanism):
+    if shaft.friction:
         rub = friction_torque(mechanism, tables, np.full(steps, mean), np.zeros(steps))
     if line.ideal:
         rigid_speed = np.full(steps + 1, lanes.speed[0])
@@ -292,7 +306,7 @@ def _steady(mechanism, line, tables, lanes, orbit, solution) -> SteadyState:
                "work_friction": float(quad[3]), "work_damping": float(quad[4]),
                "iterations": solution.iterations, "steps_per_revolution": steps,
                "stability": float(np.abs(solution.multipliers[0, 0]))}
-    freq = natural_frequency(mechanism)
+    freq = shaft.frequency
     figures.update({"omega_bar": freq.omega_bar, "eta": mean / freq.omega_bar})
     return SteadyState(mechanism.sweep.start + sense * u, orbit.torque[:, 0, -1], speed,
                        orbit.acceleration[:, 0], twist, rigid_torque, rigid_speed, rigid_accel,
@@ -343,8 +357,9 @@ def _speeds(speeds_rpm) -> FloatArray:
     return np.abs(speeds) / RAD_PER_S_TO_RPM
 
 
-def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None
-                    ) -> ResonanceCurve:
+def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
+                    shaft: CrankShaft | None = None,
+                    progress: Callable[[int], None] | None = None) -> ResonanceCurve:
     """The resonance curve and the Floquet multipliers over the ideal motor's speeds
     ``speeds_rpm`` [rpm] (vectorised over speeds): peak shaft torque, twist amplitude,
     speed fluctuation against speed, and the resonances to be expected in the range.
@@ -358,6 +373,11 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
         Crank speeds [rpm], all of one sign, none zero.
     steps : int, optional
         RK4 steps per revolution (default as for ``steady_state``, at the lowest speed).
+    shaft : CrankShaft, optional
+        The mechanism's crank shaft (``crank_shaft``), when the caller has it.
+    progress : callable, optional
+        ``progress(iteration)`` hears each Newton iteration of the shooting (all speeds
+        at once).
 
     Returns
     -------
@@ -373,11 +393,12 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     ([False, True], [0.988, 1.039])
     """
     speeds = _speeds(speeds_rpm)
-    line = line_of(mechanism, ideal=True)
-    n, tables = (steps, crank_tables(mechanism, steps)) if steps else _steps(
-        mechanism, line, float(speeds.min()))
+    shaft = shaft or crank_shaft(mechanism)
+    line = shaft.ideal_line
+    n, tables = (steps, shaft.tables_at(steps)) if steps else _steps(
+        shaft, line, float(speeds.min()))
     lanes = engine.Lanes.of(line, speeds)
-    solution = _solve(line, tables, lanes)
+    solution = _solve(line, tables, lanes, progress)
     orbit = engine.integrate(line, tables, lanes, solution.start)
     ok = solution.converged
     torque = orbit.torque[:, :, -1]
@@ -385,13 +406,14 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     speed = speeds[None, :] + orbit.state[:, :, 0]
     nan = np.where(ok, 1.0, np.nan)
     rigid = 0.5 * tables.slope[0::2, None] * speeds[None, :] ** 2 - tables.load[0::2, None]
-    omega_bar = natural_frequency(mechanism).omega_bar
+    omega_bar = shaft.frequency.omega_bar
     return ResonanceCurve(speeds, speeds / omega_bar, np.max(np.abs(torque), axis=0) * nan,
                           np.max(np.abs(rigid), axis=0),
                           0.5 * (twist.max(axis=0) - twist.min(axis=0)) * nan,
                           (speed.max(axis=0) - speed.min(axis=0)) / speeds * nan,
                           solution.stability, ok, omega_bar,
-                          resonances(mechanism, omega_bar, speeds.min(), speeds.max()), n)
+                          resonances(mechanism, omega_bar, speeds.min(), speeds.max(),
+                                     shaft=shaft), n)
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
@@ -413,7 +435,8 @@ class StabilityMap:
 
 
 def stability_map(mechanism: Mechanism, speeds_rpm, *, stiffness=None, damping=None,
-                  steps: int | None = None) -> StabilityMap:
+                  steps: int | None = None, shaft: CrankShaft | None = None,
+                  progress: Callable[[int], None] | None = None) -> StabilityMap:
     """The largest Floquet multiplier over the ideal motor's speeds ``speeds_rpm`` [rpm]
     and the shaft's ``stiffness`` [N·m/rad] or ``damping`` [N·m·s/rad] values (one of
     the two), all lanes in one integration.
@@ -428,6 +451,10 @@ def stability_map(mechanism: Mechanism, speeds_rpm, *, stiffness=None, damping=N
         The values to map [N·m/rad] or [N·m·s/rad]: give one of the two.
     steps : int, optional
         RK4 steps per revolution.
+    shaft : CrankShaft, optional
+        The mechanism's crank shaft (``crank_shaft``), when the caller has it.
+    progress : callable, optional
+        ``progress(iteration)`` hears each Newton iteration of the shooting.
 
     Returns
     -------
@@ -445,7 +472,8 @@ def stability_map(mechanism: Mechanism, speeds_rpm, *, stiffness=None, damping=N
     if (stiffness is None) == (damping is None):
         raise InputError.parameter(("stiffness", "damping"), "give one of the two to map.")
     speeds = _speeds(speeds_rpm)
-    line = line_of(mechanism, ideal=True)
+    shaft = shaft or crank_shaft(mechanism)
+    line = shaft.ideal_line
     if line.elements != 1:
         raise InputError.parameter("stiffness", "maps only a shaft, not a coupling, over "
                                                 "its stiffness or damping.")
@@ -460,10 +488,10 @@ def stability_map(mechanism: Mechanism, speeds_rpm, *, stiffness=None, damping=N
     grid_value = np.repeat(values, speeds.size)
     k = grid_value if name == "stiffness" else np.full(grid_value.size, line.stiffness[0])
     b = grid_value if name == "damping" else np.full(grid_value.size, line.damping[0])
-    n, tables = (steps, crank_tables(mechanism, steps)) if steps else _steps(
-        mechanism, line, float(speeds.min()), np.array([k.max()]))
+    n, tables = (steps, shaft.tables_at(steps)) if steps else _steps(
+        shaft, line, float(speeds.min()), np.array([k.max()]))
     lanes = engine.Lanes.of(line, grid_speed, k[:, None], b[:, None])
-    solution = _solve(line, tables, lanes)
+    solution = _solve(line, tables, lanes, progress)
     return StabilityMap(speeds, name, values, solution.stability.reshape(values.size, -1))
 
 
@@ -491,7 +519,9 @@ class RunUp:
     """largest |shaft torque|, when and at which speed; the time to speed; revolutions"""
 
 
-def run_up(mechanism: Mechanism, *, steps: int | None = None) -> RunUp:
+def run_up(mechanism: Mechanism, *, steps: int | None = None,
+           shaft: CrankShaft | None = None,
+           progress: Callable[[int], None] | None = None) -> RunUp:
     """The run-up from rest at the sweep's start angle (the line untwisted) with the
     ``[drive]`` motor, in time, until the mean speed over a revolution settles; the
     largest shaft torque on the way.
@@ -502,6 +532,10 @@ def run_up(mechanism: Mechanism, *, steps: int | None = None) -> RunUp:
         With ``[drive]`` (the motor) and ``[drive_line]`` (with ``rotor_inertia``).
     steps : int, optional
         Grid of the crank shaft's tables per revolution (default: the table's, else 720).
+    shaft : CrankShaft, optional
+        The mechanism's crank shaft (``crank_shaft``), when the caller has it.
+    progress : callable, optional
+        ``progress(revolutions)`` hears each revolution completed.
 
     Returns
     -------
@@ -532,12 +566,13 @@ def run_up(mechanism: Mechanism, *, steps: int | None = None) -> RunUp:
     if mechanism.drive is None:
         raise InputError(f"{mechanism.name}: a run-up needs the motor's characteristic: add a "
                          f"[drive] table (and `drive_line.rotor_inertia`).", key="drive")
-    line = line_of(mechanism)
+    shaft = shaft or crank_shaft(mechanism)
+    line = shaft.line
     if isinstance(line.motor, ConstantTorque) and line.motor.torque is None:
         raise InputError("a run-up needs the torque of the constant-torque motor: give "
                          "`drive.torque` [N·m].", key="drive.torque")
     n = steps or line_data(mechanism).steps or engine.MIN_STEPS
-    tables = crank_tables(mechanism, n)
+    tables = shaft.tables_at(n)
     top = float(engine.natural_frequencies(line, np.array([np.min(tables.inertia)]))[0, -1])
     dt = 2.0 * math.pi / (STEPS_PER_VIBRATION_IN_TIME * top)
     reference = (abs(mechanism.crank.speed) if isinstance(line.motor, ConstantTorque)
@@ -545,7 +580,7 @@ def run_up(mechanism: Mechanism, *, steps: int | None = None) -> RunUp:
     revolutions = mechanism.drive.max_revolutions
     t_max = 2.0 * revolutions * 2.0 * math.pi / reference
     path = engine.run_up(line, tables, dt=dt, t_max=t_max, tol=RUN_UP_TOL,
-                         max_revolutions=revolutions)
+                         max_revolutions=revolutions, progress=progress)
     sense = sense_of(mechanism)
     if not path.settled:
         raise DyadeError(f"the machine does not reach speed: after {path.time[-1]:.4g} s and "
@@ -559,7 +594,7 @@ def run_up(mechanism: Mechanism, *, steps: int | None = None) -> RunUp:
                "peak_speed": float(path.crank_speed[peak]), "duration": float(path.time[-1]),
                "revolutions": path.revolutions, "speed_mean": path.mean_speed,
                "time_step": dt,
-               "omega_bar": natural_frequency(mechanism).omega_bar}
+               "omega_bar": shaft.frequency.omega_bar}
     return RunUp(path.time, mechanism.sweep.start + sense * path.path, path.crank_speed,
                  path.motor_speed, path.shaft_torque, path.twist, figures)
 

@@ -39,6 +39,7 @@ stiffnesses, dampings): the integration steps one after the other, each step for
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -412,9 +413,11 @@ class Periodic:
         return self.stability > 1.0 + UNSTABLE_MARGIN
 
 
-def periodic(line: Line, tables: Tables, lanes: Lanes, guess: FloatArray) -> Periodic:
+def periodic(line: Line, tables: Tables, lanes: Lanes, guess: FloatArray,
+             progress: Callable[[int], None] | None = None) -> Periodic:
     """The periodic steady state of every lane by shooting (module docstring), from the
-    state ``guess`` (B, d) at u = 0; the Floquet multipliers at the solution."""
+    state ``guess`` (B, d) at u = 0; the Floquet multipliers at the solution.
+    ``progress(iteration)`` hears each Newton iteration done."""
     scale = scales(line, tables, lanes)
     x = np.array(guess, dtype=np.float64)
     b, d = x.shape
@@ -424,6 +427,8 @@ def periodic(line: Line, tables: Tables, lanes: Lanes, guess: FloatArray) -> Per
     iteration = 0
     for iteration in range(1, NEWTON_MAX_ITER + 1):
         end, jac = monodromy(line, tables, lanes, x, scale)
+        if progress is not None:
+            progress(iteration)
         miss = end - x
         residual = np.max(np.abs(miss) / scale, axis=1)
         residual = np.where(np.isfinite(residual), residual, np.inf)
@@ -626,12 +631,14 @@ class RunUp:
 
 
 def run_up(line: Line, tables: Tables, *, dt: float, t_max: float, tol: float = 1e-6,
-           max_revolutions: int = 500) -> RunUp:
+           max_revolutions: int = 500, progress: Callable[[int], None] | None = None
+           ) -> RunUp:
     """The run-up from rest (everything at rest and untwisted at u = 0) under the motor's
     characteristic, by RK4 in time with the step ``dt`` [s], until the mean speed over a
     revolution changes by less than ``tol`` from one to the next (relative), or up to
     ``t_max`` [s] or ``max_revolutions``. The tables enter as Fourier series in u; the
-    friction torque, a table for forward motion, acts against the crank's motion."""
+    friction torque, a table for forward motion, acts against the crank's motion.
+    ``progress(revolutions)`` hears each revolution completed."""
     if line.ideal:
         raise InputError.parameter("motor", "a run-up needs a motor with a characteristic "
                                             "(a [drive] table), not an ideal motor.")
@@ -674,6 +681,8 @@ def run_up(line: Line, tables: Tables, *, dt: float, t_max: float, tol: float = 
                 settled, last_mean = True, mean
                 break
             last_mark, last_mean, turn = mark, mean, turn + 1
+            if progress is not None:
+                progress(turn - 1)
             if turn > max_revolutions:
                 break
     data = np.array(rows)

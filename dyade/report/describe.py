@@ -20,7 +20,7 @@ from dyade.analyses.base import MISSING
 from dyade.model.mechanism import CRANK, FRAME, Mechanism, Prismatic, Revolute
 from dyade.report.effects import effects
 from dyade.report.format import number
-from dyade.units import LENGTH_FACTORS
+from dyade.units import LENGTH_FACTORS, RAD_PER_S_TO_RPM
 
 
 class Lengths:
@@ -52,7 +52,7 @@ def describe(outcome) -> Tree:
     for name, point in mechanism.links[FRAME].points.items():
         frame.add(f"point {name} = {length.point(point)}")
     crank = mechanism.crank
-    rpm = abs(crank.speed) * 60.0 / (2.0 * np.pi)
+    rpm = abs(crank.speed) * RAD_PER_S_TO_RPM
     sense = "counter-clockwise" if crank.speed > 0 else "clockwise"
     node = tree.add(f"dyad 1: link 2 crank, length {length(crank.length)}, {rpm:g} rpm {sense}")
     node.add(f"joint (1,2) revolute at {length.point(crank.pivot)}{_joint_data(crank.joint, length)}")

@@ -1,97 +1,87 @@
-"""The elastic drive line (``dyade driveline``) as columns, summaries and tables."""
+"""The Outcomes of the drive line's entries (``dyade.analyses.drive_line``) as rich
+tables: the natural frequency and VDI 2149, the analysis's own figures, and its columns
+(every k-th row to about 60), every number through ``report.format``."""
 
 from __future__ import annotations
 
-from typing import Any
-
-import numpy as np
 from rich.table import Table
 
-from dyade.units import RAD_PER_S_TO_RPM as RPM  # [rpm per rad/s]
+from dyade.analyses.base import MISSING
+from dyade.analyses.drive_line import FREQUENCY
+from dyade.report.format import FLAG, number, where
+from dyade.report.outcome import columns_table
 
-UNITS = {"angle_deg": "°", "shaft_torque": "N·m", "rigid_torque": "N·m", "speed_rpm": "rpm",
-         "rigid_speed_rpm": "rpm", "acceleration": "rad/s²", "rigid_acceleration": "rad/s²",
-         "twist_deg": "°", "eta": "-", "peak_torque": "N·m", "rigid_peak_torque": "N·m",
-         "twist_amplitude_deg": "°", "fluctuation": "-", "floquet": "-", "unstable": "",
-         "time": "s", "crank_speed_rpm": "rpm", "motor_speed_rpm": "rpm"}
-"""column -> unit of every table of ``dyade driveline``"""
+TITLES = {"driveline-frequency": "The lowest natural frequency over the cycle (J frozen at J(φ))",
+          "driveline-steady": "Periodic steady state of the drive line, next to the rigid drive",
+          "driveline-resonance": "Resonance curve and Floquet multipliers (ideal motor)",
+          "driveline-stability": "Resonance curve and Floquet multipliers (ideal motor)",
+          "driveline-map": "Largest Floquet multiplier over speed × {parameter}",
+          "driveline-run-up": "Run-up from rest"}
+"""entry -> the title of its columns' table"""
 
-
-def frequency_summary(freq) -> dict[str, Any]:
-    """ω̄, its range over the cycle, Ω/ω̄ and the VDI 2149 verdict."""
-    return {"omega_bar": freq.omega_bar, "omega_bar_rpm": freq.omega_bar * RPM,
-            "omega_min": freq.omega_min, "omega_max": freq.omega_max,
-            "inertia_mean": freq.inertia_mean, "speed_rpm": freq.speed * RPM,
-            "ratio": freq.ratio, "vdi_2149": bool(freq.vdi_2149)}
-
-
-def steady_columns(state) -> dict[str, Any]:
-    return {"angle_deg": np.degrees(state.crank_angle), "shaft_torque": state.shaft_torque,
-            "rigid_torque": state.rigid_torque, "speed_rpm": state.crank_speed * RPM,
-            "rigid_speed_rpm": state.rigid_speed * RPM, "acceleration": state.crank_acceleration,
-            "rigid_acceleration": state.rigid_acceleration,
-            "twist_deg": np.degrees(state.twist)}
+SUMMARIES = {"driveline-steady": "Steady state", "driveline-resonance": "Resonances",
+             "driveline-stability": "Stability and resonances",
+             "driveline-map": "Stability map", "driveline-run-up": "Run-up"}
+"""entry -> the title of its own figures' table"""
 
 
-def steady_summary(state) -> dict[str, Any]:
-    out = dict(state.figures)
-    out.update({"speed_mean_rpm": out.pop("speed_mean") * RPM,
-                "peak_torque": float(np.max(np.abs(state.shaft_torque))),
-                "rigid_peak_torque": float(np.max(np.abs(state.rigid_torque))),
-                "twist_amplitude_deg": float(np.degrees(np.ptp(state.twist) / 2.0)),
-                "floquet": [abs(complex(m)) for m in state.multipliers],
-                "stable": state.stable})
-    return out
+def ranges(pairs, unit: str) -> str:
+    """``[[3525, 3625], [3800, 3800]]`` -> ``"3525–3625 rpm, 3800–3800 rpm"``; none:
+    "none"."""
+    if not pairs:
+        return "none"
+    return ", ".join(f"{number(a)}–{number(b)} {unit}" for a, b in pairs)
 
 
-def resonance_columns(curve) -> dict[str, Any]:
-    return {"speed_rpm": curve.speed * RPM, "eta": curve.eta, "peak_torque": curve.peak_torque,
-            "rigid_peak_torque": curve.rigid_peak_torque,
-            "twist_amplitude_deg": np.degrees(curve.twist_amplitude),
-            "fluctuation": curve.fluctuation, "floquet": curve.stability,
-            "unstable": curve.unstable.astype(float)}
+def value_text(figure) -> str:
+    """A summary figure's value for a table: a number (``format.number``), a flag yes/no,
+    the unstable speed ranges as text, a list of numbers."""
+    value = figure.value
+    if figure.name == "unstable_rpm":
+        return ranges(value, figure.unit)
+    if isinstance(value, (list, tuple)):
+        return ", ".join(number(v) for v in value) or MISSING
+    text = number(value)
+    if figure.limit is not None:
+        text += f" (limit {number(figure.limit)})"
+    return text
 
 
-def resonance_labels(curve) -> list[dict[str, Any]]:
-    return [{"harmonic": k, "speed_rpm": speed * RPM, "eta": speed / curve.omega_bar,
-             "kind": kind} for k, speed, kind in curve.resonances]
-
-
-def unstable_ranges(speed_rpm, unstable) -> list[tuple[float, float]]:
-    """The speed ranges [rpm] of consecutive unstable points."""
-    out, first = [], None
-    for value, bad in zip(list(speed_rpm) + [None], list(unstable) + [False]):
-        if bad and first is None:
-            first = value
-        if not bad and first is not None:
-            out.append((first, last))
-            first = None
-        last = value
-    return out
-
-
-def table(title: str, columns: dict[str, Any], every: int = 1) -> Table:
+def summary_table(title: str, figures) -> Table:
+    """figure | value | unit | where | meaning of ``figures`` (``Figure``s): the name as
+    the JSON document has it; a flag's yes/no and the speed ranges without a unit of
+    their own."""
     out = Table(title=title, title_justify="left")
-    names = list(columns)
-    for name in names:
-        unit = UNITS.get(name, "")
-        out.add_column(f"{name} [{unit}]" if unit and unit != "-" else name, justify="right")
-    count = len(columns[names[0]])
-    for i in range(0, count, every):
-        out.add_row(*(f"{float(columns[n][i]):.6g}" for n in names))
-    return out
-
-
-def summary_table(title: str, summary: dict[str, Any]) -> Table:
-    out = Table(title=title, title_justify="left")
-    out.add_column("quantity")
+    out.add_column("figure")
     out.add_column("value", justify="right")
-    for key, value in summary.items():
-        if isinstance(value, float):
-            text = f"{value:.6g}"
-        elif isinstance(value, list):
-            text = ", ".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in value)
-        else:
-            text = str(value)
-        out.add_row(key, text)
+    out.add_column("unit")
+    out.add_column("where")
+    out.add_column("meaning")
+    for figure in figures:
+        unit = "" if figure.name == "unstable_rpm" or figure.unit == FLAG else figure.unit
+        out.add_row(figure.name, value_text(figure), unit, where(figure.where),
+                    figure.description.strip())
     return out
+
+
+def frequency_table(outcome) -> Table:
+    """ω̄, its range, J̄, Ω, η and the VDI 2149 verdict of any drive-line Outcome."""
+    return summary_table("Natural frequency, VDI 2149",
+                         [outcome.summary[name] for name in FREQUENCY if name in outcome.summary])
+
+
+def own_table(outcome) -> Table | None:
+    """The entry's own figures (all but the natural frequency's)."""
+    figures = [figure for name, figure in outcome.summary.items() if name not in FREQUENCY]
+    return summary_table(SUMMARIES[outcome.analysis], figures) if figures else None
+
+
+def tables(outcome, columns: bool = True) -> list:
+    """The tables of a drive-line Outcome: the natural frequency, its own figures, and
+    (with ``columns``) its columns."""
+    parts = [frequency_table(outcome), own_table(outcome)]
+    if columns:
+        parameter = next((n for n in ("stiffness", "damping") if n in outcome.columns), "")
+        parts.append(columns_table(outcome, TITLES[outcome.analysis].format(parameter=parameter),
+                                   most=61))  # a revolution of 720 steps: every 12th (6°)
+    return [part for part in parts if part is not None]

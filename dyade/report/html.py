@@ -276,20 +276,17 @@ def mechanism_report(mechanism, *, source: str = "", start_deg: float | None = N
 def drive_line_html(mechanism) -> str:
     """The file's [drive_line]: its natural frequency and range over the cycle, the VDI
     2149 ratio Ω/ω̄ with its verdict, and the periodic steady state next to the rigid
-    drive's (as ``dyade driveline`` gives them)."""
-    from dyade.linkage import drive_line as api
+    drive's: the Outcome of the entry ``driveline-steady`` (run once), its notes, its
+    tables as ``dyade driveline`` prints them and its figure."""
+    from dyade.registry import REGISTRY
     from dyade.plot import drive_line as plot
     from dyade.report import drive_line as words
 
-    freq = api.natural_frequency(mechanism)
-    state = api.steady_state(mechanism)
-    notes = [] if freq.vdi_2149 else [
-        f"Ω/ω̄ = {freq.ratio:.3g} exceeds 0.1 (VDI 2149 Part 1): the rigid drive's model "
-        "does not hold for this line."]
-    parts = [words.summary_table("Natural frequency, VDI 2149", words.frequency_summary(freq)),
-             words.summary_table("Steady state", words.steady_summary(state))]
-    return (notes_html(notes) if notes else "") + table_html_many(parts) + figure(
-        plot.steady(state), "driveline",
+    outcome = REGISTRY["driveline-steady"](mechanism)
+    notes = outcome.notes
+    return (notes_html(notes) if notes else "") + table_html_many(
+        words.tables(outcome, columns=False)) + figure(
+        plot.steady(outcome.result), "driveline",
         "Shaft torque, crank speed and twist of the elastic drive line over one revolution, "
         "next to the rigid drive's torque and speed.")
 

@@ -20,6 +20,7 @@ from dyade.model.mechanism import Revolute
 from dyade.linkage.plan import Plan
 from dyade.report.format import FLAG, display, flag, number
 from dyade.roundoff import ROUNDOFF, is_roundoff
+from dyade.units import RAD_PER_S_TO_RPM
 
 
 def at(angle) -> str:
@@ -130,7 +131,7 @@ def key_results(outcome, length_unit: str = "m") -> Table:
     summary = outcome.summary
     value = {name: figure.value for name, figure in summary.items()}
     mechanism = outcome.result.mechanism
-    rpm = abs(mechanism.crank.speed) * 60.0 / (2.0 * np.pi)
+    rpm = abs(mechanism.crank.speed) * RAD_PER_S_TO_RPM
     speed = f"at {number(rpm, spec='g')} rpm"
     if "motion_state" in value:  # the equation of motion sets the speed, not the file's rpm
         speed = (f"at a mean {number(value['speed_mean_rpm'], spec='.4g')} rpm (equation of "

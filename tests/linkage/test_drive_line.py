@@ -355,11 +355,12 @@ def test_driveline_json_and_describe():
     result = run("driveline", shipped("slider-crank.toml"), *sets, "--format", "json")
     assert result.exit_code == 0, result.output
     doc = json.loads(result.stdout)
-    frequency = doc["summary"]["natural_frequency"]
-    assert frequency["vdi_2149"] is False and frequency["ratio"] == pytest.approx(0.5222, abs=1e-4)
-    assert doc["summary"]["steady"]["accuracy"] < 1e-5
+    summary = doc["summary"]
+    assert summary["vdi_2149"]["value"] is False
+    assert summary["speed_ratio"]["value"] == pytest.approx(0.5222, abs=1e-4)
+    assert summary["accuracy"]["value"] < 1e-5
     assert len(doc["columns"]["shaft_torque"]) == len(doc["columns"]["rigid_torque"])
-    assert any("VDI 2149" in w for w in doc["warnings"])
+    assert any("VDI 2149" in w for w in doc["notes"])
     described = run("describe", shipped("slider-crank.toml"), *sets).output
     assert "elastic drive line (shaft 1000 N·m/rad" in described
     missing = run("driveline", shipped("slider-crank.toml"))

@@ -1,0 +1,532 @@
+"""``dyade driveline``: a linkage driven through an elastic shaft or coupling
+(``[drive_line]``), one registry entry per question (``dyade.linkage.drive_line``).
+
+- ``driveline-frequency``: ω̄, its range over the cycle, Ω/ω̄ and the VDI 2149 verdict;
+- ``driveline-steady``: the periodic steady state next to the rigid drive's;
+- ``driveline-resonance``, ``driveline-stability``: peak shaft torque, twist, speed
+  fluctuation and the largest Floquet multiplier over the speeds of an ideal motor (one
+  integration gives both; they differ in the figure they draw);
+- ``driveline-map``: the largest Floquet multiplier over speed × stiffness or damping;
+- ``driveline-run-up``: from rest under the ``[drive]`` motor, in time.
+
+Every entry reads the mechanism once (``inputs.load``), builds its crank shaft once
+(``linkage.drive.crank_shaft``: the line, the tables, ω̄) and passes it on, and puts the
+natural frequency's figures and the VDI 2149 note in its Outcome.
+
+Options and their API names: ``--speed-range START:STOP:STEP`` [rpm] is
+``speed_range_rpm`` (the same text, or a sequence of speeds [rpm] at the API),
+``--speed-rpm`` ``speed_rpm``, ``--map stiffness=START:STOP:STEP`` ``map``, ``--set``
+``set``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from dyade.analyses.base import MAX_MEMORY, Analysis, Budget, Option, Outcome, withheld
+from dyade.analyses.inputs import SET, load
+
+SPEED_RANGE = Option("speed-range", str, "rpm", metavar="START:STOP:STEP",
+                     help="Crank speeds of an ideal motor, STOP included (a [drive] motor is "
+                          "replaced by one; at the API also a sequence of speeds)")
+SPEED_RPM = Option("speed-rpm", float, "rpm", positive=True, metavar="RPM",
+                   help="The ideal motor's speed for the steady state (default: the crank's; "
+                        "not with a [drive] motor)")
+MAP = Option("map", str, metavar="stiffness|damping=START:STOP:STEP",
+             help="The shaft's parameter to map against speed and its values [N·m/rad or "
+                  "N·m·s/rad]")
+OPTIONS = (SET, SPEED_RANGE, SPEED_RPM, MAP)
+"""every option of the drive line's entries (``dyade driveline`` declares them all)"""
+
+MOST_SPEEDS = 2000  # the most speeds (or map values) one run takes
+VDI_2149_WORDS = ("Ω/ω̄ = {ratio:.3g} exceeds {limit:g} (VDI 2149 Part 1): the rigid drive's "
+                  "model does not hold for this line.")
+"""the VDI 2149 note, worded here only"""
+NO_STATE = ("the crank would stop or turn back within the cycle, or the shooting did not "
+            "converge")
+"""why a speed has no periodic state"""
+
+# the time estimate of a run (measured on a 2-core machine, issue 36): the shooting's
+# RK4 step costs about SECONDS_PER_STEP, plus SECONDS_PER_LANE_STEP for each lane (a
+# speed or map cell, times 2d + 1 for the monodromy matrix); a run takes ITERATIONS
+# Newton iterations and a last integration that keeps the orbit (two iterations' worth)
+SECONDS_PER_STEP = 1.5e-4  # [s]
+SECONDS_PER_LANE_STEP = 1.5e-7  # [s]
+ITERATIONS = 6  # [-] Newton iterations of a typical run (at most NEWTON_MAX_ITER)
+FRICTION_FACTOR = 8.0  # [-] a steady state with joint friction: passes and kinetostatics
+SECONDS_PER_TIME_STEP = 6e-4  # [s] one RK4 step in time of the run-up
+RUN_UP_REVOLUTIONS = 10  # [-] revolutions a typical run-up takes to settle
+
+FREQUENCY = {
+    "omega_bar": ("rad/s", "ω̄: the lowest natural frequency with the mean reduced "
+                           "inertia J̄"),
+    "resonance_speed_rpm": ("rpm", "ω̄ as a crank speed (Ω = ω̄)"),
+    "omega_min": ("rad/s", "the lowest natural frequency's smallest value over the cycle "
+                           "(J(φ) largest)"),
+    "omega_max": ("rad/s", "… and its largest (J(φ) smallest)"),
+    "inertia_mean": ("kg·m²", "J̄: the crank shaft's mean reduced moment of inertia"),
+    "speed_rpm": ("rpm", "the crank's operating speed Ω (the file's)"),
+    "speed_ratio": ("-", "η = Ω/ω̄"),
+    "vdi_2149": ("1/0", "the rigid drive's model holds (VDI 2149 Part 1: Ω/ω̄ ≤ 0.1)"),
+}
+"""the natural frequency's figures, in every entry's summary: name -> (unit,
+description)"""
+
+COLUMNS = {
+    "angle_deg": ("°", "crank angle φ21"),
+    "natural_frequency": ("rad/s", "the lowest natural frequency with J frozen at J(φ)"),
+    "shaft_torque": ("N·m", "torque of the elastic element into the crank shaft"),
+    "rigid_torque": ("N·m", "drive torque of the rigid drive at the same mean speed"),
+    "speed_rpm": ("rpm", "crank speed"),
+    "rigid_speed_rpm": ("rpm", "crank speed of the rigid drive"),
+    "acceleration": ("rad/s²", "crank acceleration in the running direction"),
+    "rigid_acceleration": ("rad/s²", "crank acceleration of the rigid drive"),
+    "twist_deg": ("°", "twist of the line, motor side against crank"),
+    "eta": ("-", "η = Ω/ω̄"),
+    "peak_torque": ("N·m", "largest |shaft torque| over the cycle (empty: no periodic "
+                           "state)"),
+    "rigid_peak_torque": ("N·m", "largest |drive torque| of the rigid drive"),
+    "twist_amplitude_deg": ("°", "(max − min)/2 of the twist"),
+    "fluctuation": ("-", "(max − min)/mean of the crank speed"),
+    "floquet": ("-", "largest |Floquet multiplier| (empty: no periodic state)"),
+    "unstable": ("1/0", "a Floquet multiplier outside the unit circle (|μ| > 1)"),
+    "stiffness": ("N·m/rad", "the shaft's torsional stiffness"),
+    "damping": ("N·m·s/rad", "the shaft's damping"),
+    "time": ("s", "time from rest"),
+    "crank_speed_rpm": ("rpm", "crank speed"),
+    "motor_speed_rpm": ("rpm", "motor speed reduced to the crank shaft"),
+}
+"""column -> (unit, description) of every drive-line entry"""
+
+
+# -- what every entry shares -----------------------------------------------------------
+def rpm(speed):
+    """[rad/s] -> [rpm] (``dyade.units.RAD_PER_S_TO_RPM``)."""
+    from dyade.units import RAD_PER_S_TO_RPM
+
+    return speed * RAD_PER_S_TO_RPM
+
+
+def start(source: Any, options: dict[str, Any], name: str, figures: tuple[str, ...] = ()):
+    """The mechanism of ``source`` with ``set``, its crank shaft (built once), and the
+    Outcome with the natural frequency's figures and the VDI 2149 note."""
+    from dyade.linkage.drive import crank_shaft
+
+    loaded = load(source, options)
+    mechanism = loaded.mechanism
+    shaft = crank_shaft(mechanism)
+    outcome = Outcome(name, figures=figures,
+                      meta={"mechanism": mechanism.name,
+                            "source": None if loaded.text is None else loaded.label})
+    frequency_figures(outcome, shaft.frequency)
+    return shaft, outcome
+
+
+def frequency_figures(outcome: Outcome, freq) -> None:
+    """ω̄ and its range, J̄, Ω, η and the VDI 2149 verdict in the summary; the note when
+    the rigid model does not hold."""
+    import numpy as np
+
+    from dyade.linkage.drive import VDI_2149_RATIO
+
+    angle = np.degrees(freq.crank_angle)
+    values = {"omega_bar": (freq.omega_bar, None),
+              "resonance_speed_rpm": (rpm(freq.omega_bar), None),
+              "omega_min": (freq.omega_min, {"angle_deg": angle[np.argmin(freq.frequency)]}),
+              "omega_max": (freq.omega_max, {"angle_deg": angle[np.argmax(freq.frequency)]}),
+              "inertia_mean": (freq.inertia_mean, None),
+              "speed_rpm": (rpm(freq.speed), None),
+              "speed_ratio": (freq.ratio, None),
+              "vdi_2149": (bool(freq.vdi_2149), None)}
+    for name, (value, where) in values.items():
+        unit, description = FREQUENCY[name]
+        outcome.add(name, value, unit, where, description,
+                    VDI_2149_RATIO if name == "speed_ratio" else None)
+    if not freq.vdi_2149:
+        outcome.notes.append(vdi_note(freq.ratio))
+
+
+def vdi_note(ratio: float) -> str:
+    """The note of a line too soft for the rigid model (VDI 2149 Part 1)."""
+    from dyade.linkage.drive import VDI_2149_RATIO
+
+    return VDI_2149_WORDS.format(ratio=ratio, limit=VDI_2149_RATIO)
+
+
+def set_columns(outcome: Outcome, columns: dict[str, Any]) -> None:
+    """The Outcome's columns (arrays; floats with -0.0 as 0.0), units and descriptions."""
+    import numpy as np
+
+    arrays = {name: np.asarray(values) for name, values in columns.items()}
+    outcome.columns = {name: values + 0.0 if values.dtype.kind == "f" else values
+                       for name, values in arrays.items()}
+    outcome.units = {name: COLUMNS[name][0] for name in columns}
+    outcome.descriptions = {name: COLUMNS[name][1] for name in columns}
+
+
+def friction_note(shaft, what: str) -> list[str]:
+    return ([f"joint friction is left out of the {what} (the steady state takes it, by "
+             f"passes at the vibrating crank's motion)."] if shaft.friction else [])
+
+
+def ticker(budget: Budget, expected: int):
+    """The engine's ``progress(...)`` (a Newton iteration, a revolution done) as
+    ``budget.progress(done, total)``, counting the calls: the total is ``expected``
+    until the work goes beyond it."""
+    count = 0
+
+    def tick(*_: Any) -> None:
+        nonlocal count
+        count += 1
+        budget.progress(count, max(expected, count + 1))
+
+    return tick
+
+
+def shooting_seconds(steps: int, lanes: int, dimension: int, iterations: int = ITERATIONS
+                     ) -> float:
+    """The time estimate of the shooting of ``lanes`` lanes on ``steps`` steps [s]."""
+    return (iterations + 2) * steps * (SECONDS_PER_STEP
+                                       + SECONDS_PER_LANE_STEP * lanes * (2 * dimension + 1))
+
+
+def orbit_values(line) -> int:
+    """float64 values per lane and step of a kept orbit (``engine.Orbit``: the state,
+    the quadratures, the element torques, the acceleration), twice for the arrays made
+    from them."""
+    from dyade.machine import drive_line as engine
+
+    return 2 * (line.dimension + engine.QUADRATURES + line.elements + 1)
+
+
+def steps_of(shaft, line, speed: float, stiffness_max=None) -> int:
+    """RK4 steps per revolution of a run at the lowest ``speed`` [rad/s] (as the engine
+    chooses them; a line too stiff to integrate is refused here, before any step)."""
+    import numpy as np
+
+    from dyade.machine import drive_line as engine
+
+    return shaft.mechanism.drive_line.steps or engine.steps_for(
+        line, float(np.min(shaft.tables.inertia)), speed, stiffness_max)
+
+
+def speeds_of(value: Any, name: str = SPEED_RANGE.api, quantity: str = "speed_rpm",
+              unit: str = "rpm") -> list[float]:
+    """The values of a START:STOP:STEP text (STOP included; ``dyade.files.schema``), or a
+    sequence of them, each end within the plausible range of ``quantity``
+    (``dyade.limits``); an ``InputError`` on ``name`` saying what is wrong."""
+    from dyade.errors import InputError
+    from dyade.files.schema import range_parts, range_values
+    from dyade.limits import implausible, plausible_range
+
+    if value is None:
+        raise InputError.parameter(name, f"must be given: START:STOP:STEP [{unit}].")
+    try:
+        if isinstance(value, str):
+            first, last, step = range_parts(value, f" [{unit}]")
+            if not (step > 0 and last >= first):
+                raise ValueError(f"needs START <= STOP and STEP > 0, got {value!r}.")
+            values = range_values(first, last, step, MOST_SPEEDS,
+                                  "speeds" if unit == "rpm" else "values")
+        else:
+            values = [float(v) for v in (value if hasattr(value, "__len__") else [value])]
+            if not values:
+                raise ValueError("must list at least one value.")
+            if len(values) > MOST_SPEEDS:
+                raise ValueError(f"asks for {len(values)} values; at most {MOST_SPEEDS}.")
+            first, last = min(values), max(values)
+        if any(implausible(quantity, abs(end)) for end in (first, last)
+               if end or quantity != "damping"):
+            raise ValueError(f"values must lie in {plausible_range(quantity)} (what a machine "
+                             f"has), got {value!r}.")
+    except (TypeError, ValueError) as err:
+        raise InputError.parameter(name, str(err), value=value, unit=unit) from None
+    return values
+
+
+def naming(err):
+    """An engine's error on its parameters named by the entry's options."""
+    return err.naming({"speeds_rpm": SPEED_RANGE.api, "stiffness": MAP.api,
+                       "damping": MAP.api})
+
+
+# -- the entries --------------------------------------------------------------------------
+def frequency(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """ω̄, its range over the cycle with J frozen at J(φ), Ω/ω̄, VDI 2149."""
+    import numpy as np
+
+    shaft, outcome = start(source, options, "driveline-frequency")
+    freq = shaft.frequency
+    set_columns(outcome, {"angle_deg": np.degrees(freq.crank_angle),
+                          "natural_frequency": freq.frequency})
+    outcome.result = freq
+    return outcome
+
+
+def steady(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """The periodic steady state at the operating speed next to the rigid drive's."""
+    import numpy as np
+
+    from dyade.errors import InputError
+    from dyade.limits import implausible, plausible_range
+    from dyade.linkage import drive_line as api
+    from dyade.units import RPM
+
+    speed_rpm = options.get(SPEED_RPM.api)
+    if speed_rpm is not None and implausible("speed_rpm", speed_rpm):
+        raise InputError.parameter(SPEED_RPM.api, f"must lie in {plausible_range('speed_rpm')} "
+                                                  f"(what a machine has), got {speed_rpm:g}.",
+                                   value=speed_rpm, unit="rpm")
+    shaft, outcome = start(source, options, "driveline-steady", ("driveline",))
+    line = shaft.line
+    if speed_rpm is not None and not line.ideal:
+        raise InputError.parameter(SPEED_RPM.api, "is for an ideal motor; a [drive] motor "
+                                                  "finds its own speed.")
+    speed = abs(shaft.mechanism.crank.speed) if speed_rpm is None else speed_rpm * RPM
+    steps = steps_of(shaft, line, speed)
+    seconds = 1.5 * shooting_seconds(steps, 1, line.dimension)
+    budget.time(seconds * (FRICTION_FACTOR if shaft.friction else 1.0),
+                f"the drive line's steady state ({steps:,} steps per revolution)")
+    state = api.steady_state(shaft.mechanism, speed_rpm=speed_rpm, shaft=shaft,
+                             progress=ticker(budget, ITERATIONS))
+    set_columns(outcome, {"angle_deg": np.degrees(state.crank_angle),
+                          "shaft_torque": state.shaft_torque,
+                          "rigid_torque": state.rigid_torque,
+                          "speed_rpm": rpm(state.crank_speed),
+                          "rigid_speed_rpm": rpm(state.rigid_speed),
+                          "acceleration": state.crank_acceleration,
+                          "rigid_acceleration": state.rigid_acceleration,
+                          "twist_deg": np.degrees(state.twist)})
+    angle = outcome.columns["angle_deg"]
+    f = state.figures
+    add = outcome.add
+    add("speed_mean_rpm", rpm(f["speed_mean"]), "rpm", description="mean crank speed Ω̄")
+    add("eta", f["eta"], "-", description="η = Ω̄/ω̄ at the mean speed")
+    add("period", f["period"], "s", description="period of one revolution")
+    add("fluctuation", f["fluctuation"], "-",
+        description="speed fluctuation (max − min)/mean of the crank")
+    add("rigid_fluctuation", f["rigid_fluctuation"], "-",
+        description="speed fluctuation of the rigid drive")
+    k = int(np.argmax(np.abs(state.shaft_torque)))
+    add("peak_torque", float(np.abs(state.shaft_torque[k])), "N·m",
+        {"angle_deg": angle[k]}, "largest |shaft torque| over the cycle")
+    k = int(np.argmax(np.abs(state.rigid_torque)))
+    add("rigid_peak_torque", float(np.abs(state.rigid_torque[k])), "N·m",
+        {"angle_deg": angle[k]}, "largest |drive torque| of the rigid drive")
+    add("twist_amplitude_deg", float(np.degrees(np.ptp(state.twist) / 2.0)), "°",
+        description="twist amplitude (max − min)/2")
+    for name, words in (("work_motor", "work of the motor over the period"),
+                        ("work_load", "work of the loads over the period"),
+                        ("work_friction", "work of friction over the period"),
+                        ("work_damping", "work of damping over the period")):
+        add(name, f[name], "J", description=words)
+    add("stability", f["stability"], "-", description="largest |Floquet multiplier|")
+    add("floquet", [abs(complex(m)) for m in state.multipliers], "-",
+        description="|Floquet multipliers|")
+    add("stable", state.stable, "1/0", description="the periodic motion is stable (|μ| ≤ 1)")
+    add("iterations", f["iterations"], "-", description="Newton iterations of the shooting")
+    add("steps_per_revolution", f["steps_per_revolution"], "-",
+        description="RK4 steps per revolution")
+    if "accuracy" in f:
+        add("accuracy", f["accuracy"], "-",
+            description="change of the shaft torque with half the steps, of its largest")
+    if "friction_passes" in f:
+        add("friction_passes", f["friction_passes"], "-",
+            description="passes of the joint friction torque")
+        add("friction_change", f["friction_change"], "N·m",
+            description="change of the friction torque in the last pass")
+    outcome.result = state
+    return outcome
+
+
+def curve(name: str):
+    """The resonance curve (``driveline-resonance``) or the stability chart
+    (``driveline-stability``) over ``speed_range_rpm``: one integration gives both."""
+
+    def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+        import numpy as np
+
+        from dyade.errors import InputError
+        from dyade.limits import check_memory
+        from dyade.linkage import drive_line as api
+        from dyade.units import RPM
+
+        speeds = speeds_of(options.get(SPEED_RANGE.api))
+        shaft, outcome = start(source, options, name, ("driveline",))
+        what = name.removeprefix("driveline-")
+        try:
+            line = shaft.ideal_line
+            low = min(abs(s) for s in speeds) * RPM
+            steps = steps_of(shaft, line, low) if low > 0 else 0
+            check_memory((steps + 1) * len(speeds) * orbit_values(line) * 8.0,
+                         f"the orbits of {len(speeds):,} speeds over {steps:,} steps",
+                         budget.max_memory, "Ask for fewer speeds", MAX_MEMORY.api)
+            budget.time(shooting_seconds(steps, len(speeds), line.dimension),
+                        f"the {what} at {len(speeds):,} speeds ({steps:,} steps per "
+                        f"revolution)")
+            found = api.resonance_curve(shaft.mechanism, speeds, shaft=shaft,
+                                        progress=ticker(budget, ITERATIONS))
+        except InputError as err:
+            raise naming(err) from None
+        withheld(Outcome(name, notes=[NO_STATE]), found.converged,
+                 "no speed of the range has a periodic state of the drive line")
+        outcome.notes += friction_note(shaft, what)
+        if not found.converged.all():
+            outcome.notes.append(f"no periodic state at {int((~found.converged).sum())} speeds "
+                                 f"({NO_STATE}): left empty.")
+        speed = rpm(found.speed)
+        set_columns(outcome, {"speed_rpm": speed, "eta": found.eta,
+                              "peak_torque": found.peak_torque,
+                              "rigid_peak_torque": found.rigid_peak_torque,
+                              "twist_amplitude_deg": np.degrees(found.twist_amplitude),
+                              "fluctuation": found.fluctuation, "floquet": found.stability,
+                              "unstable": found.unstable})
+        add = outcome.add
+        for k, at, kind in found.resonances:
+            add(f"{kind}_k{k}_rpm", rpm(at), "rpm", {"eta": at / found.omega_bar},
+                f"{kind} resonance Ω = {'2' if kind == 'parametric' else ''}ω̄/{k} "
+                f"(harmonic {k} of J(φ){'' if kind == 'parametric' else ' or M_L(φ)'})")
+        add("unstable_rpm", unstable_ranges(speed, found.unstable), "rpm",
+            description="speeds where the periodic motion is unstable (|μ| > 1)")
+        k = int(np.nanargmax(found.stability))
+        add("stability_max", float(found.stability[k]), "-", {"speed_rpm": speed[k]},
+            "largest |Floquet multiplier| over the speeds")
+        k = int(np.nanargmax(found.peak_torque))
+        add("peak_torque_max", float(found.peak_torque[k]), "N·m", {"speed_rpm": speed[k]},
+            "largest shaft torque over the speeds")
+        add("steps_per_revolution", found.steps, "-", description="RK4 steps per revolution")
+        outcome.result = found
+        return outcome
+
+    return run
+
+
+def unstable_ranges(speed_rpm, unstable) -> list[list[float]]:
+    """The speed ranges [rpm] of consecutive unstable points, [first, last] each."""
+    out, first, last = [], None, None
+    for value, bad in zip([*speed_rpm.tolist(), None], [*unstable.tolist(), False]):
+        if bad and first is None:
+            first = value
+        if not bad and first is not None:
+            out.append([first, last])
+            first = None
+        last = value
+    return out
+
+
+def stability_map(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """The largest Floquet multiplier over speed × the shaft's stiffness or damping."""
+    import numpy as np
+
+    from dyade.errors import InputError
+    from dyade.linkage import drive_line as api
+    from dyade.units import RPM
+
+    speeds = speeds_of(options.get(SPEED_RANGE.api))
+    text = options.get(MAP.api)
+    parameter, _, values_text = (text or "").partition("=")
+    if parameter not in ("stiffness", "damping") or not values_text:
+        raise InputError.parameter(MAP.api, f"must be stiffness=START:STOP:STEP [N·m/rad] or "
+                                            f"damping=START:STOP:STEP [N·m·s/rad] (it maps "
+                                            f"stiffness or damping), got {text!r}.", value=text)
+    unit = COLUMNS[parameter][0]
+    values = speeds_of(values_text, MAP.api, parameter, unit)
+    shaft, outcome = start(source, options, "driveline-map", ("driveline",))
+    try:
+        line = shaft.ideal_line
+        low = min(abs(s) for s in speeds) * RPM
+        steps = (steps_of(shaft, line, low, np.array([max(values)]) if parameter == "stiffness"
+                          else None) if low > 0 and line.elements == 1 else 0)
+        lanes = len(speeds) * len(values)
+        budget.time(shooting_seconds(steps, lanes, line.dimension),
+                    f"the stability map of {lanes:,} cells ({steps:,} steps per revolution)")
+        found = api.stability_map(shaft.mechanism, speeds, **{parameter: values}, shaft=shaft,
+                                  progress=ticker(budget, ITERATIONS))
+    except InputError as err:
+        raise naming(err) from None
+    outcome.notes += friction_note(shaft, "map")
+    grid_speed, grid_value = np.meshgrid(rpm(found.speed), found.values)
+    stability = found.stability.ravel()
+    given = np.isfinite(stability)
+    withheld(Outcome("driveline-map", notes=[NO_STATE]), given,
+             "no cell of the map has a periodic state of the drive line")
+    if not given.all():
+        outcome.notes.append(f"no periodic state in {int((~given).sum())} cells ({NO_STATE}): "
+                             f"left empty.")
+    set_columns(outcome, {"speed_rpm": grid_speed.ravel(), parameter: grid_value.ravel(),
+                          "floquet": stability, "unstable": found.unstable.ravel()})
+    k = int(np.nanargmax(stability))
+    outcome.add("stability_max", float(stability[k]), "-",
+                {"speed_rpm": grid_speed.ravel()[k], parameter: grid_value.ravel()[k]},
+                "largest |Floquet multiplier| over the map")
+    outcome.add("unstable_cells", int(found.unstable.sum()), "-",
+                description="cells where the periodic motion is unstable (|μ| > 1)")
+    outcome.result = found
+    return outcome
+
+
+def run_up(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """From rest under the ``[drive]`` motor until the mean speed settles."""
+    import numpy as np
+
+    from dyade.linkage import drive_line as api
+    from dyade.machine import drive_line as engine
+
+    shaft, outcome = start(source, options, "driveline-run-up", ("driveline",))
+    mechanism = shaft.mechanism
+    revolutions = RUN_UP_REVOLUTIONS
+    if mechanism.drive is not None:  # (without one, the engine says what is missing)
+        top = float(engine.natural_frequencies(
+            shaft.line, np.array([np.min(shaft.tables.inertia)]))[0, -1])
+        per_revolution = api.STEPS_PER_VIBRATION_IN_TIME * top / abs(mechanism.crank.speed)
+        revolutions = min(revolutions, mechanism.drive.max_revolutions)
+        budget.time(per_revolution * revolutions * SECONDS_PER_TIME_STEP,
+                    f"the run-up (about {per_revolution:,.0f} time steps per revolution)")
+    found = api.run_up(mechanism, shaft=shaft, progress=ticker(budget, revolutions))
+    outcome.notes += friction_note(shaft, "run-up")
+    set_columns(outcome, {"time": found.time, "angle_deg": np.degrees(found.crank_angle),
+                          "crank_speed_rpm": rpm(found.crank_speed),
+                          "motor_speed_rpm": rpm(found.motor_speed),
+                          "shaft_torque": found.shaft_torque,
+                          "twist_deg": np.degrees(found.twist)})
+    f = found.figures
+    add = outcome.add
+    add("peak_torque", f["peak_torque"], "N·m",
+        {"time_s": f["peak_time"], "speed_rpm": rpm(f["peak_speed"])},
+        "largest |shaft torque| on the way (signed)")
+    add("peak_time", f["peak_time"], "s", description="when the largest shaft torque occurs")
+    add("peak_speed_rpm", rpm(f["peak_speed"]), "rpm",
+        description="the crank speed at the largest shaft torque")
+    add("duration", f["duration"], "s", description="time to speed")
+    add("revolutions", f["revolutions"], "-", description="revolutions to speed")
+    add("speed_mean_rpm", rpm(f["speed_mean"]), "rpm",
+        description="mean crank speed over the last revolution")
+    add("time_step", f["time_step"], "s", description="RK4 time step")
+    outcome.result = found
+    return outcome
+
+
+ENTRIES = {
+    "driveline-frequency": Analysis(
+        "driveline-frequency", "The drive line's natural frequency and VDI 2149", frequency,
+        (SET,), command="dyade driveline --analysis frequency"),
+    "driveline-steady": Analysis(
+        "driveline-steady", "Periodic steady state of the drive line, next to the rigid drive",
+        steady, (SET, SPEED_RPM), figures=("driveline",),
+        command="dyade driveline --analysis steady"),
+    "driveline-resonance": Analysis(
+        "driveline-resonance", "Resonance curve of the drive line (ideal motor)",
+        curve("driveline-resonance"), (SET, SPEED_RANGE), figures=("driveline",),
+        command="dyade driveline --analysis resonance"),
+    "driveline-stability": Analysis(
+        "driveline-stability", "Floquet multipliers of the drive line over speed (ideal motor)",
+        curve("driveline-stability"), (SET, SPEED_RANGE), figures=("driveline",),
+        command="dyade driveline --analysis stability"),
+    "driveline-map": Analysis(
+        "driveline-map", "Largest Floquet multiplier over speed × stiffness or damping",
+        stability_map, (SET, SPEED_RANGE, MAP), figures=("driveline",),
+        command="dyade driveline --analysis map"),
+    "driveline-run-up": Analysis(
+        "driveline-run-up", "Run-up of the drive line from rest", run_up, (SET,),
+        figures=("driveline",), command="dyade driveline --analysis run-up"),
+}
