@@ -15,7 +15,7 @@ natural frequency's figures and the VDI 2149 note in its Outcome.
 
 Options and their API names: ``--speed-range START:STOP:STEP`` [rpm] is
 ``speed_range_rpm`` (the same text, or a sequence of speeds [rpm] at the API),
-``--speed-rpm`` ``speed_rpm``, ``--map stiffness=START:STOP:STEP`` ``map``, ``--set``
+``--speed`` ``speed_rpm``, ``--map stiffness=START:STOP:STEP`` ``map``, ``--set``
 ``set``.
 """
 
@@ -29,7 +29,7 @@ from dyade.analyses.inputs import SET, load
 SPEED_RANGE = Option("speed-range", str, "rpm", metavar="START:STOP:STEP",
                      help="Crank speeds of an ideal motor, STOP included (a [drive] motor is "
                           "replaced by one; at the API also a sequence of speeds)")
-SPEED_RPM = Option("speed-rpm", float, "rpm", positive=True, metavar="RPM",
+SPEED_RPM = Option("speed", float, "rpm", positive=True, metavar="RPM", old=("--speed-rpm",),
                    help="The ideal motor's speed for the steady state (default: the crank's; "
                         "not with a [drive] motor)")
 MAP = Option("map", str, metavar="stiffness|damping=START:STOP:STEP",

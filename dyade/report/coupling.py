@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import numpy as np
 
-from dyade.report.format import number
+from dyade.report.format import number, ordinal
 from dyade.vibration import coupling as engine
 
 
@@ -77,7 +77,3 @@ def tables(outcome):
     return parts
 
 
-def ordinal(n: int) -> str:
-    """1st, 2nd, 3rd, 4th, …, 11th, 12th, 13th, 21st."""
-    suffix = "th" if 10 <= n % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(n % 10, "th")
-    return f"{n}{suffix}"

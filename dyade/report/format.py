@@ -75,3 +75,13 @@ def where(place: Any) -> str:
         shown = number(value)
         parts.append(f"{shown}{unit}" if name in ("angle", "") else f"{name} {shown}{unit}")
     return ", ".join(parts)
+
+
+def ordinal(n: int) -> str:
+    """1st, 2nd, 3rd, 4th, …, 11th, 12th, 13th, 21st, 32nd: "every 32nd row shown".
+
+    >>> [ordinal(n) for n in (1, 2, 3, 11, 12, 21, 32)]
+    ['1st', '2nd', '3rd', '11th', '12th', '21st', '32nd']
+    """
+    suffix = "th" if 10 <= n % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(n % 10, "th")
+    return f"{n}{suffix}"

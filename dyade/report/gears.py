@@ -12,8 +12,7 @@ import numpy as np
 from dyade.analyses.base import MISSING
 from dyade.analyses.gears import MODEL, MOTIONS, identifier
 from dyade.model.gears import DOFS
-from dyade.report.coupling import ordinal
-from dyade.report.format import number
+from dyade.report.format import number, ordinal
 from dyade.roundoff import EIGEN_ROUNDOFF, clean
 
 

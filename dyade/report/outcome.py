@@ -12,7 +12,7 @@ from rich.table import Table
 
 from dyade.analyses.base import Outcome
 from dyade.report import csv_rows
-from dyade.report.format import cell, display, number, where
+from dyade.report.format import FLAG, cell, display, number, ordinal, where
 
 
 def is_numeric(values) -> bool:
@@ -36,6 +36,8 @@ def write_csv(outcome: Outcome, handle: TextIO, names: list[str] | None = None) 
     lists = {name: np.asarray(values).tolist() for name, values in columns.items()}
     for k in range(rows):
         handle.write(",".join(cell(lists[name][k]) for name in names) + "\n")
+
+
 
 
 def scale(values) -> float:
@@ -81,8 +83,9 @@ def columns_table(outcome: Outcome, title: str, names: list[str] | None = None,
         return None
     rows = len(np.asarray(outcome.columns[names[0]]))
     stride = max(1, -(-rows // most))
-    shown = f" ({rows} rows, every {stride}th shown; --format csv for all)" if stride > 1 else ""
-    table = Table(title=title + shown, title_justify="left")
+    every = f" ({rows} rows, every {ordinal(stride)} shown; --format csv for all)" \
+        if stride > 1 else ""
+    table = Table(title=title + every, title_justify="left")
     scaled = {}
     for name in names:
         factor, unit = display(outcome.units.get(name, ""), length_unit)
@@ -90,7 +93,8 @@ def columns_table(outcome: Outcome, title: str, names: list[str] | None = None,
         if values.dtype.kind == "f":
             values = values * factor
         scaled[name] = values
-        table.add_column(f"{name} [{unit}]" if unit else name,
+        shown = unit and unit != FLAG  # a flag's values say yes or no: no unit
+        table.add_column(f"{name} [{unit}]" if shown else name,
                          justify="right" if values.dtype.kind in "fiu" else "left")
     scales = {name: scale(values) for name, values in scaled.items()}
     for k in range(0, rows, stride):

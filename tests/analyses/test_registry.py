@@ -58,6 +58,17 @@ RUNS = {
 }
 """an invocation of each entry, from Python and from the command line"""
 
+
+def _drive_line_runs() -> None:
+    """The drive-line entries' quick cases (tests/analyses/test_drive_line.py)."""
+    from tests.analyses.test_drive_line import CASES, arguments
+
+    for name, (source, options) in CASES.items():
+        RUNS[name] = (source, options, arguments(name, "table")[:-2])
+
+
+_drive_line_runs()
+
 REPR = re.compile(r"np\.float64\(|np\.int64\(|np\.bool|array\(|\bTrue\b|\bFalse\b|\bNone\b"
                   r"|\bnan\b|\binf\b|Figure\(|Outcome\(")
 """what no table may show: a Python or numpy repr, or a missing value not shown as —"""
@@ -67,6 +78,21 @@ def command_of(entry) -> list[str]:
     """The words after ``dyade`` of the entry's command (``dyade driveline --analysis
     steady`` -> ["driveline"])."""
     return [word for word in entry.command.split()[1:] if not word.startswith("-")][:2]
+
+
+def command_path(words: list[str]) -> list[str]:
+    """The words of ``words`` that name commands (``plot mechanism``), not arguments."""
+    import click
+
+    ctx = click.Context(main)
+    command, path = main, []
+    for word in words:
+        found = command.get_command(ctx, word) if isinstance(command, click.Group) else None
+        if found is None:
+            break
+        command = found
+        path.append(word)
+    return path
 
 
 def click_command(words: list[str]):
@@ -91,9 +117,9 @@ def test_the_registry_lists_every_entry_and_each_loads():
         assert entry.name == name and entry.title and entry.command.startswith("dyade ")
 
 
-WRITERS = {"fmt", "output", "columns", "show_all", "units", "save_as", "jobs", "resume",
+WRITERS = {"fmt", "output", "columns", "patterns", "show_all", "units", "save_as", "jobs", "resume",
            "mechanism_files", "mechanism_file", "file", "coupling_file", "gear_file",
-           "study_file", "what"}
+           "study_file", "source", "save_path", "what"}
 """a command's parameters that choose how its Outcome is written or where it runs (its
 input files, --format, -o, --columns, --all, --units, --save-as, -j, --resume; driveline's
 --analysis chooses the entry): the command's own"""
@@ -112,6 +138,8 @@ def test_every_option_maps_one_way_and_exists_in_its_command(name):
         assert flag_name(option.api, option.unit) == option.flag
         suffix = UNIT_SUFFIX.get(option.unit)
         assert (suffix is None) or option.api.endswith("_" + suffix), option
+        assert not any(option.flag.endswith("-" + s) for s in UNIT_SUFFIX.values()), \
+            f"{option.flag}: a flag carries no unit (its help says it)"
         assert option.help and option.text.startswith(option.help)
         if (name, option.api) in OWN:
             assert any(OWN[name, option.api] in p.opts for p in command.params)
@@ -127,7 +155,7 @@ def test_every_option_of_a_command_is_an_option_of_its_entries():
     commands: dict[str, set[str]] = {}
     for name in ENTRIES:
         entry = REGISTRY[name]
-        words = tuple(command_of(entry))
+        words = tuple(command_path(command_of(entry)))
         commands.setdefault(words, set()).update(option.api for option in entry.every_option)
     for words, options in commands.items():
         command = click_command(list(words))

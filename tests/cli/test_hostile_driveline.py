@@ -48,7 +48,7 @@ def test_bad_speed_ranges_are_refused(text):
 
 @pytest.mark.parametrize("text", ["0", "-5", "nan", "1e300"])
 def test_bad_steady_speeds_are_refused(text):
-    expect(["driveline", *LINE, "--speed-rpm", text], 2, "--speed-rpm")
+    expect(["driveline", *LINE, "--speed-rpm", text], 2, "--speed")
 
 
 @pytest.mark.parametrize("name,words", [("gears/two-stage.toml", "a gear-drive file"),
