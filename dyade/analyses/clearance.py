@@ -144,6 +144,7 @@ def reduced(masses) -> float | None:
 
 
 def sim_steps(options: dict[str, Any]) -> int:
+    """The RK4 steps per contact period, at least 10."""
     from dyade.errors import InputError
 
     steps = options[SIM_STEPS.api]
@@ -212,6 +213,8 @@ def row_notes(row: dict, where: str = "") -> list[str]:
 
 # -- standalone ---------------------------------------------------------------------------
 def run_peak(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``clearance-peak``: the peak force of the four numbers (at each speed of a speed
+    range), with the direct simulation beside it where asked."""
     from dyade import clearance as engine
     from dyade.analyses.ranges import values
     from dyade.errors import InputError
@@ -403,9 +406,10 @@ def label_of(loaded) -> str:
     return loaded.label if loaded.label == "<stdin>" else os.path.basename(loaded.label)
 
 
-def mechanism_outcome(name: str, loaded, study, options, simulate: bool, steps: int,
-                      speeds: bool) -> Outcome:
-    """The Outcome of a check over a mechanism at one speed or several."""
+def mechanism_outcome(name: str, loaded, study, arguments: dict[str, Any], simulate: bool,
+                      steps: int, speeds: bool) -> Outcome:
+    """The Outcome of a check over a mechanism at one speed or several (``study``: (speed
+    [rpm] or None, checks) per speed; ``arguments``: those of the check)."""
     from dyade.units import RPM
 
     mechanism = loaded.mechanism
@@ -413,7 +417,7 @@ def mechanism_outcome(name: str, loaded, study, options, simulate: bool, steps: 
     outcome = Outcome(name, figures=("clearance",))
     columns(outcome, rows, (["speed_rpm"] if speeds else []) + MECHANISM
             + (MECHANISM_SIMULATION if simulate else []) + (["note"] if speeds else []))
-    joints = options["joints"] or [j.name for j in mechanism.joints if j.kind == "R"]
+    joints = arguments["joints"] or [j.name for j in mechanism.joints if j.kind == "R"]
     outcome.meta = {"name": mechanism.name, "source": None if loaded.text is None
                     else loaded.label, "joints": [f"{a}-{b}" for a, b in joints]}
     peaks = [row for row in rows if "F_max" in row]
@@ -439,6 +443,8 @@ def mechanism_outcome(name: str, loaded, study, options, simulate: bool, steps: 
 
 
 def run_check(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``clearance-check``: every reversal of the mechanism's revolute joints (those
+    asked) with its peak force; the largest simulated with its history where asked."""
     from dyade.errors import InputError
     from dyade.linkage.clearance_study import check
 
@@ -471,6 +477,8 @@ def run_check(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
 
 
 def run_speeds(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``clearance-speeds``: the check at each crank speed of a range (the crank keeps
+    its sense of rotation), every joint accounted for at every speed."""
     from dyade.analyses.ranges import values
     from dyade.errors import InputError
     from dyade.linkage.clearance_study import speed_study

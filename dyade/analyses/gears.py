@@ -224,6 +224,8 @@ def shape_columns(modes, count: int) -> tuple[dict[str, Any], dict[str, str], di
 
 
 def run_modes(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``gear-modes``: one row per elastic mode (with the first ``modes`` shapes; with
+    the elimination check beside it where asked)."""
     import numpy as np
 
     loaded = load(source, options)
@@ -388,6 +390,8 @@ def crossing_columns(diagram) -> dict[str, Any]:
 
 
 def run_campbell(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``gear-campbell``: one row per resonance of the speed range; the lines and the
+    natural frequencies in the summary."""
     from dyade.errors import InputError
     from dyade.vibration.gears.campbell import campbell, orders
 
@@ -498,6 +502,7 @@ def identifier(name: str) -> str:
 
 
 def run_response(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``gear-response``: one row per frequency; each amplitude's peak in the summary."""
     import numpy as np
 
     from dyade.analyses.ranges import values
