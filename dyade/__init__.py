@@ -7,8 +7,16 @@ joint with clearance (Dresig & Thümmel), the torsional resonance of a stiff cou
 (Strümpfel) and the vibration of multistage gear drives as rigid finite elements
 (Berczyński, Maćkowiak & Marchelek).
 
-The public API, one package per analysis (``dyade.linkage``, ``dyade.clearance``,
-``dyade.vibration``, ``dyade.machine``), with the everyday functions re-exported here:
+Every command is an entry of one registry, run the same way from Python:
+``run(name, source, **options)`` -> ``Outcome`` (``dyade.registry.REGISTRY`` lists the
+entries, each with its options declared once: ``REGISTRY["sweep"].options``); the
+Outcome holds the columns with their units, the summary's figures (value, unit, where),
+the notes, and ``to_document()``, the JSON that ``--format json`` writes.
+
+The engine's API, one package per analysis (``dyade.linkage``, ``dyade.clearance``,
+``dyade.vibration``, ``dyade.machine``) over the data they compute on (``dyade.model``:
+the mechanism, a drive, a gear drive, a coupling, as the files describe them), with the
+everyday functions re-exported here:
 
 - ``read_mechanism(path, overrides=None)``, ``build_mechanism(data)`` -> ``Mechanism``
 - ``plan(mechanism)`` -> ``Plan``; ``analyse(mechanism, *, step_deg=..., ...)`` ->
@@ -69,6 +77,8 @@ __version__ = "0.1.0"
 ``dynamic``), the installed metadata and ``dyade --version`` say the same"""
 
 _EXPORTS = {
+    "run": "dyade.registry",
+    "Outcome": "dyade.analyses.base",
     "read_mechanism": "dyade.files.mechanism",
     "build_mechanism": ("dyade.files.mechanism", "build"),
     "plan": "dyade.linkage.plan",
@@ -78,30 +88,30 @@ _EXPORTS = {
     "Result": "dyade.linkage.sweep",
     "Note": "dyade.linkage.notes",
     "NoteKind": "dyade.linkage.notes",
-    "Mechanism": "dyade.linkage.model",
+    "Mechanism": "dyade.model.mechanism",
     "check_clearance": ("dyade.linkage.clearance_study", "check"),
     "clearance_speed_study": ("dyade.linkage.clearance_study", "speed_study"),
     "peak_force": "dyade.clearance",
     "simulate_clearance": ("dyade.clearance", "simulate"),
-    "Coupling": "dyade.vibration.coupling",
+    "Coupling": "dyade.model.coupling",
     "read_coupling": "dyade.files.coupling",
     "coupling_response": ("dyade.vibration.coupling", "response"),
     "operating_points": "dyade.vibration.coupling",
     "accuracy_studies": ("dyade.linkage.accuracy", "studies"),
     "torque_curve": "dyade.machine.flywheel",
-    "read_torque_curve": "dyade.machine.flywheel",
+    "read_torque_curve": "dyade.analyses.torque_curve",
     "mechanism_torque_curve": ("dyade.linkage.machine_curve", "torque_curve"),
     "size_flywheel": "dyade.machine.flywheel",
     "speed_fluctuation": "dyade.machine.flywheel",
     "balance": ("dyade.linkage.balance", "balance"),
-    "drive_line_frequency": ("dyade.linkage.drive_line", "natural_frequency"),
+    "drive_line_frequency": ("dyade.linkage.drive", "natural_frequency"),
     "drive_line_steady_state": ("dyade.linkage.drive_line", "steady_state"),
     "drive_line_resonance": ("dyade.linkage.drive_line", "resonance_curve"),
     "drive_line_stability_map": ("dyade.linkage.drive_line", "stability_map"),
     "drive_line_run_up": ("dyade.linkage.drive_line", "run_up"),
     "read_gears": "dyade.files.gears",
     "build_gears": "dyade.files.gears",
-    "GearDrive": "dyade.vibration.gears.model",
+    "GearDrive": "dyade.model.gears",
     "gear_modes": "dyade.vibration.gears.modes",
     "campbell": "dyade.vibration.gears.campbell",
     "gear_response": "dyade.vibration.gears.response",
@@ -113,8 +123,8 @@ _EXPORTS = {
     "MissingExtra": "dyade.errors",
 }
 
-_SUBMODULES = {"clearance", "errors", "files", "linkage", "machine", "plot", "study",
-               "units", "vibration"}
+_SUBMODULES = {"analyses", "clearance", "errors", "files", "linkage", "machine", "model",
+               "plot", "study", "units", "vibration"}
 """packages of the API, loaded on first attribute access (``dyade.clearance``)"""
 
 __all__ = sorted(_EXPORTS) + ["__version__"]

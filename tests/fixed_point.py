@@ -11,12 +11,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.linkage.friction.algebra import combine
 from dyade.linkage.friction.passes import Rub, change_size, run
 from dyade.linkage.friction.result import FrictionResult
 from dyade.linkage.friction.scales import force_size
 from dyade.linkage.kinematics import Group, Kinematics
-from dyade.linkage.model import FloatArray, Mechanism
+from dyade.model.mechanism import Mechanism
 
 
 class FixedPoint(Rub):

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.linkage.model import CRANK, FRAME, Mechanism, Revolute
+from dyade.model.mechanism import CRANK, FRAME, Mechanism, Revolute
 
 
 def _rot(phi, u):

@@ -8,8 +8,8 @@ from typing import Any
 import numpy as np
 
 from dyade.linkage import kinematics
-from dyade.linkage.model import Mechanism
 from dyade.files.mechanism import Reader
+from dyade.model.mechanism import Mechanism
 
 ROOT = Path(__file__).resolve().parent.parent
 """the repository: mechanisms/, and the directory to run ``python -m dyade`` from"""

@@ -262,7 +262,7 @@ def test_clearance_speed_study_scales_the_slope_with_the_cube_of_speed():
 
 
 def test_the_registry_describes_every_kind():
-    from dyade.linkage import dyads
+    from dyade.model import dyad_kinds as dyads
 
     kinds = [dyads.kind(k) for k in range(1, len(dyads.REGISTRY) + 1)]
     assert [k.name for k in kinds] == ["RRR", "RRP", "RPR", "PRP", "PPR"]
@@ -274,7 +274,7 @@ def test_the_registry_describes_every_kind():
 def test_the_mechanism_reader_reads_every_kind():
     # the kinds' file syntax (dyade.files) and their geometry (dyade.linkage) list the same kinds
     from dyade.files.mechanism.dyads import MIDDLE
-    from dyade.linkage import dyads
+    from dyade.model import dyad_kinds as dyads
 
     assert list(MIDDLE) == [dyads.kind(k).name for k in range(1, len(dyads.REGISTRY) + 1)]
 

@@ -17,7 +17,7 @@ from dyade import clearance
 from dyade.linkage import joint_clearance
 from dyade.files import mechanism as toml_input
 from dyade.cli import main
-from dyade.linkage.model import ClearanceData
+from dyade.model.mechanism import ClearanceData
 from tests.helpers import read_csv, shipped
 
 getcontext().prec = 60

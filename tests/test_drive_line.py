@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from dyade.machine import drive_line as engine
-from dyade.machine.motor import Asynchronous
+from dyade.model.drive import Asynchronous
 
 
 def disc(steps: int, inertia: float, load: np.ndarray | None = None,
@@ -167,7 +167,7 @@ def test_no_drive_line_no_stage(monkeypatch):
     def boom(*args, **kwargs):
         raise AssertionError("the drive line ran")
 
-    from dyade.linkage import line_model
+    from dyade.linkage import drive as line_model
 
     monkeypatch.setattr(line_model, "natural_frequency", boom)
     mechanism = dyade.read_mechanism(shipped("slider-crank.toml"))

@@ -14,7 +14,7 @@ from hypothesis import assume, given, reject
 from hypothesis import strategies as st
 
 from dyade.errors import InputError
-from dyade.linkage import kinetostatics
+from dyade.linkage import dyads, kinetostatics
 from dyade.linkage.motion import Motion
 from tests import previous_closures
 from tests.helpers import kinematics_at, mechanism_from, shipped
@@ -37,7 +37,7 @@ def _same_closures(mechanism) -> None:
         if dyad.kind.name not in SLIDING:
             continue
         new_motion, old_motion = _copy(kin.motion), _copy(kin.motion)
-        new = dyad.kind.close(dyad, new_motion)
+        new = dyads.close(dyad, new_motion)
         old = previous_closures.CLOSE[dyad.kind.name](dyad, old_motion)
         np.testing.assert_array_equal(new.closes, old[0])
         closes = new.closes  # (elsewhere the engine sets the poses NaN)

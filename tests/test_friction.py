@@ -12,9 +12,9 @@ from click.testing import CliRunner
 
 from dyade.linkage import sweep as analysis, friction, motion as joints, kinematics, kinetostatics, self_locking
 from dyade.files import mechanism as toml_input
+from dyade.model.mechanism import Prismatic
 from dyade.report.notes import say
 from dyade.cli import main
-from dyade.linkage.model import Prismatic
 from tests import fixed_point
 from tests.conftest import SHIPPED
 from tests.helpers import TEMPLATES, shipped

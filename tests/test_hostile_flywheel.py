@@ -39,7 +39,7 @@ def test_a_flywheel_too_small_to_keep_the_speed_is_an_analysis_problem():
 
 def test_mechanism_steps():
     expect(["flywheel", FOURBAR, "--fluctuation", "0.02", "--step", "400"], 2,
-           "--step", "at most 90 °", "'400'")
+           "--step", "at most 90 °", "got 400")
     expect(["flywheel", FOURBAR, "--fluctuation", "0.02", "--step", "1e-6"], 2,
            "--max-memory", "360,000,000 positions")
 

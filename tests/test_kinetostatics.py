@@ -14,7 +14,7 @@ import dyade
 from dyade.linkage import sweep as analysis, kinematics, kinetostatics
 from dyade.files import mechanism as toml_input
 from dyade.cli import main
-from dyade.linkage.model import FRAME, Link, Load, Revolute
+from dyade.model.mechanism import FRAME, Link, Load, Revolute
 from tests.conftest import SHIPPED
 from tests.global_solve import global_forces
 from tests.helpers import kinematics_at, mechanism_from, read_csv, shipped

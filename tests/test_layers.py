@@ -1,9 +1,12 @@
 """Layers (STYLE §2): imports point one way only.
 
-    cli  ->  report, plot  ->  API (linkage, clearance, vibration)  ->  files, units, errors, arrays
+    cli  ->  report, plot, study  ->  analyses  ->  engine (linkage, machine, vibration,
+    clearance) and readers (files), side by side  ->  model  ->  units, errors, arrays
 
 (dyade.report.html, the design report, composes report's tables and plot's figures: it
-sits above both, and neither imports it.)
+sits above both, and neither imports it.) The engine reads no file and runs no analysis;
+a reader computes nothing (it builds the model's objects); the model imports only the
+base. No exceptions.
 
 matplotlib only in dyade/plot/ (the optional extra): the API never imports it.
 
@@ -243,7 +246,21 @@ REPORT = ("dyade.report",)
 PLOT = ("dyade.plot",)
 COMPOSER = "dyade.report.html"
 """the design report (issue 29) composes tables and figures: above report and plot both"""
-BASE = ("dyade.files", "dyade.units", "dyade.errors", "dyade.arrays", "dyade.limits")
+BASE = ("dyade.units", "dyade.errors", "dyade.arrays", "dyade.limits")
+"""the foundation: unit factors, errors, array types, size limits; they import each other only"""
+MODEL = ("dyade.model",)
+"""the data files describe (mechanism, drive, drive line, coupling, gear drive): imports only
+units, errors, arrays and itself"""
+READERS = ("dyade.files",)
+"""the readers: import only the base and the model (no engine)"""
+ENGINE = ("dyade.linkage", "dyade.machine", "dyade.vibration", "dyade.clearance")
+ANALYSES = ("dyade.analyses",)
+"""the contract and its entries: above the engine and the readers, below cli, report, plot
+and study"""
+STUDY = ("dyade.study",)
+REGISTRY = "dyade.registry"
+"""the one registry of every command's entry: the analyses and the study's entry (which
+evaluates the others); above the study, below cli, report and plot"""
 PLOTTING = ("matplotlib",)
 
 FACADE = "dyade"
@@ -253,34 +270,6 @@ module it names; cli, report and plot may import it (``__version__``), nothing b
 ENTRY_POINT = "dyade.__main__"
 """``python -m dyade``: the command line's second door, one line forwarding to
 ``dyade.cli.main``; it may import dyade.cli and nothing else does."""
-
-BASE_EXCEPTIONS = {
-    # the mechanism reader builds the model it reads into: Mechanism, links, joints
-    # (dyade.linkage.model), and finds the dyad kinds (dyade.linkage.dyads: the registry)
-    # whose file keys it reads; it imports nothing that computes
-    ("dyade.files.mechanism", "dyade.linkage.model"): "anywhere",
-    ("dyade.files.mechanism.reader", "dyade.linkage.model"): "anywhere",
-    ("dyade.files.mechanism.links", "dyade.linkage.model"): "anywhere",
-    ("dyade.files.mechanism.dyads", "dyade.linkage.model"): "anywhere",
-    ("dyade.files.mechanism.loads", "dyade.linkage.model"): "anywhere",
-    ("dyade.files.mechanism.friction", "dyade.linkage.model"): "anywhere",
-    ("dyade.files.mechanism.dyads", "dyade.linkage.dyads"): "anywhere",
-    # ... and the drive of its [drive] table (dyade.machine.motor: dataclasses only)
-    ("dyade.files.mechanism.drive", "dyade.machine.motor"): "anywhere",
-    ("dyade.files.mechanism.drive_line", "dyade.machine.motor"): "anywhere",
-    # the coupling reader returns the Coupling model; it imports it in read_coupling only,
-    # so that reading the file's keys (load_data) does not load the model's numpy
-    ("dyade.files.coupling", "dyade.vibration.coupling"): "in a function",
-    # the gear-drive reader builds the drive it reads (dyade.vibration.gears.model: plain
-    # dataclasses and the gear geometry, no numpy) and places bodies with that geometry
-    ("dyade.files.gears", "dyade.vibration.gears.model"): "anywhere",
-}
-
-
-def _allowed_in_base(name: str, imp: Import) -> bool:
-    where = BASE_EXCEPTIONS.get((name, imp.target))
-    return where == "anywhere" or (where == "in a function" and imp.in_function)
-
 
 # rule: (who is checked, which imports are wrong for it, why)
 RULES = {
@@ -314,13 +303,44 @@ RULES = {
         lambda name, imp: within(imp.target, "dyade.files"),
         "is a dyad kind (geometry and mechanics) and imports dyade.files; the keys of a "
         "kind are read by dyade.files.mechanism.dyads"),
-    "files, units, errors, arrays import no layer above": (
-        # every dyade module outside the base is above it: the package facade, the API,
-        # dyade.parallel and any module added later alike
+    "units, errors, arrays, limits import only each other": (
+        # every dyade module outside the base is above it: the package facade, the model,
+        # the API, dyade.parallel and any module added later alike
         lambda name: within(name, *BASE),
-        lambda name, imp: (within(imp.target, FACADE) and not within(imp.target, *BASE)
-                           and not _allowed_in_base(name, imp)),
+        lambda name, imp: within(imp.target, FACADE) and not within(imp.target, *BASE),
         "is a base module and imports a layer above it"),
+    "the model imports only units, errors, arrays and itself": (
+        lambda name: within(name, *MODEL),
+        lambda name, imp: (within(imp.target, FACADE) and not within(
+            imp.target, "dyade.units", "dyade.errors", "dyade.arrays", *MODEL)),
+        "is the model (the data files describe) and imports more than units, errors, arrays "
+        "and the model: the engine computes on the model, never the other way"),
+    "the readers import only the base and the model": (
+        lambda name: within(name, *READERS),
+        lambda name, imp: (within(imp.target, FACADE)
+                           and not within(imp.target, *BASE, *MODEL, *READERS)),
+        "is a reader (dyade.files) and imports a layer above the model: a reader builds "
+        "the model's objects and computes nothing"),
+    "the engine reads no file and runs no analysis": (
+        lambda name: within(name, *ENGINE),
+        lambda name, imp: within(imp.target, *READERS, *ANALYSES, *STUDY),
+        "is the engine and imports a reader, an analysis entry or the study: the caller "
+        "reads the file (dyade.files) and hands the engine the model"),
+    "analyses sit below cli, report, plot and study": (
+        lambda name: within(name, *ANALYSES),
+        lambda name, imp: within(imp.target, *CLI, *REPORT, *PLOT, *STUDY),
+        "is an analysis entry and imports the command line, a writer, a figure or the "
+        "study, which are above it"),
+    "only cli, report, plot and the facade look up the registry": (
+        lambda name: not within(name, *CLI, *REPORT, *PLOT) and name not in (
+            FACADE, ENTRY_POINT, REGISTRY),
+        lambda name, imp: imp.target == REGISTRY,
+        "imports dyade.registry, which names every entry, the study's too: from below the "
+        "study that points up (an analysis entry imports the module it needs)"),
+    "the registry sits above the study and below cli, report and plot": (
+        lambda name: name == REGISTRY,
+        lambda name, imp: within(imp.target, *CLI, *REPORT, *PLOT),
+        "is the registry and imports the command line, a writer or a figure"),
     "only cli, report and plot import the package facade": (
         lambda name: not within(name, *CLI, *REPORT, *PLOT) and name not in (FACADE, ENTRY_POINT),
         lambda name, imp: imp.target == FACADE,
@@ -353,23 +373,29 @@ def test_the_reader_sees_every_kind_of_import():
     # the rules above pass vacuously if the reader misses imports: pin what it must find
     found = {name: {imp.target for imp in module.imports} for name, module in MODULES.items()}
     assert "click" in found["dyade.cli"]                                   # import x
-    assert "dyade.linkage.dyads" in found["dyade.files.mechanism.dyads"]  # from pkg import module
+    assert "dyade.model.dyad_kinds" in found["dyade.files.mechanism.dyads"]  # from pkg import module
     assert "rich.progress" in found["dyade.cli.output"]                    # inside a function
     assert "matplotlib.figure" in found["dyade.plot.polar"]                # a plot module
     assert "dyade.cli" in found["dyade.cli"]                               # importlib f-string
+    assert "dyade.linkage.dyads" in found["dyade.linkage.dyads"]           # ... of its own package
     assert "dyade.linkage.sweep" in found["dyade"]                         # lazy export by name
+    assert "dyade.model.mechanism" in found["dyade"]
+    # the model's types under TYPE_CHECKING count (the mechanism names its drive's data)
+    assert {"dyade.model.drive", "dyade.model.drive_line"} <= found["dyade.model.mechanism"]
     coupling = [imp for imp in MODULES["dyade.files.coupling"].imports
-                if imp.target == "dyade.vibration.coupling"]
+                if imp.target == "dyade.model.coupling"]
     assert coupling and all(imp.in_function for imp in coupling)
+    assert "dyade.files.torque_curve" in found["dyade.analyses.torque_curve"]
     assert any(imp.target == "sys.stdout" for imp in MODULES["dyade.cli.output"].writes)
 
 
 def test_relative_imports_are_resolved():
     reader = Reader("dyade.linkage.dyads")
-    reader.visit(ast.parse("from . import rrr\nfrom ..model import Dyad\nfrom .. import sweep\n"
-                           "from ...errors import InputError\n"))
+    reader.visit(ast.parse("from . import rrr\nfrom ..kinematics import Motion\n"
+                           "from .. import sweep\nfrom ...errors import InputError\n"))
     assert [imp.target for imp in reader.imports] == [
-        "dyade.linkage.dyads.rrr", "dyade.linkage.model", "dyade.linkage.sweep", "dyade.errors"]
+        "dyade.linkage.dyads.rrr", "dyade.linkage.kinematics", "dyade.linkage.sweep",
+        "dyade.errors"]
 
 
 # -- circles and private imports (issue 25) -------------------------------------------------
@@ -612,12 +638,41 @@ def test_private_imports_are_found_with_file_and_line(tmp_path):
 
 
 def test_the_upward_rules_catch_any_module_above():
-    base = RULES["files, units, errors, arrays import no layer above"]
+    base = RULES["units, errors, arrays, limits import only each other"]
+    model = RULES["the model imports only units, errors, arrays and itself"]
+    readers = RULES["the readers import only the base and the model"]
+    engine = RULES["the engine reads no file and runs no analysis"]
+    analyses = RULES["analyses sit below cli, report, plot and study"]
     facade = RULES["only cli, report and plot import the package facade"]
-    for target in ("dyade", "dyade.parallel", "dyade.linkage.sweep", "dyade.new_module"):
-        assert base[1]("dyade.files.schema", Import(target, 1, True)), target
-    assert not base[1]("dyade.files.schema", Import("dyade.units", 1, False))
-    assert not base[1]("dyade.files.mechanism", Import("dyade.linkage.model", 1, False))
+    above_model = ("dyade", "dyade.parallel", "dyade.linkage.sweep", "dyade.machine.motor",
+                   "dyade.vibration.coupling", "dyade.analyses.base", "dyade.new_module")
+    for target in above_model + ("dyade.files.schema", "dyade.model.mechanism"):
+        assert base[1]("dyade.units", Import(target, 1, True)), target
+    assert not base[1]("dyade.limits", Import("dyade.errors", 1, False))
+    for target in above_model + ("dyade.files.schema", "dyade.limits"):
+        assert model[0]("dyade.model.drive") and model[1]("dyade.model.drive",
+                                                          Import(target, 1, True)), target
+    for target in ("dyade.units", "dyade.errors", "dyade.arrays", "dyade.model.dyad_kinds",
+                   "numpy"):
+        assert not model[1]("dyade.model.mechanism", Import(target, 1, False)), target
+    for target in above_model:
+        assert readers[0]("dyade.files.mechanism.dyads") and readers[1](
+            "dyade.files.mechanism.dyads", Import(target, 1, True)), target
+    for target in ("dyade.units", "dyade.limits", "dyade.model.mechanism", "dyade.files.schema"):
+        assert not readers[1]("dyade.files.mechanism", Import(target, 1, False)), target
+    for name in ("dyade.linkage.sweep", "dyade.machine.flywheel", "dyade.vibration.gears.modes",
+                 "dyade.clearance"):
+        assert engine[0](name), name
+        for target in ("dyade.files.torque_curve", "dyade.analyses", "dyade.study.run"):
+            assert engine[1](name, Import(target, 1, True)), (name, target)
+        assert not engine[1](name, Import("dyade.model.mechanism", 1, False))
+    assert not engine[0]("dyade.analyses.coupling") and not engine[0]("dyade.files.gears")
+    for target in ("dyade.cli.contract", "dyade.report.outcome", "dyade.plot.curves",
+                   "dyade.study.run"):
+        assert analyses[1]("dyade.analyses.coupling", Import(target, 1, True)), target
+    for target in ("dyade.linkage.sweep", "dyade.files.coupling", "dyade.model.coupling"):
+        assert not analyses[1]("dyade.analyses.coupling", Import(target, 1, True)), target
     assert facade[0]("dyade.linkage.sweep") and facade[1]("dyade.linkage.sweep",
                                                           Import("dyade", 1, True))
+    assert facade[0]("dyade.model.mechanism") and facade[0]("dyade.analyses.base")
     assert not facade[0]("dyade.report.document") and not facade[0]("dyade")

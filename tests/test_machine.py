@@ -18,13 +18,18 @@ from dyade.cli import main
 from dyade.errors import DyadeError, InputError
 from dyade.files import mechanism as toml_input
 from dyade.linkage import kinematics, kinetostatics
-from dyade.linkage.model import Load
+from dyade.model.mechanism import Load
 from tests.conftest import SHIPPED
 from tests.global_solve import global_forces
 from tests.helpers import mechanism_from, read_csv, shipped
 from tests.test_kinetostatics import applied_power, with_masses
 
 RPM = math.pi / 30.0
+
+
+def _figures(document: str) -> dict:
+    """The summary figures' values of a JSON document (``Outcome.to_document``)."""
+    return {name: figure["value"] for name, figure in json.loads(document)["summary"].items()}
 
 
 def _invoke(*args):
@@ -438,14 +443,14 @@ def test_flywheel_of_the_textbook_engine():
                        - 1800 * np.cos(2 * theta), rtol=0, atol=1e-9)
     out = _invoke("flywheel", path, "--fluctuation", 0.005, "--speed-rpm", 250, "--format", "json")
     assert out.exit_code == 0, out.stderr
-    result = json.loads(out.stdout)["summary"]
+    result = _figures(out.stdout)
     assert result["P_mean"] / 1e3 == pytest.approx(261.799, abs=5e-4)
     assert result["delta_E"] == pytest.approx(2690.725, abs=5e-4)
     assert result["J_flywheel"] == pytest.approx(785.17, abs=5e-3)
     # ΔE = 2·√(1000² + 900²) exactly (the integral in closed form, here only as a check)
     assert result["delta_E"] == pytest.approx(2 * math.hypot(1000, 900), rel=1e-7)
-    back = json.loads(_invoke("flywheel", path, "--inertia", result["J_flywheel"],
-                              "--speed-rpm", 250, "--format", "json").stdout)["summary"]
+    back = _figures(_invoke("flywheel", path, "--inertia", result["J_flywheel"],
+                            "--speed-rpm", 250, "--format", "json").stdout)
     assert back["fluctuation"] == pytest.approx(0.005, rel=1e-12)
     csv = read_csv(_invoke("flywheel", path, "--fluctuation", 0.005, "--speed-rpm", 250,
                            "--format", "csv").stdout)
@@ -477,10 +482,10 @@ def test_flywheel_of_a_mechanism_against_a_fine_integration():
 def test_flywheel_from_dyades_own_csv_equals_the_mechanism(tmp_path):
     out = tmp_path / "d16.csv"
     assert _invoke("analyse", shipped("dyade-16.toml"), "-o", out).exit_code == 0
-    from_csv = json.loads(_invoke("flywheel", out, "--fluctuation", 0.02, "--format",
-                                  "json").stdout)["summary"]
-    direct = json.loads(_invoke("flywheel", shipped("dyade-16.toml"), "--fluctuation", 0.02,
-                                "--step", 1, "--format", "json").stdout)["summary"]
+    from_csv = _figures(_invoke("flywheel", out, "--fluctuation", 0.02, "--format",
+                                "json").stdout)
+    direct = _figures(_invoke("flywheel", shipped("dyade-16.toml"), "--fluctuation", 0.02,
+                              "--step", 1, "--format", "json").stdout)
     for key in ("delta_E", "J_flywheel", "J_machine", "P_mean", "angle_max_speed_deg"):
         assert from_csv[key] == pytest.approx(direct[key], rel=1e-9), key
 
@@ -492,8 +497,8 @@ def test_flywheel_with_a_load_column(tmp_path):
     path = tmp_path / "curve.csv"
     path.write_text("angle_deg,M_drive,M_load\n"
                     + "".join(f"{a:g},{d:.17g},{m:.17g}\n" for a, d, m in zip(theta, drive, load)))
-    result = json.loads(_invoke("flywheel", path, "--inertia", 2, "--speed-rpm", 100,
-                                "--format", "json").stdout)["summary"]
+    result = _figures(_invoke("flywheel", path, "--inertia", 2, "--speed-rpm", 100,
+                              "--format", "json").stdout)
     # net torque 10·cos 3θ: ΔE = 2·10/3 J (fourth order: 2e-6 at a 2° step)
     assert result["delta_E"] == pytest.approx(20 / 3, rel=1e-5)
     assert result["fluctuation"] == pytest.approx(20 / 3 / (2 * (100 * RPM) ** 2), rel=1e-5)
@@ -504,8 +509,8 @@ def test_flywheel_with_a_load_column(tmp_path):
 
 
 @pytest.mark.parametrize("args, message", [
-    (["--fluctuation", 0.02], "--speed-rpm"),
-    (["--speed-rpm", 100], "either --fluctuation"),
+    (["--fluctuation", 0.02], "--speed"),
+    (["--speed-rpm", 100], "--fluctuation and --inertia are missing: give either"),
     (["--fluctuation", -1, "--speed-rpm", 100], "--fluctuation"),
 ])
 def test_flywheel_errors(tmp_path, args, message):
@@ -532,21 +537,21 @@ def test_four_bar_is_fully_force_balanced(tmp_path):
     saved = tmp_path / "balanced.toml"
     out = _invoke("balance", shipped("fourbar.toml"), "--save-as", saved, "--format", "json")
     assert out.exit_code == 0, out.stderr
-    report = json.loads(out.stdout)["summary"]
-    assert [w["link"] for w in report["counterweights"]] == [2, 4]
-    assert set(report["counterweights"][0]) >= {"link", "first_moment", "angle_deg"}
+    document = json.loads(out.stdout)
+    report = _figures(out.stdout)
+    assert document["columns"]["link"] == [2, 4]
+    assert set(document["columns"]) >= {"link", "first_moment", "angle_deg"}
     before = read_csv(_invoke("analyse", shipped("fourbar.toml"), "--format", "csv").stdout)
     after = read_csv(_invoke("analyse", saved, "--format", "csv").stdout)
     unbalanced = np.max(np.hypot(before["Fx_shake"], before["Fy_shake"]))
     assert np.max(np.hypot(after["Fx_shake"], after["Fy_shake"])) < 1e-12 * unbalanced
     # the report's before and after are those of the two analyses
-    assert report["drive_torque"]["after_max"] == pytest.approx(
+    assert report["M_drive_peak_after"] == pytest.approx(
         np.max(np.abs(after["M_drive"])), rel=1e-12)
-    assert report["shaking_moment"]["before_max"] == pytest.approx(
+    assert report["M_shake_max_before"] == pytest.approx(
         np.max(np.abs(before["M_shake"])), rel=1e-12)
-    assert report["joint_forces"]["F_1_4"]["after"] == pytest.approx(np.max(after["F_1_4"]),
-                                                                     rel=1e-12)
-    assert report["shaking_force"]["residual"] < 1e-12
+    assert report["F_1_4_peak_after"] == pytest.approx(np.max(after["F_1_4"]), rel=1e-12)
+    assert report["F_inertia_ratio"] < 1e-12
 
 
 def test_six_bar_counterweights_equal_an_independent_least_squares_solve():
@@ -579,11 +584,12 @@ def test_six_bar_counterweights_equal_an_independent_least_squares_solve():
 
 
 def test_balance_options_and_errors(tmp_path):
-    only = json.loads(_invoke("balance", shipped("fourbar.toml"), "--link", 2, "--radius", 0.1,
-                              "--format", "json").stdout)["summary"]
-    assert [w["link"] for w in only["counterweights"]] == [2]
-    assert only["counterweights"][0]["radius"] == 0.1
-    assert 0 < only["shaking_force"]["residual"] < 1
+    out = _invoke("balance", shipped("fourbar.toml"), "--link", 2, "--radius", 0.1,
+                  "--format", "json").stdout
+    only = json.loads(out)["columns"]
+    assert only["link"] == [2]
+    assert only["radius"] == [0.1]
+    assert 0 < _figures(out)["F_inertia_ratio"] < 1
     csv = read_csv(_invoke("balance", shipped("fourbar.toml"), "--format", "csv").stdout)
     assert list(csv) == ["link", "first_moment", "angle_deg", "radius", "mass"]
     bad = _invoke("balance", shipped("fourbar.toml"), "--link", 3)

@@ -18,9 +18,9 @@ from dyade.linkage.sweep import analyse_si
 from dyade.cli import main
 from dyade.errors import DyadeError
 from dyade.files import mechanism as toml_input
+from dyade.model.mechanism import Prismatic, Revolute
 from dyade.report.notes import say
 from dyade.linkage import friction, kinematics, kinetostatics, motion as joints, sweep as analysis
-from dyade.linkage.model import Prismatic, Revolute
 from tests.helpers import TEMPLATES, mechanism_from, shipped
 from tests.strategies import dyad_files
 from tests.test_friction import block_pressure, coulomb_law_errors, with_friction

@@ -1,7 +1,7 @@
 """The contract every analysis keeps (issue 36): its options declared once, and one
 ``Outcome`` for what it found.
 
-An analysis is an ``Analysis`` entry of the registry (``dyade.analyses.REGISTRY``): a
+An analysis is an ``Analysis`` entry of the registry (``dyade.registry.REGISTRY``): a
 name, a one-line purpose, its ``Option`` declarations and a function from (an input,
 options) to an ``Outcome``. The command line's options, the API's keyword arguments,
 the study's keys and the report's section all come from the declarations; the table,
@@ -36,7 +36,9 @@ MISSING = "—"
 UNIT_SUFFIX = {"°": "deg", "rpm": "rpm", "MB": "mb", "s": "s", "Hz": "hz", "%": "percent"}
 """unit -> the suffix the API name of an option in that unit carries: ``--step`` [°] is
 ``step_deg``, ``--max-memory`` [MB] ``max_memory_mb``, ``--max-time`` [s]
-``max_time_s``. Options in other units (SI, or none) keep their name."""
+``max_time_s``, ``--speed`` [rpm] ``speed_rpm``. Options in other units (SI, or none)
+keep their name. A flag never carries its unit (its help says it); the API name always
+does."""
 
 
 def api_name(flag: str, unit: str) -> str:
@@ -45,7 +47,7 @@ def api_name(flag: str, unit: str) -> str:
     "friction_tol"``."""
     base = flag.lstrip("-").replace("-", "_")
     suffix = UNIT_SUFFIX.get(unit)
-    return f"{base}_{suffix}" if suffix and not base.endswith("_" + suffix) else base
+    return f"{base}_{suffix}" if suffix else base
 
 
 def flag_name(name: str, unit: str) -> str:
@@ -81,7 +83,9 @@ class Option:
     positive: bool = False
     """a number that must be above 0"""
     study: bool = True
-    """a study file may vary it (``[study.options]``)"""
+    """a study file may vary it"""
+    old: tuple[str, ...] = ()
+    """former flags, still accepted for one release but not shown (``--speed-rpm``)"""
 
     @property
     def api(self) -> str:
@@ -186,6 +190,15 @@ class Outcome:
     can draw it. ``meta`` says what was analysed (the file, the mechanism's name).
     ``result`` keeps the engine's own result for the figures and the report (not
     written by any writer).
+
+    Examples
+    --------
+    >>> import dyade
+    >>> outcome = dyade.run("coupling", None, J=1.0, c1=1.0, c2=1.0, b1=0.05, b2=0.05)
+    >>> outcome.units["V_phi"], outcome.summary["V_phi_max"].where
+    ('-', {'eta': 0.71})
+    >>> sorted(outcome.to_document())[:4]
+    ['analysis', 'columns', 'meta', 'notes']
     """
 
     analysis: str
@@ -258,6 +271,25 @@ def jsonable(value: Any) -> Any:
         rounded = float(f"{value + 0.0:.15g}")
         return rounded if math.isfinite(rounded) else None
     return value
+
+
+def cell(value: Any) -> str:
+    """One CSV field, the one rule of every CSV dyade writes (``report.format`` re-exports
+    it; a study's journal writes by it too): 15 significant digits, empty for a value not
+    given (None, NaN, ±inf), 1/0 for flags, text as it is (quoted where it holds a comma,
+    a quote or a line break).
+
+    >>> [cell(v) for v in (300.0, 0.1 + 0.2, float("nan"), True, -0.0, "a, b")]
+    ['300', '0.3', '', '1', '0', '"a, b"']
+    """
+    if value is None:
+        return ""
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        return "1" if value else "0"
+    if isinstance(value, str):
+        return '"' + value.replace('"', '""') + '"' if any(c in value for c in ',"\n') else value
+    value = float(value)
+    return f"{value + 0.0:.15g}" if math.isfinite(value) else ""
 
 
 @dataclass

@@ -39,7 +39,7 @@ CLEARANCE = Option("clearance", float, "m", positive=True,
                    help="Clearance (radial play) 2s (typical 2e-5…2e-4)")
 SLOPE = Option("slope", float, "N/s", positive=True,
                help="Standalone: force slope F0/t0 at the reversal")
-SPEED = Option("speed-rpm", float, "rpm", positive=True, metavar="RPM",
+SPEED = Option("speed", float, "rpm", positive=True, metavar="RPM", old=("--speed-rpm",),
                help="Standalone: crank speed at which --slope holds (for --speed-range)")
 SPEED_RANGE = Option("speed-range", str, "rpm", metavar="START:STOP:STEP",
                      help="Peak force against crank speed; the slope grows with Ω³ (eq. 30)")

@@ -23,7 +23,7 @@ OPTIONS = (
            help="Tuning ratios η = Ω/ω_t to evaluate  [default: 0:3:0.01]"),
     Option("moment", float, "N·m",
            help="Exciting moment amplitude M̂_E: adds φ̂, ψ̂ [rad], M̂_Q [N·m], φ̂_r [rad]"),
-    Option("speed-rpm", float, "rpm", multiple=True, metavar="RPM",
+    Option("speed", float, "rpm", multiple=True, metavar="RPM", old=("--speed-rpm",),
            help="Operating speed to place on the η axis (repeatable), with --order"),
     Option("order", float, help="Excitation order: Ω = order · 2π·speed/60  [default: 1]"),
 )

@@ -205,7 +205,7 @@ def shape_columns(modes, count: int) -> tuple[dict[str, Any], dict[str, str], di
     torsional model has rx only)."""
     import numpy as np
 
-    from dyade.vibration.gears.model import DOFS
+    from dyade.model.gears import DOFS
 
     system = modes.system
     per = system.per_body

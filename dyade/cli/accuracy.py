@@ -1,4 +1,5 @@
-"""``dyade accuracy``: what each accuracy knob buys and costs, for the user's mechanism."""
+"""``dyade accuracy``: what each accuracy knob buys and costs, for the user's mechanism;
+the registry's ``accuracy`` entry (``dyade.analyses.accuracy``)."""
 
 from __future__ import annotations
 
@@ -6,22 +7,22 @@ from pathlib import Path
 
 import click
 
-from dyade.cli import main
-from dyade.cli.common import load
-from dyade.cli.options import MECHANISM_FILE, set_option
-from dyade.cli.output import progress, show, write_json, write_rows
+from dyade.analyses.accuracy import ENTRIES
+from dyade.cli import contract, main
+from dyade.cli.machine import source_of
+from dyade.cli.options import MECHANISM_FILE
+
+ENTRY = ENTRIES["accuracy"]
 
 
 @main.command()
 @click.argument("mechanism_file", type=MECHANISM_FILE)
-@set_option
-@click.option("--repeats", type=click.IntRange(min=1), default=3, show_default=True, metavar="N",
-              help="Runs per setting; the best time counts.")
+@contract.declare(ENTRY)
 @click.option("--format", "fmt", type=click.Choice(["table", "csv", "json"]), default="table",
               show_default=True)
 @click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True, path_type=Path),
               help="Write the result to this file instead of standard output.")
-def accuracy(mechanism_file: Path, assignments, repeats: int, fmt: str, output) -> None:
+def accuracy(mechanism_file: str, fmt: str, output, **options) -> None:
     """What accuracy costs in time, for MECHANISM_FILE.
 
     Crank step (5° … 0.05°): engine time and the error of the peak drive torque, the
@@ -31,21 +32,12 @@ def accuracy(mechanism_file: Path, assignments, repeats: int, fmt: str, output) 
     friction tolerance.
     With clearance data: the closed form against the direct simulation.
     """
-    import dyade
-    from dyade.report import accuracy as report
+    outcome = contract.run(ENTRY, source_of(mechanism_file),
+                           options, what=f"{Path(mechanism_file).name}: accuracy studies")
+    tables = None
+    if fmt == "table":
+        from dyade.report import accuracy as report
 
-    mechanism = load(mechanism_file, assignments).mechanism
-    with progress(f"{mechanism.name}: accuracy studies") as tick:
-        records = report.records(dyade.accuracy_studies(mechanism, repeats=repeats,
-                                                        progress=tick))
-    if fmt == "csv":
-        write_rows(records, report.COLUMNS, output)
-    elif fmt == "json":
-        from dyade.report.document import document
-
-        write_json(document("accuracy", {name: [r[name] for r in records]
-                                         for name in report.COLUMNS},
-                            report.UNITS, {"mechanism": mechanism.name}, [],
-                            mechanism=mechanism.name), output)
-    else:
-        show(report.tables(mechanism.name, records), output)
+        tables = report.tables(outcome)
+    contract.emit(outcome, fmt, output, tables)
+    contract.notes(outcome, prefix="note: ")

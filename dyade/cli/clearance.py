@@ -63,7 +63,7 @@ def entry_for(files: bool, options: dict[str, Any]):
                                    f"over a mechanism; give a mechanism file.")
         return PEAK
     if given & set(STANDALONE_ONLY):
-        raise click.UsageError("--slope and --speed-rpm are for the standalone check; over a "
+        raise click.UsageError("--slope and --speed are for the standalone check; over a "
                                "mechanism the slope comes from its joint forces.")
     return SPEEDS if options.get(SPEED_RANGE.api) else CHECK
 

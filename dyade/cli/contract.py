@@ -10,7 +10,7 @@ from typing import Any
 import click
 
 from dyade.analyses.base import COMMON, Analysis, Option
-from dyade.cli.options import FINITE, POSITIVE
+from dyade.cli.options import FINITE, POSITIVE, Renamed
 
 TYPES = {float: FINITE, int: int, str: str}
 
@@ -20,9 +20,12 @@ def click_option(option: Option, hidden: bool = False):
     name (``--step`` -> ``step_deg``), the unit and default in its help."""
     kwargs: dict[str, Any] = {"help": option.text, "metavar": option.metavar,
                               "multiple": option.multiple, "hidden": hidden}
+    if option.old:  # former flags: accepted, not shown
+        kwargs.update(cls=Renamed, old=option.old)
     if option.kind is bool:
         return click.option(option.flag, option.api, is_flag=True, help=option.text,
-                            hidden=hidden)
+                            hidden=hidden, **({"cls": Renamed, "old": option.old}
+                                              if option.old else {}))
     if isinstance(option.kind, tuple):
         kwargs["type"] = click.Choice(option.kind)
     elif option.kind is float:

@@ -1,4 +1,5 @@
-"""``dyade study``: many variants of one mechanism file, one row each."""
+"""``dyade study``: many variants of one mechanism file, one row each; the registry's
+``study`` entry (``dyade.study.entry``)."""
 
 from __future__ import annotations
 
@@ -6,27 +7,20 @@ import os
 
 import click
 
-from dyade.cli import main
+from dyade.study.entry import ENTRIES
+from dyade.cli import contract, main
 
+ENTRY = ENTRIES["study"]
 FORMATS = ("table", "csv", "json", "parquet")
 
 
 def study_options(command):
-    """The options ``dyade study`` and ``dyade plot study`` share."""
-    for option in reversed([
-            click.option("-j", "--jobs", type=click.IntRange(min=0), default=1,
-                         show_default=True, metavar="N",
-                         help="Run the variants on N processes (0: all cores); the same "
-                              "table as one process gives."),
-            click.option("--scheduler", metavar="ADDRESS",
-                         help="Run the blocks on a Dask distributed cluster instead "
-                              "(tcp://host:8786; needs pip install \"dyade[dask]\")."),
-            click.option("--block-size", type=click.IntRange(min=1), default=None,
-                         metavar="N", help="Variants per task  [default: at least 0.1 s of "
-                                           "work, every worker busy]."),
-    ]):
-        command = option(command)
-    return command
+    """The options ``dyade study`` and ``dyade plot study`` share: the entry's (the
+    journal and --resume are each command's own), -j."""
+    command = contract.declare(ENTRY, skip=("jobs", "journal", "resume"))(command)
+    return click.option("-j", "--jobs", "jobs", type=click.IntRange(min=0), default=1,
+                        show_default=True, metavar="N",
+                        help=ENTRY.option("jobs").help + ".")(command)
 
 
 @main.command("study")
@@ -41,8 +35,8 @@ def study_options(command):
               help="Keep the rows already in -o (an interrupted study) and compute only the "
                    "others.")
 @study_options
-def study(study_file: str, output: str | None, fmt: str | None, resume: bool, jobs: int,
-          scheduler: str | None, block_size: int | None) -> None:
+def study(study_file: str, output: str | None, fmt: str | None, resume: bool,
+          **options) -> None:
     """Run the design study of STUDY_FILE: one row per variant of its mechanism file,
     the parameters first (by their --set key paths, in the file's units), then status
     and reason (ok, locks, does not close, refused), then every key result of
@@ -72,18 +66,28 @@ def study(study_file: str, output: str | None, fmt: str | None, resume: bool, jo
         writable_folder(output)
     if resume and not output:
         raise click.UsageError("--resume needs -o FILE: the rows of the interrupted run.")
-    result = run(study_file, output if fmt in ("csv",) else
-                 (output + ".part.csv" if output else None), resume, jobs, scheduler,
-                 block_size)
-    write(result, output, fmt)
+    journal = journal_of(output, fmt)
+    outcome = solve(study_file, options, journal, resume)
+    write(outcome, output, fmt)
+    if journal and journal != output and os.path.exists(journal):
+        os.unlink(journal)
+    contract.notes(outcome, prefix="note: ")
     if output:
         from dyade.cli.output import console
 
-        total = len(result.columns()["variant"])
-        kept = total - result.evaluations
+        total = outcome.summary["variants"].value
+        computed = outcome.meta["evaluations"]
         console(stderr=True).print(f"wrote {output}: {total} variants"
-                                   + (f" ({result.evaluations} computed, {kept} kept from the "
-                                      f"interrupted run)" if resume else ""))
+                                   + (f" ({computed} computed, {total - computed} kept from "
+                                      f"the interrupted run)" if resume else ""))
+
+
+def journal_of(output: str | None, fmt: str) -> str | None:
+    """The CSV the rows stream to: -o itself for a CSV, OUTPUT.part.csv beside another
+    format (removed at the end), none on standard output."""
+    if not output:
+        return None
+    return output if fmt == "csv" else output + ".part.csv"
 
 
 def writable_folder(output: str) -> None:
@@ -109,63 +113,19 @@ def _format(output: str | None) -> str:
         suffix, "csv")
 
 
-def run(study_file: str, journal: str | None, resume: bool, jobs: int, scheduler: str | None,
-        block_size: int | None):
-    """The study, on -j processes or the --scheduler's cluster, with a progress bar on a
-    terminal."""
-    from dyade.cli.batch import workers_for
-    from dyade.study import study as run_study
+def solve(study_file: str, params: dict, journal: str | None, resume: bool):
+    """The entry run on the study file with the command's options (on -j processes or the
+    --scheduler's cluster), errors naming the flags, the variants' bar on a terminal."""
+    from dyade.cli.output import console, flags
 
-    client = connect(scheduler) if scheduler else None
-    executor = client.get_executor() if client is not None else None
-    try:
-        with bar() as tick:
-            result = run_study(study_file, jobs=workers_for(jobs), executor=executor,
-                               output=journal, resume=resume, block_size=block_size,
-                               progress=tick)
-    finally:
-        if client is not None:
-            client.close()
-    return result
-
-
-def connect(address: str):
-    """A Dask client of the scheduler at ``address``; exit 2 naming it when it does not
-    answer within 5 s."""
-    from dyade.study import needs
-
-    needs("distributed", "--scheduler", extra="dask")
-    import logging
-
-    from distributed import Client
-
-    logging.getLogger("distributed").setLevel(logging.CRITICAL)
-    reachable(address)
-    try:
-        return Client(address, timeout="5s")
-    except (OSError, TimeoutError, ValueError) as err:
-        raise click.BadParameter(f"no Dask scheduler answers at {address} ({err}).",
-                                 param_hint="--scheduler") from None
-
-
-def reachable(address: str, timeout: float = 3.0) -> None:
-    """Refuse at once a tcp:// address where nothing listens (Dask's client would try
-    again until its timeout)."""
-    import socket
-
-    if not address.startswith("tcp://"):
-        return
-    host, _, port = address[len("tcp://"):].rpartition(":")
-    try:
-        number = int(port.strip("/"))
-    except ValueError:
-        raise click.BadParameter(f"{address}: give tcp://HOST:PORT.",
-                                 param_hint="--scheduler") from None
-    try:
-        socket.create_connection((host.strip("[]"), number), timeout=timeout).close()
-    except OSError as err:
-        raise click.BadParameter(f"no Dask scheduler answers at {address} "
-                                 f"({err.strerror or err}).", param_hint="--scheduler") from None
+    options = contract.options_of(ENTRY, params)
+    options.update({"journal": journal} if journal else {})
+    options.update({"resume": True} if resume else {})
+    err = console(stderr=True)
+    names = contract.flags(ENTRY) | {"journal": "-o", "jobs": "-j"}
+    with flags(names), bar() as tick:
+        return ENTRY(study_file, progress=tick, told=lambda text: err.print(text, markup=False),
+                     **options)
 
 
 def bar():
@@ -206,36 +166,18 @@ def bar():
     return shown()
 
 
-def write(result, output: str | None, fmt: str) -> None:
-    """The table in its format (the CSV is written already, as it streamed)."""
-    from dyade.study import tables
+def write(outcome, output: str | None, fmt: str) -> None:
+    """The study in its format: csv (the one CSV writer, over the journal that streamed
+    to -o), json (the Outcome's document), parquet (units per column), or the tables."""
+    if fmt == "parquet":
+        from dyade.study import tables
 
-    journal = output + ".part.csv" if output and fmt != "csv" else None
-    if fmt == "csv" and output is None:
-        import sys
-
-        names = list(result.columns())
-        click.echo(",".join(names))
-        cols = result.columns()
-        for i in range(len(cols["variant"])):
-            sys.stdout.write(",".join(_csv(tables.cell(cols[n][i])) for n in names) + "\n")
+        tables.write_parquet(outcome.columns, outcome.units, output,
+                             {"dyade.study": outcome.meta["study"]})
         return
+    report = None
     if fmt == "table":
-        from dyade.cli.output import show
-        from dyade.report.study import tables as report
+        from dyade.report.study import tables as report_tables
 
-        show(report(result), output)
-    elif fmt == "json":
-        from dyade.cli.output import jsonable
-
-        tables.write_json(result.columns(), result.units, output,
-                          {"study": result.spec.label, "answers": jsonable(result.answers())})
-    elif fmt == "parquet":
-        tables.write_parquet(result.columns(), result.units, output,
-                             {"dyade.study": result.spec.label})
-    if journal and os.path.exists(journal):
-        os.unlink(journal)
-
-
-def _csv(text: str) -> str:
-    return f"\"{text.replace(chr(34), chr(34) * 2)}\"" if any(c in text for c in ",\"\n") else text
+        report = report_tables(outcome)
+    contract.emit(outcome, fmt, output, report)

@@ -63,7 +63,7 @@ def read_coupling(path: str | os.PathLike):
     (2886.751, 0.0505)
     """
     from dyade.errors import InputError
-    from dyade.vibration.coupling import Coupling
+    from dyade.model.coupling import Coupling
 
     path = os.fspath(path)
     data = load_data(path)

@@ -1,5 +1,5 @@
 """Read a gear-drive file (TOML), validate it and convert it to the SI model of
-``dyade.vibration.gears.model``.
+``dyade.model.gears``.
 
 The file lists rigid bodies, shafts, bearings, spring-damper elements, gears, meshes,
 excitations and the input speed (``docs/reference/gear-file.md`` documents every key).
@@ -23,7 +23,7 @@ from dyade.files.schema import UnitReader, is_number, load_data, suggest
 from dyade.limits import PLAUSIBLE
 from dyade.files.schema import fmt as _fmt
 from dyade.files.schema import show as _show
-from dyade.vibration.gears.model import (
+from dyade.model.gears import (
     FRAME,
     PARALLEL_TOL,
     Body,

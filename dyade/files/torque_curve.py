@@ -1,7 +1,9 @@
 """Read a torque curve (CSV): columns ``angle_deg`` and ``M_drive`` [N·m], optionally
 ``M_load`` [N·m] — or a whole CSV of ``dyade analyse``, which has them (and ``J_red``).
 
-Every error names the file, the column and the row.
+Every error names the file, the column and the row. ``read_table`` gives the file's
+columns in SI as a ``dyade.model.torque_table.TorqueTable``; the flywheel
+(``dyade.machine.flywheel``) computes on it.
 """
 
 from __future__ import annotations
@@ -11,6 +13,7 @@ import os
 import numpy as np
 
 from dyade.errors import InputError
+from dyade.model.torque_table import TorqueTable
 
 REQUIRED = ("angle_deg", "M_drive")
 OPTIONAL = ("M_load", "J_red", "dJ_red", "omega_2")
@@ -107,3 +110,18 @@ def load_columns(path: str | os.PathLike, text: str | None = None) -> dict[str, 
                          f"the column is in degrees (0 to 360): multiply by 180/π.",
                          source=path, key="angle_deg")
     return {name: table[:, k] for k, name in enumerate(wanted)}
+
+
+def read_table(path: str | os.PathLike, text: str | None = None) -> TorqueTable:
+    """The torque curve of a CSV file in SI (``load_columns`` checks it); ``text``: its
+    content when already read (standard input), ``path`` naming it.
+
+    >>> table = read_table("mechanisms/torque/engine.csv")
+    >>> table.angle.size, table.load is None, table.machine, table.source   # 0°…360°
+    (361, True, False, 'engine.csv')
+    """
+    path = os.fspath(path)
+    columns = load_columns(path, text)
+    return TorqueTable(np.deg2rad(columns["angle_deg"]), columns["M_drive"],
+                       columns.get("M_load"), columns.get("J_red"), columns.get("omega_2"),
+                       "dJ_red" in columns, os.path.basename(path))

@@ -15,7 +15,7 @@ import numpy as np
 
 from dyade.linkage.plan import plan
 from dyade.linkage.sweep import Result, analyse, analyse_si
-from dyade.linkage.model import Mechanism, Revolute
+from dyade.model.mechanism import Mechanism, Revolute
 from dyade.roundoff import clean
 
 STEPS_DEG = (5.0, 2.0, 1.0, 0.5, 0.1, 0.05)  # [°] crank steps, the last one is the reference
@@ -159,10 +159,11 @@ def drive_line_steps(mechanism: Mechanism, factors=DRIVE_LINE_FACTORS, repeats: 
     per revolution: peak shaft torque, twist amplitude, speed fluctuation and the largest
     Floquet multiplier, each setting timed."""
     from dyade.linkage import drive_line
+    from dyade.linkage.drive import crank_tables
     from dyade.machine import drive_line as engine
 
-    line = drive_line.line_of(mechanism)
-    probe = drive_line.crank_tables(mechanism, engine.MIN_STEPS)
+    line = engine.line_of(mechanism)
+    probe = crank_tables(mechanism, engine.MIN_STEPS)
     speed = abs(mechanism.crank.speed)
     base = mechanism.drive_line.steps or engine.steps_for(line, float(np.min(probe.inertia)),
                                                           speed)

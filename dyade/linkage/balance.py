@@ -28,11 +28,12 @@ from typing import Any
 import numpy as np
 
 from dyade import cycle
+from dyade.arrays import FloatArray, Vec
 from dyade.errors import DyadeError, InputError
 from dyade.limits import PLAUSIBLE, check_plausible, implausible, plausible_range
 from dyade.linkage import kinematics
-from dyade.linkage.model import CRANK, FRAME, FloatArray, Link, Mechanism, Revolute, Vec
 from dyade.linkage.options import check_size
+from dyade.model.mechanism import CRANK, FRAME, Link, Mechanism, Revolute
 
 
 @dataclass(frozen=True, slots=True)

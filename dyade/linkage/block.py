@@ -6,8 +6,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from dyade.arrays import FloatArray
 from dyade.linkage import kinematics, kinetostatics
-from dyade.linkage.model import FloatArray
 
 if TYPE_CHECKING:
     from dyade.linkage import friction

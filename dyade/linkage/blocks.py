@@ -15,8 +15,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.linkage import kinematics
-from dyade.linkage.model import FloatArray, Mechanism
+from dyade.model.mechanism import Mechanism
 
 if TYPE_CHECKING:  # imported where used: a sweep without friction never loads it
     from dyade.linkage import friction

@@ -10,9 +10,9 @@ import numpy as np
 from dyade.errors import InputError
 from dyade.linkage.joint_clearance import (MAX_WANDER_DEG, MISSING, JointCheck, check_mechanism,
                                           needs_forces)
-from dyade.linkage.model import ClearanceData, Mechanism, Revolute
 from dyade.linkage.options import radians
 from dyade.linkage.sweep import analyse
+from dyade.model.mechanism import ClearanceData, Mechanism, Revolute
 from dyade.units import RPM
 
 

@@ -8,11 +8,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.linkage.block import Block, Columns
 from dyade.linkage.kinematics import joint_anchor
-from dyade.linkage.model import CRANK, FloatArray, Mechanism, Prismatic, Revolute
 from dyade.linkage.motion import travel
 from dyade.linkage.reduced import reduced
+from dyade.model.mechanism import CRANK, Mechanism, Prismatic, Revolute
 
 
 UNITS = {"kinematics": "1/0", "angle_deg": "°", "phi": "°", "omega": "rad/s",

@@ -13,8 +13,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.linkage.model import CRANK, FRAME, Prismatic, Vec
+from dyade.arrays import Vec
 from dyade.linkage.motion import Motion
+from dyade.model.mechanism import CRANK, FRAME, Prismatic
 
 
 def pose(motion: Motion, link: int) -> tuple:

@@ -17,6 +17,11 @@ grid: ``friction.Coupling``), take
 and repeat until M_F no longer changes. The result gives the crank's speed and
 acceleration at any crank angle, with which the whole kinematics and kinetostatics
 run again (``dyade.linkage.pipeline``).
+
+The same tables on the grid of an elastic drive line (``[drive_line]``) are the linkage as
+the line's crank shaft: ``crank_tables``, and from them the line's natural frequency with
+the VDI 2149 check (``natural_frequency``; the sweep notes it, ``dyade.linkage.drive_line``
+answers the designer's questions on the line).
 """
 
 from __future__ import annotations
@@ -26,15 +31,18 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.errors import DyadeError, InputError
 from dyade.limits import check_memory
 from dyade.linkage import kinematics
 from dyade.linkage.blocks import BLOCK_SIZE, friction_coupling, spans
-from dyade.linkage.model import FloatArray, Mechanism
 from dyade.linkage.options import memory_estimate
 from dyade.linkage.reduced import Reduced, reduced
-from dyade.machine import equation
-from dyade.machine.motor import ConstantTorque, Motor, TorqueSpeedTable, operating_speed
+from dyade.machine import drive_line as line_engine, equation
+from dyade.machine.motor import operating_speed
+from dyade.model.drive import ConstantTorque, Motor, TorqueSpeedTable
+from dyade.model.mechanism import Mechanism
+from dyade.units import RAD_PER_S_TO_RPM
 
 MIN_STEPS = 720  # integration steps per revolution unless the file says otherwise
 AT_REST_NUDGE = 1e-6  # [-] share of the top speed at which friction is taken at rest
@@ -276,7 +284,7 @@ def _check_table(motor: Motor, path: equation.Path, tables: equation.Tables) -> 
         return
     speeds = np.sqrt(2.0 * path.energy / tables.inertia[(2 * np.arange(path.energy.size))
                                                         % tables.inertia.size])
-    rpm = 30.0 / math.pi
+    rpm = RAD_PER_S_TO_RPM
     if not (motor.covers(float(speeds.min())) and motor.covers(float(speeds.max()))):
         raise DyadeError(f"the crank speed runs from {speeds.min() * rpm:.4g} to "
                          f"{speeds.max() * rpm:.4g} rpm, outside the motor's torque-speed "
@@ -370,3 +378,87 @@ def _mean_over_time(torque: FloatArray, speed: FloatArray) -> float:
     weights[0] = weights[-1] = 1.0
     weights = weights / speed
     return float(np.sum(weights * torque) / np.sum(weights))
+
+
+# -- the linkage as the crank shaft of an elastic drive line ([drive_line]) ---------------
+# its tables J(φ), dJ/du, M_L on the line's integration grid and the natural frequency with
+# the VDI 2149 check (what ``dyade analyse`` notes); ``dyade.linkage.drive_line`` builds the
+# designer's questions on them, ``dyade.machine.drive_line`` integrates the line
+VDI_2149_RATIO = 0.1  # [-] largest Ω/ω̄ for which the rigid model holds (VDI 2149 Part 1)
+
+
+def crank_tables(mechanism: Mechanism, steps: int) -> line_engine.Tables:
+    """J, dJ/du, s·M_L at the half steps of ``steps`` steps per revolution from the
+    sweep's start in the running direction (no friction: not part of this model)."""
+    sense = line_engine.sense_of(mechanism)
+    grid = mechanism.sweep.start + sense * math.pi / steps * np.arange(2 * steps)
+    machine = machine_tables(mechanism, grid)
+    tables = line_engine.Tables(machine.inertia, sense * machine.slope, sense * machine.load,
+                                np.zeros(2 * steps))
+    line_engine.check_tables(tables)
+    return tables
+
+
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class NaturalFrequency:
+    """The natural frequencies of the drive line and the VDI 2149 check."""
+
+    omega_bar: float
+    """ω̄ [rad/s]: the lowest natural frequency with the linkage's mean reduced inertia J̄"""
+    omega_min: float
+    """the lowest natural frequency's smallest value over the cycle (J(φ) largest) [rad/s]"""
+    omega_max: float
+    """… and its largest (J(φ) smallest) [rad/s]"""
+    inertia_mean: float
+    """J̄ [kg·m²]"""
+    speed: float
+    """the crank's operating speed |Ω| [rad/s]"""
+    crank_angle: FloatArray
+    """(n,) [rad]"""
+    frequency: FloatArray
+    """(n,) the lowest natural frequency with J frozen at J(φ) [rad/s]"""
+
+    @property
+    def ratio(self) -> float:
+        """η = Ω/ω̄ [-]"""
+        return self.speed / self.omega_bar
+
+    @property
+    def vdi_2149(self) -> bool:
+        """True when Ω/ω̄ ≤ 0.1: the rigid model of the drive holds (VDI 2149 Part 1)."""
+        return self.ratio <= VDI_2149_RATIO
+
+
+def natural_frequency(mechanism: Mechanism) -> NaturalFrequency:
+    """ω̄, the range of the lowest natural frequency over the cycle, and Ω/ω̄.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        With a ``[drive_line]`` table (else ``InputError``).
+
+    Returns
+    -------
+    NaturalFrequency
+        ω̄ [rad/s], its range with J(φ) frozen over the cycle, Ω/ω̄ and the VDI 2149
+        verdict (``vdi_2149``: Ω/ω̄ ≤ 0.1).
+
+    Examples
+    --------
+    >>> import dyade
+    >>> m = dyade.read_mechanism("mechanisms/slider-crank.toml",
+    ...                          {"drive_line.stiffness": 1000.0, "links.2.inertia": 0.01})
+    >>> f = natural_frequency(m)
+    >>> round(f.omega_bar, 2), round(f.ratio, 4), f.vdi_2149     # [rad/s], [-]
+    (300.8, 0.5222, False)
+    """
+    line = line_engine.line_of(mechanism)
+    steps = line_engine.MIN_STEPS
+    tables = crank_tables(mechanism, steps)
+    inertia = tables.inertia[0::2]
+    mean = float(np.mean(tables.inertia))
+    every = line_engine.natural_frequencies(line, np.concatenate(([mean], inertia)))[:, 0]
+    angle = mechanism.sweep.start + line_engine.sense_of(mechanism) * 2.0 * math.pi / steps * \
+        np.arange(steps)
+    return NaturalFrequency(float(every[0]), float(np.min(every[1:])), float(np.max(every[1:])),
+                            mean, abs(mechanism.crank.speed), angle, every[1:])

@@ -25,14 +25,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.errors import DyadeError, InputError
-from dyade.linkage.line_model import (VDI_2149_RATIO, NaturalFrequency, crank_tables,  # noqa: F401
-                                     line_data, line_of, natural_frequency, sense_of)
-from dyade.linkage.model import FloatArray, Mechanism
+from dyade.linkage.drive import crank_tables, natural_frequency
 from dyade.machine import drive_line as engine
-from dyade.machine.motor import ConstantTorque, Motor, operating_speed
+from dyade.machine.drive_line import line_data, line_of, sense_of
+from dyade.machine.motor import operating_speed
+from dyade.model.drive import ConstantTorque, Motor
+from dyade.model.mechanism import Mechanism
+from dyade.units import RAD_PER_S_TO_RPM
 
-RPM = 30.0 / math.pi  # rpm per rad/s
 HARMONIC_SHARE = 1e-3  # [-] harmonics of J or M_L above this share of the largest are labelled
 
 
@@ -163,7 +165,7 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
                                                 "its own speed.")
     probe = crank_tables(mechanism, engine.MIN_STEPS)
     speed = _reference_speed(mechanism, line.motor, probe) if speed_rpm is None else abs(
-        speed_rpm) / RPM
+        speed_rpm) / RAD_PER_S_TO_RPM
     if not speed > 0.0:
         raise InputError.parameter("speed_rpm", f"must be a positive speed, got {speed_rpm}.")
     n = steps or line_data(mechanism).steps or engine.steps_for(line, float(np.min(probe.inertia)),
@@ -204,9 +206,10 @@ def _with_friction(mechanism: Mechanism, line: engine.Line, tables: engine.Table
     solution = _solve(line, tables, lanes)
     if strict and not solution.converged[0]:
         raise DyadeError(f"no periodic steady state of the drive line at "
-                         f"{lanes.speed[0] * RPM:.5g} rpm: the crank would stop or turn back "
-                         f"within the cycle, or the shooting did not converge (scaled residual "
-                         f"{solution.residual[0]:.2g}); the model does not describe that motion.")
+                         f"{lanes.speed[0] * RAD_PER_S_TO_RPM:.5g} rpm: the crank would stop or "
+                         f"turn back within the cycle, or the shooting did not converge (scaled "
+                         f"residual {solution.residual[0]:.2g}); the model does not describe that "
+                         f"motion.")
     orbit = engine.integrate(line, tables, lanes, solution.start)
     if not has_friction(mechanism):
         return solution, orbit, {}
@@ -337,7 +340,7 @@ def _speeds(speeds_rpm) -> FloatArray:
                                                  f"{speeds.min():g} to {speeds.max():g}): the "
                                                  f"periodic motion needs the crank turning.",
                                    unit="rpm")
-    return np.abs(speeds) / RPM
+    return np.abs(speeds) / RAD_PER_S_TO_RPM
 
 
 def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None
@@ -514,7 +517,8 @@ def run_up(mechanism: Mechanism, *, steps: int | None = None) -> RunUp:
     ...     "drive.rated_torque": 20.0, "drive.rated_speed_rpm": 290.0,
     ...     "drive.synchronous_speed_rpm": 300.0})
     >>> run = run_up(m)
-    >>> round(run.figures["peak_torque"], 1), round(float(run.figures["speed_mean"]) * RPM, 1)
+    >>> speed_mean = float(run.figures["speed_mean"]) * RAD_PER_S_TO_RPM   # [rpm]
+    >>> round(run.figures["peak_torque"], 1), round(speed_mean, 1)
     (146.4, 298.9)
 
     Raises
@@ -546,9 +550,9 @@ def run_up(mechanism: Mechanism, *, steps: int | None = None) -> RunUp:
     if not path.settled:
         raise DyadeError(f"the machine does not reach speed: after {path.time[-1]:.4g} s and "
                          f"{path.revolutions} revolutions its speed still changes (top crank "
-                         f"speed {np.max(path.crank_speed) * RPM:.5g} rpm): the motor cannot "
-                         f"bring it up, or nothing holds its speed (a constant torque against "
-                         f"loads that do not rise with speed), or it needs more than "
+                         f"speed {np.max(path.crank_speed) * RAD_PER_S_TO_RPM:.5g} rpm): the "
+                         f"motor cannot bring it up, or nothing holds its speed (a constant "
+                         f"torque against loads that do not rise with speed), or it needs more than "
                          f"`drive.max_revolutions`.")
     peak = int(np.argmax(np.abs(path.shaft_torque)))
     figures = {"peak_torque": float(path.shaft_torque[peak]), "peak_time": float(path.time[peak]),

@@ -17,7 +17,7 @@ import numpy as np
 from dyade.arrays import FloatArray
 from dyade.clearance import Peak, peak_force, reduced_mass
 from dyade.errors import InputError
-from dyade.linkage.model import ClearanceData, Mechanism, Revolute
+from dyade.model.mechanism import ClearanceData, Mechanism, Revolute
 
 MISSING = {
     "data": ("no clearance data: give {stiffness} and {clearance}, or "

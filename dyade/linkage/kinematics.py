@@ -34,10 +34,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dyade.arrays import FloatArray, Vec
+from dyade.linkage import dyads
 from dyade.linkage.components import is_zero, minus, plus, times
 from dyade.linkage.dyads.closure import SINGULAR_SIN
 from dyade.linkage.motion import Motion, Screw, guide_direction
-from dyade.linkage.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute, Vec
+from dyade.model.mechanism import CRANK, FRAME, Joint, Mechanism, Revolute
 
 
 def _cross(u, v):
@@ -257,7 +259,7 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
     groups = []
     upstream_ok = np.ones(n, dtype=bool)
     for col, dyad in enumerate(mechanism.dyads):
-        closure = dyad.kind.close(dyad, motion)
+        closure = dyads.close(dyad, motion)
         ok = np.logical_and(closure.closes, upstream_ok, out=closes[col])
         if closure.lever is not None:  # a length scale the angle alone does not see
             closure.conditioning = closure.conditioning * np.minimum(

@@ -28,11 +28,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.linkage.components import (direction_xy, is_zero, minus, plus, pose, rotate_xy,
                                       times)
 from dyade.linkage.motion import Motion, Screw
 from dyade.linkage.kinematics import Kinematics, crank_screw
-from dyade.linkage.model import CRANK, FRAME, FloatArray, Mechanism, Revolute, toward_higher
+from dyade.model.mechanism import CRANK, FRAME, Mechanism, Revolute, toward_higher
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==

@@ -9,10 +9,10 @@ import numpy as np
 
 from dyade.cycle import mean as cycle_mean
 from dyade.errors import DyadeError, InputError
-from dyade.linkage.model import Mechanism
 from dyade.linkage.options import check_size, radians
 from dyade.linkage.sweep import analyse_si
 from dyade.machine.flywheel import TorqueCurve, machine_curve
+from dyade.model.mechanism import Mechanism
 
 FINE_STEP = math.radians(0.1)  # [rad] largest default step of a torque curve
 
@@ -62,8 +62,15 @@ def torque_curve(mechanism: Mechanism, *, step_deg: float | None = None,
     count = int(math.ceil(2.0 * math.pi / step - 1e-9))
     check_size(mechanism, count, max_memory)
     angle = mechanism.sweep.start + step * np.arange(count)
-    cols = analyse_si(mechanism, crank_angle=angle, constant_speed=True).columns()
+    result = analyse_si(mechanism, crank_angle=angle, constant_speed=True)
+    cols = result.columns()
     torque, inertia = cols["M_drive"], cols["J_red"]  # NaN where not given
+    if not np.isfinite(torque).any():  # the rule every analysis shares: exit 1, say so
+        err = DyadeError(f"{mechanism.name}: no crank position of the revolution has its drive "
+                         f"torque given (every one is withheld by the sweep's notes), so no "
+                         f"flywheel can be sized from it: nothing to report.")
+        err.notes = result.notes  # why (``dyade.linkage.notes``), for the caller to word
+        raise err
     if not np.all(np.isfinite(torque)):
         raise DyadeError(f"{mechanism.name}: the drive torque is not given over the whole "
                          f"revolution (a dead centre), so no flywheel can be sized from it.")

@@ -22,7 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.linkage.model import FloatArray, Joint, Prismatic, Revolute, Vec
+from dyade.arrays import FloatArray, Vec
+from dyade.model.mechanism import Joint, Prismatic, Revolute
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==

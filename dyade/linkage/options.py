@@ -14,9 +14,9 @@ import numpy as np
 
 from dyade.errors import InputError
 from dyade.limits import BYTES_PER_VALUE, check_memory
-from dyade.linkage.model import Mechanism, Revolute, Sweep, sweep_problem
 from dyade.linkage.plan import Plan
 from dyade.linkage.plan import plan as infer_plan
+from dyade.model.mechanism import Mechanism, Revolute, Sweep, sweep_problem
 
 
 def with_sweep(mechanism: Mechanism, start: float | None = None, stop: float | None = None,

@@ -33,15 +33,16 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.linkage import columns as columns_, kinematics, kinetostatics
 from dyade.linkage.block import Block
 from dyade.linkage.blocks import friction_coupling, spans
 from dyade.linkage.columns import Columns, Continuous
-from dyade.linkage.model import FloatArray, Mechanism
 from dyade.linkage.notes import Note, NoteKind, ranges
 from dyade.linkage.plan import Plan
 from dyade.linkage.validity import Policy, assembly, bands
 from dyade.linkage.verdicts import Outcome, Rubbing
+from dyade.model.mechanism import Mechanism
 
 if TYPE_CHECKING:  # imported where used: a kinematics-only run never loads them
     from dyade.linkage import friction
@@ -296,7 +297,7 @@ class Keep:
         if setup.motion is not None:
             notes += motion_notes(setup.motion)
         if setup.plan.drive_line:
-            from dyade.linkage.line_model import natural_frequency
+            from dyade.linkage.drive import natural_frequency
 
             line = natural_frequency(mechanism)
             if not line.vdi_2149:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from dyade.linkage.model import Mechanism
+from dyade.model.mechanism import Mechanism
 
 
 @dataclass(frozen=True, slots=True)

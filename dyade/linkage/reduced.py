@@ -20,9 +20,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.linkage import kinematics
 from dyade.linkage.kinetostatics import add_loads_and_springs
-from dyade.linkage.model import CRANK, FRAME, FloatArray, Mechanism
+from dyade.model.mechanism import CRANK, FRAME, Mechanism
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==

@@ -49,10 +49,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.linkage.friction import AT_REST_RTOL, EDGE, FrictionResult
 from dyade.linkage.kinematics import Kinematics
 from dyade.linkage.motion import guide_direction, travel
-from dyade.linkage.model import FloatArray, Mechanism, Prismatic
+from dyade.model.mechanism import Mechanism, Prismatic
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==

@@ -20,7 +20,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from dyade.arrays import Variants
-from dyade.linkage.model import Mechanism
+from dyade.model.mechanism import Mechanism
 
 
 class NotStackable(ValueError):

@@ -10,8 +10,9 @@ import numpy as np
 from dyade import cycle
 from dyade.arrays import plain, resolution
 from dyade.linkage.columns import Columns
-from dyade.linkage.model import Revolute
 from dyade.linkage.verdicts import Outcome
+from dyade.model.mechanism import Revolute
+from dyade.units import RAD_PER_S_TO_RPM
 
 
 def full_cycle(angle_deg: np.ndarray) -> bool:
@@ -230,7 +231,8 @@ def motion_summary(result: Outcome) -> dict[str, Any]:
     out: dict[str, Any] = {
         "state": motion.state, "motor": drive.motor.describe(),
         "flywheel_inertia": drive.flywheel_inertia,
-        "speed_mean": figures["speed_mean"], "speed_mean_rpm": figures["speed_mean"] * 30 / np.pi,
+        "speed_mean": figures["speed_mean"],
+        "speed_mean_rpm": figures["speed_mean"] * RAD_PER_S_TO_RPM,
         "speed_min": figures["speed_min"], "speed_min_at_deg": np.rad2deg(figures["angle_min"]),
         "speed_max": figures["speed_max"], "speed_max_at_deg": np.rad2deg(figures["angle_max"]),
         "fluctuation": figures["fluctuation"], "period": figures["period"],

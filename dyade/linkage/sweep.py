@@ -10,10 +10,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.errors import InputError
 from dyade.linkage.blocks import BLOCK_SIZE
 from dyade.linkage.columns import Columns
-from dyade.linkage.model import FloatArray, Mechanism
 from dyade.linkage.options import (angles_in_degrees, collect_estimate, configure, radians,
                                    stream_estimate, sweep_in_degrees)
 from dyade.linkage.block import Block
@@ -21,6 +21,7 @@ from dyade.linkage.pipeline import Run, prepare, stages
 from dyade.linkage.pipeline import Setup
 from dyade.linkage.plan import Plan
 from dyade.linkage.verdicts import Outcome
+from dyade.model.mechanism import Mechanism
 
 if TYPE_CHECKING:
     from dyade.linkage import friction, kinematics, kinetostatics

@@ -12,10 +12,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.errors import AssemblyError
 from dyade.linkage.kinematics import Kinematics
-from dyade.linkage.model import FloatArray, Mechanism
 from dyade.linkage.notes import Note, NoteKind, decimals, format_ranges, ranges
+from dyade.model.mechanism import Mechanism
 
 
 @dataclass(slots=True, eq=False)

@@ -24,11 +24,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.linkage import columns as columns_, kinematics, kinetostatics
 from dyade.linkage.block import Block
-from dyade.linkage.model import CRANK, FRAME, FloatArray, Joint, Mechanism, Revolute
 from dyade.linkage.plan import Plan, plan
 from dyade.linkage.stack import NotStackable
+from dyade.model.mechanism import CRANK, FRAME, Joint, Mechanism, Revolute
 
 
 @dataclass(slots=True, eq=False)

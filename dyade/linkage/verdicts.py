@@ -16,9 +16,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dyade.linkage.model import FloatArray, Mechanism
+from dyade.arrays import FloatArray
 from dyade.linkage.notes import Note, NoteKind, ranges
 from dyade.linkage.plan import Plan
+from dyade.model.mechanism import Mechanism
 
 if TYPE_CHECKING:  # imported where used: a sweep without friction never loads it
     from dyade.linkage import friction

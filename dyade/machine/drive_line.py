@@ -45,7 +45,9 @@ import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.errors import DyadeError, InputError
-from dyade.machine.motor import DriveLineData, Motor
+from dyade.model.drive import Motor
+from dyade.model.drive_line import DriveLineData
+from dyade.model.mechanism import Mechanism
 
 NEWTON_MAX_ITER = 40  # most shooting iterations
 NEWTON_TOL = 1e-11  # [-] scaled residual of the revolution map that counts as periodic
@@ -70,7 +72,7 @@ class Line:
     damping : tuple of float
         b_0 … b_{m−1} [N·m·s/rad], not negative.
     motor : Motor or None
-        The motor's characteristic on the crank shaft (``dyade.machine.motor``); None: an
+        The motor's characteristic on the crank shaft (``dyade.model.drive``); None: an
         ideal motor that turns at constant speed whatever the load.
     """
 
@@ -276,7 +278,7 @@ def _rates(line: Line, lanes: Lanes, x: FloatArray, inertia: float, slope: float
 def motor_change(motor: Motor, speed: FloatArray, change: FloatArray) -> FloatArray:
     """m(w + δw) − m(w) without the round-off of the difference: exact for a linear
     characteristic and within a segment of a table."""
-    from dyade.machine.motor import Asynchronous, ConstantTorque
+    from dyade.model.drive import Asynchronous, ConstantTorque
 
     if isinstance(motor, ConstantTorque):
         return np.zeros_like(change)
@@ -541,6 +543,30 @@ def line_from(data: DriveLineData, motor: Motor | None) -> Line:
         c = data.coupling
         return Line((rotor, c.inertia), (c.c2, c.c1), (c.b2, c.b1), motor, labels)
     return Line((rotor,), (data.stiffness,), (data.damping,), motor, labels)
+
+
+def line_data(mechanism: Mechanism) -> DriveLineData:
+    """The ``[drive_line]`` table of ``mechanism`` (an ``InputError`` saying what to give
+    when it has none)."""
+    if mechanism.drive_line is None:
+        raise InputError(f"{mechanism.name}: no [drive_line] table: give the elastic element "
+                         f"between motor and crank (`drive_line.stiffness` [N·m/rad], or "
+                         f"`drive_line.coupling` = a coupling file), see docs/guide/drive-line.md.",
+                         key="drive_line")
+    return mechanism.drive_line
+
+
+def line_of(mechanism: Mechanism, *, ideal: bool = False) -> Line:
+    """The drive line of ``mechanism``: its ``[drive]`` motor (or an ideal motor when the
+    file has none, or with ``ideal``)."""
+    data = line_data(mechanism)
+    motor = None if ideal or mechanism.drive is None else mechanism.drive.motor
+    return line_from(data, motor)
+
+
+def sense_of(mechanism: Mechanism) -> float:
+    """+1 when the crank turns counter-clockwise, −1 when clockwise: the running direction."""
+    return 1.0 if mechanism.crank.speed > 0 else -1.0
 
 
 class Periodic1D:

@@ -29,7 +29,8 @@ import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.errors import DyadeError
-from dyade.machine.motor import ConstantTorque, Motor
+from dyade.model.drive import ConstantTorque, Motor
+from dyade.units import RAD_PER_S_TO_RPM
 
 NEWTON_MAX_ITER = 50  # most shooting iterations
 NEUTRAL = 1e-12  # [-] |dP/dE0 − 1| below this: the revolution map does not depend on E0
@@ -392,7 +393,7 @@ def periodic(tables: Tables, motor: Motor, sense: float, steps: int, guess: floa
     raise DyadeError(f"no periodic steady state found in {NEWTON_MAX_ITER} shooting "
                      f"iterations: the motor's characteristic may cross the machine's load "
                      f"torque more than once, or not at all near "
-                     f"{guess * 30.0 / math.pi:.4g} rpm.")
+                     f"{guess * RAD_PER_S_TO_RPM:.4g} rpm.")
 
 
 def cycle_mean(values: FloatArray) -> float:

@@ -17,7 +17,8 @@ interpolant crosses zero.
 >>> import numpy as np
 >>> theta = np.deg2rad(np.arange(0.0, 360.0, 1.0))        # one revolution
 >>> engine = 10000 + 2000 * np.sin(2 * theta) - 1800 * np.cos(2 * theta)   # [N·m]
->>> curve = excess_curve(theta, engine, speed=250 * np.pi / 30)   # against a constant load
+>>> from dyade.units import RPM                             # [rad/s per rpm]
+>>> curve = excess_curve(theta, engine, speed=250 * RPM)   # against a constant load
 >>> result = size_flywheel(curve, 0.005)
 >>> round(result.power / 1e3, 3), round(result.delta_energy, 3), round(result.flywheel, 2)
 (261.799, 2690.725, 785.17)
@@ -26,14 +27,18 @@ interpolant crosses zero.
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.cycle import integrals, mean as cycle_mean, segments
 from dyade.errors import DyadeError, InputError
+from dyade.units import rpm_to_rad_per_s
+
+if TYPE_CHECKING:
+    from dyade.model.torque_table import TorqueTable
 
 LARGE_FLUCTUATION = 0.1  # [-] above this the small-fluctuation estimate δ ≈ ΔE/(J·Ω²) is rough
 MEAN_RTOL = 1e-3  # [-] mean excess torque (share of the mean |drive torque|) still periodic
@@ -144,7 +149,7 @@ def torque_curve(angle_deg, drive, load=None, *, speed_rpm: float | None = None,
                                    unit="rpm")
     try:
         angle = np.deg2rad(np.asarray(angle_deg, dtype=np.float64))
-        speed = float(speed_rpm) * math.pi / 30.0
+        speed = rpm_to_rad_per_s(float(speed_rpm))
     except (TypeError, ValueError):
         raise InputError.parameter(("angle_deg", "speed_rpm"), "must be numbers [°], [rpm]."
                                    ) from None
@@ -361,56 +366,40 @@ def speed_fluctuation(curve: TorqueCurve, inertia: float) -> Flywheel:
     return _result(curve, inertia, fluctuation, [])
 
 
-def read_torque_curve(path: str | os.PathLike, *, speed_rpm: float | None = None,
-                      text: str | None = None, **renamed) -> TorqueCurve:
-    """The torque curve of a CSV file with columns ``angle_deg`` and ``M_drive`` [N·m] and
-    optionally ``M_load`` [N·m] (positive where it drives; default a constant load equal
-    to the mean drive torque).
+def table_curve(table: TorqueTable, speed: float | None = None) -> TorqueCurve:
+    """The torque curve of a table read from a CSV (``dyade.files.torque_curve``) at the
+    mean crank speed ``speed`` [rad/s]: against its ``M_load`` (positive where it drives;
+    default a constant load equal to the mean drive torque).
 
-    A CSV written by ``dyade analyse`` (it has ``dJ_red``) is a machine's drive torque at
-    constant speed, with its loads already in it: it is read as by ``machine_curve``, with
-    the machine's mean ``J_red`` and, unless ``speed_rpm`` is given, its crank speed.
+    A CSV written by ``dyade analyse`` (``table.machine``) is a machine's drive torque at
+    constant speed, with its loads already in it: it is taken as by ``machine_curve``, with
+    the machine's mean ``J_red`` and, unless ``speed`` is given, its crank speed.
 
     Parameters
     ----------
-    path : str or os.PathLike
-        The CSV file.
-    speed_rpm : float, optional
-        The mean crank speed [rpm]; required unless the file is dyade's.
-    text : str, optional
-        The file's content, when already read (standard input); ``path`` names it.
-    **renamed
-        The former ``speed`` [rad/s] is refused with an ``InputError`` naming
-        ``speed_rpm``.
+    table : TorqueTable
+        From ``dyade.files.torque_curve.read_table``.
+    speed : float, optional
+        The mean crank speed [rad/s]; required unless the table is dyade's.
 
     Returns
     -------
     TorqueCurve
-
-    Examples
-    --------
-    >>> import dyade
-    >>> curve = dyade.read_torque_curve("mechanisms/torque/engine.csv", speed_rpm=250)
-    >>> curve.angle.size, round(curve.mean_torque, 6)     # 0°…359°: 360° repeats 0°
-    (360, 10000.0)
     """
-    from dyade.files.torque_curve import load_columns
-
-    InputError.refuse_renamed("read_torque_curve", renamed, RENAMED)
-    speed = None if speed_rpm is None else speed_rpm * math.pi / 30.0
-    path = os.fspath(path)
-    label = os.path.basename(path)
-    columns = load_columns(path, text)
-    angle = np.deg2rad(columns["angle_deg"])
-    if "dJ_red" in columns:
+    label = table.source
+    if table.machine:
         if speed is None:
-            omega = columns.get("omega_2")
+            omega = table.speed
             if omega is None or not np.all(np.isfinite(omega)):
                 raise InputError.parameter("speed_rpm", "is needed: the file has no crank "
                                                         "speed omega_2.", unit="rpm")
             speed = float(np.mean(omega))
-        inertia = cycle_mean(*_revolution(angle, columns["J_red"], "angle"))
-        curve = machine_curve(angle, columns["M_drive"], speed=speed, machine_inertia=inertia,
+        if table.inertia is None:
+            raise InputError(f"{label}: no column J_red: a CSV of dyade analyse (it has "
+                             f"dJ_red) gives the machine's reduced inertia too.",
+                             source=label, key="J_red")
+        inertia = cycle_mean(*_revolution(table.angle, table.inertia, "angle"))
+        curve = machine_curve(table.angle, table.drive, speed=speed, machine_inertia=inertia,
                               source=label)
         return TorqueCurve(curve.angle, curve.excess, curve.speed, curve.mean_torque,
                            curve.machine_inertia, label, curve.notes + (
@@ -419,5 +408,4 @@ def read_torque_curve(path: str | os.PathLike, *, speed_rpm: float | None = None
     if speed is None:
         raise InputError.parameter("speed_rpm", "is needed with a torque CSV: the mean crank "
                                                 "speed.", unit="rpm")
-    return excess_curve(angle, columns["M_drive"], columns.get("M_load"), speed=speed,
-                        source=label)
+    return excess_curve(table.angle, table.drive, table.load, speed=speed, source=label)

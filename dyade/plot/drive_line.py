@@ -13,8 +13,8 @@ from matplotlib.figure import Figure
 
 from dyade.machine.drive_line import UNSTABLE_MARGIN
 from dyade.plot import canvas
+from dyade.units import RAD_PER_S_TO_RPM
 
-RPM = 30.0 / np.pi
 UNSTABLE = dict(facecolor="0.80", edgecolor="0.45", hatch="////", linewidth=0.0, alpha=0.7,
                 zorder=0)
 
@@ -36,10 +36,11 @@ def _resonance_marks(ax, curve, label: bool = True) -> None:
     """Forced resonances Ω = ω̄/k dotted, parametric Ω = 2ω̄/k dashed; the labels turned
     upright along the lines, so that close ones stay legible."""
     for k, speed, kind in curve.resonances:
-        ax.axvline(speed * RPM, color="0.5", linestyle=":" if kind == "forced" else "--",
+        speed_rpm = speed * RAD_PER_S_TO_RPM
+        ax.axvline(speed_rpm, color="0.5", linestyle=":" if kind == "forced" else "--",
                    linewidth=0.8, zorder=1)
         if label:
-            ax.annotate(f"{'ω̄' if kind == 'forced' else '2ω̄'}/{k}", (speed * RPM, 0.98),
+            ax.annotate(f"{'ω̄' if kind == 'forced' else '2ω̄'}/{k}", (speed_rpm, 0.98),
                         xycoords=("data", "axes fraction"), fontsize=6, ha="right",
                         va="top", rotation=90, color="0.35")
 
@@ -55,7 +56,7 @@ def resonance(curve, fig: Figure | None = None) -> Figure:
         ``dyade.linkage.drive_line.resonance_curve(...)``.
     fig : Figure, optional
     """
-    speed = curve.speed * RPM
+    speed = curve.speed * RAD_PER_S_TO_RPM
     with canvas.style():
         fig = canvas.new(7.0, 6.4, fig)
         axes = fig.subplots(3, 1, sharex=True)
@@ -72,11 +73,13 @@ def resonance(curve, fig: Figure | None = None) -> Figure:
             _shade_unstable(axis, speed, curve.unstable, label=k == 0)
             _resonance_marks(axis, curve) if k == 0 else None
             axis.set_xlim(speed[0], speed[-1])
-        top = axes[0].secondary_xaxis("top", functions=(lambda s: s / RPM / curve.omega_bar,
-                                                        lambda e: e * curve.omega_bar * RPM))
+        top = axes[0].secondary_xaxis("top", functions=(
+            lambda s: s / RAD_PER_S_TO_RPM / curve.omega_bar,
+            lambda e: e * curve.omega_bar * RAD_PER_S_TO_RPM))
         top.set_xlabel("η = Ω/ω̄")
         ax.legend(loc="upper left", fontsize=8)
-        fig.suptitle(f"Resonance curve of the drive line (ω̄ = {curve.omega_bar * RPM:.5g} rpm)")
+        fig.suptitle(f"Resonance curve of the drive line "
+                     f"(ω̄ = {curve.omega_bar * RAD_PER_S_TO_RPM:.5g} rpm)")
     return fig
 
 
@@ -102,7 +105,7 @@ def stability(curve, fig: Figure | None = None) -> Figure:
     >>> figures.stability(curve).axes[0].get_xlabel()
     'crank speed Ω [rpm]'
     """
-    speed = curve.speed * RPM
+    speed = curve.speed * RAD_PER_S_TO_RPM
     with canvas.style():
         fig = canvas.new(7.0, 3.8, fig)
         ax = fig.subplots()
@@ -121,7 +124,7 @@ def stability(curve, fig: Figure | None = None) -> Figure:
 def stability_map(result, fig: Figure | None = None) -> Figure:
     """The largest |Floquet multiplier| over speed × stiffness or damping, the unstable
     cells hatched and the boundary |μ| = 1 drawn."""
-    speed = result.speed * RPM
+    speed = result.speed * RAD_PER_S_TO_RPM
     unit = "N·m/rad" if result.parameter == "stiffness" else "N·m·s/rad"
     with canvas.style():
         fig = canvas.new(7.0, 4.6, fig)
@@ -173,16 +176,16 @@ def steady(state, fig: Figure | None = None) -> Figure:
         axes[0].plot(angle, state.rigid_torque, label="rigid drive", **canvas.line(1))
         axes[0].set_ylabel("shaft torque [N·m]")
         canvas.legend_above(axes[0], fontsize=8)
-        axes[1].plot(angle, state.crank_speed * RPM, **canvas.line(0))
-        axes[1].plot(angle, state.rigid_speed * RPM, **canvas.line(1))
+        axes[1].plot(angle, state.crank_speed * RAD_PER_S_TO_RPM, **canvas.line(0))
+        axes[1].plot(angle, state.rigid_speed * RAD_PER_S_TO_RPM, **canvas.line(1))
         axes[1].set_ylabel("crank speed [rpm]")
         axes[2].plot(angle, np.degrees(state.twist), **canvas.line(0))
         axes[2].set_ylabel("twist [°]")
         axes[2].set_xlabel("crank angle φ21 [°]")
         axes[2].set_xlim(angle[0], angle[-1])
         f = state.figures
-        fig.suptitle(f"Steady state at {f['speed_mean'] * RPM:.5g} rpm, η = {f['eta']:.3g}, "
-                     f"largest |μ| = {f['stability']:.4g}")
+        fig.suptitle(f"Steady state at {f['speed_mean'] * RAD_PER_S_TO_RPM:.5g} rpm, "
+                     f"η = {f['eta']:.3g}, largest |μ| = {f['stability']:.4g}")
     return fig
 
 
@@ -192,14 +195,17 @@ def run_up(run, fig: Figure | None = None) -> Figure:
     with canvas.style():
         fig = canvas.new(7.0, 5.0, fig)
         axes = fig.subplots(2, 1, sharex=True)
-        axes[0].plot(run.time, run.crank_speed * RPM, label="crank", **canvas.line(0))
-        axes[0].plot(run.time, run.motor_speed * RPM, label="motor (reduced)", **canvas.line(1))
+        axes[0].plot(run.time, run.crank_speed * RAD_PER_S_TO_RPM, label="crank",
+                     **canvas.line(0))
+        axes[0].plot(run.time, run.motor_speed * RAD_PER_S_TO_RPM, label="motor (reduced)",
+                     **canvas.line(1))
         axes[0].set_ylabel("speed [rpm]")
         canvas.legend_above(axes[0], fontsize=8)
         axes[1].plot(run.time, run.shaft_torque, **canvas.line(0))
         f = run.figures
         axes[1].plot([f["peak_time"]], [f["peak_torque"]], "o", color="k", markersize=4)
-        axes[1].annotate(f"{f['peak_torque']:.4g} N·m at {f['peak_speed'] * RPM:.4g} rpm",
+        axes[1].annotate(f"{f['peak_torque']:.4g} N·m at "
+                         f"{f['peak_speed'] * RAD_PER_S_TO_RPM:.4g} rpm",
                          (f["peak_time"], f["peak_torque"]), textcoords="offset points",
                          xytext=(6, 0), fontsize=8, va="center")
         axes[1].set_ylabel("shaft torque [N·m]")

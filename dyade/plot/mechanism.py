@@ -23,8 +23,8 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from dyade.linkage.kinematics import joint_point
-from dyade.linkage.model import FRAME, Prismatic, Revolute
 from dyade.linkage.motion import perp, travel
+from dyade.model.mechanism import FRAME, Prismatic, Revolute
 from dyade.plot import canvas
 from dyade.plot.labels import Placer, leader
 

@@ -25,9 +25,9 @@ from dataclasses import dataclass
 import numpy as np
 from matplotlib.figure import Figure
 
+from dyade.model.gears import FRAME
 from dyade.plot import canvas
 from dyade.vibration.gears.campbell import shaft_lines
-from dyade.vibration.gears.model import FRAME
 
 MOTIONS = (("rx", 3, "torsion ρ·rx"), ("uy", 1, "lateral uy"), ("uz", 2, "lateral uz"),
            ("ux", 0, "axial ux"))

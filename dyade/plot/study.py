@@ -225,7 +225,7 @@ def question_figure(result, outputs=None, x: str | None = None, y: str | None = 
     >>> result = dyade.study.study("mechanisms/studies/press-slide-tolerance.toml")
     >>> fig = figures.question_figure(result, ["mu_2_min_deg", "FN_1_4_peak"])
     >>> [ax.get_xlabel() for ax in fig.axes]
-    ['mu_2_min_deg [deg]', 'FN_1_4_peak [N]']
+    ['mu_2_min_deg [°]', 'FN_1_4_peak [N]']
     """
     chosen = list(outputs or []) or None
     if result.tolerance is not None:

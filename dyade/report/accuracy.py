@@ -1,26 +1,21 @@
-"""Accuracy studies -> records and rich tables."""
+"""The ``accuracy`` Outcome (``dyade.analyses.accuracy``) as rich tables."""
 
 from __future__ import annotations
 
 import math
 
-COLUMNS = ["study", "setting", "time_ms", "quantity", "value", "rel_error", "note"]
-UNITS = {"time_ms": "ms", "rel_error": "-", "value": "N or N·m (see quantity)"}
+from dyade.report.format import number
 
 
-def records(rows) -> list[dict]:
-    """One record per (study, setting, quantity); times in ms."""
-    return [{"study": r.study, "setting": r.setting, "time_ms": r.time * 1e3,
-             "quantity": r.quantity, "value": r.value, "rel_error": r.error, "note": r.extra}
-            for r in rows]
-
-
-def tables(name: str, records: list[dict]):
+def tables(outcome):
     """Per study two narrow tables: what each setting costs (time, note), and the
     relative error of each peak per setting, quantities down and settings across (the
-    reference setting shows its values)."""
+    reference setting shows its values, with the quantity's unit); then the summary."""
     from rich.table import Table
 
+    from dyade.report.outcome import summary_table
+
+    name, records = outcome.meta["name"], outcome.result
     parts = []
     for study in dict.fromkeys(r["study"] for r in records):
         mine = [r for r in records if r["study"] == study]
@@ -32,23 +27,27 @@ def tables(name: str, records: list[dict]):
             cost.add_column(head, justify=justify)
         for setting in settings:
             row = next(r for r in mine if r["setting"] == setting)
-            cost.add_row(setting, f"{row['time_ms']:.3g}", row["note"])
+            cost.add_row(setting, number(row["time_ms"], spec=".3g"), row["note"])
         errors = Table(title=f"{name}: {study} — relative error [-] of each peak against "
                              f"{reference} (its own column: the value)", title_justify="left")
         errors.add_column("quantity")
+        errors.add_column("unit")
         for setting in settings:
             errors.add_column(setting, justify="right")
         cells = {(r["setting"], r["quantity"]): r for r in mine}
         for quantity in quantities:
-            values = []
+            values, unit = [], ""
             for setting in settings:
                 r = cells.get((setting, quantity))
                 if r is None:
-                    values.append("")
-                elif isinstance(r["rel_error"], float) and not math.isnan(r["rel_error"]):
-                    values.append(f"{r['rel_error']:.1e}")
+                    values.append(number(None))
+                    continue
+                unit = r["unit"]
+                if not math.isnan(r["rel_error"]):
+                    values.append(number(r["rel_error"], spec=".1e") if r["rel_error"] else "0")
                 else:
-                    values.append(f"{r['value']:.5g}")
-            errors.add_row(quantity, *values)
+                    values.append(number(r["value"], spec=".5g"))
+            errors.add_row(quantity, unit, *values)
         parts += [cost, errors]
+    parts.append(summary_table(outcome, f"{name}: where the peaks stop moving"))
     return parts

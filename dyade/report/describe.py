@@ -15,10 +15,10 @@ import numpy as np
 from rich.markup import escape
 from rich.tree import Tree
 
-from dyade.linkage.model import CRANK, FRAME, Mechanism, Prismatic, Revolute
 from dyade.linkage.plan import Plan
+from dyade.model.mechanism import CRANK, FRAME, Mechanism, Prismatic, Revolute
 from dyade.report.effects import effects
-from dyade.units import LENGTH_FACTORS
+from dyade.units import LENGTH_FACTORS, RAD_PER_S_TO_RPM
 
 
 class Lengths:
@@ -44,7 +44,7 @@ def describe(mechanism: Mechanism, the_plan: Plan, skipped: list[str]) -> Tree:
     for name, point in mechanism.links[FRAME].points.items():
         frame.add(f"point {name} = {length.point(point)}")
     crank = mechanism.crank
-    rpm = abs(crank.speed) * 60.0 / (2.0 * np.pi)
+    rpm = abs(crank.speed) * RAD_PER_S_TO_RPM
     sense = "counter-clockwise" if crank.speed > 0 else "clockwise"
     node = tree.add(f"dyad 1: link 2 crank, length {length(crank.length)}, {rpm:g} rpm {sense}")
     node.add(f"joint (1,2) revolute at {length.point(crank.pivot)}{_joint_data(crank.joint, length)}")

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 from rich.table import Table
 
-RPM = 30.0 / math.pi
+from dyade.units import RAD_PER_S_TO_RPM as RPM  # [rpm per rad/s]
+
 UNITS = {"angle_deg": "°", "shaft_torque": "N·m", "rigid_torque": "N·m", "speed_rpm": "rpm",
          "rigid_speed_rpm": "rpm", "acceleration": "rad/s²", "rigid_acceleration": "rad/s²",
          "twist_deg": "°", "eta": "-", "peak_torque": "N·m", "rigid_peak_torque": "N·m",

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from dyade.analyses.base import MISSING
+from dyade.analyses.base import MISSING, cell  # noqa: F401 (the one cell rule, re-exported)
 from dyade.roundoff import is_roundoff
 from dyade.units import LENGTH_FACTORS
 
@@ -48,19 +48,6 @@ def number(value: Any, scale: float = 0.0, spec: str = ".6g") -> str:
 def flag(value: Any) -> str:
     """A flag in a table: yes or no."""
     return "yes" if value else "no"
-
-
-def cell(value: Any) -> str:
-    """One CSV field: 15 significant digits, empty for a value not given (None, NaN,
-    ±inf), 1/0 for flags, text as it is (quoted where it holds a comma or a quote)."""
-    if value is None:
-        return ""
-    if isinstance(value, bool) or type(value).__name__ == "bool_":
-        return "1" if value else "0"
-    if isinstance(value, str):
-        return '"' + value.replace('"', '""') + '"' if any(c in value for c in ',"\n') else value
-    value = float(value)
-    return f"{value + 0.0:.15g}" if math.isfinite(value) else ""
 
 
 def display(unit: str, length_unit: str = "m") -> tuple[float, str]:

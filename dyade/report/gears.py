@@ -11,10 +11,10 @@ import numpy as np
 
 from dyade.analyses.base import MISSING
 from dyade.analyses.gears import MODEL, MOTIONS, identifier
+from dyade.model.gears import DOFS
 from dyade.report.coupling import ordinal
 from dyade.report.format import number
 from dyade.roundoff import EIGEN_ROUNDOFF, clean
-from dyade.vibration.gears.model import DOFS
 
 
 def fmt(value: Any, digits: int = 5) -> str:

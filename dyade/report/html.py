@@ -303,7 +303,7 @@ def clearance_html(mechanism, result) -> str:
     over the positions where the mechanism closes (those of the report's sweep
     ``result``, which has succeeded: ``allow_partial`` changes nothing where it closes
     everywhere)."""
-    from dyade.analyses import REGISTRY
+    from dyade.registry import REGISTRY
     from dyade.plot import clearance as plot
 
     partial = not bool(np.all(result.rows))
@@ -373,7 +373,7 @@ def gear_report(drive, *, source: str = "") -> str:
     """The design report of a gear drive (see ``report``): its modes, Campbell diagram
     and mode shapes, from the Outcomes of the ``gear-modes`` and ``gear-campbell``
     entries (each run once; the Campbell diagram reuses the modes)."""
-    from dyade.analyses import REGISTRY
+    from dyade.registry import REGISTRY
     from dyade.plot import campbell as campbell_plot, modes as modes_plot
     from dyade.report import gears
 
@@ -417,7 +417,7 @@ def coupling_report(path, *, source: str = "") -> str:
     """The design report of a coupling file (see ``report``): the torsional resonance
     (Strümpfel), its notes, the transfer functions and phases against η with the
     operating points, and their tables (as ``dyade coupling`` gives them)."""
-    from dyade.analyses import REGISTRY
+    from dyade.registry import REGISTRY
     from dyade.plot import coupling as plot
     from dyade.report import coupling as report_
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.linkage.model import Mechanism
 from dyade.linkage.notes import Note, NoteKind, format_ranges
+from dyade.model.mechanism import Mechanism
 
 
 def say(note: Note, mechanism: Mechanism) -> str:

@@ -1,6 +1,6 @@
-"""A design study as tables: the variants' status counts and the outputs' ranges, the
-sensitivity (normalised), the tolerance statistics and failure probabilities, the
-optimum and the Pareto front."""
+"""The ``study`` Outcome (``dyade.study.entry``) as tables: the variants' status
+counts and the outputs' ranges, the sensitivity (normalised), the tolerance statistics
+and failure probabilities, the optimum and the Pareto front."""
 
 from __future__ import annotations
 
@@ -9,17 +9,21 @@ from collections import Counter
 import numpy as np
 from rich.table import Table
 
+from dyade.study.entry import STATISTICS, identifier
+from dyade.report.format import number
 
-def _g(value: float) -> str:
-    return "—" if value is None or not np.isfinite(value) else f"{value:.6g}"
 
+def tables(outcome) -> list:
+    """The tables of a ``study`` Outcome (or of a ``Study``) for the terminal."""
+    if not hasattr(outcome, "summary"):  # a Study of dyade.study
+        from dyade.study.entry import outcome_of
 
-def tables(result) -> list:
-    """The tables of a ``Study`` for the terminal."""
-    cols, out = result.columns(), []
-    counts = Counter(cols["status"].tolist())
-    title = (f"Study {result.spec.label}: {len(cols['variant'])} variants of "
-             f"{result.spec.mechanism.rsplit('/', 1)[-1]} ({result.spec.plan})")
+        outcome = outcome_of(outcome)
+    result, cols, figures = outcome.result, outcome.columns, outcome.summary
+    units, out = outcome.units, []
+    counts = Counter(np.asarray(cols["status"]).tolist())
+    title = (f"Study {outcome.meta['study']}: {len(cols['variant'])} variants of "
+             f"{outcome.meta['mechanism'].rsplit('/', 1)[-1]} ({outcome.meta['plan']})")
     summary = Table(title=title, title_justify="left", min_width=len(title))
     summary.add_column("status")
     summary.add_column("variants", justify="right")
@@ -33,55 +37,67 @@ def tables(result) -> list:
     if result.sensitivity is not None:
         table = Table(title="Sensitivity (central differences; normalised: % output per % "
                             "parameter)", title_justify="left")
-        for name in ("output", "parameter", "step", "d output/d parameter", "normalised"):
-            table.add_column(name, justify="left" if name in ("output", "parameter") else "right")
+        for name in ("output", "parameter", "step", "d output/d parameter", "unit",
+                     "normalised [-]"):
+            table.add_column(name, justify="left" if name in ("output", "parameter", "unit")
+                             else "right")
         for row in result.sensitivity:
-            table.add_row(row["output"], row["parameter"], _g(row["step"]),
-                          _g(row["derivative"]), _g(row["normalised"]))
+            output, key = row["output"], row["parameter"]
+            derivative = figures[f"d_{output}_d_{identifier(key)}"]
+            table.add_row(output, key, f"{number(row['step'])} {units.get(key, '')}".rstrip(),
+                          number(derivative.value), derivative.unit,
+                          number(figures[f"sensitivity_{output}_{identifier(key)}"].value))
         out.append(table)
     elif result.tolerance is not None:
-        tol = result.tolerance
-        table = Table(title=f"Tolerance: {tol['variants']} variants", title_justify="left")
-        for name in ("output", "unit", "mean", "sd", "p1", "p5", "p50", "p95", "p99"):
+        table = Table(title=f"Tolerance: {figures['variants'].value} variants",
+                      title_justify="left")
+        shown = ("mean", "sd", "p1", "p5", "p50", "p95", "p99")
+        for name in ("output", "unit", *shown):
             table.add_column(name, justify="left" if name in ("output", "unit") else "right")
-        for name, stats in tol["outputs"].items():
-            table.add_row(name, result.units.get(name, ""),
-                          *(_g(stats[k]) for k in ("mean", "sd", "p1", "p5", "p50", "p95", "p99")))
+        for name in result.tolerance["outputs"]:
+            scale = max(abs(figures[f"min_{name}"].value), abs(figures[f"max_{name}"].value))
+            table.add_row(name, units.get(name, ""),  # round-off of the output's scale: 0
+                          *(number(figures[f"{stat}_{name}"].value, scale) for stat in STATISTICS
+                            if stat in shown))
         out.append(table)
         failures = Table(title="Probability of failure (share of all variants)",
                          title_justify="left", min_width=48)
         failures.add_column("failure")
-        failures.add_column("probability", justify="right")
-        for name, p in tol["probability"].items():
-            failures.add_row(name.replace("_", " "), _g(p))
+        failures.add_column("probability [-]", justify="right")
+        for name in result.tolerance["probability"]:
+            failures.add_row(name.replace("_", " "), number(figures[f"probability_{name}"].value))
         out.append(failures)
     elif result.optimum is not None:
         best = result.optimum
-        table = Table(title=f"Optimum: {best['sense']} {best['objective']} = {_g(best['value'])} "
-                            f"({best['evaluations']} evaluations; {best['message']})",
-                      title_justify="left")
+        value = figures[f"optimum_{best['objective']}"]
+        table = Table(title=f"Optimum: {best['sense']} {best['objective']} = "
+                            f"{number(value.value)} {value.unit} ({best['evaluations']} "
+                            f"evaluations; {best['message']})", title_justify="left")
         table.add_column("parameter")
         table.add_column("value", justify="right")
-        for key, value in zip(result.parameters, best["x"]):
-            table.add_row(key, _g(value))
+        table.add_column("unit")
+        for key in result.parameters:
+            figure = figures[f"optimum_{identifier(key)}"]
+            table.add_row(key, number(figure.value), figure.unit)
         out.append(table)
     else:
         table = Table(title="Outputs over the variants that give them", title_justify="left")
         for name in ("output", "unit", "min", "max"):
             table.add_column(name, justify="left" if name in ("output", "unit") else "right")
         for name in result.outputs:
-            values = cols[name][np.isfinite(cols[name])]
-            table.add_row(name, result.units.get(name, ""),
-                          _g(values.min() if values.size else np.nan),
-                          _g(values.max() if values.size else np.nan))
+            table.add_row(name, units.get(name, ""), number(figures[f"min_{name}"].value),
+                          number(figures[f"max_{name}"].value))
         out.append(table)
     if result.pareto is not None:
         table = Table(title="Pareto front (non-dominated variants)", title_justify="left")
         names = ["variant", *result.parameters,
                  *(n for n, _ in result.spec.optimise["objectives"])]
         for name in names:
-            table.add_column(name, justify="right")
+            unit = units.get(name, "")
+            table.add_column(f"{name} [{unit}]" if unit and unit != "-" else name,
+                             justify="right")
         for i in np.flatnonzero(result.pareto):
-            table.add_row(*(_g(cols[n][i]) if n != "variant" else str(cols[n][i]) for n in names))
+            table.add_row(*(number(cols[n][i]) if n != "variant" else str(cols[n][i])
+                            for n in names))
         out.append(table)
     return out

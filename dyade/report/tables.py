@@ -7,11 +7,11 @@ from rich.table import Table
 
 from dyade.linkage.plan import Plan
 from dyade.linkage.verdicts import Outcome as Result
-from dyade.linkage.model import FRAME, Mechanism, Prismatic, Revolute
 from dyade.linkage.columns import Columns, unit_of
 from dyade import cycle
+from dyade.model.mechanism import FRAME, Mechanism, Prismatic, Revolute
 from dyade.roundoff import ROUNDOFF, is_roundoff
-from dyade.units import LENGTH_FACTORS
+from dyade.units import LENGTH_FACTORS, RAD_PER_S_TO_RPM
 
 FLAG = "1/0"  # the CSV/JSON unit of a flag column; tables say yes or no
 
@@ -109,11 +109,11 @@ def key_results(result: Result, cols: Columns, summary: dict, length_unit: str =
     self-locking and clearance peaks."""
     angle = cols["angle_deg"]
     mechanism = result.mechanism
-    rpm = abs(mechanism.crank.speed) * 60.0 / (2.0 * np.pi)
+    rpm = abs(mechanism.crank.speed) * RAD_PER_S_TO_RPM
     speed = f"at {rpm:g} rpm"
     motion = summary.get("motion")
     if motion is not None:  # the equation of motion sets the speed, not the file's rpm
-        speed = (f"at a mean {motion['speed_mean'] * 30.0 / np.pi:.4g} rpm (equation of "
+        speed = (f"at a mean {motion['speed_mean'] * RAD_PER_S_TO_RPM:.4g} rpm (equation of "
                  f"motion)" if motion["state"] == "steady" else "in a run-up from rest")
     table = Table(title=f"{mechanism.name}: {angle.size} crank positions "
                         f"{angle[0]:.1f}°–{angle[-1]:.1f}° {speed} — key results",
@@ -270,7 +270,7 @@ def motion_table(result: Result, summary: dict) -> Table | None:
     motion = summary.get("motion")
     if motion is None:
         return None
-    rpm = 30.0 / np.pi
+    rpm = RAD_PER_S_TO_RPM
     state = "steady state" if motion["state"] == "steady" else "run-up from rest"
     scope = "; speeds over the last revolution" if motion["state"] != "steady" else ""
     title = f"Crank speed from the equation of motion ({state}{scope})\nmotor: {motion['motor']}"

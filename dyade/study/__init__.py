@@ -110,7 +110,8 @@ class Study:
 
 def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
           output: str | os.PathLike | None = None, resume: bool = False,
-          block_size: int | None = None, progress=None) -> Study:
+          block_size: int | None = None, progress=None, max_memory: float | None = None,
+          check_time=None) -> Study:
     """Run a design study.
 
     Parameters
@@ -131,6 +132,15 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
         Variants per task (default: at least 0.1 s of work, every worker busy).
     progress : callable, optional
         ``progress(done, total)`` in variants, as the blocks come.
+    max_memory : float, optional
+        Bound on what the run may take [B] (default ``dyade.limits.MAX_MEMORY``): the
+        table and the sweeps of the variants under way at once, estimated from the
+        probe's outputs and refused (an ``InputError`` on ``max_memory``) before the
+        variants run.
+    check_time : callable, optional
+        ``check_time(seconds, what)`` hears the estimate of the whole run [s], from the
+        probe's time per variant, before the variants run; it may refuse it
+        (``dyade.analyses.base.Budget.time``).
 
     Returns
     -------
@@ -153,7 +163,6 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
     [1.0505, 1.0051]
     """
     from dyade.study import plans, questions, run
-    from dyade.study.evaluate import unit
 
     spec = file if isinstance(file, Spec) else read(file)
     if block_size is not None and not (isinstance(block_size, int) and block_size >= 1):
@@ -165,13 +174,20 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
     units = {"variant": "", "status": "", "reason": "",
              **{k: _file_unit(k, evaluator.data.get("units", {})) for k in params}}
     if spec.plan == "optimise":
-        return _optimise(spec, evaluator, params, units, jobs, executor)
+        return _optimise(spec, evaluator, params, units, jobs, executor, max_memory, check_time)
     matrix = plans.variants(spec)
     if not len(matrix):
         raise InputError(f"{spec.label}: the plan gives no variant.", source=spec.label)
     outputs, cost = run.probe(evaluator, matrix, nominal,
                               precise=(jobs > 1 or executor is not None) and block_size is None)
-    units.update({name: unit(name) for name in outputs})
+    workers = jobs if executor is None else max(jobs, 2)
+    bound(evaluator, nominal, len(matrix), len(params) + 3 + len(outputs),
+          jobs if executor is None else 0, max_memory)
+    if check_time is not None:
+        check_time(cost * len(matrix) / max(workers, 1),
+                   f"{spec.label}: {len(matrix):,} variants on {workers} "
+                   f"process{'es' * (workers != 1)}")
+    units.update({name: output_unit(name) for name in outputs})
     path = None if output is None else os.fspath(output)
     table, evaluated = run.execute(spec, evaluator, matrix, outputs, path, jobs=jobs,
                                    executor=executor, resume=resume, size=block_size,
@@ -188,10 +204,24 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
     return result
 
 
-def _optimise(spec, evaluator, params, units, jobs, executor) -> Study:
-    from dyade.study import questions, tables
-    from dyade.study.evaluate import unit
+def _optimise(spec, evaluator, params, units, jobs, executor, max_memory=None,
+              check_time=None) -> Study:
+    import time
 
+    from dyade.study import questions, tables
+
+    nominal = [p.nominal for p in spec.parameters]
+    started = time.perf_counter()
+    evaluator.one(nominal)  # the time of one evaluation, for the estimate
+    cost = time.perf_counter() - started
+    evaluator.calls -= 1
+    bound(evaluator, nominal, 1, len(params) + 3, jobs if executor is None else 0, max_memory)
+    if check_time is not None:
+        settings = spec.optimise
+        most = settings["popsize"] * len(params) * (settings["maxiter"] + 1)
+        workers = jobs if executor is None else max(jobs, 2)
+        check_time(cost * most / max(workers, 1),
+                   f"{spec.label}: at most {most:,} evaluations of the optimiser")
     pool = None
     if executor is not None:
         workers = executor.map
@@ -212,12 +242,54 @@ def _optimise(spec, evaluator, params, units, jobs, executor) -> Study:
             pool.shutdown()
     status, reason, out = evaluator.one(optimum["x"])
     outputs = list(out)
-    units.update({name: unit(name) for name in outputs})
+    units.update({name: output_unit(name) for name in outputs})
     names = tables.header(params, outputs)
     row = [0, *(float(v) for v in optimum["x"]), status, reason,
            *(float(out[n]) for n in outputs)]
     return Study(spec, params, outputs, tables.columns_of(names, [row]),
                  optimum["evaluations"], optimum=optimum, units=units)
+
+
+def output_unit(name: str) -> str:
+    """An output column's unit (``dyade.study.evaluate.unit``), degrees as °."""
+    from dyade.study.evaluate import unit
+
+    found = unit(name)
+    return "°" if found == "deg" else found
+
+
+TABLE_BYTES_PER_VALUE = 64
+"""[B] per value of a study's table: the rows as Python lists of floats, and the columns"""
+SWEEP_BYTES_PER_VALUE = 16
+"""[B] per column and position of a variant's sweep (measured: about 16 B for a stack of
+120 four-bars, the arrays and their intermediates)"""
+BASE_BYTES = 50 << 20
+"""[B] what a process of the study takes besides its sweeps (numpy and the modules)"""
+
+
+def bound(evaluator, nominal, variants: int, columns: int, processes: int,
+          max_memory: float | None) -> None:
+    """Refuse, before the variants run, a study whose table and sweeps under way would
+    take more than ``max_memory`` [B]: ``variants`` rows of ``columns``, and on each of
+    ``processes`` (0: on a cluster, not here) the sweep of a block of variants (a stack
+    of ``STACK`` where they are swept together)."""
+    from dyade.errors import InputError
+    from dyade.limits import check_memory
+    from dyade.linkage.options import column_count
+    from dyade.study.evaluate import STACK
+
+    need = TABLE_BYTES_PER_VALUE * variants * columns
+    try:
+        mechanism = evaluator.mechanism(nominal)
+    except InputError:  # a nominal the reader refuses: its row says so
+        mechanism = None
+    if mechanism is not None and processes:
+        stack = STACK if evaluator.stacks else 1
+        need += processes * (SWEEP_BYTES_PER_VALUE * column_count(mechanism)
+                             * mechanism.sweep.count * stack + BASE_BYTES)
+    check_memory(need, f"this study of {variants:,} variants"
+                       f"{f' ({processes} at a time)' if processes > 1 else ''}", max_memory,
+                 "Use fewer variants or processes")
 
 
 LENGTHS = {"length", "lengths", "centre", "points", "slider_length", "slider_height",

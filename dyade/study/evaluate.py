@@ -79,10 +79,11 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
         out["flywheel_inertia"] = size_flywheel(torque_curve(result.mechanism),
                                                 fluctuation).flywheel
     if "coupling" in extras:  # the elastic drive line's resonance (``[drive_line]``)
-        from dyade.linkage.line_model import natural_frequency
+        from dyade.linkage.drive import natural_frequency
+        from dyade.units import RAD_PER_S_TO_RPM
 
         line = natural_frequency(result.mechanism)
-        out.update(omega_bar=line.omega_bar, resonance_speed_rpm=line.omega_bar * 30.0 / math.pi,
+        out.update(omega_bar=line.omega_bar, resonance_speed_rpm=line.omega_bar * RAD_PER_S_TO_RPM,
                    speed_ratio=line.ratio)
     if "clearance" in extras:
         for check in s.get("clearance", []):
@@ -109,7 +110,7 @@ def figures(mechanism, angle_deg: np.ndarray, cols: dict[str, np.ndarray], force
     gives them."""
     from dyade import cycle
     from dyade.linkage import summary as figures_
-    from dyade.linkage.model import Revolute
+    from dyade.model.mechanism import Revolute
 
     out: dict[str, np.ndarray] = {}
 

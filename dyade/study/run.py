@@ -112,14 +112,15 @@ def execute(spec: Spec, evaluator: Evaluator, matrix: np.ndarray, outputs: list[
     names = tables.header(params, outputs)
     journal = tables.Journal(journal_path, names, resume, spec.label)
     rows = dict(journal.done)
-    for index, row in rows.items():  # the plan still gives these values?
+    for index, row in rows.items():  # the plan still gives these values (to the CSV's digits)?
         if index >= len(matrix) or any(
-                row[1 + j] != matrix[index, j] for j in range(len(params))):
+                not tables.same(row[1 + j], matrix[index, j]) for j in range(len(params))):
             journal.close()
             raise InputError(f"{spec.label}: resuming: variant {index} of {journal_path} has "
                              f"other parameter values than this plan gives (its seed, "
                              f"samples or parameters changed); remove the file or write "
                              f"elsewhere.", source=journal_path)
+        row[1:1 + len(params)] = matrix[index].tolist()  # the plan's own values
     todo = [i for i in range(len(matrix)) if i not in rows]
     workers = jobs if executor is None else max(jobs, 2)
     size = size or block_size(len(todo), cost, workers, STACK if evaluator.stacks else 1)

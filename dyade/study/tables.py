@@ -1,5 +1,7 @@
 """A study's table on disk: the CSV journal it streams to block by block (and reads
-back to resume), JSON, and Parquet with the units in the schema's metadata. Also
+back to resume), by the one cell rule of every CSV dyade writes
+(``dyade.analyses.base.cell``: 15 significant digits, an empty cell for a value not
+given, flags 1/0), and Parquet with the units in the schema's metadata. Also
 ``write_parquet`` for any named columns (``dyade analyse -o sweep.parquet``)."""
 
 from __future__ import annotations
@@ -7,10 +9,10 @@ from __future__ import annotations
 import csv
 import json
 import os
-from typing import Any
 
 import numpy as np
 
+from dyade.analyses.base import cell
 from dyade.errors import InputError
 
 TEXT = ("status", "reason")
@@ -21,17 +23,11 @@ def header(parameters: list[str], outputs: list[str]) -> list[str]:
     return ["variant", *parameters, "status", "reason", *outputs]
 
 
-def cell(value: Any) -> str:
-    """A number as the shortest text that reads back to the same float."""
-    if isinstance(value, str):
-        return value
-    return repr(float(value)) if not isinstance(value, (int, np.integer)) else str(value)
-
-
 class Journal:
     """The CSV a study streams to: a header, then one line per variant, a block at a
-    time, flushed; ``done``: the rows already there (``--resume``), as ``typed``
-    gives them. Without a path, nothing is written (the rows are the caller's)."""
+    time, flushed, each value by the one cell rule (``cell``); ``done``: the rows
+    already there (``--resume``), as ``typed`` gives them. Without a path, nothing is
+    written (the rows are the caller's)."""
 
     def __init__(self, path: str | None, names: list[str], resume: bool,
                  label: str = "study") -> None:
@@ -47,9 +43,8 @@ class Journal:
             self.handle = open(path, "a", newline="", encoding="utf-8")
         else:
             self.handle = open(path, "w", newline="", encoding="utf-8")
-            csv.writer(self.handle).writerow(names)
+            self.handle.write(line(names))
             self.handle.flush()
-        self.writer = csv.writer(self.handle)
 
     def _trim(self) -> None:
         """Cut a last line that an interruption left without its end."""
@@ -60,15 +55,25 @@ class Journal:
 
     def write(self, rows: list[list]) -> None:
         """Rows of typed values (the variant, the parameters, status and reason, the
-        outputs): each number as the shortest text that reads back to it (``cell``)."""
+        outputs), each value by the one cell rule (``cell``)."""
         if self.handle is None:
             return
-        self.writer.writerows([[cell(v) for v in row] for row in rows])
+        self.handle.write("".join(line(row) for row in rows))
         self.handle.flush()
 
     def close(self) -> None:
         if self.handle is not None:
             self.handle.close()
+
+
+def line(values) -> str:
+    """One CSV line of values by the one cell rule (``cell``)."""
+    return ",".join(cell(value) for value in values) + "\n"
+
+
+def same(written: float, value: float) -> bool:
+    """Whether a number read back from a CSV (15 significant digits) is ``value``'s."""
+    return cell(written) == cell(value)
 
 
 def typed(names: list[str], row: list[str]) -> list:
@@ -119,30 +124,6 @@ def columns_of(names: list[str], rows: list[list]) -> dict[str, np.ndarray]:
         else:
             out[name] = np.array(values, dtype=float)
     return out
-
-
-def write_csv(columns: dict[str, np.ndarray], path: str) -> None:
-    names = list(columns)
-    with open(path, "w", newline="", encoding="utf-8") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(names)
-        for i in range(len(next(iter(columns.values()))) if columns else 0):
-            writer.writerow([cell(columns[n][i]) for n in names])
-
-
-def write_json(columns: dict[str, np.ndarray], units: dict[str, str], path: str,
-               extra: dict[str, Any] | None = None) -> None:
-    def plain(values):
-        if values.dtype == object:
-            return list(values)
-        return [None if isinstance(v, float) and not np.isfinite(v) else v
-                for v in values.tolist()]
-
-    document = {"units": units, "columns": {n: plain(v) for n, v in columns.items()}}
-    document.update(extra or {})
-    with open(path, "w", encoding="utf-8") as handle:
-        json.dump(document, handle, indent=1, default=float)
-        handle.write("\n")
 
 
 def write_parquet(columns, units: dict[str, str], path: str,

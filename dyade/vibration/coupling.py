@@ -17,7 +17,12 @@ the true quadrant that the paper's arctan forms (10) lose. The transfer function
 normalised as in the paper: V_φ = |Φ|·(c1t + c2t), V_ψ = |Ψ|·c1t,
 V_q = |Q|·(c1t + c2t)/c2t, V_r = |Φ_r|·c1t; they equal eqs. (4), (7), (8), (9).
 The phasor form also keeps full accuracy near a lightly damped resonance, where the
-paper's Z = sqrt(W² − 2κN + κ²(1 + R²)) cancels.
+paper's Z = sqrt(W² − 2κN + κ²(1 + R²)) cancels. The coupling itself (its data and the
+figures that follow from them: ω_t, D, κ, η0) is ``dyade.model.coupling.Coupling``.
+
+>>> from dyade.model.coupling import Coupling
+>>> float(response(Coupling(1.0, 1.0, 1.0, 0.05, 0.05), [0.0]).transfer["V_phi"][0])
+2.0
 """
 
 from __future__ import annotations
@@ -26,80 +31,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.errors import InputError
 from dyade.arrays import FloatArray
+from dyade.errors import InputError
+from dyade.model.coupling import Coupling
+from dyade.units import RPM
 
 UNBOUNDED_RTOL = 1e-14  # [-] |denominator| below this share of its terms: exactly singular
-UNITS = {"inertia": "kg·m²", "c1": "N·m/rad", "c2": "N·m/rad", "b1": "N·m·s/rad",
-         "b2": "N·m·s/rad"}
-
-
-@dataclass(frozen=True, slots=True)
-class Coupling:
-    """The stiff coupling model (SI): J_K between c1t ∥ b1 (primary, excited) and
-    c2t ∥ b2 (secondary, held).
-
-    Examples
-    --------
-    >>> from dyade.vibration.coupling import Coupling, response
-    >>> coupling = Coupling(inertia=1.0, c1=1.0, c2=1.0, b1=0.05, b2=0.05)
-    >>> round(coupling.resonance(), 4)      # η0, eq. (5)
-    0.7067
-    >>> float(response(coupling, [0.0]).transfer["V_phi"][0])   # static: (c1 + c2)/c2
-    2.0
-    """
-
-    inertia: float
-    """J_K [kg·m²]"""
-    c1: float
-    """primary-side torsional stiffness c1t [N·m/rad]"""
-    c2: float
-    """secondary-side torsional stiffness c2t [N·m/rad]"""
-    b1: float
-    """primary-side damping b1 [N·m·s/rad]"""
-    b2: float
-    """secondary-side damping b2 [N·m·s/rad]"""
-
-    def __post_init__(self) -> None:
-        for name in ("inertia", "c1", "c2", "b1", "b2"):
-            value = getattr(self, name)
-            if not np.isfinite(value) or value < 0.0:
-                raise InputError.parameter(name, f"must be a non-negative number, got "
-                                                 f"{value:g}.", value=value, unit=UNITS[name])
-        if self.inertia <= 0.0:
-            raise InputError.parameter("inertia", f"must be positive [kg·m²], got "
-                                                  f"{self.inertia:g}.", value=self.inertia,
-                                       unit="kg·m²")
-        if self.c1 + self.c2 <= 0.0:
-            raise InputError.parameter(("c1", "c2"), "are both zero: the coupling has no "
-                                                     "stiffness, so no natural frequency ω_t and "
-                                                     "no tuning ratio η. Give c1 + c2 > 0.")
-        if self.c1 == 0.0 and self.b1 == 0.0:
-            raise InputError.parameter(("c1", "b1"), "are both zero: nothing carries the exciting "
-                                                     "moment to the coupling (the primary node "
-                                                     "would run away).")
-
-    @property
-    def natural_frequency(self) -> float:
-        """ω_t = sqrt((c1t + c2t)/J_K) [rad/s]"""
-        return float(np.sqrt((self.c1 + self.c2) / self.inertia))
-
-    @property
-    def damping_ratio(self) -> float:
-        """D = (b1 + b2)/(2·J_K·ω_t) [-] (the paper prints a square root here, a slip: D
-        is dimensionless only in this form)"""
-        return (self.b1 + self.b2) / (2.0 * self.inertia * self.natural_frequency)
-
-    @property
-    def kappa(self) -> float:
-        """κ = c1t/(c1t + c2t) [-]"""
-        return self.c1 / (self.c1 + self.c2)
-
-    def resonance(self) -> float | None:
-        """η0 of eq. (5) (the peak of V_φ); None when V_φ has no peak (η0² ≤ 0)."""
-        share2 = self.b2 / (self.b1 + self.b2) if self.b1 + self.b2 > 0 else 0.0
-        square = 1.0 - self.kappa - 2.0 * self.damping_ratio ** 2 * share2 ** 2
-        return float(np.sqrt(square)) if square > 0.0 else None
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
@@ -255,7 +192,7 @@ def operating_points(coupling: Coupling, speeds_rpm, *, order: float = 1.0) -> O
     if np.any(~np.isfinite(speeds) | (speeds <= 0)):
         raise InputError.parameter("speeds_rpm", "(operating speeds) must be positive [rpm].",
                                    unit="rpm")
-    omega = order * speeds * 2 * np.pi / 60
+    omega = order * speeds * RPM
     eta = omega / coupling.natural_frequency
     return OperatingPoints(speeds, float(order), eta, response(coupling, eta))
 

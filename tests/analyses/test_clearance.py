@@ -13,7 +13,7 @@ import pytest
 from click.testing import CliRunner
 
 import dyade
-from dyade.analyses import REGISTRY
+from dyade.registry import REGISTRY
 from dyade.analyses.base import jsonable
 from dyade.cli import main
 from dyade.errors import DyadeError, InputError
@@ -146,7 +146,7 @@ def test_a_simulation_is_estimated_before_it_starts():
 
 
 def test_options_that_do_not_apply_are_refused():
-    assert "--slope and --speed-rpm are for the standalone check" in run(
+    assert "--slope and --speed are for the standalone check" in run(
         DYADE_16, *DATA, "--slope", "1", code=2).output
     assert "--joint: for a check over a mechanism" in run(*PAPER_FLAGS, "--joint", "2,7",
                                                            code=2).output

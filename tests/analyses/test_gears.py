@@ -12,7 +12,7 @@ import pytest
 from click.testing import CliRunner
 
 import dyade
-from dyade.analyses import REGISTRY
+from dyade.registry import REGISTRY
 from dyade.analyses.base import jsonable
 from dyade.analyses.inputs import Text
 from dyade.cli import main

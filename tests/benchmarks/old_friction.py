@@ -11,9 +11,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.linkage import kinetostatics
 from dyade.linkage.kinematics import Group, Kinematics
-from dyade.linkage.model import CRANK, FloatArray, Joint, Mechanism, Revolute, toward_higher
+from dyade.model.mechanism import CRANK, Joint, Mechanism, Revolute, toward_higher
 
 AT_REST_RTOL = 1e-9  # [-] relative velocity below this share of the typical one counts as zero
 FORCE_FLOOR = 1e-12  # [-] share of the largest force below which changes are not relative

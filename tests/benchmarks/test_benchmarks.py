@@ -16,9 +16,9 @@ import pytest
 
 from dyade.linkage import sweep as analysis, friction, kinematics, kinetostatics
 from dyade import clearance
+from dyade.model.mechanism import Prismatic
 from dyade.vibration import coupling
 from dyade.files import mechanism as toml_input
-from dyade.linkage.model import Prismatic
 from tests import fixed_point
 from tests.benchmarks.yardstick import fourbar, slider_crank
 from tests.helpers import shipped

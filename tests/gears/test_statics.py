@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 import dyade
+from dyade.model.gears import mesh_frame, plane_of_action
 from dyade.vibration.gears.assembly import assemble
-from dyade.vibration.gears.model import mesh_frame, plane_of_action
 from tests.gears.drives import build, single_stage
 from tests.helpers import shipped
 
@@ -82,7 +82,7 @@ def test_unbalanced_torques_on_a_free_drive_are_refused():
 
 @pytest.mark.parametrize("hand, rotation", [(1, 1), (1, -1), (-1, 1), (-1, -1)])
 def test_the_plane_of_action_normal_is_unit_and_normal_to_the_tooth(hand, rotation):
-    from dyade.vibration.gears.model import Gear, Mesh
+    from dyade.model.gears import Gear, Mesh
 
     beta, alpha = math.radians(22.0), math.radians(20.0)
     gear = Gear("p", "b", 20, 0.004, alpha, beta, hand)

@@ -7,7 +7,7 @@ import os
 import click
 
 from dyade.cli.plot.output import figure_for, finish, output_options, single_target
-from dyade.cli.study import run, study_options
+from dyade.cli.study import solve, study_options
 
 
 @click.command("study")
@@ -23,8 +23,7 @@ from dyade.cli.study import run, study_options
                    "histograms and bars].")
 @study_options
 @output_options()
-def study_figure(study_file, table, x, y, outputs, jobs, scheduler, block_size, output, fmt,
-                 show, dpi) -> None:
+def study_figure(study_file, table, x, y, outputs, output, fmt, show, dpi, **options) -> None:
     """The figure of STUDY_FILE's question: a tolerance study's histograms with their
     limits, a sensitivity study's bars (% output per % parameter), the Pareto front of
     several objectives with the chosen design; otherwise an output against one
@@ -36,8 +35,8 @@ def study_figure(study_file, table, x, y, outputs, jobs, scheduler, block_size, 
     """
     name = f"{os.path.splitext(os.path.basename(study_file))[0]}-study"
     target, announce = single_target(output, fmt, show, dpi, name)
-    result = run(study_file, table, table is not None and os.path.exists(table), jobs,
-                 scheduler, block_size)
+    result = solve(study_file, options, table,
+                   table is not None and os.path.exists(table)).result
     from dyade.plot import study as figure
 
     for key in (x, y):

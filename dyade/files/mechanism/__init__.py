@@ -23,7 +23,7 @@ from dyade.errors import InputError
 from dyade.files.mechanism.editing import NUMBERING, dumps, edited, load_data
 from dyade.files.mechanism.reader import Reader
 from dyade.files.schema import set_dotted
-from dyade.linkage.model import Mechanism
+from dyade.model.mechanism import Mechanism
 
 __all__ = ["NUMBERING", "InputError", "Reader", "build", "dumps", "edited", "load_data",
            "read_mechanism", "set_dotted"]

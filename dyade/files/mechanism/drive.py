@@ -12,7 +12,7 @@ from dyade.files.schema import UnitReader, fmt, show
 from dyade.units import rpm_to_rad_per_s
 
 if TYPE_CHECKING:  # the motor models load only with a [drive] table
-    from dyade.machine.motor import Drive
+    from dyade.model.drive import Drive
 
 MOTOR_KEYS = {"constant": {"torque"},
               "asynchronous": {"rated_torque", "rated_speed_rpm", "synchronous_speed_rpm"},
@@ -27,8 +27,7 @@ class DriveReader(UnitReader):
 
     def drive(self, table: Any) -> Drive:
         """The [drive] table: motor characteristic, flywheel and integration settings."""
-        from dyade.machine.motor import (Asynchronous, ConstantTorque, Drive, Motor,
-                                         TorqueSpeedTable)
+        from dyade.model.drive import Asynchronous, ConstantTorque, Drive, Motor, TorqueSpeedTable
 
         self.keys(table, "drive", DRIVE_KEYS)
         kind = self.required(table, "motor", "drive")

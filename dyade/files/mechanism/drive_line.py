@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 from dyade.files.schema import UnitReader, show
 
 if TYPE_CHECKING:  # the drive line loads only with a [drive_line] table
-    from dyade.machine.motor import DriveLineData
+    from dyade.model.drive_line import DriveLineData
 
 DRIVE_LINE_KEYS = {"stiffness", "damping", "ratio", "rotor_inertia", "coupling", "steps"}
 
@@ -21,7 +21,7 @@ class DriveLineReader(UnitReader):
         """The [drive_line] table: a shaft (stiffness, damping) or a coupling file, the
         gear ratio and the motor's rotor inertia."""
         from dyade.errors import InputError
-        from dyade.machine.motor import DriveLineData
+        from dyade.model.drive_line import DriveLineData
 
         self.keys(table, "drive_line", DRIVE_LINE_KEYS)
         coupling = path = None

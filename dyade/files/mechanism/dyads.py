@@ -1,6 +1,6 @@
 """The dyads of a mechanism file: the [[dyad]] tables, their kind, links and outer joints
 A and C, and each kind's own keys and middle joint B (the file syntax of the kinds; their
-geometry and mechanics are in ``dyade.linkage.dyads``)."""
+data are ``dyade.model.dyad_kinds``, their closures ``dyade.linkage.dyads``)."""
 
 from __future__ import annotations
 
@@ -9,8 +9,9 @@ from typing import Any, Callable
 
 from dyade.files.mechanism.links import LinkReader
 from dyade.files.schema import show
-from dyade.linkage import dyads as dyad_kinds
-from dyade.linkage.model import Dyad, DyadKind, Prismatic, Revolute
+from dyade.model import dyad_kinds
+from dyade.model.dyad_kinds import DyadKind
+from dyade.model.mechanism import Dyad, Prismatic, Revolute
 
 DYAD_KEYS_COMMON = {"kind", "links", "A", "B", "C", "variant", "name"}
 MIDDLE_R_KEYS = {"pin_radius", "friction", "clearance"}
@@ -160,4 +161,4 @@ MIDDLE: dict[str, tuple[frozenset, Callable[..., Revolute | Prismatic]]] = {
     "PPR": (frozenset(), ppr_middle),
 }
 """kind name -> (keys of its [[dyad]] table beyond the common ones, the reader of its
-joint B); one entry per kind of ``dyade.linkage.dyads.REGISTRY``"""
+joint B); one entry per kind of ``dyade.model.dyad_kinds.KINDS``"""

@@ -7,7 +7,7 @@ from __future__ import annotations
 from typing import Any
 
 from dyade.files.schema import UnitReader, show
-from dyade.linkage.model import ClearanceData
+from dyade.model.mechanism import ClearanceData
 
 FRICTION_KEYS = {"coefficient", "tol", "max_iter", "pin_radius", "slider_length", "slider_height",
                  "edge_friction"}

@@ -9,10 +9,10 @@ from typing import Any
 
 import numpy as np
 
-from dyade.arrays import Variants
+from dyade.arrays import Variants, Vec
 from dyade.files.mechanism.friction import FrictionReader
 from dyade.files.schema import is_number, show, suggest
-from dyade.linkage.model import CRANK, FRAME, Crank, Dyad, Link, Prismatic, Revolute, Vec
+from dyade.model.mechanism import CRANK, FRAME, Crank, Dyad, Link, Prismatic, Revolute
 from dyade.units import rpm_to_rad_per_s
 
 FRAME_KEYS = {"points"}

@@ -8,9 +8,10 @@ from typing import Any
 
 import numpy as np
 
+from dyade.arrays import Vec
 from dyade.files.mechanism.links import LinkReader
 from dyade.files.schema import show
-from dyade.linkage.model import Link, Load, Spring, Vec
+from dyade.model.mechanism import Link, Load, Spring
 
 GRAVITY_KEYS = {"x", "y"}
 STANDARD_GRAVITY = 9.80665  # [m/s²]

@@ -14,7 +14,7 @@ from dyade.files.mechanism.dyads import DyadReader
 from dyade.files.mechanism.links import FRAME_KEYS
 from dyade.files.mechanism.loads import LoadReader
 from dyade.files.schema import fmt, show
-from dyade.linkage.model import CRANK, FRAME, Link, Mechanism, Sweep, sweep_problem
+from dyade.model.mechanism import CRANK, FRAME, Link, Mechanism, Sweep, sweep_problem
 
 TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
             "gravity", "load", "spring", "friction", "drive", "drive_line"}

@@ -10,9 +10,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from dyade.arrays import FloatArray, Vec
 from dyade.linkage.components import direction_xy, full, minus, plus, pose, rotate_xy
-from dyade.linkage.model import FRAME, FloatArray, Prismatic, Revolute, Vec
 from dyade.linkage.motion import Motion
+from dyade.model.mechanism import FRAME, Prismatic, Revolute
 
 SINGULAR_SIN = 1e-10  # [-] |sin μ| below this: the closure Jacobian is singular
 

@@ -10,7 +10,7 @@ from dyade.linkage.components import full
 from dyade.linkage.dyads.closure import (Closure, SINGULAR_SIN, carry, crossing, guide_line, pin,
                                          place_origin, same_pins)
 from dyade.linkage.motion import Motion
-from dyade.linkage.model import Dyad, DyadKind
+from dyade.model.mechanism import Dyad
 
 
 def close(dyad: Dyad, motion: Motion) -> Closure:
@@ -33,9 +33,3 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
     return Closure(sin >= SINGULAR_SIN, transmission, sin,
                    same_pins({2: (joint_c, j, (cx, cy))}),
                    {0: (dax, day), 1: (dbx, dby)})
-
-
-KIND = DyadKind(
-    5, "PPR", False, ("", ""), ("origin on guide A, ξ along the guide at A",
-                          "origin C, ξ along the guide at B"),
-    "guide A and guide B", "blocked position", close)

@@ -9,7 +9,7 @@ from dyade.linkage.components import full
 from dyade.linkage.dyads.closure import (Closure, SINGULAR_SIN, carry, crossing, ends, guide_line,
                                          place_origin, shift_line)
 from dyade.linkage.motion import Motion
-from dyade.linkage.model import Dyad, DyadKind
+from dyade.model.mechanism import Dyad
 
 
 def close(dyad: Dyad, motion: Motion) -> Closure:
@@ -32,8 +32,3 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
     transmission = np.arctan2(sin, full(motion, dax * dcx + day * dcy))
     return Closure(sin >= SINGULAR_SIN, transmission, sin, {},
                    {0: (dax, day), 2: (dcx, dcy)})
-
-
-KIND = DyadKind(
-    4, "PRP", False, ("", ""), ("origin B, ξ along the guide at A", "origin B, ξ along the guide at C"),
-    "guide A and guide C", "blocked position", close)

@@ -13,7 +13,7 @@ import numpy as np
 from dyade.linkage.components import direction_xy, full
 from dyade.linkage.dyads.closure import Closure, pin, place_origin, same_pins, turn
 from dyade.linkage.motion import Motion, rotate
-from dyade.linkage.model import Dyad, DyadKind
+from dyade.model.mechanism import Dyad
 
 
 def guide_offset(theta, kappa, guide_point, p_c, slider_point, p_s):
@@ -79,11 +79,3 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
     pins = same_pins({0: (joint_a, i, pins[i][0]), 2: (joint_c, j, pins[j][0])})
     return Closure(closes, np.arctan2(arm, c0), sin_mu, pins,
                    {1: direction_xy(joint_b, cos_c, sin_c)}, lever=rho)
-
-
-KIND = DyadKind(
-    3, "RPR", True, ("the guide direction points from the guide link's pivot towards the other "
-                     "link's pivot", "the guide direction points from the other link's pivot "
-                                     "towards the guide link's pivot"),
-    ("origin A, ξ along the guide at B", "origin C, ξ along the guide at B"),
-    "the normal of guide B and the line between the pivots", "dead centre", close)

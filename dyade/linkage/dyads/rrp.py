@@ -12,7 +12,7 @@ from dyade.linkage.dyads.closure import (Closure, carry, ends, guide_line, orien
                                          length as length_of,
                                          place_origin, same_pins, shift_line)
 from dyade.linkage.motion import Motion
-from dyade.linkage.model import FRAME, Dyad, DyadKind
+from dyade.model.mechanism import FRAME, Dyad
 
 
 def close(dyad: Dyad, motion: Motion) -> Closure:
@@ -52,10 +52,3 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
     sin /= length
     return Closure(closes, transmission, sin,
                    same_pins({0: (joint_a, i, (ax, ay))}), {2: (dx, dy)})
-
-
-KIND = DyadKind(
-    2, "RRP", True, ("B ahead of the foot point of A in the guide direction",
-                     "B behind the foot point of A in the guide direction"),
-    ("origin A, ξ towards B", "origin B, ξ along the guide at C"),
-    "B−A and the normal of guide C", "dead centre", close)

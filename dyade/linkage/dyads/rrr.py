@@ -7,7 +7,7 @@ import numpy as np
 
 from dyade.linkage.dyads.closure import Closure, difference, ends, length, orient, pin_xy
 from dyade.linkage.motion import Motion
-from dyade.linkage.model import Dyad, DyadKind
+from dyade.model.mechanism import Dyad
 
 
 def close(dyad: Dyad, motion: Motion) -> Closure:
@@ -44,9 +44,3 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
     transmission = np.arctan2(np.abs(sin), bax * bcx + bay * bcy)
     pins = {0: (ax, ay), 1: (ax + bax, ay + bay), 2: (cx, cy)}
     return Closure(closes, transmission, np.abs(sin) / (l_i * l_j), pins)
-
-
-KIND = DyadKind(
-    1, "RRR", True, ("B left of the directed line A→C", "B right of the directed line A→C"),
-    ("origin A, ξ towards B", "origin C, ξ towards B"),
-    "B−A and B−C (link i and link j at B)", "dead centre", close)

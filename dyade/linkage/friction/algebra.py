@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.linkage.model import FloatArray
+from dyade.arrays import FloatArray
 
 
 def combine(w0: FloatArray, rows: list[FloatArray], taus: list[FloatArray]) -> FloatArray:

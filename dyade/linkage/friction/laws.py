@@ -33,8 +33,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.linkage.kinematics import Group
-from dyade.linkage.model import FloatArray, Joint, Revolute
+from dyade.model.mechanism import Joint, Revolute
 
 AT_REST_RTOL = 1e-9  # [-] relative velocity below this share of the typical one counts as zero
 EDGE = 3.0  # [-] sum of the edge pressures of a linear distribution over L: 3·|M'|/L

@@ -7,12 +7,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.linkage import kinetostatics
 from dyade.linkage.friction.laws import AT_REST_RTOL, Law, has_friction
 from dyade.linkage.friction.result import FrictionResult, blocked, never_moves
 from dyade.linkage.friction.scales import Coupling, force_floor, sample, top_speed
 from dyade.linkage.kinematics import Group, Kinematics
-from dyade.linkage.model import CRANK, FloatArray, Joint, Mechanism, Revolute, toward_higher
+from dyade.model.mechanism import CRANK, Joint, Mechanism, Revolute, toward_higher
 
 
 class Rub:

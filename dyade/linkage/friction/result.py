@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from dyade.arrays import FloatArray
 from dyade.linkage import kinetostatics
 from dyade.linkage.friction.scales import Coupling
-from dyade.linkage.model import FloatArray
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==

@@ -10,8 +10,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.linkage.kinematics import Kinematics
-from dyade.linkage.model import CRANK, FloatArray
+from dyade.model.mechanism import CRANK
 
 FORCE_FLOOR = 1e-12  # [-] share of a typical force below which changes are not relative
 SAMPLE = 256  # the force floors are taken from about this many positions of the sweep

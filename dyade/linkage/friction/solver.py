@@ -42,13 +42,14 @@ import itertools
 
 import numpy as np
 
+from dyade.arrays import FloatArray
 from dyade.linkage.friction.algebra import apply, combine, determinant, dot, invert_small
 from dyade.linkage.friction.laws import Law
 from dyade.linkage.friction.passes import Rub, change_size, run
 from dyade.linkage.friction.result import FrictionResult
 from dyade.linkage.friction.scales import Coupling, force_size
 from dyade.linkage.kinematics import Group, Kinematics
-from dyade.linkage.model import FloatArray, Mechanism
+from dyade.model.mechanism import Mechanism
 
 COMPACT = 0.1  # [-] pass only the unsolved positions on once they are below this share
 RENEW_BELOW = 0.5  # [-] det below this: (I + K)⁻¹ renewed at every pass

@@ -37,7 +37,7 @@ import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.errors import InputError
-from dyade.vibration.gears.model import (
+from dyade.model.gears import (
     DOFS,
     FRAME,
     Body,

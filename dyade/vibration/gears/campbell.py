@@ -25,7 +25,7 @@ import numpy as np
 from dyade.arrays import FloatArray
 from dyade.errors import InputError
 from dyade.limits import BYTES_PER_VALUE, check_memory
-from dyade.vibration.gears.model import FRAME, GearDrive
+from dyade.model.gears import FRAME, GearDrive
 from dyade.vibration.gears.modes import Modes, coordinate_count, gear_modes
 
 

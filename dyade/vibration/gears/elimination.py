@@ -23,8 +23,8 @@ import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.errors import DyadeError
+from dyade.model.gears import GearDrive
 from dyade.vibration.gears.assembly import System, assemble
-from dyade.vibration.gears.model import GearDrive
 from dyade.vibration.gears.modes import Modes, gear_modes
 
 SEPARATION = 1e3  # [-] the smallest elastic |ω²| must exceed the largest "zero" this often

@@ -38,8 +38,8 @@ import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.limits import check_memory
+from dyade.model.gears import FRAME, GearDrive
 from dyade.vibration.gears.assembly import CATEGORY, System, assemble, transfer
-from dyade.vibration.gears.model import FRAME, GearDrive
 
 KERNEL_RTOL = 1e-9  # [-] singular values of the cluster constraint matrix below this share
 #                     of the largest: a motion nothing resists (rigid-body mode)

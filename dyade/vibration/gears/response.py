@@ -27,8 +27,8 @@ import numpy as np
 from dyade.arrays import FloatArray
 from dyade.errors import InputError
 from dyade.limits import BYTES_PER_VALUE, check_memory
+from dyade.model.gears import DOFS, FRAME, GearDrive, frame
 from dyade.vibration.gears.assembly import System, assemble
-from dyade.vibration.gears.model import DOFS, FRAME, GearDrive, frame
 from dyade.vibration.gears.modes import (Modes, NullSpace, gear_modes, multipliers, rigid_modes,
                                          sizeless)
 

@@ -13,7 +13,7 @@ Every body has a local frame (e1, e2, e3): e1 along its axis, e2 and e3 fixed by
 (ux, uy, uz, rx, ry, rz) along and about those axes, so its mass matrix is diagonal
 (m, m, m, J_x, J_y, J_z).
 
->>> from dyade.vibration.gears.model import Gear
+>>> from dyade.model.gears import Gear
 >>> gear = Gear("pinion", "shaft", teeth=20, module=0.004, pressure_angle=0.3490658503988659)
 >>> round(gear.pitch_radius, 6), round(gear.base_radius, 6)
 (0.04, 0.037588)

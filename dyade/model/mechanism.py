@@ -5,7 +5,7 @@ Bartke 1987); every joint is stated in the frames of the two links it joins. The
 reader (``dyade.files.mechanism``) turns the designer's per-kind description into these
 objects, so the engine never needs to know which link of a prismatic pair was written
 as guide and which as slider. The link frames of the two links a dyad places are part
-of its kind's description (``DyadKind.frames``; the kinds are in ``dyade.linkage.dyads``,
+of its kind's description (``DyadKind.frames``; the kinds are in ``dyade.model.dyad_kinds``,
 documented in ``docs/reference/mechanism-file.md``).
 """
 
@@ -13,15 +13,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Callable, NamedTuple, Union
+from typing import TYPE_CHECKING, Union
 
 import numpy as np
 
 from dyade.arrays import FloatArray, Vec
+from dyade.model.dyad_kinds import DyadKind
 
 if TYPE_CHECKING:
-    from dyade.machine.motor import Drive
-    from dyade.machine.motor import DriveLineData
+    from dyade.model.drive import Drive
+    from dyade.model.drive_line import DriveLineData
 
 FRAME = 1  # link number of the frame
 CRANK = 2  # link number of the crank
@@ -181,38 +182,6 @@ class Link:
         return bool(np.any(self.mass > 0.0) or np.any(self.inertia > 0.0))
 
 
-class DyadKind(NamedTuple):
-    """What dyade knows of a dyad kind: its geometry and mechanics (one per kind module
-    of ``dyade.linkage.dyads``, ``KIND``; the keys a mechanism file gives for it are read
-    by ``dyade.files.mechanism.dyads``)."""
-
-    number: int
-    """the paper's kind number ("Art") 1-5"""
-    name: str
-    """the joint pattern A-B-C: RRR, RRP, RPR, PRP, PPR"""
-    has_variant: bool
-    """two closures, chosen by the assembly variant ±1 (else one, variant 0)"""
-    variant_rules: tuple[str, str]
-    """what variant +1 and what variant −1 mean (empty without a variant)"""
-    frames: tuple[str, str]
-    """the link frames of links i and j (origin, ξ axis)"""
-    transmission: str
-    """the two directions whose angle is the transmission angle μ"""
-    singular: str
-    """what μ = 0° or 180° is called: "dead centre" or "blocked position" """
-    close: Callable
-    """close(dyad, motion) -> Closure (``dyade.linkage.dyads.closure``)"""
-
-    def variant_rule(self, variant: int) -> str:
-        """What assembly variant ``variant`` (±1) means ("" without a variant)."""
-        return self.variant_rules[0 if variant > 0 else 1] if variant else ""
-
-    @property
-    def cannot_close(self) -> str:
-        """How a failed closure is said."""
-        return "is blocked" if self.singular == "blocked position" else "cannot close"
-
-
 @dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Dyad:
     """A two-link group: links i, j placed by joints A (i–g), B (i–j), C (j–h)."""
@@ -220,7 +189,8 @@ class Dyad:
     number: int
     """k in the paper: the crank is dyad 1, the first file dyad is 2."""
     kind: DyadKind
-    """The dyad kind (``dyade.linkage.dyads``): number 1-5, name RRR … PPR, closure."""
+    """The dyad kind (``dyade.model.dyad_kinds``): number 1-5, name RRR … PPR; its
+    closure is the engine's (``dyade.linkage.dyads``)."""
     links: tuple[int, int]
     known: tuple[int, int]
     """(g, h): the already-placed links that A and C attach to."""
@@ -327,7 +297,7 @@ class Mechanism:
     link 2's inertia); None: the crank turns at its constant speed."""
     drive_line: DriveLineData | None = None
     """The elastic element between motor and crank of a ``[drive_line]`` table
-    (``dyade.machine.drive_line``); None: a rigid drive."""
+    (``dyade.model.drive_line``); None: a rigid drive."""
     max_memory: float | None = None
     """The bound [B] on what one run may take (``dyade.limits``; None: its default), set
     by ``analyse``'s ``max_memory``: the [drive]'s equation of motion checks it too."""

@@ -1,0 +1,241 @@
+"""``study``: many variants of one mechanism file, one row each (``dyade.study``).
+
+The Outcome's columns are the study's table: one row per variant, the parameters (by
+their ``--set`` key paths, in the mechanism file's units), ``status`` and ``reason``,
+then the outputs (SI, angles in degrees). Its summary holds the answers of the study
+file's question with their units: the counts of the variants by status; the least and
+largest value of each output (a plain table), the statistics and the probabilities of
+failure (tolerance), the sensitivities (d output/d parameter and normalised), the optimum
+or the Pareto front. Its notes say which variants gave no outputs and why.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from typing import Any
+
+from dyade.analyses.base import Analysis, Budget, Option, Outcome
+
+OPTIONS = (
+    Option("jobs", int, default=1, metavar="N", study=False,
+           help="Run the variants on N processes (0: all cores); the same table as one "
+                "process gives"),
+    Option("scheduler", str, metavar="ADDRESS", study=False,
+           help="Run the blocks on a Dask distributed cluster instead (tcp://host:8786; needs "
+                "pip install \"dyade[dask]\")"),
+    Option("block-size", int, positive=True, metavar="N", study=False,
+           help="Variants per task  [default: at least 0.1 s of work, every worker busy]"),
+    Option("journal", str, metavar="FILE", study=False,
+           help="A CSV the rows stream to, block by block, as they are computed"),
+    Option("resume", bool, study=False,
+           help="Keep the rows already in the journal (an interrupted study) and compute only "
+                "the others"),
+)
+
+STATUS_WORDS = {"ok": "ok", "locks": "self-lock", "does not close": "do not close",
+                "refused": "were refused", "failed": "failed"}
+"""a variant's status -> the words of a note on the variants with it"""
+STATUS_NAMES = {"ok": "ok", "locks": "locks", "does not close": "not_closing",
+                "refused": "refused", "failed": "failed"}
+"""a variant's status -> its count's figure (``variants_NAME``)"""
+STATISTICS = ("mean", "sd", "p1", "p5", "p50", "p95", "p99", "min", "max")
+"""the tolerance statistics of every output, each a figure ``STAT_OUTPUT``"""
+
+
+def identifier(key: str) -> str:
+    """A key path as a figure's name: ``dyad.2.lengths.1`` -> ``dyad_2_lengths_1``."""
+    return re.sub(r"\W", "_", key)
+
+
+def ratio_unit(top: str, bottom: str) -> str:
+    """The unit of a derivative: ``N·m`` per ``mm`` -> ``N·m/mm``."""
+    top = "" if top == "-" else top
+    bottom = "" if bottom == "-" else bottom
+    if not bottom:
+        return top or "-"
+    return f"{top or '1'}/{bottom}"
+
+
+def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    from dyade.errors import InputError
+    from dyade.study import study as run_study
+    from dyade.study.spec import Spec, read
+
+    jobs = options["jobs"]
+    if jobs < 0:
+        raise InputError.parameter("jobs", f"must be 0 (every core) or more, got {jobs}.",
+                                   value=jobs)
+    if options.get("resume") and not options.get("journal"):
+        raise InputError.parameter("resume", "needs the journal: the CSV of the interrupted "
+                                             "run.")
+    spec = source if isinstance(source, Spec) else read(source)
+    client = connect(options["scheduler"]) if options.get("scheduler") else None
+    try:
+        result = run_study(spec, jobs=jobs if jobs > 0 else (os.cpu_count() or 1),
+                           executor=None if client is None else client.get_executor(),
+                           output=options.get("journal"), resume=bool(options.get("resume")),
+                           block_size=options.get("block_size"), progress=budget.progress,
+                           max_memory=budget.max_memory, check_time=budget.time)
+    except InputError as err:
+        raise err.naming({"max_memory": "max_memory_mb"}) from None
+    finally:
+        if client is not None:
+            client.close()
+    return outcome_of(result)
+
+
+def connect(address: str):
+    """A Dask client of the scheduler at ``address``; an InputError on ``scheduler``
+    when it does not answer within 5 s."""
+    from dyade.errors import InputError
+    from dyade.study import needs
+
+    needs("distributed", "scheduler", extra="dask")
+    import logging
+
+    from distributed import Client
+
+    logging.getLogger("distributed").setLevel(logging.CRITICAL)
+    reachable(address)
+    try:
+        return Client(address, timeout="5s")
+    except (OSError, TimeoutError, ValueError) as err:
+        raise InputError.parameter("scheduler", f"{address}: no Dask scheduler answers there "
+                                                f"({err}).", value=address) from None
+
+
+def reachable(address: str, timeout: float = 3.0) -> None:
+    """Refuse at once a tcp:// address where nothing listens (Dask's client would try
+    again until its timeout)."""
+    import socket
+
+    from dyade.errors import InputError
+
+    if not address.startswith("tcp://"):
+        return
+    host, _, port = address[len("tcp://"):].rpartition(":")
+    try:
+        number = int(port.strip("/"))
+    except ValueError:
+        raise InputError.parameter("scheduler", f"{address}: give tcp://HOST:PORT.",
+                                   value=address) from None
+    try:
+        socket.create_connection((host.strip("[]"), number), timeout=timeout).close()
+    except OSError as err:
+        raise InputError.parameter("scheduler", f"{address}: no Dask scheduler answers there "
+                                                f"({err.strerror or err}).",
+                                   value=address) from None
+
+
+def outcome_of(result) -> Outcome:
+    """A ``Study`` (``dyade.study``) as an Outcome: its table as the columns, its answers
+    as the summary, the variants without outputs as notes."""
+    import numpy as np
+
+    spec, cols, units = result.spec, result.columns(), result.units
+    descriptions = {"variant": "the variant's number in the plan",
+                    "status": "ok, locks, does not close, refused or failed",
+                    "reason": "why a variant gives no outputs, or which joint self-locks"}
+    descriptions.update({key: f"the parameter {key}, as --set takes it"
+                         for key in result.parameters})
+    outcome = Outcome("study", columns=cols, units={name: units.get(name, "") for name in cols},
+                      descriptions=descriptions, result=result,
+                      meta={"study": spec.label, "mechanism": spec.mechanism,
+                            "plan": spec.plan, "question": spec.question,
+                            "evaluations": result.evaluations})
+    add = outcome.add
+    status = np.asarray(cols["status"])
+    count = len(status)
+    add("variants", count, "-", description="variants")
+    for name, figure in STATUS_NAMES.items():
+        given = int(np.sum(status == name))
+        if given or name == "ok":
+            add(f"variants_{figure}", given, "-", description=f"variants: {name}")
+    for name, words in STATUS_WORDS.items():
+        where = np.flatnonzero(status == name)
+        if name != "ok" and where.size:
+            first = int(where[0])
+            reason = str(cols["reason"][first]).rstrip(".")
+            because = f": {reason}" if reason else ""
+            outcome.notes.append(f"{where.size} of {count} variants {words} (the first, variant "
+                                 f"{int(cols['variant'][first])}{because}).")
+    if result.sensitivity is not None:
+        sensitivities(outcome, result)
+    elif result.tolerance is not None:
+        tolerance(outcome, result)
+    elif result.optimum is not None:
+        optimum(outcome, result)
+    else:
+        for name in result.outputs:
+            values = np.asarray(cols[name], dtype=float)
+            finite = np.flatnonzero(np.isfinite(values))
+            for end, pick in (("min", np.argmin), ("max", np.argmax)):
+                k = int(finite[pick(values[finite])]) if finite.size else None
+                add(f"{end}_{name}", None if k is None else float(values[k]), units.get(name, ""),
+                    where=None if k is None else {"variant": int(cols["variant"][k])},
+                    description=f"{'least' if end == 'min' else 'largest'} {name} over the "
+                                f"variants that give it")
+    if result.pareto is not None:
+        front = [int(v) for v in np.asarray(cols["variant"])[result.pareto]]
+        add("pareto_variants", front, "-", description="the non-dominated variants")
+    return outcome
+
+
+def sensitivities(outcome: Outcome, result) -> None:
+    """d output/d parameter and its normalised form, per output and parameter."""
+    units = result.units
+    zero = False
+    for row in result.sensitivity:
+        output, key = row["output"], row["parameter"]
+        place = {"parameter": key, "output": output, "nominal": row["nominal"],
+                 "step": row["step"]}
+        outcome.add(f"d_{output}_d_{identifier(key)}", row["derivative"],
+                    ratio_unit(units.get(output, ""), units.get(key, "")), where=place,
+                    description=f"d {output}/d {key} (central differences)")
+        outcome.add(f"sensitivity_{output}_{identifier(key)}", row["normalised"], "-",
+                    where=place, description=f"{output} per {key}, normalised (% per %)")
+        zero = zero or math.isnan(row["normalised"])
+    if zero:
+        outcome.notes.append("the normalised sensitivity of an output that is numerically zero "
+                             "at the nominal variant is not given.")
+
+
+def tolerance(outcome: Outcome, result) -> None:
+    """The statistics of every output and the probabilities of failure."""
+    tol, units = result.tolerance, result.units
+    for name, stats in tol["outputs"].items():
+        for stat in STATISTICS:
+            outcome.add(f"{stat}_{name}", stats[stat], units.get(name, ""),
+                        description=f"{name}: {stat} over the {stats['count']} variants that "
+                                    f"give it")
+    limits = tol.get("limits", {})
+    words = {"no_closure": "does not close", "refused": "is refused",
+             "self_locks": "self-locks",
+             "joint_force_above": f"has a joint force above {limits.get('joint_force', 0):g} N",
+             "transmission_below": f"has a transmission angle below "
+                                   f"{limits.get('transmission_deg', 0):g}°"}
+    for name, share in tol["probability"].items():
+        outcome.add(f"probability_{name}", share, "-",
+                    description=f"share of the variants that {words.get(name, name)}")
+
+
+def optimum(outcome: Outcome, result) -> None:
+    """The optimum of one objective: its value where it occurs, the parameters there."""
+    best, units = result.optimum, result.units
+    place = dict(zip(result.parameters, best["x"]))
+    name = best["objective"]
+    outcome.add(f"optimum_{name}", best["value"], units.get(name, ""), where=place,
+                description=f"{best['sense']} {name} (differential evolution)")
+    for key, value in place.items():
+        outcome.add(f"optimum_{identifier(key)}", value, units.get(key, ""),
+                    description=f"{key} at the optimum")
+    outcome.add("evaluations", best["evaluations"], "-", description="evaluations of the "
+                                                                       "optimiser")
+    if not best.get("success", True):
+        outcome.notes.append(f"the optimiser did not converge: {best['message']}.")
+
+
+ENTRIES = {"study": Analysis("study", "A design study: many variants of one mechanism file",
+                             run, OPTIONS, source="study", command="dyade study")}
