@@ -266,7 +266,7 @@ def run_peak(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     worst = max(rows, key=lambda row: row["F_max"])
     where = {"speed_rpm": worst["speed_rpm"]} if speeds else None
     outcome.add("F_max", worst["F_max"], "N", where=where,
-                description="peak force F12max = c·s·f(τ)" + (" (the largest)" if speeds else ""))
+                description="peak force F12max = c·s·f(τ)" + (" (the largest)" * bool(speeds)))
     outcome.add("tau", worst["tau"], "-", where=where, description="τ = ω·t1 there, eq. (23)")
     if simulate:
         outcome.add("F_sim", worst["F_sim"], "N", where=where,

@@ -44,12 +44,13 @@ CHECK = Option("check", bool, study=False,
                help="Solve the paper's eliminated form (eqs. (27)–(33)) beside the "
                     "null-space solution: its frequencies, their relative difference and its "
                     "extra zero eigenvalues (one per mesh)")
-SPEED_RANGE = Option("speed-range", str, "rpm", metavar="START:STOP:STEP",
+SPEED_RANGE = Option("speed-range", str, "rpm", metavar="START:STOP:STEP", old=("--campbell",),
                      help="Input speeds of the Campbell diagram (default: 0 to 1.5 × the "
                           "file's [speed] rpm, in 200 steps)")
 HARMONICS = Option("harmonics", int, default=3, metavar="N",
                    help="Tooth-mesh harmonics in the Campbell diagram")
 FREQUENCY_RANGE = Option("frequency-range", str, "Hz", metavar="START:STOP:STEP",
+                         old=("--response",),
                          help="Frequencies of the forced response to the file's excitations "
                               "(harmonic torques, transmission errors)")
 DOF = Option("dof", str, multiple=True, metavar="BODY.DOF",
