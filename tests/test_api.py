@@ -152,13 +152,17 @@ def test_summary_gives_plain_numbers_and_angles_at_the_sweeps_resolution():
     leaves = list(walk(summary))
     assert all(type(v) in (str, int, float, bool, type(None)) for _, v in leaves), \
         {type(v) for _, v in leaves}
-    where = [v for k, v in leaves if k.endswith("at_deg") and v is not None]
-    assert where and all(v == round(v, 1) and round(2 * v) == 2 * v for v in where)
+    outcome = dyade.run("sweep", mechanism, step_deg=0.5)  # the same figures, with where
+    where = [figure.where["angle_deg"] for figure in outcome.summary.values() if figure.where]
+    assert where and all(type(v) is float for v in where)
+    assert all(v == round(v, 1) and round(2 * v) == 2 * v for v in where)
+    assert {name: figure.value for name, figure in outcome.summary.items()} == summary
     # the extremes are where the columns say
     cols = dyade.analyse(mechanism, step_deg=0.5).columns()
     k = int(np.nanargmax(cols["M_drive"]))
-    assert summary["columns"]["M_drive"]["max_at_deg"] == round(float(cols["angle_deg"][k]), 1)
-    assert summary["columns"]["M_drive"]["max"] == float(cols["M_drive"][k])
+    assert outcome.summary["M_drive_max"].where == {
+        "angle_deg": round(float(cols["angle_deg"][k]), 1)}
+    assert summary["M_drive_max"] == float(cols["M_drive"][k])
 
 
 def test_assembly_error_names_the_parameter_and_the_cli_the_flag(tmp_path):
@@ -212,9 +216,13 @@ def test_summary_matches_the_columns():
     cols = result.columns()
     summary = result.summary()
     torque = cols["M_drive"]
-    assert summary["drive"]["M_max"] == np.nanmax(torque)
+    assert summary["M_drive_max"] == np.nanmax(torque)
+    assert summary["M_drive_min"] == np.nanmin(torque)
     k = int(np.nanargmin(torque))
-    assert summary["columns"]["M_drive"]["min_at_deg"] == cols["angle_deg"][k]
+    figure = dyade.run("sweep", result.mechanism).summary["M_drive_min"]
+    assert figure.value == summary["M_drive_min"] and figure.where == {
+        "angle_deg": cols["angle_deg"][k]}
+    assert summary["F_shake_max"] == np.nanmax(np.hypot(cols["Fx_shake"], cols["Fy_shake"]))
 
 
 def test_coupling_errors_name_parameters_flags_or_file_keys(tmp_path):

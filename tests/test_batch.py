@@ -97,15 +97,15 @@ def test_json_has_the_csv_names_summary_and_warnings():
     names = run("analyse", shipped("self-locking.toml"), "--format", "csv").stdout.splitlines()[0]
     for name in names.split(","):
         assert name in obj["columns"] and len(obj["columns"][name]) == 361
-    assert obj["summary"]["self_locking"]["1_4"]["locks"] is True
-    assert any("locks" in w for w in obj["warnings"])
+    assert obj["summary"]["locks_1_4"] == {"value": True, "unit": "-"}
+    assert any("locks" in note for note in obj["notes"])
     clearance = json.loads(run("clearance", "--mass", 3.6, "--stiffness", 1e7, "--clearance",
                                1e-4, "--slope", 360000, "--format", "json").stdout)
     assert clearance["columns"]["F_max"][0] == pytest.approx(2181.89, abs=0.01)
     coupling = json.loads(run("coupling", "--J", 1, "--c1", 1, "--c2", 1, "--eta-range",
                               "0:2:0.70710678118654752", "--format", "json").stdout)
     assert coupling["columns"]["V_phi"][1] is None
-    assert coupling["summary"]["eta0"] == pytest.approx(2 ** -0.5)
+    assert coupling["summary"]["eta0"]["value"] == pytest.approx(2 ** -0.5)
 
 
 @pytest.mark.parametrize("args", [

@@ -376,8 +376,9 @@ def test_a_sweep_locked_throughout_gives_no_drive_torque_and_no_warning(fmt):
     assert result.exit_code == 0, result.output
     assert "RuntimeWarning" not in result.output and "locks (self-locking)" in result.output
     if fmt == "json":
-        drive = json.loads(result.stdout)["summary"]["drive"]
-        assert drive["M_max"] is None and drive["M_min"] is None
+        summary = json.loads(result.stdout)["summary"]
+        assert summary["M_drive_max"]["value"] is None and summary["M_drive_min"]["value"] is None
+        assert "where" not in summary["M_drive_max"]
 
 
 @pytest.mark.parametrize("passes", [1, 2, 7])

@@ -63,12 +63,19 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     import numpy as np
 
     from dyade.analyses.machine import none_given, sweep_seconds
+    from dyade.errors import InputError
     from dyade.linkage import accuracy as engine
+    from dyade.linkage.options import check_size
     from dyade.linkage.plan import plan
     from dyade.linkage.sweep import analyse_si
 
     mechanism = load(source, options).mechanism
     repeats = options["repeats"]
+    finest = int(round(360 / engine.STEPS_DEG[-1])) + 1
+    try:  # the largest sweep of the studies, before any
+        check_size(mechanism, max(finest, mechanism.sweep.count), budget.max_memory)
+    except InputError as err:
+        raise err.naming({"max_memory": "max_memory_mb"}) from None
     # the first setting, run once before the studies: what is given, and the time
     coarse = engine.STEPS_DEG[0]
     angles = mechanism.sweep.start + np.deg2rad(coarse) * np.arange(int(round(360 / coarse)) + 1)

@@ -134,8 +134,11 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         if peak is None:
             add(f"{name}_max", None, "-", description=f"peak of {name} (not defined)")
         else:
-            add(f"{name}_max", peak[0], "-", where={"eta": peak[1]},
-                description=f"peak of {name} (in the range)")
+            unbounded = math.isinf(peak[0])
+            add(f"{name}_max", None if unbounded else peak[0], "-", where={"eta": peak[1]},
+                description=f"peak of {name} ({'unbounded' if unbounded else 'in the range'})")
+            add(f"{name}_unbounded", unbounded, "-",
+                description=f"  {name} unbounded (undamped resonance)")
     if operating is not None:
         add("order", operating.order, "-", description="excitation order")
         for k, speed in enumerate(operating.speeds_rpm.tolist()):

@@ -1,25 +1,37 @@
-"""``dyade describe``: a mechanism file in assembly order."""
+"""``dyade describe``: a mechanism file in assembly order; the registry's ``describe``
+entry (``dyade.analyses.describe``)."""
 
 from __future__ import annotations
 
 import click
 
-from dyade.cli import main
-from dyade.cli.common import load
-from dyade.cli.options import MECHANISM_FILE, set_option
-from dyade.cli.output import show
+from dyade.analyses.describe import ENTRIES
+from dyade.cli import contract, main
+from dyade.cli.options import MECHANISM_FILE
+
+ENTRY = ENTRIES["describe"]
 
 
 @main.command()
 @click.argument("mechanism_file", type=MECHANISM_FILE)
-@set_option
-def describe(mechanism_file: str, assignments: tuple[str, ...]) -> None:
+@contract.declare(ENTRY)
+@click.option("--format", "fmt", type=click.Choice(["table", "json"]), default="table",
+              show_default=True, help="json: the plan and the mechanism's figures "
+                                      "(docs/reference/json.md).")
+@click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True),
+              help="Write to this file instead of standard output.")
+def describe(mechanism_file: str, fmt: str, output: str | None, **options) -> None:
     """Show MECHANISM_FILE in assembly order: crank, dyads, joints, link points, mobility,
     and which effects an analysis will simulate."""
-    from dyade.linkage.plan import plan
-    from dyade.report import describe as report
-    from dyade.report import tables
+    from dyade.analyses.inputs import Text
 
-    mechanism = load(mechanism_file, assignments).mechanism
-    the_plan = plan(mechanism)
-    show([report.describe(mechanism, the_plan, tables.skipped(the_plan))])
+    source = Text(click.get_text_stream("stdin").read()) if mechanism_file == "-" \
+        else mechanism_file
+    outcome = contract.run(ENTRY, source, options)
+    tables = None
+    if fmt == "table":
+        from dyade.report import describe as report
+
+        tables = [report.describe(outcome)]
+    contract.emit(outcome, fmt, output, tables)
+    contract.notes(outcome)

@@ -1,129 +1,143 @@
-"""The writers of `dyade analyse`: a sweep computed block by block (``streamed``) and
-written as CSV rows as they come, or as JSON or tables from a spool of its columns
-(``write``), each as a ``dyade.cli.analyse.Job`` describes it."""
+"""The writers of `dyade analyse`: the ``sweep`` entry (``dyade.analyses.sweep``) run
+block by block, its CSV rows written as they come (the one writer,
+``report.csv_rows.Writer``), its JSON (``Outcome.to_document``), Parquet or tables
+from its Outcome, whose columns wait in a ``Spool`` on disk; each as a
+``dyade.cli.analyse.Job`` describes it."""
 
 from __future__ import annotations
 
-import itertools
 import os
 import sys
 from collections.abc import Mapping
+from contextlib import contextmanager
 
-from dyade.cli.common import options_named, warn
 from dyade.cli.output import atomic, progress, show, write_json
 
 
-def write(job, result, every, cols, output: str | None, loaded, summarise) -> None:
-    """The CSV, the JSON document or the tables of a sweep's outcome (``result``) as
-    ``job`` (``analyse.Job``) asks: ``every`` its columns, ``cols`` those chosen,
-    ``summarise()`` its summary (of every column)."""
-    mechanism = result.mechanism
-    if job.fmt == "csv":
-        from dyade.report import csv_rows
+@contextmanager
+def named(entry):
+    """Errors of the entry named as the command line gives its options: its flags for
+    API names, in the message's text too (``start_deg`` is ``--start``, the API's
+    ``crank_angle_deg=[...]`` is ``--at DEG``); a mechanism that closes over part of the
+    sweep suggests --allow-partial."""
+    from dyade.cli.contract import flags
+    from dyade.errors import AssemblyError, InputError
 
-        if output:
-            with atomic(output) as handle:
-                csv_rows.write(cols, handle)
+    names = flags(entry)
+    try:
+        yield
+    except InputError as err:
+        if not err.parameters:
+            raise
+        import re
+
+        named = err.naming(names)
+        text = str(named)
+        if str(err).startswith(", ".join(err.parameters) + ": "):  # "a, b: reason"
+            text = f"{' and '.join(named.parameters)}: {named.reason}"
+        text = re.sub(r"crank_angle_deg=\[\.\.\.\]|at_deg=\[\.\.\.\]", "--at DEG", text)
+        text = re.sub(r"\b(" + "|".join(map(re.escape, names)) + r")\b",
+                      lambda match: names[match.group(1)], text)
+        out = InputError(text, key=named.key, value=named.value, unit=named.unit,
+                         reason=named.reason)
+        out.parameters = named.parameters
+        raise out from None
+    except AssemblyError as err:
+        if not err.partial:
+            raise
+        raise AssemblyError("; ".join(err.problems) + ". Change the dimensions or the "
+                            "sweep, or use --allow-partial to analyse only where it "
+                            "closes.", err.problems, err.partial) from None
+
+
+def streamed(job, source, path: str, output: str | None) -> None:
+    """The sweep of ``source`` block by block as ``job`` (``analyse.Job``) asks: CSV rows
+    written as soon as they are computed; for JSON, Parquet and the tables the blocks go
+    to a ``Spool`` on disk, from which the summary and every writer take one column at a
+    time. Nothing is written where no position has its kinematics given (exit 1, saying
+    why); with --fail-on-lock the output is written, then exit 1 where it self-locks."""
+    from dyade.analyses.base import budget
+    from dyade.analyses.sweep import ENTRIES, Sweep, refuse_lock
+
+    label = os.path.basename(path)
+    entry = ENTRIES["sweep"]
+    with named(entry), progress(f"{label}: analysing") as tick:
+        checked = entry.checked(job.options)
+        sweep = Sweep(source, checked, budget(checked, progress=tick,
+                                              told=lambda text: say(text)))
+        names = job.chosen(sweep.first)  # a wrong --columns fails before any output
+        if job.fmt == "csv":
+            outcome = write_csv(sweep, names, output)
         else:
-            csv_rows.write(cols, sys.stdout)
-    elif job.fmt == "parquet":
-        from dyade.linkage.columns import unit_of
-        from dyade.study.tables import write_parquet
-
-        write_parquet(cols, {name: unit_of(name) for name in cols}, output,
-                      {"dyade.mechanism": mechanism.name, "dyade.source": loaded.label})
-    elif job.fmt == "json":
-        from dyade.linkage.columns import unit_of
-        from dyade.report.document import document
-        from dyade.report.effects import with_effects
-        from dyade.report.notes import say
-
-        write_json(document("analyse", cols, {name: unit_of(name) for name in cols},
-                            selected_summary(with_effects(summarise(), result.plan), cols),
-                            [say(note, mechanism) for note in result.notes],
-                            mechanism=mechanism.name, source=loaded.label,
-                            positions=int(every["angle_deg"].size)), output)
-    else:
-        from dyade.report import tables
-
-        unit = mechanism.units[0] if job.units == "file" else "m"
-        summary = summarise() if result.drive is not None or not (
-            job.columns or job.show_all) else None
-        motion = (tables.motion_table(result, summary) if result.drive is not None
-                  else None)
-        if job.columns:
-            parts = [tables.sweep_summary(result, cols, unit)]
-        elif job.show_all:
-            parts = [tables.sweep_summary(result, cols, unit),
-                     tables.force_summary(result, cols), motion,
-                     tables.clearance_summary(result)]
-        else:
-            parts = [tables.key_results(result, cols, summary, unit), motion]
-        show(parts, output)
+            outcome = write(job, sweep, names, output)
+    warn(outcome.notes, f"{label}: " if output else "")
+    if job.fail_on_lock:
+        refuse_lock(outcome, "the mechanism self-locks (see the warning above); "
+                             "--fail-on-lock was given.")
 
 
-def streamed(job, mechanism, loaded, path: str, output: str | None) -> None:
-    """The sweep block by block (``dyade.analyse_in_blocks``) as ``job``
-    (``analyse.Job``) asks: CSV rows written as soon as they are computed; for JSON and
-    the tables the blocks go to a ``Spool`` on disk, from which the summary and the JSON
-    arrays take one column at a time."""
-    from dyade.linkage.sweep import analyse_in_blocks
+def write_csv(sweep, names: list[str], output: str | None):
+    """The CSV of a sweep under way, row by row as its blocks come (the blocks before
+    the first that gives a position are held back, on disk: a sweep that gives none
+    writes nothing); its Outcome (no summary)."""
     from dyade.report import csv_rows
 
-    with options_named():
-        run = analyse_in_blocks(mechanism, block_size=sys.maxsize if job.block_size == 0
-                                else job.block_size,
-                                allow_partial=job.allow_partial, friction_tol=job.friction_tol,
-                                friction_max_iter=job.friction_max_iter,
-                                max_memory=job.max_memory, dead_centre_deg=job.dead_centre,
-                                transmission_warning_deg=job.transmission_warning,
-                                constant_speed=job.constant_speed, run_up=job.run_up)
-        blocks = (block.columns for block in run)
-        with progress(f"{os.path.basename(path)}: checking the sweep",
-                      show=long_run(run)) as tick:
-            run.progress = tick
-            first = next(blocks)  # the assembly check fails here, before any output
-    names = list(job.chosen(first))  # a wrong --columns fails before any output
-
-    def analysing():
-        return progress(f"{os.path.basename(path)}: analysing", show=long_run(run))
-
-    def emit(handle) -> None:
+    held = None
+    started = False
+    with atomic(output or "-") as handle:
         writer = csv_rows.Writer(names, handle)
-        writer.header()
-        with analysing() as tick:
-            run.progress = tick
-            writer.rows(first)
-            for cols in blocks:
-                writer.rows(cols)
+
+        def start() -> None:
+            writer.header()
+            if held is not None:
+                for part in held.parts(names):
+                    writer.rows(part)
+                held.close()
+
+        for cols in sweep.blocks():
+            if not started and not cols["kinematics_valid"].any():
+                if held is None:
+                    from dyade.analyses.spool import Spool
+
+                    held = Spool(())
+                held.add(cols)
+                continue
+            if not started:
+                start()
+                started = True
+            writer.rows(cols)
+        outcome = sweep.outcome()  # refused here where no position is given
+        if not started:  # (a sweep that reports no position)
+            start()
         writer.close()
+    return outcome
 
-    if job.fmt != "csv":
-        from dyade.report.spool import Spool
 
-        with analysing() as tick:
-            run.progress = tick
-            spool = Spool(itertools.chain([first], blocks))
-        with spool:
-            from dyade.linkage.summary import summary
+def write(job, sweep, names: list[str], output: str | None):
+    """The JSON document, the Parquet file or the tables of a sweep under way, as ``job``
+    asks (its blocks kept in a ``Spool``); its Outcome."""
+    from dyade.analyses.spool import Spool
 
-            outcome = run.outcome
-            cols = Chosen(spool, names) if job.columns else spool
-            write(job, outcome, spool, cols, output, loaded, lambda: summary(outcome, spool))
-    elif output:
-        with atomic(output) as handle:
-            emit(handle)
-    else:
-        emit(sys.stdout)
-    warn(run.outcome.notes, mechanism, f"{os.path.basename(path)}: " if output else "")
-    outcome = run.outcome
-    if outcome.rows.any() and not outcome.valid[outcome.rows].any():  # an all-empty table
-        from dyade.errors import DyadeError
+    spool = Spool(sweep.blocks())
+    with spool:
+        outcome = sweep.outcome(spool, names)
+        if job.columns:
+            outcome.columns = Chosen(spool, names)
+        if job.fmt == "parquet":
+            from dyade.study.tables import write_parquet
 
-        raise DyadeError(f"{mechanism.name}: no position of the sweep has its kinematics "
-                         f"given (the warnings above say why); the output holds only empty "
-                         f"rows.")
-    job.check_locks(run.outcome)
+            write_parquet(outcome.columns, {name: outcome.units[name] for name in names},
+                          output, {"dyade.mechanism": outcome.meta["name"],
+                                   "dyade.source": outcome.meta["source"] or ""})
+        elif job.fmt == "json":
+            write_json(outcome.to_document(), output)
+        else:
+            from dyade.report import tables
+
+            show(tables.sweep_tables(outcome, "m" if job.units == "si" else None,
+                                     everything=job.show_all, chosen=bool(job.columns)),
+                 output)
+    return outcome
 
 
 class Chosen(Mapping):
@@ -144,21 +158,26 @@ class Chosen(Mapping):
     def __len__(self) -> int:
         return len(self.names)
 
-
-def selected_summary(summary: dict, cols) -> dict:
-    """The summary of the whole sweep with the extremes of the chosen columns only."""
-    return {**summary, "columns": {name: extremes for name, extremes in
-                                   summary["columns"].items() if name in cols}}
+    def __contains__(self, name: object) -> bool:
+        return name in self.names
 
 
-SECOND = 8e6
-"""values (positions × columns) a streamed CSV computes and writes in about a second"""
+def say(text: str) -> None:
+    """A line on stderr (the time estimate of a long run)."""
+    sys.stderr.write(text + "\n")
 
 
-def long_run(run) -> bool:
-    """A sweep (``pipeline.Run``) expected to take more than about a second."""
-    from dyade.linkage.options import BYTES_PER_VALUE, memory_estimate
+def warn(notes: list[str], prefix: str = "") -> None:
+    """A sweep's notes on stderr, each a warning: one line each, as they are, into a pipe
+    or a file (or a batch worker's capture); through rich on a terminal, which wraps them
+    (rich is loaded only then: about 20 ms of every batch worker's start)."""
+    if not notes:
+        return
+    if not sys.stderr.isatty():
+        sys.stderr.write("".join(f"warning: {prefix}{note}\n" for note in notes))
+        return
+    from dyade.cli.output import console
 
-    values = (memory_estimate(run.setup.mechanism, run.setup.positions) - (50 << 20)) \
-        / BYTES_PER_VALUE
-    return values > SECOND
+    err = console(stderr=True)
+    for note in notes:
+        err.print(f"warning: {prefix}{note}", markup=False)

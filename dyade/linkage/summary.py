@@ -1,18 +1,40 @@
-"""A sweep's outcome and columns -> a plain summary dictionary: extremes and the figures
-parts are sized by (numbers only; the report words them)."""
+"""A sweep's summary: the figures a designer sizes parts by, one name each (issue 36).
+
+One set of names for every writer and for a study: ``figures`` gives the summary of a
+sweep (``dyade analyse``, ``Result.summary()``, the ``sweep`` entry's Outcome), and a
+study's outputs are the same figures of each variant, computed by the same functions
+over (variants, positions) at once (``key_figures``). The names (docs/reference/json.md):
+
+- kinematics: ``mu_<dyad>_min_deg`` (the smallest transmission angle, as its distance
+  from a dead centre), ``stroke_<a>_<b>`` and ``time_ratio_<a>_<b>`` of a slider,
+  ``swing_<link>_deg`` and ``time_ratio_<link>`` of a rocker;
+- forces: ``M_drive_max``, ``M_drive_min``, ``M_drive_rms``, ``P_drive_mean``,
+  ``F_<a>_<b>_peak`` / ``FN_<a>_<b>_peak`` (the signed value of largest magnitude),
+  ``F_shake_max``, ``F_shake_rms``, ``M_shake_abs_max``;
+- friction, self-locking, the equation of motion, the clearance check (``STAGES``);
+- the extremes of every column, ``<column>_min`` and ``<column>_max`` (so
+  ``mu_2_deg_min`` is the least value of the column ``mu_2_deg``, ``mu_2_min_deg`` its
+  least distance from a dead centre).
+
+Numbers only, SI (angles in degrees where the name says ``_deg``, speeds in rpm where
+it says ``_rpm``); the report words them.
+"""
 
 from __future__ import annotations
 
-from typing import Any
+import math
+import re
+from collections.abc import Iterable, Mapping
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from dyade import cycle
-from dyade.arrays import plain, resolution
-from dyade.linkage.columns import Columns
-from dyade.linkage.verdicts import Outcome
-from dyade.model.mechanism import Revolute
 from dyade.units import RAD_PER_S_TO_RPM
+from dyade.arrays import resolution
+from dyade.linkage.columns import Columns, unit_of
+from dyade.model.mechanism import Revolute
+from dyade.linkage.verdicts import Outcome
 
 
 def full_cycle(angle_deg: np.ndarray) -> bool:
@@ -108,111 +130,427 @@ def pivoted(mechanism, link: int) -> bool:
                for j in mechanism.joints)
 
 
-def motion_figures(result: Outcome, cols: Columns, at=None) -> dict[str, Any]:
-    """What a designer reads off the kinematics: the smallest transmission angle of each
-    dyad (its distance from a dead centre) and where, the stroke of every slider and the
-    swing of every rocker (a link turning about a frame pivot without turning round),
-    each with its time ratio. ``at``: the crank angles [°] to say where (default: the
-    column ``angle_deg``)."""
-    angle = cols["angle_deg"]
-    at = angle if at is None else at
-    mechanism = result.mechanism
-    out: dict[str, Any] = {"transmission": {}, "strokes": {}, "swings": {}}
-    for dyad in mechanism.dyads:
-        least, k = least_transmission(cols[f"mu_{dyad.number}_deg"][None, :])
-        if not np.isnan(least[0]):
-            out["transmission"][str(dyad.number)] = {"min_deg": least[0], "at_deg": at[k[0]]}
-    for joint in mechanism.joints:
-        a, b = joint.name
-        if isinstance(joint, Revolute):
-            continue
-        travel = cols[f"s_{a}_{b}"][None, :]
-        stroke = strokes(travel)[0]
-        if not np.isnan(stroke):
-            ratio = time_ratios(angle, travel)[0]
-            out["strokes"][f"{a}_{b}"] = {"stroke": stroke,
-                                         "time_ratio": None if np.isnan(ratio) else ratio}
-    for link in mechanism.moving_links[1:]:
-        if not pivoted(mechanism, link):
-            continue
-        swing, turned = swings(cols[f"phi_{link}_deg"][None, :])
-        if not np.isnan(swing[0]):
-            ratio = time_ratios(angle, turned)[0]
-            out["swings"][str(link)] = {"swing_deg": swing[0],
-                                        "time_ratio": None if np.isnan(ratio) else ratio}
+
+
+class Stat(NamedTuple):
+    """One figure of a sweep's summary."""
+
+    value: Any
+    """a plain number (SI; degrees or rpm where the name says so), a flag, a text, or
+    None where it is not given"""
+    unit: str
+    where: dict[str, float] | None
+    """where it occurs (``{"angle_deg": 37.0}``), None for a figure of the whole sweep"""
+    description: str
+
+
+FIXED = {
+    "positions": ("-", "crank positions reported"),
+    "M_drive_max": ("N·m", "drive torque max"),
+    "M_drive_min": ("N·m", "drive torque min"),
+    "M_drive_rms": ("N·m", "drive torque RMS"),
+    "P_drive_mean": ("W", "mean drive power"),
+    "F_shake_max": ("N", "shaking force max |F_S|"),
+    "F_shake_rms": ("N", "shaking force RMS"),
+    "M_shake_abs_max": ("N·m", "shaking moment max |M_S|"),
+    "P_friction_mean": ("W", "mean friction power"),
+    "friction_residual_max": ("-", "worst final residual of the friction solution"),
+    "motion_state": ("-", "crank motion from the equation of motion"),
+    "motor": ("-", "motor"),
+    "J_F": ("kg·m²", "flywheel J_F"),
+    "J_red_mean": ("kg·m²", "mean reduced inertia"),
+    "speed_mean_rpm": ("rpm", "mean speed 2π/T"),
+    "speed_min_rpm": ("rpm", "lowest speed"),
+    "speed_max_rpm": ("rpm", "highest speed"),
+    "fluctuation": ("-", "speed fluctuation δ"),
+    "period": ("s", "period T"),
+    "M_motor_mean": ("N·m", "mean motor torque"),
+    "M_motor": ("N·m", "constant motor torque"),
+    "steps_per_revolution": ("-", "integration steps per revolution"),
+    "friction_passes": ("-", "passes of the friction torque"),
+    "shooting_iterations": ("-", "shooting iterations"),
+    "revolutions": ("-", "revolutions of the run-up"),
+    "settled": ("-", "the run-up repeats (periodic)"),
+    "duration": ("s", "run-up time"),
+    "W_motor": ("J", "motor work"),
+    "W_load": ("J", "work on the loads"),
+    "W_friction": ("J", "friction work"),
+    "E_kinetic": ("J", "kinetic energy"),
+}
+"""figures of fixed name -> (unit, description)"""
+
+PATTERNS = (
+    (r"mu_(\d+)_min_deg", "°", "smallest transmission angle, dyad {0}"),
+    (r"stroke_(\d+)_(\d+)", "m", "stroke of slider ({0},{1})"),
+    (r"time_ratio_(\d+)_(\d+)", "-", "  time ratio ({0},{1})"),
+    (r"swing_(\d+)_deg", "°", "swing of link {0}"),
+    (r"time_ratio_(\d+)", "-", "  time ratio (link {0})"),
+    (r"(FN?)_(\d+)_(\d+)_peak", "N", "peak force {0}_{1}_{2}"),
+    (r"locks_(\d+)_(\d+)", "-", "self-locking, joint ({0},{1})"),
+    (r"lock_positions_(\d+)_(\d+)", "-", "self-locking positions, joint ({0},{1})"),
+    (r"lock_start_(\d+)_(\d+)_deg", "°", "first self-locking angle, joint ({0},{1})"),
+    (r"lock_stop_(\d+)_(\d+)_deg", "°", "last self-locking angle, joint ({0},{1})"),
+    (r"impacts_(\d+)_(\d+)", "1/rev", "clearance impacts, joint ({0},{1})"),
+    (r"F_clearance_(\d+)_(\d+)_max", "N", "largest clearance peak, joint ({0},{1})"),
+    (r"amplification_(\d+)_(\d+)_max", "-", "largest clearance amplification, joint ({0},{1})"),
+    (r"F_clearance_(\d+)_(\d+)_r(\d+)", "N", "clearance peak {2}, joint ({0},{1})"),
+    (r"F_rigid_(\d+)_(\d+)_r(\d+)", "N", "rigid force at clearance peak {2}, joint ({0},{1})"),
+    (r"tau_(\d+)_(\d+)_r(\d+)", "-", "τ of clearance peak {2}, joint ({0},{1})"),
+    (r"amplification_(\d+)_(\d+)_r(\d+)", "-", "amplification of clearance peak {2}, "
+                                               "joint ({0},{1})"),
+)
+"""figures named by joint, dyad or link -> (unit, description)"""
+
+CYCLE = ("M_drive_rms", "P_drive_mean", "F_shake_rms", "P_friction_mean")
+"""figures over the crank cycle (means, RMS): not of single positions (``sweep=False``)"""
+
+
+def unit(name: str, columns: Mapping | None = None) -> str:
+    """The unit of a summary figure by its name; the extremes ``<column>_min`` and
+    ``<column>_max`` have their column's unit (``columns``: the names of the columns,
+    else any name not known otherwise is taken for an extreme)."""
+    return _known(name, columns)[0]
+
+
+def description(name: str, columns: Mapping | None = None) -> str:
+    """What a summary figure is, in a few words (a table's "quantity")."""
+    return _known(name, columns)[1]
+
+
+def _known(name: str, columns: Mapping | None) -> tuple[str, str]:
+    if name in FIXED:
+        return FIXED[name]
+    for pattern, unit_, text in PATTERNS:
+        match = re.fullmatch(pattern, name)
+        if match:
+            return unit_, text.format(*match.groups())
+    column, _, which = name.rpartition("_")
+    if which in ("min", "max") and (columns is None or column in columns):
+        return unit_of(column) or "-", f"{'least' if which == 'min' else 'largest'} {column}"
+    return "-", name
+
+
+def key_figures(mechanism, angle_deg: np.ndarray, cols: Mapping[str, np.ndarray],
+                forces: bool, presence: dict[str, str] | None = None,
+                at: dict[str, np.ndarray] | None = None) -> dict[str, np.ndarray]:
+    """The key figures of the kinematics and the forces of variants of ``mechanism``
+    (columns of (variants, positions), all at the crank angles ``angle_deg``), each a
+    (variants,) array: the smallest transmission angle per dyad, stroke and time ratio
+    per slider, swing and time ratio per rocker; with ``forces`` the drive torque's
+    peak, trough and RMS, the mean drive power, each joint's peak force, the shaking
+    force's peak and RMS and the shaking moment's largest magnitude. One sweep is one
+    variant (``figures``); a study's variants are many (``dyade.linkage.variants``).
+
+    A figure no variant has (a slider that never moves) is left out; NaN for a variant
+    without it. ``presence`` (filled if given): the figures a variant has only where it
+    has a value, each -> the figure whose value decides (a time ratio goes with its
+    stroke or swing). ``at`` (filled if given): figure -> (variants,) the position
+    where it occurs, for the figures of one position."""
+    out: dict[str, np.ndarray] = {}
+
+    def each(rows: list[np.ndarray], function) -> list:
+        """``function`` of the rows of several (variants, positions) arrays in one call
+        (they share the crank angles): its results split again, one per array."""
+        if not rows:
+            return []
+        count = rows[0].shape[0]
+        results = function(np.concatenate(rows))
+        results = results if isinstance(results, tuple) else (results,)
+        return [tuple(r[k * count:(k + 1) * count] for r in results)
+                for k in range(len(rows))]
+
+    presence = {} if presence is None else presence
+
+    def given(name: str, values: np.ndarray, where: np.ndarray | None = None) -> bool:
+        if np.isnan(values).all():
+            return False
+        out[name] = values
+        presence[name] = name
+        if at is not None and where is not None:
+            at[name] = where
+        return True
+
+    for dyad, (least, where) in zip(mechanism.dyads, each(
+            [cols[f"mu_{dyad.number}_deg"] for dyad in mechanism.dyads], least_transmission)):
+        given(f"mu_{dyad.number}_min_deg", least, where)
+    sliders = ["{}_{}".format(*joint.name) for joint in mechanism.joints
+               if not isinstance(joint, Revolute)]
+    rockers = [link for link in mechanism.moving_links[1:] if pivoted(mechanism, link)]
+    stroke_rows = each([cols[f"s_{tag}"] for tag in sliders], strokes)
+    swing_rows = each([cols[f"phi_{link}_deg"] for link in rockers], swings)
+    outputs = [cols[f"s_{tag}"] for tag in sliders] + [turned for _, turned in swing_rows]
+    ratios = each(outputs, lambda rows: time_ratios(angle_deg, rows))
+    for tag, (stroke,), (ratio,) in zip(sliders, stroke_rows, ratios):
+        if given(f"stroke_{tag}", stroke):
+            out[f"time_ratio_{tag}"] = np.where(np.isnan(stroke), np.nan, ratio)
+            presence[f"time_ratio_{tag}"] = f"stroke_{tag}"
+    for link, (swing, _), (ratio,) in zip(rockers, swing_rows, ratios[len(sliders):]):
+        if given(f"swing_{link}_deg", swing):
+            out[f"time_ratio_{link}"] = np.where(np.isnan(swing), np.nan, ratio)
+            presence[f"time_ratio_{link}"] = f"swing_{link}_deg"
+    if not forces:
+        return out
+    radians = np.deg2rad(angle_deg)
+    torque = cols["M_drive"]
+    force = np.hypot(cols["Fx_shake"], cols["Fy_shake"])
+    moment = np.abs(cols["M_shake"])
+    (rms,), (shake_rms,) = each([torque, force], lambda rows: cycle.rmss(radians, rows))
+    out.update(M_drive_max=np.fmax.reduce(torque, axis=1),
+               M_drive_min=np.fmin.reduce(torque, axis=1), M_drive_rms=rms,
+               P_drive_mean=cycle.means(radians, cols["P_drive"]))
+    names = joint_force_names(mechanism)
+    for name, (peak, where) in zip(names, each([cols[name] for name in names], peaks)):
+        given(f"{name}_peak", peak, where)
+    out.update(F_shake_max=np.fmax.reduce(force, axis=1), F_shake_rms=shake_rms,
+               M_shake_abs_max=np.fmax.reduce(moment, axis=1))
+    if at is not None:
+        low = np.where(np.isnan(torque), np.inf, torque)
+        at.update(M_drive_max=_largest(torque), M_drive_min=np.argmin(low, axis=1),
+                  F_shake_max=_largest(force), M_shake_abs_max=_largest(moment))
     return out
 
 
-def _extreme(angle, values) -> dict[str, Any]:
+def _largest(values: np.ndarray) -> np.ndarray:
+    """The first position of each row's largest value (NaN left aside)."""
+    return np.argmax(np.where(np.isnan(values), -np.inf, values), axis=1)
+
+
+class Rows(Mapping):
+    """The columns of one sweep as (1, positions) rows, each read when asked (a
+    ``Spool`` reads a column from disk)."""
+
+    def __init__(self, cols: Mapping[str, np.ndarray]) -> None:
+        self.cols = cols
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return np.asarray(self.cols[name])[None, :]
+
+    def __iter__(self):
+        return iter(self.cols)
+
+    def __len__(self) -> int:
+        return len(self.cols)
+
+
+def figures(result: Outcome, cols: Mapping[str, np.ndarray],
+            extremes: bool | Iterable[str] = True, sweep: bool = True) -> dict[str, Stat]:
+    """The summary of a sweep: name -> ``Stat`` (value, unit, where, description).
+
+    ``result`` is the sweep's outcome (its verdicts: forces given, friction,
+    self-locking, the crank's motion, the clearance check), ``cols`` its columns (any
+    mapping: a ``Spool`` reads each from disk once). The key figures (``key_figures``),
+    then those of the stages the sweep ran (``stage_figures``), then with
+    ``extremes`` the least and largest value of every column (or of the columns it
+    names) and where (``<column>_min``, ``<column>_max``). ``sweep``: the positions are a sweep; single
+    positions (``crank_angle_deg``) have no means over the cycle (``CYCLE``) and no
+    time ratios. Where a figure occurs is the crank angle of a position of the sweep,
+    rounded to its resolution (``arrays.resolution``: 359.5, not
+    359.50000000000006)."""
+    angle = np.asarray(cols["angle_deg"])
+    places = np.round(angle, resolution(angle))
+    names = frozenset(cols)
+    out: dict[str, Stat] = {}
+
+    def add(name: str, value: Any, where: dict | None = None) -> None:
+        out[name] = stat(name, value, where, names)
+
+    add("positions", int(angle.size))
+    at: dict[str, np.ndarray] = {}
+    values = key_figures(result.mechanism, angle, Rows(cols), result.forces_valid is not None,
+                         at=at)
+    for name, value in values.items():
+        if not sweep and (name in CYCLE or name.startswith("time_ratio_")):
+            continue
+        add(name, float(value[0]), {"angle_deg": float(places[at[name][0]])} if name in at
+            else None)
+    out.update(stage_figures(result, cols, places, sweep))
+    if extremes:
+        for name in cols if extremes is True else extremes:
+            if name == "angle_deg":
+                continue
+            low, high = extreme(places, cols[name])
+            for which, (value, where) in (("min", low), ("max", high)):
+                if f"{name}_{which}" not in out:
+                    add(f"{name}_{which}", value, where)
+    return out
+
+
+def stat(name: str, value: Any, where: dict | None = None,
+         columns: frozenset[str] | None = None) -> Stat:
+    """A figure with its unit and description (``unit``, ``description``); a NaN value
+    is not given (None, and nowhere)."""
+    if isinstance(value, float) and math.isnan(value):
+        value, where = None, None
+    unit_, text = _known(name, columns)
+    return Stat(value, unit_, where, text)
+
+
+def extreme(places: np.ndarray, values: np.ndarray) -> tuple[tuple, tuple]:
+    """((least, where), (largest, where)) of a column, NaN left aside: ``where`` the
+    first crank angle (of ``places``) where it lies; (None, None) each where no value is
+    given."""
+    values = np.asarray(values)
     finite = np.isfinite(values)
     if not finite.any():
-        return {"min": None, "min_at_deg": None, "max": None, "max_at_deg": None}
+        return (None, None), (None, None)
     masked = np.where(finite, values, np.nan)
     lo, hi = int(np.nanargmin(masked)), int(np.nanargmax(masked))
-    return {"min": values[lo], "min_at_deg": angle[lo], "max": values[hi], "max_at_deg": angle[hi]}
+    return ((float(values[lo]), {"angle_deg": float(places[lo])}),
+            (float(values[hi]), {"angle_deg": float(places[hi])}))
 
 
 def summary(result: Outcome, cols: Columns, extremes: bool = True) -> dict[str, Any]:
-    """Per column min/max and where (unless not ``extremes``); drive, friction,
-    self-locking, clearance figures: plain Python numbers (``arrays.plain``), the crank
-    angles where an extreme lies rounded to the sweep's resolution
-    (``arrays.resolution``: 359.5, not 359.50000000000006)."""
-    angle = cols["angle_deg"]
-    radians = np.deg2rad(angle)
-    at = np.round(angle, resolution(angle))  # where: a position of the sweep
-    out: dict[str, Any] = {"mechanism": result.mechanism.name, "positions": int(angle.size),
-                           **motion_figures(result, cols, at)}
-    if extremes:
-        out["columns"] = {name: _extreme(at, values)
-                          for name, values in cols.items() if name != "angle_deg"}
-    if result.forces_valid is not None:
-        torque = cols["M_drive"][None, :]  # NaN where the forces are not given
-        out["drive"] = {"M_max": np.fmax.reduce(torque, axis=1)[0],
-                        "M_min": np.fmin.reduce(torque, axis=1)[0],
-                        "M_rms": cycle.rmss(radians, torque)[0],
-                        "P_mean": cycle.means(radians, cols["P_drive"][None, :])[0]}
-        joint_peaks = {}
-        for name in joint_force_names(result.mechanism):
-            value, k = peaks(cols[name][None, :])
-            if not np.isnan(value[0]):
-                joint_peaks[name] = {"value": value[0], "at_deg": at[k[0]]}
-        out["joint_peaks"] = joint_peaks
-    out.update(stage_figures(result, cols))
-    return plain(out)
+    """The summary's values by name (``figures`` without units and places): plain
+    Python numbers, flags and texts, None where a figure is not given."""
+    return {name: stat.value for name, stat in figures(result, cols, extremes).items()}
 
 
-def stage_figures(result: Outcome, cols: Columns) -> dict[str, Any]:
-    """The summary's figures of the stages beyond the kinematics and the forces, where
-    the sweep ran them: friction (its mean power, iterations, worst residual),
-    self-locking (per slider and joint: whether and where), the crank's motion from the
-    equation of motion, the clearance check."""
-    angle = cols["angle_deg"]
-    radians = np.deg2rad(angle)
-    out: dict[str, Any] = {}
+def stage_figures(result: Outcome, cols: Mapping[str, np.ndarray], places: np.ndarray,
+                  sweep: bool = True) -> dict[str, Stat]:
+    """The figures of the stages beyond the kinematics and the forces, where the sweep
+    ran them: friction (its mean power, passes, worst residual), self-locking (per
+    joint: whether, at how many positions, from where to where, the least margin of a
+    slider), the crank's motion from the equation of motion, the clearance check (per
+    joint: impacts, the largest peak and amplification, each peak)."""
+    names = frozenset(cols)
+    out: dict[str, Stat] = {}
+
+    def add(name: str, value: Any, where: dict | None = None) -> None:
+        out[name] = stat(name, value, where, names)
+
+    radians = np.deg2rad(np.asarray(cols["angle_deg"]))
     if result.rubbing is not None:
         rows = result.rows & result.forces_valid
-        out["friction"] = {"P_mean": cycle.mean(radians, cols["P_friction"]),
-                           "iterations_min": float(np.min(cols["friction_iterations"])),
-                           "iterations_max": float(np.max(cols["friction_iterations"])),
-                           "worst_residual": float(np.max(result.rubbing.residual[rows], initial=0.0))}
-    if result.locking:
-        out["self_locking"] = {f"{a}_{b}": {"locks": bool(lock.locks[result.rows].any()),
-                                            "locking_angles_deg": np.round(np.rad2deg(
-                                                result.crank_angle[lock.locks & result.rows]),
-                                                resolution(angle))}
-                               for (a, b), lock in result.locking.items()}
+        if sweep:
+            add("P_friction_mean", cycle.mean(radians, cols["P_friction"]))
+        low, high = extreme(places, cols["friction_iterations"])
+        add("friction_iterations_min", *low)
+        add("friction_iterations_max", *high)
+        add("friction_residual_max", float(np.max(result.rubbing.residual[rows], initial=0.0)))
+    for (a, b), lock in (result.locking or {}).items():
+        tag = f"{a}_{b}"
+        angles = np.round(np.rad2deg(result.crank_angle[lock.locks & result.rows]),
+                          resolution(np.asarray(cols["angle_deg"])))
+        add(f"locks_{tag}", bool(lock.locks[result.rows].any()))
+        add(f"lock_positions_{tag}", int(angles.size))
+        add(f"lock_start_{tag}_deg", float(angles[0]) if angles.size else None)
+        add(f"lock_stop_{tag}_deg", float(angles[-1]) if angles.size else None)
+        if f"lock_margin_{tag}" in names:
+            add(f"lock_margin_{tag}_min", *extreme(places, cols[f"lock_margin_{tag}"])[0])
     if result.drive is not None:
-        out["motion"] = motion_summary(result)
-    if result.clearance:
-        out["clearance"] = [{"joint": f"{c.joint[0]}_{c.joint[1]}", "applies": c.applies,
-                             "reason": c.reason,
-                             "reversals": [{"angle_deg": np.rad2deg(r.crank_angle),
-                                            "tau": r.peak.tau, "F_max": r.peak.force,
-                                            "F_rigid": r.rigid_force,
-                                            "amplification": r.amplification}
-                                           for r in c.reversals]}
-                            for c in result.clearance]
+        for name, value in motion_figures(result).items():
+            if isinstance(value, tuple):
+                add(name, *value)
+            else:
+                add(name, value)
+    for check in result.clearance or ():
+        tag = "{}_{}".format(*check.joint)
+        if not check.applies:  # (a note says why)
+            for name in (f"F_clearance_{tag}_max", f"amplification_{tag}_max"):
+                unit_, text = _known(name, None)
+                out[name] = Stat(None, unit_, None, f"{text}: the model does not apply")
+            continue
+        add(f"impacts_{tag}", len(check.reversals))
+        reversals = [(float(np.rad2deg(r.crank_angle)), r) for r in check.reversals]
+        for name, value in ((f"F_clearance_{tag}_max", lambda r: r.peak.force),
+                            (f"amplification_{tag}_max", lambda r: r.amplification)):
+            if reversals:
+                where, top = max(reversals, key=lambda pair: value(pair[1]))
+                add(name, float(value(top)), {"angle_deg": where})
+            else:
+                add(name, None)
+        for k, (where, r) in enumerate(reversals, start=1):
+            place = {"angle_deg": where}
+            add(f"F_clearance_{tag}_r{k}", float(r.peak.force), place)
+            add(f"tau_{tag}_r{k}", float(r.peak.tau), place)
+            add(f"F_rigid_{tag}_r{k}", float(r.rigid_force), place)
+            add(f"amplification_{tag}_r{k}", float(r.amplification), place)
     return out
+
+
+def motion_figures(result: Outcome) -> dict[str, Any]:
+    """The crank's speed from the equation of motion (over the last revolution of a
+    run-up): name -> value, or (value, where)."""
+    motion = result.drive
+    figures_ = motion.figures
+    drive = result.mechanism.drive
+    rpm = RAD_PER_S_TO_RPM
+    out: dict[str, Any] = {
+        "motion_state": motion.state, "motor": drive.motor.describe(),
+        "J_F": float(drive.flywheel_inertia), "J_red_mean": float(figures_["inertia_mean"]),
+        "speed_mean_rpm": float(figures_["speed_mean"]) * rpm,
+        "speed_min_rpm": (float(figures_["speed_min"]) * rpm,
+                          {"angle_deg": float(np.rad2deg(figures_["angle_min"]))}),
+        "speed_max_rpm": (float(figures_["speed_max"]) * rpm,
+                          {"angle_deg": float(np.rad2deg(figures_["angle_max"]))}),
+        "fluctuation": float(figures_["fluctuation"]), "period": float(figures_["period"]),
+        "M_motor_mean": float(figures_["motor_torque_mean"]),
+        "steps_per_revolution": int(figures_["steps_per_revolution"]),
+        "friction_passes": int(figures_["passes"])}
+    if "motor_torque" in figures_:
+        out["M_motor"] = float(figures_["motor_torque"])
+    if motion.state == "run-up":
+        out.update(revolutions=int(figures_["revolutions"]), settled=bool(figures_["settled"]),
+                   duration=float(figures_["duration"]), W_motor=float(figures_["work_motor"]),
+                   W_load=float(figures_["work_load"]),
+                   W_friction=float(figures_["work_friction"]),
+                   E_kinetic=float(figures_["kinetic_energy"]))
+    else:
+        out["shooting_iterations"] = int(figures_["iterations"])
+    return out
+
+
+MOTION_RENAMED = {"state": "motion_state", "motor": "motor", "flywheel_inertia": "J_F",
+                  "inertia_mean": "J_red_mean", "speed_mean": "speed_mean_rpm",
+                  "speed_mean_rpm": "speed_mean_rpm", "speed_min": "speed_min_rpm",
+                  "speed_max": "speed_max_rpm", "speed_min_at_deg": "speed_min_rpm",
+                  "speed_max_at_deg": "speed_max_rpm", "fluctuation": "fluctuation",
+                  "period": "period", "motor_torque_mean": "M_motor_mean",
+                  "motor_torque": "M_motor", "steps_per_revolution": "steps_per_revolution",
+                  "friction_passes": "friction_passes",
+                  "shooting_iterations": "shooting_iterations", "revolutions": "revolutions",
+                  "settled": "settled", "duration": "duration", "work_motor": "W_motor",
+                  "work_load": "W_load", "work_friction": "W_friction",
+                  "kinetic_energy": "E_kinetic"}
+"""the keys of the summary's former ``motion`` table -> the figures (speeds now in rpm;
+an ``_at_deg`` key is the figure's ``where``)"""
+
+RENAMED = (
+    (r"drive\.M_max", "M_drive_max"), (r"drive\.M_min", "M_drive_min"),
+    (r"drive\.M_rms", "M_drive_rms"), (r"drive\.P_mean", "P_drive_mean"),
+    (r"joint_peaks\.(FN?_\d+_\d+)(\.value|\.at_deg)?", "{0}_peak"),
+    (r"transmission\.(\d+)(\.min_deg|\.at_deg)?", "mu_{0}_min_deg"),
+    (r"strokes\.(\d+_\d+)(\.stroke)?", "stroke_{0}"),
+    (r"strokes\.(\d+_\d+)\.time_ratio", "time_ratio_{0}"),
+    (r"swings\.(\d+)(\.swing_deg)?", "swing_{0}_deg"),
+    (r"swings\.(\d+)\.time_ratio", "time_ratio_{0}"),
+    (r"friction\.P_mean", "P_friction_mean"),
+    (r"friction\.iterations_(min|max)", "friction_iterations_{0}"),
+    (r"friction\.worst_residual", "friction_residual_max"),
+    (r"self_locking\.(\d+_\d+)(\.locks)?", "locks_{0}"),
+    (r"self_locking\.(\d+_\d+)\.locking_angles_deg", "lock_start_{0}_deg"),
+    (r"columns\.(\w+)\.(min|max)(_at_deg)?", "{0}_{1}"),
+)
+"""a key of the former nested summary (``drive.M_max``, ``joint_peaks[F_1_2].value``,
+``transmission[2].min_deg``) -> the figure's name now (``renamed``; the table of
+docs/reference/json.md)"""
+
+
+def renamed(name: str) -> str | None:
+    """The figure's name now of a key path of the summary before issue 36 (the former
+    nested summary, written with dots or brackets), None for any other name.
+
+    >>> renamed("drive.M_max"), renamed("joint_peaks[F_1_2].value"), renamed("mu_2_min_deg")
+    ('M_drive_max', 'F_1_2_peak', None)
+    """
+    path = re.sub(r"\[(\w+)\]", r".\1", name.strip()).strip(".")
+    if path.startswith("motion."):
+        return MOTION_RENAMED.get(path[len("motion."):])
+    for pattern, new in RENAMED:
+        match = re.fullmatch(pattern, path)
+        if match:
+            return new.format(*match.groups())
+    return None
 
 
 def joint_force_names(mechanism) -> list[str]:
@@ -222,30 +560,3 @@ def joint_force_names(mechanism) -> list[str]:
             for j in mechanism.joints for a, b in (j.name,)]
 
 
-def motion_summary(result: Outcome) -> dict[str, Any]:
-    """The crank's speed from the equation of motion (over the last revolution of a
-    run-up), SI units; angles in degrees."""
-    motion = result.drive
-    figures = motion.figures
-    drive = result.mechanism.drive
-    out: dict[str, Any] = {
-        "state": motion.state, "motor": drive.motor.describe(),
-        "flywheel_inertia": drive.flywheel_inertia,
-        "speed_mean": figures["speed_mean"],
-        "speed_mean_rpm": figures["speed_mean"] * RAD_PER_S_TO_RPM,
-        "speed_min": figures["speed_min"], "speed_min_at_deg": np.rad2deg(figures["angle_min"]),
-        "speed_max": figures["speed_max"], "speed_max_at_deg": np.rad2deg(figures["angle_max"]),
-        "fluctuation": figures["fluctuation"], "period": figures["period"],
-        "motor_torque_mean": figures["motor_torque_mean"],
-        "inertia_mean": figures["inertia_mean"],
-        "steps_per_revolution": figures["steps_per_revolution"],
-        "friction_passes": figures["passes"]}
-    if "motor_torque" in figures:
-        out["motor_torque"] = figures["motor_torque"]
-    if motion.state == "run-up":
-        for key in ("revolutions", "settled", "duration", "work_motor", "work_load",
-                    "work_friction", "kinetic_energy"):
-            out[key] = figures[key]
-    else:
-        out["shooting_iterations"] = figures["iterations"]
-    return out

@@ -38,8 +38,9 @@ class Result(Outcome):
     """Everything a sweep computed, in SI units.
 
     ``columns()`` gives the sweep as named columns (the CSV contract, documented in
-    the columns reference, ``docs/reference/columns.md``), ``summary()`` the extremes
-    and the figures a designer sizes parts by (plain Python numbers), ``notes`` the
+    the columns reference, ``docs/reference/columns.md``), ``summary()`` the figures a
+    designer sizes parts by and the extremes of every column, by name (plain Python
+    numbers; docs/reference/json.md names them), ``notes`` the
     findings (dead centres, partial sweeps, friction, self-locking;
     ``dyade.report.notes.say`` words them), ``to_pandas()`` a DataFrame indexed by the
     crank angle [°]. ``kinematics``, ``forces`` and ``friction`` are the whole sweep's
@@ -47,9 +48,9 @@ class Result(Outcome):
 
     >>> import dyade
     >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/fourbar.toml"), step_deg=0.5)
-    >>> peak = result.summary()["columns"]["M_drive"]
-    >>> round(peak["max"], 3), peak["max_at_deg"]           # [N·m], [°]
-    (1.466, 69.0)
+    >>> summary = result.summary()
+    >>> round(summary["M_drive_max"], 3), round(summary["F_shake_max"], 2)   # [N·m], [N]
+    (1.466, 98.21)
     >>> result.kinematics.crank_angle.shape                  # every position [rad]
     (721,)
     """
@@ -67,8 +68,12 @@ class Result(Outcome):
         return self.table
 
     def summary(self, cols: Columns | None = None) -> dict[str, Any]:
-        """Extremes of every column and where, drive torque and power, joint peaks,
-        friction, self-locking and clearance figures, as plain numbers."""
+        """The summary's figures by name (``dyade.linkage.summary``): drive torque and
+        power, joint peaks, the shaking force, transmission angles, strokes, swings,
+        friction, self-locking, the crank's motion and clearance figures, and the
+        extremes of every column (``<column>_min``, ``<column>_max``), as plain numbers
+        (None where not given). ``dyade.run("sweep", ...)`` gives each with its unit and
+        where it occurs."""
         from dyade.linkage import summary as summary_
 
         return summary_.summary(self, self.table if cols is None else cols)

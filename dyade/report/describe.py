@@ -1,4 +1,5 @@
-"""``dyade describe``: the mechanism as dyade will compute with it, in the file's units.
+"""``dyade describe``: the mechanism of a ``describe`` Outcome as dyade will compute
+with it, in the file's units.
 
 Assembly order (the crank is dyad 1, the first [[dyad]] table dyad 2), every joint with
 its geometry, friction and clearance data, every link's lengths, mass, centre, inertia
@@ -15,10 +16,11 @@ import numpy as np
 from rich.markup import escape
 from rich.tree import Tree
 
-from dyade.linkage.plan import Plan
+from dyade.analyses.base import MISSING
 from dyade.model.mechanism import CRANK, FRAME, Mechanism, Prismatic, Revolute
 from dyade.report.effects import effects
-from dyade.units import LENGTH_FACTORS, RAD_PER_S_TO_RPM
+from dyade.report.format import number
+from dyade.units import LENGTH_FACTORS
 
 
 class Lengths:
@@ -28,14 +30,20 @@ class Lengths:
         self.unit, self.factor = unit, LENGTH_FACTORS[unit]
 
     def __call__(self, value: float) -> str:
-        return f"{value / self.factor:g} {self.unit}"
+        return f"{number(value / self.factor, spec='g')} {self.unit}"
 
     def point(self, p) -> str:
-        return f"({p[0] / self.factor:g}, {p[1] / self.factor:g}) {self.unit}"
+        return (f"({number(p[0] / self.factor, spec='g')}, "
+                f"{number(p[1] / self.factor, spec='g')}) {self.unit}")
 
 
-def describe(mechanism: Mechanism, the_plan: Plan, skipped: list[str]) -> Tree:
-    """The mechanism in assembly order, its mobility and the effects to simulate."""
+def describe(outcome) -> Tree:
+    """The mechanism of a ``describe`` Outcome (``dyade.analyses.describe``) in assembly
+    order, its mobility, its loop's figures and the effects a sweep simulates."""
+    from dyade.report.tables import skipped as not_simulated
+
+    mechanism, the_plan = outcome.result
+    skipped = not_simulated(the_plan)
     length = Lengths(mechanism.units[0])
     tree = Tree(f"[bold]{mechanism.name}[/bold]"
                 + (f"  ({mechanism.source})" if mechanism.source else "")
@@ -44,7 +52,7 @@ def describe(mechanism: Mechanism, the_plan: Plan, skipped: list[str]) -> Tree:
     for name, point in mechanism.links[FRAME].points.items():
         frame.add(f"point {name} = {length.point(point)}")
     crank = mechanism.crank
-    rpm = abs(crank.speed) * RAD_PER_S_TO_RPM
+    rpm = abs(crank.speed) * 60.0 / (2.0 * np.pi)
     sense = "counter-clockwise" if crank.speed > 0 else "clockwise"
     node = tree.add(f"dyad 1: link 2 crank, length {length(crank.length)}, {rpm:g} rpm {sense}")
     node.add(f"joint (1,2) revolute at {length.point(crank.pivot)}{_joint_data(crank.joint, length)}")
@@ -70,7 +78,7 @@ def describe(mechanism: Mechanism, the_plan: Plan, skipped: list[str]) -> Tree:
     mobility = 3 * (links - 1) - 2 * len(mechanism.joints)
     tree.add(f"mobility (Grübler) F = 3·({links}−1) − 2·{len(mechanism.joints)} = {mobility}"
              f"  [{links} links, {revolute} revolute, {prismatic} prismatic joints]")
-    for line in loop_type(mechanism, length):
+    for line in loop_type(outcome.summary, length):
         tree.add(line)
     simulated = tree.add("effects simulated")
     for line in effects(the_plan):
@@ -169,81 +177,45 @@ def _loads(tree: Tree, mechanism: Mechanism, length: Lengths) -> None:
                  f"{length(spring.free_length)}")
 
 
-def loop_type(mechanism: Mechanism, length: Lengths) -> list[str]:
+def loop_type(summary, length: Lengths) -> list[str]:
     """Grashof type, swing or stroke and time ratio of a four-bar (RRR) or slider-crank
-    (RRP) loop closed by the first dyad on the crank and the frame."""
-    dyad = next((d for d in mechanism.dyads if d.known == (CRANK, FRAME)
-                 and d.kind.name in ("RRR", "RRP")), None)
-    if dyad is None:
+    (RRP) loop closed by the first dyad on the crank and the frame (the ``loop_*``
+    figures of a ``describe`` Outcome)."""
+    value = {name: figure.value for name, figure in summary.items()}
+    if "loop" not in value:
         return []
-    crank = mechanism.crank.length
-    a_joint, b_joint, c_joint = dyad.joints
-    i, j = dyad.links
-    coupler = _arm(a_joint, b_joint, i)
     out = []
-    if dyad.kind.name == "RRR":
-        rocker = _arm(b_joint, c_joint, j)
-        c = c_joint.points[c_joint.links.index(FRAME)]
-        pivot = mechanism.crank.pivot
-        ground = math.hypot(c[0] - pivot[0], c[1] - pivot[1])
-        out.append(f"four-bar {_grashof(crank, coupler, rocker, ground)}: crank "
-                   f"{length(crank)}, coupler {length(coupler)}, rocker {length(rocker)}, "
-                   f"ground {length(ground)}")
+    if value["loop"] == "four-bar":
+        out.append(f"four-bar {GRASHOF[value['loop_grashof']]}: crank "
+                   f"{length(value['loop_crank'])}, coupler {length(value['loop_coupler'])}, "
+                   f"rocker {length(value['loop_rocker'])}, ground "
+                   f"{length(value['loop_ground'])}")
     else:
-        out.append(f"slider-crank: crank {length(crank)}, connecting rod {length(coupler)}")
-    figures = _motion(mechanism)
-    if figures is None:
+        out.append(f"slider-crank: crank {length(value['loop_crank'])}, connecting rod "
+                   f"{length(value['loop_coupler'])}")
+    if not value["loop_closes"]:
         out.append("it does not close over the whole revolution (see dyade analyse)")
         return out
-    for name, figure in figures["strokes"].items():
-        if name == "_".join(map(str, c_joint.name)):
-            out.append(f"  slider stroke {length(figure['stroke'])}, time ratio "
-                       f"{_ratio(figure['time_ratio'])}")
-    for link, figure in figures["swings"].items():
-        if int(link) == j:
-            out.append(f"  rocker swing {figure['swing_deg']:.4g}°, time ratio "
-                       f"{_ratio(figure['time_ratio'])}")
+    if "loop_stroke" in value:
+        out.append(f"  slider stroke {length(value['loop_stroke'])}, time ratio "
+                   f"{_ratio(value['loop_time_ratio'])}")
+    if "loop_swing_deg" in value:
+        out.append(f"  rocker swing {number(value['loop_swing_deg'], spec='.4g')}°, time ratio "
+                   f"{_ratio(value['loop_time_ratio'])}")
     return out
 
 
-def _grashof(crank: float, coupler: float, rocker: float, ground: float) -> str:
-    """The Grashof type of a four-bar from its four lengths."""
-    bars = {"crank": crank, "coupler": coupler, "rocker": rocker, "ground": ground}
-    s, *middle, l = sorted(bars.values())
-    shortest = min(bars, key=bars.get)
-    total, rest = s + l, sum(middle)
-    if math.isclose(total, rest, rel_tol=1e-12):
-        return "(Grashof change point: s + l = p + q, it can fold flat)"
-    if total > rest:
-        return "(non-Grashof, s + l > p + q: a triple rocker, no link turns round)"
-    return {"crank": "(Grashof crank-rocker: s + l < p + q, the crank is the shortest link)",
-            "ground": "(Grashof double crank: the ground link is the shortest)",
-            "coupler": "(Grashof double rocker: the coupler is the shortest link)",
-            "rocker": "(Grashof rocker-crank: the rocker is the shortest link and turns round, "
-                      "the crank rocks)"}[shortest]
+GRASHOF = {"change point": "(Grashof change point: s + l = p + q, it can fold flat)",
+           "non-Grashof": "(non-Grashof, s + l > p + q: a triple rocker, no link turns round)",
+           "crank-rocker": "(Grashof crank-rocker: s + l < p + q, the crank is the shortest "
+                           "link)",
+           "double crank": "(Grashof double crank: the ground link is the shortest)",
+           "double rocker": "(Grashof double rocker: the coupler is the shortest link)",
+           "rocker-crank": "(Grashof rocker-crank: the rocker is the shortest link and turns "
+                           "round, the crank rocks)"}
+"""the Grashof types of ``dyade.analyses.describe.grashof``, in words"""
 
 
 def _ratio(value: float | None) -> str:
-    return f"{value:.4g}" if value is not None else "— (no single forward and return stroke)"
-
-
-def _motion(mechanism: Mechanism):
-    """Swings, strokes and time ratios over one revolution at 0.5°, or None when the
-    mechanism does not close everywhere."""
-    from dataclasses import replace
-
-    from dyade.errors import AssemblyError
-    from dyade.linkage.summary import motion_figures
-    from dyade.linkage.sweep import analyse
-
-    # the figures need the links' angles and the sliders' travel, not the named points
-    # (a file may have thousands: they would cost columns at every position)
-    bare = {number: replace(link, points={k: v for k, v in link.points.items() if k == "tip"})
-            for number, link in mechanism.links.items()}
-    one = replace(mechanism, links=bare,
-                  sweep=type(mechanism.sweep)(0.0, 2 * math.pi, math.radians(0.5)))
-    try:
-        result = analyse(one, plan=Plan())
-    except AssemblyError:
-        return None
-    return motion_figures(result, result.columns())
+    return number(value, spec=".4g") if value is not None else \
+        f"{MISSING} (no single forward and return stroke)"

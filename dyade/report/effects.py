@@ -1,9 +1,7 @@
-"""The effects a sweep simulates, in words: what ``describe`` lists and the JSON
-summary names (``dyade.linkage.plan.Plan``)."""
+"""The effects a sweep simulates, in words: what ``describe`` lists (the stages of
+``dyade.linkage.plan.Plan``; an Outcome names them in ``meta["stages"]``)."""
 
 from __future__ import annotations
-
-from typing import Any
 
 from dyade.linkage.plan import Plan
 
@@ -35,11 +33,3 @@ def effects(the_plan: Plan) -> list[str]:
                    f"when exceeded); its vibration, resonances and stability with "
                    f"`dyade driveline`")
     return out
-
-
-def with_effects(summary: dict[str, Any], the_plan: Plan) -> dict[str, Any]:
-    """A sweep's summary (``Result.summary``) with its ``effects`` after the mechanism's
-    name and positions, as the JSON document gives it."""
-    first = {key: summary[key] for key in ("mechanism", "positions")}
-    rest = {key: value for key, value in summary.items() if key not in first}
-    return {**first, "effects": effects(the_plan), **rest}

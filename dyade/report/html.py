@@ -225,24 +225,22 @@ def mechanism_report(mechanism, *, source: str = "", start_deg: float | None = N
     """The design report of a mechanism (see ``report``), over the sweep the options
     give (``dyade.analyse``'s)."""
     import dyade
-    from dyade.linkage.plan import plan
-    from dyade.linkage.summary import summary as summarise
+    from dyade.registry import REGISTRY
+    from dyade.analyses.sweep import outcome_of
     from dyade.plot import curves, mechanism as drawing, polar
     from dyade.report import describe, tables
-    from dyade.report.notes import say
 
     result = dyade.analyse(mechanism, start_deg=start_deg, stop_deg=stop_deg,
                            step_deg=step_deg, allow_partial=allow_partial)
     mechanism = result.mechanism  # with the sweep asked for
     cols = result.columns()
-    summary = summarise(result, cols)
-    the_plan = plan(mechanism)
+    outcome = outcome_of(result, cols)  # the sweep's Outcome, as dyade analyse gives it
     page = Page(f"{mechanism.name}: design report", source)
-    parts = [table_html(tables.key_results(result, cols, summary, "m"), caption=False)]
+    parts = [table_html(tables.key_results(outcome, "m"), caption=False)]
     if result.drive is not None:
-        parts.append(table_html(tables.motion_table(result, summary)))
+        parts.append(table_html(tables.motion_table(outcome)))
     page.section("Key results", "".join(parts))
-    notes = [say(note, mechanism) for note in result.notes]
+    notes = outcome.notes
     page.section("Notes: where the model holds, friction, self-locking, clearance",
                  notes_html(notes))
     page.section("The linkage", figure(drawing.figure(result), "mechanism",
@@ -271,7 +269,7 @@ def mechanism_report(mechanism, *, source: str = "", start_deg: float | None = N
     if any(getattr(joint, "clearance", None) is not None for joint in mechanism.joints):
         page.section("Clearance check", clearance_html(mechanism, result))
     page.section("The file in assembly order (dyade describe)",  # reference: last
-                 pre(text_of(describe.describe(mechanism, the_plan, tables.skipped(the_plan)))))
+                 pre(text_of(describe.describe(REGISTRY["describe"](mechanism)))))
     return page.html()
 
 

@@ -1,62 +1,75 @@
-"""Result -> rich renderables: the sweep summary and the mechanism description."""
+"""A ``sweep`` Outcome (``dyade.analyses.sweep``) -> rich tables: the key results, the
+crank's motion, the extremes of every column, the forces, the clearance peaks, the
+values at single positions; and what a plan does not simulate (``skipped``).
+
+Every number through ``dyade.report.format.number`` (a value not given: —, flags yes
+or no); lengths in the mechanism file's length unit unless SI is asked for, said in the
+title.
+"""
 
 from __future__ import annotations
+
+import re
 
 import numpy as np
 from rich.table import Table
 
+from dyade.analyses.base import MISSING
+from dyade.linkage.columns import unit_of
+from dyade.model.mechanism import Revolute
 from dyade.linkage.plan import Plan
-from dyade.linkage.verdicts import Outcome as Result
-from dyade.linkage.columns import Columns, unit_of
-from dyade import cycle
-from dyade.model.mechanism import FRAME, Mechanism, Prismatic, Revolute
+from dyade.report.format import FLAG, display, flag, number
 from dyade.roundoff import ROUNDOFF, is_roundoff
-from dyade.units import LENGTH_FACTORS, RAD_PER_S_TO_RPM
-
-FLAG = "1/0"  # the CSV/JSON unit of a flag column; tables say yes or no
 
 
-def display(unit: str, length_unit: str) -> tuple[float, str]:
-    """Factor and unit to show a value of ``unit`` with lengths in ``length_unit``."""
-    if length_unit == "m" or unit not in ("m", "m/s", "m/s²"):
-        return 1.0, unit
-    return 1.0 / LENGTH_FACTORS[length_unit], length_unit + unit[1:]
+def at(angle) -> str:
+    """Where a figure occurs, in a table's "at φ21 [°]" column: one decimal."""
+    return "" if angle is None else f"{angle:.1f}"
 
 
-def number(value: float, scale: float = 0.0, spec: str = ".6g") -> str:
-    """A value to 6 significant digits (``spec``); round-off of ``scale`` as 0
-    (``dyade.roundoff``)."""
-    if not np.isfinite(value):
-        return "—"
-    if is_roundoff(value, scale):
-        return "0"
-    return f"{value + 0.0:{spec}}"
+def where_of(figure) -> str:
+    """The crank angle of a figure's ``where``, for the "at φ21 [°]" column."""
+    return at((figure.where or {}).get("angle_deg"))
 
 
-def flag(value: float) -> str:
-    """A flag column's value in a table: yes (1) or no (0)."""
-    return "yes" if value else "no"
+def lengths(outcome, length_unit: str | None) -> str:
+    """The table length unit: ``length_unit``, else the mechanism file's."""
+    return length_unit or outcome.result.mechanism.units[0]
 
 
-def scale_of(values: np.ndarray) -> float:
-    """The largest finite magnitude of ``values`` (0 if none): a quantity's scale."""
-    finite = np.abs(values[np.isfinite(values)])
-    return float(finite.max()) if finite.size else 0.0
+def heading(outcome, length_unit: str) -> str:
+    """"NAME: n crank positions a°–b°", the positions of a sweep or the single ones."""
+    angle = np.asarray(outcome.columns["angle_deg"])
+    name = outcome.result.mechanism.name
+    if "at_deg" in outcome.options:
+        return f"{name}: {angle.size} crank position{'s' if angle.size != 1 else ''}"
+    first, last = (angle[0], angle[-1]) if angle.size else (np.nan, np.nan)
+    return f"{name}: {angle.size} crank positions {first:.1f}°–{last:.1f}°"
 
 
-def select(cols: Columns, patterns: list[str]) -> Columns:
-    """The columns whose names match any of the glob ``patterns`` (angle_deg always)."""
-    from fnmatch import fnmatchcase
+def sweep_tables(outcome, length_unit: str | None = None, everything: bool = False,
+                 chosen: bool = False) -> list:
+    """The tables of ``dyade analyse``: the key results and the crank's motion; with
+    ``everything`` (--all) the extremes of every column, the forces, the motion and the
+    clearance peaks; for ``chosen`` columns (--columns) their extremes; at single
+    positions (--at) their values."""
+    unit = lengths(outcome, length_unit)
+    if "at_deg" in outcome.options:
+        return [positions_table(outcome, unit)]
+    if chosen:
+        return [sweep_summary(outcome, unit)]
+    if everything:
+        return [sweep_summary(outcome, unit), force_summary(outcome),
+                motion_table(outcome), clearance_summary(outcome)]
+    return [key_results(outcome, unit), motion_table(outcome)]
 
-    return {name: values for name, values in cols.items()
-            if name == "angle_deg" or any(fnmatchcase(name, p) for p in patterns)}
 
-
-def unit_scales(cols: Columns) -> dict[str, float]:
+def unit_scales(cols) -> dict[str, float]:
     """The largest magnitude of all columns of each unit: the scale against which a
     value is round-off (a force of 1e-14 N in a joint of a machine with 300 N forces)."""
     out: dict[str, float] = {}
-    for name, values in cols.items():
+    for name in cols:
+        values = np.asarray(cols[name])
         finite = values[np.isfinite(values)]
         if finite.size:
             unit = unit_of(name)
@@ -64,107 +77,118 @@ def unit_scales(cols: Columns) -> dict[str, float]:
     return out
 
 
-def sweep_summary(result: Result, cols: Columns, length_unit: str = "m") -> Table:
-    """Per column: min and max over the sweep and the crank angle of each; constant
-    columns (frame joints, the crank's speed) are left out and named in the caption,
-    round-off noise is shown as 0."""
-    angle = cols["angle_deg"]
-    table = Table(title=f"{result.mechanism.name}: {angle.size} crank positions "
-                        f"{angle[0]:.1f}°–{angle[-1]:.1f}°", title_justify="left")
+def sweep_summary(outcome, length_unit: str = "m") -> Table:
+    """Per column: min and max over the sweep and the crank angle of each (the summary's
+    ``<column>_min`` and ``<column>_max``); constant columns (frame joints, the crank's
+    speed) are left out and named in the caption, round-off noise is shown as 0."""
+    cols, summary = outcome.columns, outcome.summary
+    title = heading(outcome, length_unit) + (f" (lengths in {length_unit})"
+                                             if length_unit != "m" else "")
+    table = Table(title=title, title_justify="left")
     table.add_column("quantity")
     table.add_column("unit")
     for head in ("min", "at φ21 [°]", "max", "at φ21 [°]"):
         table.add_column(head, justify="right")
     constant = []
     scales = unit_scales(cols)
-    for name, values in cols.items():
+    for name in cols:
         if name == "angle_deg":
             continue
         factor, unit = display(unit_of(name), length_unit)
-        shown = number
+        low, high = summary[f"{name}_min"], summary[f"{name}_max"]
+        if low.value is None:
+            table.add_row(name, "" if unit == FLAG else unit, MISSING, "", MISSING, "")
+            continue
         if unit == FLAG:
             unit, shown = "", lambda value, scale: flag(value)
-        finite = np.isfinite(values)
-        if not finite.any():
-            table.add_row(name, unit, "—", "", "—", "")
-            continue
-        masked = np.where(finite, values, np.nan) * factor
-        lo, hi = int(np.nanargmin(masked)), int(np.nanargmax(masked))
+        else:
+            shown = number
         scale = scales[unit_of(name)] * factor
-        if masked[hi] - masked[lo] <= ROUNDOFF * scale and finite.all():
-            constant.append(f"{name} = {shown(masked[lo], scale)}{f' {unit}' if unit else ''}")
+        lo, hi = low.value * factor, high.value * factor
+        if hi - lo <= ROUNDOFF * scale and np.isfinite(cols[name]).all():
+            constant.append(f"{name} = {shown(lo, scale)}{f' {unit}' if unit else ''}")
             continue
-        table.add_row(name, unit, shown(masked[lo], scale), f"{angle[lo]:.1f}",
-                      shown(masked[hi], scale), f"{angle[hi]:.1f}")
+        table.add_row(name, unit, shown(lo, scale), where_of(low), shown(hi, scale),
+                      where_of(high))
     if constant:
         table.caption = "constant over the sweep: " + ", ".join(constant)
         table.caption_justify = "left"
     return table
 
 
-def key_results(result: Result, cols: Columns, summary: dict, length_unit: str = "m"
-                ) -> Table:
-    """The results that matter first: drive torque and power, each joint's peak force,
-    the smallest transmission angle of each dyad, strokes, swings and time ratios,
-    self-locking and clearance peaks."""
-    angle = cols["angle_deg"]
-    mechanism = result.mechanism
-    rpm = abs(mechanism.crank.speed) * RAD_PER_S_TO_RPM
-    speed = f"at {rpm:g} rpm"
-    motion = summary.get("motion")
-    if motion is not None:  # the equation of motion sets the speed, not the file's rpm
-        speed = (f"at a mean {motion['speed_mean'] * RAD_PER_S_TO_RPM:.4g} rpm (equation of "
-                 f"motion)" if motion["state"] == "steady" else "in a run-up from rest")
-    table = Table(title=f"{mechanism.name}: {angle.size} crank positions "
-                        f"{angle[0]:.1f}°–{angle[-1]:.1f}° {speed} — key results",
+def scale(summary, name: str) -> float:
+    """The largest magnitude of a column from the summary's extremes (0 if not there)."""
+    values = [summary[f"{name}_{which}"].value for which in ("min", "max")
+              if f"{name}_{which}" in summary]
+    return max((abs(v) for v in values if v is not None), default=0.0)
+
+
+def key_results(outcome, length_unit: str = "m") -> Table:
+    """The results that matter first: drive torque and power, the shaking force, each
+    joint's peak force, the smallest transmission angle of each dyad, strokes, swings
+    and time ratios, self-locking and clearance peaks (the summary's figures)."""
+    summary = outcome.summary
+    value = {name: figure.value for name, figure in summary.items()}
+    mechanism = outcome.result.mechanism
+    rpm = abs(mechanism.crank.speed) * 60.0 / (2.0 * np.pi)
+    speed = f"at {number(rpm, spec='g')} rpm"
+    if "motion_state" in value:  # the equation of motion sets the speed, not the file's rpm
+        speed = (f"at a mean {number(value['speed_mean_rpm'], spec='.4g')} rpm (equation of "
+                 f"motion)" if value["motion_state"] == "steady" else "in a run-up from rest")
+    table = Table(title=f"{heading(outcome, length_unit)} {speed} — key results"
+                        + (f", lengths in {length_unit}" if length_unit != "m" else ""),
                   title_justify="left", caption="--all: min and max of every column; "
                   "--columns PATTERN to choose columns", caption_justify="left")
     for head, justify in (("quantity", "left"), ("value", "right"), ("unit", "left"),
                           ("at φ21 [°]", "right")):
         table.add_column(head, justify=justify)
-    drive = summary.get("drive")
-    if drive:
-        torque = cols["M_drive"]
-        torque_scale = scale_of(torque)
-        for label, pick in (("drive torque max", np.nanargmax), ("drive torque min", np.nanargmin)):
-            if np.isfinite(torque).any():
-                k = int(pick(torque))
-                table.add_row(label, number(torque[k], torque_scale), "N·m", f"{angle[k]:.1f}")
-        table.add_row("drive torque RMS", number(drive["M_rms"], torque_scale), "N·m", "")
-        table.add_row("mean drive power", number(drive["P_mean"], scale_of(cols["P_drive"])), "W",
-                      "")
-        if "friction" in summary:
-            table.add_row("mean friction power", number(summary["friction"]["P_mean"],
-                                                        scale_of(cols["P_friction"])), "W", "")
-        peaks = summary.get("joint_peaks", {})
-        largest = max((abs(p["value"]) for p in peaks.values()), default=0.0)
-        for name, peak in peaks.items():
-            table.add_row(f"peak force {name}", number(abs(peak["value"]), largest), "N",
-                          f"{peak['at_deg']:.1f}")
-    for number_, figure in summary["transmission"].items():
-        table.add_row(f"smallest transmission angle, dyad {number_}", number(figure["min_deg"]),
-                      "°", f"{figure['at_deg']:.1f}")
-    for name, figure in summary["strokes"].items():
-        factor, unit = display("m", length_unit)
-        joint = name.replace("_", ",")
-        table.add_row(f"stroke of slider ({joint})", number(figure["stroke"] * factor), unit, "")
-        if figure["time_ratio"] is not None:
-            table.add_row(f"  time ratio ({joint})", number(figure["time_ratio"]), "-", "")
-    for link, figure in summary["swings"].items():
-        table.add_row(f"swing of link {link}", number(figure["swing_deg"]), "°", "")
-        if figure["time_ratio"] is not None:
-            table.add_row(f"  time ratio (link {link})", number(figure["time_ratio"]), "-", "")
-    for name, lock in (summary.get("self_locking") or {}).items():
-        joint = name.replace("_", ",")
-        where = lock["locking_angles_deg"]
-        table.add_row(f"self-locking, slider ({joint})",
-                      f"{len(where)} positions" if lock["locks"] else "none", "",
-                      f"{where[0]:.1f}–{where[-1]:.1f}" if lock["locks"] else "")
-    for check in summary.get("clearance") or []:
-        joint = check["joint"].replace("_", ",")
-        for rev in check["reversals"]:
-            table.add_row(f"clearance peak ({joint}), τ = {rev['tau']:.3g}", number(rev["F_max"]),
-                          "N", f"{rev['angle_deg']:.1f}")
+
+    def row(name: str, shown: str | None = None, unit: str | None = None,
+            label: str | None = None) -> None:
+        figure = summary[name]
+        table.add_row(label or figure.description, number(figure.value) if shown is None
+                      else shown, figure.unit if unit is None else unit, where_of(figure))
+
+    if "M_drive_max" in value:
+        torque = max(abs(value[n]) for n in ("M_drive_max", "M_drive_min")
+                     if value[n] is not None) if value["M_drive_max"] is not None else 0.0
+        for name in ("M_drive_max", "M_drive_min"):
+            if value[name] is not None:
+                row(name, number(value[name], torque))
+        if "M_drive_rms" in value:
+            row("M_drive_rms", number(value["M_drive_rms"], torque))
+            row("P_drive_mean", number(value["P_drive_mean"], scale(summary, "P_drive")))
+        if "P_friction_mean" in value:
+            row("P_friction_mean", number(value["P_friction_mean"],
+                                          scale(summary, "P_friction")))
+        for name in ("F_shake_max", "F_shake_rms", "M_shake_abs_max"):
+            if name in value:
+                row(name)
+        peaks = [name for name in summary if name.endswith("_peak")]
+        largest = max((abs(value[n]) for n in peaks), default=0.0)
+        for name in peaks:
+            row(name, number(abs(value[name]), largest), label=f"peak force {name[:-5]}")
+    for name, figure in summary.items():
+        if name.startswith("mu_") and name.endswith("_min_deg"):
+            row(name)
+        elif name.startswith("stroke_"):
+            factor, unit = display("m", length_unit)
+            row(name, number(None if figure.value is None else figure.value * factor), unit)
+        elif name.startswith("swing_") or (name.startswith("time_ratio_")
+                                           and figure.value is not None):
+            row(name)
+    for name, figure in summary.items():
+        if name.startswith("locks_"):
+            tag = name[len("locks_"):]
+            start, stop = value[f"lock_start_{tag}_deg"], value[f"lock_stop_{tag}_deg"]
+            table.add_row(f"self-locking, slider ({tag.replace('_', ',')})",
+                          f"{value[f'lock_positions_{tag}']} positions" if figure.value
+                          else "none", "",
+                          f"{at(start)}–{at(stop)}" if figure.value else "")
+        elif re.fullmatch(r"F_clearance_\d+_\d+_r\d+", name):
+            tag, _, k = name[len("F_clearance_"):].rpartition("_r")
+            row(name, label=f"clearance peak ({tag.replace('_', ',')}), τ = "
+                            f"{number(value[f'tau_{tag}_r{k}'], spec='.3g')}")
     return table
 
 
@@ -183,11 +207,14 @@ def skipped(the_plan: Plan) -> list[str]:
     return out
 
 
-def force_summary(result: Result, cols: Columns) -> Table | None:
-    """Per joint: the largest force and where; the drive: max/min/RMS torque, mean power."""
+def force_summary(outcome) -> Table | None:
+    """Per joint: the largest force and where; the drive: max/min/RMS torque, mean power;
+    friction's passes and residual; the least self-locking margin of each slider."""
+    result, cols, summary = outcome.result, outcome.columns, outcome.summary
     if result.forces_valid is None:
         return None
-    angle = cols["angle_deg"]
+    value = {name: figure.value for name, figure in summary.items()}
+    angle = np.asarray(cols["angle_deg"])
     rubbing = result.rubbing
     kind = "with Coulomb friction" if rubbing is not None else "frictionless"
     table = Table(title=f"Joint forces and drive (rigid, {kind})", title_justify="left")
@@ -195,37 +222,35 @@ def force_summary(result: Result, cols: Columns) -> Table | None:
     table.add_column("unit")
     table.add_column("largest |value|", justify="right")
     table.add_column("at φ21 [°]", justify="right")
-    scales = unit_scales(cols)
+    scales = unit_scales({name: cols[name] for name in cols if unit_of(name) in ("N", "N·m")})
     for joint in result.mechanism.joints:
         a, b = joint.name
         names = ([f"F_{a}_{b}"] if isinstance(joint, Revolute) else [f"FN_{a}_{b}", f"M_{a}_{b}"])
         for name in names:
             values = np.abs(cols[name])
             if not np.isfinite(values).any():
-                table.add_row(name, unit_of(name), "—", "")
+                table.add_row(name, unit_of(name), MISSING, "")
                 continue
             k = int(np.nanargmax(values))
             if is_roundoff(values[k], scales[unit_of(name)]):
                 table.add_row(name, unit_of(name), "0", "")  # round-off everywhere
                 continue
-            table.add_row(name, unit_of(name), number(cols[name][k]), f"{angle[k]:.1f}")
-    torque = cols["M_drive"]
-    finite = np.isfinite(torque)
-    radians = np.deg2rad(angle)
-    if finite.any():
-        lo, hi = int(np.nanargmin(torque)), int(np.nanargmax(torque))
-        scale = scale_of(torque)
-        table.add_row("M_drive max", "N·m", number(torque[hi], scale), f"{angle[hi]:.1f}")
-        table.add_row("M_drive min", "N·m", number(torque[lo], scale), f"{angle[lo]:.1f}")
-        table.add_row("M_drive RMS", "N·m", number(cycle.rms(radians, torque), scale), "")
-        table.add_row("P_drive mean", "W", number(cycle.mean(radians, cols["P_drive"])), "")
+            table.add_row(name, unit_of(name), number(cols[name][k]), at(angle[k]))
+    if value.get("M_drive_max") is not None:
+        torque = max(abs(value["M_drive_max"]), abs(value["M_drive_min"]))
+        table.add_row("M_drive max", "N·m", number(value["M_drive_max"], torque),
+                      where_of(summary["M_drive_max"]))
+        table.add_row("M_drive min", "N·m", number(value["M_drive_min"], torque),
+                      where_of(summary["M_drive_min"]))
+        table.add_row("M_drive RMS", "N·m", number(value["M_drive_rms"], torque), "")
+        table.add_row("P_drive mean", "W", number(value["P_drive_mean"]), "")
     if rubbing is not None:
-        table.add_row("P_friction mean", "W", number(cycle.mean(radians, cols["P_friction"])), "")
-        its = cols["friction_iterations"]
-        rows = result.rows & result.forces_valid
-        worst = float(np.max(rubbing.residual[rows], initial=0.0))
-        table.add_row("friction passes", "-", f"{its.min():.0f}–{its.max():.0f}", "")
-        table.add_row("worst final residual", "-", f"{worst:.2g}", "")
+        table.add_row("P_friction mean", "W", number(value["P_friction_mean"]), "")
+        table.add_row("friction passes", "-", f"{number(value['friction_iterations_min'], spec='.0f')}"
+                                              f"–{number(value['friction_iterations_max'], spec='.0f')}",
+                      "")
+        table.add_row("worst final residual", "-",
+                      number(value["friction_residual_max"], spec=".2g"), "")
     for name, lock in (result.locking or {}).items():
         a, b = name
         locks = lock.locks[result.rows]
@@ -233,16 +258,16 @@ def force_summary(result: Result, cols: Columns) -> Table | None:
         if lock.margin is None:
             table.add_row(f"joint ({a},{b}) ({verdict})", "", "", "")
             continue
-        margin = cols[f"lock_margin_{a}_{b}"]
-        if np.isfinite(margin).any():
-            k = int(np.nanargmin(margin))
-            table.add_row(f"lock_margin_{a}_{b} min ({verdict})", "-", f"{margin[k]:.6g}",
-                          f"{angle[k]:.1f}")
+        margin = summary.get(f"lock_margin_{a}_{b}_min")
+        if margin is not None and margin.value is not None:
+            table.add_row(f"lock_margin_{a}_{b} min ({verdict})", "-", number(margin.value),
+                          where_of(margin))
     return table
 
 
-def clearance_summary(result: Result) -> Table | None:
+def clearance_summary(outcome) -> Table | None:
     """One row per reversal of each checked joint: angle, τ, peak, amplification."""
+    result = outcome.result
     if not result.clearance:
         return None
     table = Table(title="Clearance peaks (Dresig & Thümmel)", title_justify="left")
@@ -252,49 +277,81 @@ def clearance_summary(result: Result) -> Table | None:
     for check in result.clearance:
         a, b = check.joint
         if not check.applies:
-            table.add_row(f"({a},{b})", "—", "model does not apply", "", "", "", "")
+            table.add_row(f"({a},{b})", MISSING, "model does not apply", "", "", "", "")
             continue
         if not check.reversals:
             table.add_row(f"({a},{b})", "0", "no reversal", "", "", "", "")
         for rev in check.reversals:
             table.add_row(f"({a},{b})", str(len(check.reversals)),
-                          f"{np.rad2deg(rev.crank_angle):.1f}", f"{rev.peak.tau:.4g}",
-                          f"{rev.peak.force:.5g}", f"{rev.rigid_force:.5g}",
-                          f"{rev.amplification:.3g}")
+                          at(np.rad2deg(rev.crank_angle)), number(rev.peak.tau, spec=".4g"),
+                          number(rev.peak.force, spec=".5g"),
+                          number(rev.rigid_force, spec=".5g"),
+                          number(rev.amplification, spec=".3g"))
     return table
 
 
-def motion_table(result: Result, summary: dict) -> Table | None:
+def motion_table(outcome) -> Table | None:
     """The crank's speed from the equation of motion: mean, extremes, fluctuation; for a
-    run-up its duration and work balance."""
-    motion = summary.get("motion")
-    if motion is None:
+    run-up its duration and work balance (the summary's figures)."""
+    summary = outcome.summary
+    if "motion_state" not in summary:
         return None
-    rpm = RAD_PER_S_TO_RPM
-    state = "steady state" if motion["state"] == "steady" else "run-up from rest"
-    scope = "; speeds over the last revolution" if motion["state"] != "steady" else ""
-    title = f"Crank speed from the equation of motion ({state}{scope})\nmotor: {motion['motor']}"
+    value = {name: figure.value for name, figure in summary.items()}
+    steady = value["motion_state"] == "steady"
+    state = "steady state" if steady else "run-up from rest"
+    scope = "; speeds over the last revolution" if not steady else ""
+    title = f"Crank speed from the equation of motion ({state}{scope})\nmotor: {value['motor']}"
     table = Table(title=title, title_justify="left",
                   min_width=max(len(line) for line in title.splitlines()))
     for head, justify in (("quantity", "left"), ("unit", "left"), ("value", "right"),
                           ("at φ21 [°]", "right")):
         table.add_column(head, justify=justify)
-    table.add_row("flywheel J_F", "kg·m²", f"{motion['flywheel_inertia']:.6g}", "")
-    table.add_row("mean reduced inertia", "kg·m²", f"{motion['inertia_mean']:.6g}", "")
-    table.add_row("mean speed 2π/T", "rpm", f"{motion['speed_mean'] * rpm:.6g}", "")
-    table.add_row("lowest speed", "rpm", f"{motion['speed_min'] * rpm:.6g}",
-                  f"{motion['speed_min_at_deg']:.1f}")
-    table.add_row("highest speed", "rpm", f"{motion['speed_max'] * rpm:.6g}",
-                  f"{motion['speed_max_at_deg']:.1f}")
-    table.add_row("speed fluctuation δ", "%", f"{100 * motion['fluctuation']:.4g}", "")
-    table.add_row("period T", "s", f"{motion['period']:.6g}", "")
-    table.add_row("mean motor torque", "N·m", f"{motion['motor_torque_mean']:.6g}", "")
-    if motion["state"] != "steady":
-        table.add_row("revolutions to repeat" if motion["settled"] else
-                      "revolutions (not yet periodic)", "-", f"{motion['revolutions']}", "")
-        table.add_row("run-up time", "s", f"{motion['duration']:.6g}", "")
-        table.add_row("motor work", "J", f"{motion['work_motor']:.6g}", "")
-        table.add_row("= kinetic energy", "J", f"{motion['kinetic_energy']:.6g}", "")
-        table.add_row("+ work on the loads", "J", f"{motion['work_load']:.6g}", "")
-        table.add_row("+ friction work", "J", f"{motion['work_friction']:.6g}", "")
+
+    def row(name: str, label: str | None = None, shown: str | None = None) -> None:
+        figure = summary[name]
+        table.add_row(label or figure.description, figure.unit,
+                      number(figure.value) if shown is None else shown, where_of(figure))
+
+    row("J_F", "flywheel J_F")
+    row("J_red_mean")
+    row("speed_mean_rpm")
+    row("speed_min_rpm")
+    row("speed_max_rpm")
+    table.add_row("speed fluctuation δ", "%", number(100 * value["fluctuation"], spec=".4g"), "")
+    row("period")
+    row("M_motor_mean")
+    if not steady:
+        table.add_row("revolutions to repeat" if value["settled"] else
+                      "revolutions (not yet periodic)", "-", f"{value['revolutions']}", "")
+        row("duration")
+        row("W_motor")
+        row("E_kinetic", "= kinetic energy")
+        row("W_load", "+ work on the loads")
+        row("W_friction", "+ friction work")
+    return table
+
+
+def positions_table(outcome, length_unit: str = "m") -> Table:
+    """The values at single crank positions (--at): one row per column, one column per
+    position, each with its unit (lengths in ``length_unit``)."""
+    cols = outcome.columns
+    angle = np.asarray(cols["angle_deg"])
+    table = Table(title=heading(outcome, length_unit) + (f" (lengths in {length_unit})"
+                                                         if length_unit != "m" else ""),
+                  title_justify="left")
+    table.add_column("quantity")
+    table.add_column("unit")
+    for value in angle:
+        table.add_column(f"φ21 = {number(value)}°", justify="right")
+    scales = unit_scales(cols)
+    for name in cols:
+        if name == "angle_deg":
+            continue
+        factor, unit = display(unit_of(name), length_unit)
+        values = np.asarray(cols[name]) * factor
+        if unit == FLAG:
+            table.add_row(name, "", *[MISSING if np.isnan(v) else flag(v) for v in values])
+            continue
+        scale_ = scales.get(unit_of(name), 0.0) * factor
+        table.add_row(name, unit, *[number(float(v), scale_) for v in values])
     return table

@@ -264,7 +264,8 @@ SWEEP_BYTES_PER_VALUE = 16
 """[B] per column and position of a variant's sweep (measured: about 16 B for a stack of
 120 four-bars, the arrays and their intermediates)"""
 BASE_BYTES = 50 << 20
-"""[B] what a process of the study takes besides its sweeps (numpy and the modules)"""
+"""[B] what the study takes besides its sweeps (numpy and the modules; the processes of
+``-j`` are forked, and share them)"""
 
 
 def bound(evaluator, nominal, variants: int, columns: int, processes: int,
@@ -285,8 +286,8 @@ def bound(evaluator, nominal, variants: int, columns: int, processes: int,
         mechanism = None
     if mechanism is not None and processes:
         stack = STACK if evaluator.stacks else 1
-        need += processes * (SWEEP_BYTES_PER_VALUE * column_count(mechanism)
-                             * mechanism.sweep.count * stack + BASE_BYTES)
+        need += processes * SWEEP_BYTES_PER_VALUE * column_count(mechanism) \
+            * mechanism.sweep.count * stack + BASE_BYTES
     check_memory(need, f"this study of {variants:,} variants"
                        f"{f' ({processes} at a time)' if processes > 1 else ''}", max_memory,
                  "Use fewer variants or processes")

@@ -1,7 +1,9 @@
 """The study's variants: each one's mechanism file with the study's overrides, swept by
 ``dyade.analyse`` and its summary flattened to named key results (``key_results``), or
 a block of them read at once and swept together (``Evaluator``,
-``dyade.linkage.variants``), their key results by the same functions (``figures``).
+``dyade.linkage.variants``), their key results by the same functions
+(``dyade.linkage.summary.key_figures``): a study's outputs are the summary's figures,
+of the same names and values.
 
 A variant that cannot be built (the reader refuses a value), does not close over the
 sweep (``AssemblyError``) or fails otherwise is a row with its status and reason and no
@@ -12,66 +14,72 @@ from __future__ import annotations
 
 import copy
 import math
+import re
 from typing import Any
 
 import numpy as np
 
-UNITS = {"M_drive_max": "N·m", "M_drive_min": "N·m", "M_drive_rms": "N·m", "P_drive_mean": "W",
-         "P_friction_mean": "W", "F_shake_max": "N", "F_shake_rms": "N", "M_shake_max": "N·m",
-         "flywheel_inertia": "kg·m²", "speed_mean_rpm": "rpm", "fluctuation": "-",
-         "omega_bar": "rad/s", "resonance_speed_rpm": "rpm", "speed_ratio": "-"}
-"""units of the outputs with fixed names; the others by their prefix (``unit``)"""
+from dyade.units import RAD_PER_S_TO_RPM
+
+EXTRA_UNITS = {"flywheel_inertia": "kg·m²", "omega_bar": "rad/s",
+               "resonance_speed_rpm": "rpm", "speed_ratio": "-"}
+"""units of the outputs ``[outputs] extra`` adds; the others are summary figures
+(``dyade.linkage.summary.unit``)"""
 
 OK, LOCKS, OPEN, REFUSED, FAILED = "ok", "locks", "does not close", "refused", "failed"
 STATUSES = (OK, LOCKS, OPEN, REFUSED, FAILED)
 
+RENAMED = {"M_shake_max": "M_shake_abs_max"}
+"""outputs of a study that were renamed when they became summary figures (issue 36):
+old -> new (``dyade.study.spec`` refuses the old, naming the new)"""
+
 
 def unit(name: str) -> str:
-    """The unit of an output column (SI; angles in degrees)."""
-    if name in UNITS:
-        return UNITS[name]
-    if name.endswith("_deg"):
-        return "deg"
-    if name.startswith(("F_", "FN_")):
-        return "N"
-    if name.startswith("stroke_"):
-        return "m"
-    if name.startswith(("time_ratio_", "locks_", "lock_margin_", "amplification_")):
-        return "-"
-    return ""
+    """The unit of an output column (SI; angles in degrees, speeds in rpm where the name
+    says so): a summary figure's (``dyade.linkage.summary.unit``), or an extra's."""
+    from dyade.linkage.summary import unit as figure_unit
+
+    return EXTRA_UNITS.get(name) or figure_unit(name)
+
+
+STUDIED = re.compile(r"mu_\d+_min_deg|stroke_\d+_\d+|time_ratio_\d+(_\d+)?|swing_\d+_deg"
+                     r"|M_drive_(max|min|rms)|P_drive_mean|FN?_\d+_\d+_peak|F_shake_(max|rms)"
+                     r"|M_shake_abs_max|P_friction_mean|locks_\d+_\d+"
+                     r"|lock_(start|stop)_\d+_\d+_deg|lock_margin_\d+_\d+_min"
+                     r"|speed_mean_rpm|fluctuation")
+"""the summary figures a study's row gives (``dyade.linkage.summary``): the key figures
+of the kinematics and forces, friction's power, self-locking, the crank's mean speed and
+fluctuation; with ``[outputs] extra = ["clearance"]`` also ``CLEARANCE``"""
+CLEARANCE = re.compile(r"(F_clearance|amplification)_\d+_\d+_max")
+
+
+def outputs(figures: dict, extras: tuple[str, ...] = ()) -> dict[str, float]:
+    """A study's outputs of one variant from its summary (name -> value, as
+    ``dyade.linkage.summary.summary`` gives it): the figures a study gives
+    (``STUDIED``; ``CLEARANCE`` with that extra), as floats (a flag 1.0 or 0.0, NaN
+    where a figure is not given). The names and values are the summary's."""
+    clearance = "clearance" in extras
+    return {name: math.nan if value is None else float(value)
+            for name, value in figures.items()
+            if STUDIED.fullmatch(name) or clearance and CLEARANCE.fullmatch(name)}
 
 
 def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
                 ) -> dict[str, float]:
-    """The key results of a sweep (a ``dyade.Result``) as named numbers: what ``analyse``'s
-    summary gives (drive torque and power, joint peaks, smallest transmission angles,
-    strokes, swings and time ratios, friction power, self-locking), the shaking force and
-    moment (``figures`` of the one sweep), and ``extras`` (``flywheel``: the inertia for
-    ``fluctuation``; ``clearance``: the peak force and amplification per clearance
-    joint; ``coupling``: the elastic drive line's lowest natural frequency ω̄ with the
+    """The key results of a sweep (a ``dyade.Result``) as named numbers: its summary's
+    figures (``dyade.linkage.summary.summary``, without the columns' extremes) that a
+    study gives (``outputs``: drive torque and power, joint peaks, smallest
+    transmission angles, strokes, swings and time ratios, the shaking force and moment,
+    friction power, self-locking; with a [drive] the mean speed and its fluctuation;
+    with the extra ``clearance`` the largest peak force and amplification per
+    clearance joint), and ``extras`` (``flywheel``: the inertia for ``fluctuation``;
+    ``coupling``: the elastic drive line's lowest natural frequency ω̄ with the
     linkage's mean reduced inertia, the crank speed of its first-order resonance
     Ω = ω̄ and the operating speed's ratio Ω/ω̄ of VDI 2149). NaN where the summary
     gives no value (a time ratio of an output that does not swing once)."""
-    from dyade.linkage.summary import stage_figures
+    from dyade.linkage.summary import summary
 
-    cols = result.columns()
-    rows = {name: values[None, :] for name, values in cols.items()}
-    out = {name: float(values[0]) for name, values in figures(
-        result.mechanism, cols["angle_deg"], rows, result.forces_valid is not None).items()}
-    s = stage_figures(result, cols)
-    if "friction" in s:
-        out["P_friction_mean"] = s["friction"]["P_mean"]
-    for joint, lock in s.get("self_locking", {}).items():
-        out[f"locks_{joint}"] = 1.0 if lock["locks"] else 0.0
-        angles = lock["locking_angles_deg"]
-        out[f"lock_start_{joint}_deg"] = float(angles[0]) if len(angles) else math.nan
-        out[f"lock_stop_{joint}_deg"] = float(angles[-1]) if len(angles) else math.nan
-        margin = cols.get(f"lock_margin_{joint}")
-        if margin is not None:
-            out[f"lock_margin_{joint}_min"] = float(np.fmin.reduce(margin))
-    if "motion" in s:
-        out["speed_mean_rpm"] = s["motion"]["speed_mean_rpm"]
-        out["fluctuation"] = s["motion"]["fluctuation"]
+    out = outputs(summary(result, result.columns(), extremes=False), extras)
     if "flywheel" in extras and result.forces_valid is not None:
         from dyade.linkage.machine_curve import torque_curve
         from dyade.machine.flywheel import size_flywheel
@@ -80,94 +88,11 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
                                                 fluctuation).flywheel
     if "coupling" in extras:  # the elastic drive line's resonance (``[drive_line]``)
         from dyade.linkage.drive import natural_frequency
-        from dyade.units import RAD_PER_S_TO_RPM
 
         line = natural_frequency(result.mechanism)
         out.update(omega_bar=line.omega_bar, resonance_speed_rpm=line.omega_bar * RAD_PER_S_TO_RPM,
                    speed_ratio=line.ratio)
-    if "clearance" in extras:
-        for check in s.get("clearance", []):
-            joint = check["joint"]
-            peaks = [r["F_max"] for r in check["reversals"]]
-            gains = [r["amplification"] for r in check["reversals"]]
-            out[f"F_clearance_{joint}_max"] = max(peaks) if peaks else math.nan
-            out[f"amplification_{joint}_max"] = max(gains) if gains else math.nan
     return {name: math.nan if value is None else float(value) for name, value in out.items()}
-
-
-def figures(mechanism, angle_deg: np.ndarray, cols: dict[str, np.ndarray], forces: bool,
-            presence: dict[str, str] | None = None) -> dict[str, np.ndarray]:
-    """The key results of the kinematics and the forces of variants of ``mechanism``
-    (columns of (variants, positions), all at the crank angles ``angle_deg``), each a
-    (variants,) array, by the summary's own functions (``dyade.linkage.summary``): the
-    smallest transmission angle per dyad, stroke and time ratio per slider, swing and
-    time ratio per rocker; with ``forces`` the drive torque's peak, trough and RMS, the
-    mean drive power, each joint's peak force, the shaking force's peak and RMS and the
-    shaking moment's peak. A figure no variant has (a slider that never moves) is left
-    out; NaN for a variant without it. ``presence`` (filled if given): the figures a
-    variant has only where it has a value, each -> the figure whose value decides (a
-    time ratio goes with its stroke or swing), as ``key_results`` of the variant alone
-    gives them."""
-    from dyade import cycle
-    from dyade.linkage import summary as figures_
-    from dyade.model.mechanism import Revolute
-
-    out: dict[str, np.ndarray] = {}
-
-    def each(rows: list[np.ndarray], function) -> list:
-        """``function`` of the rows of several (variants, positions) arrays in one call
-        (they share the crank angles): its results split again, one per array."""
-        if not rows:
-            return []
-        count = rows[0].shape[0]
-        results = function(np.concatenate(rows))
-        results = results if isinstance(results, tuple) else (results,)
-        return [tuple(r[k * count:(k + 1) * count] for r in results)
-                for k in range(len(rows))]
-
-    presence = {} if presence is None else presence
-
-    def given(name: str, values: np.ndarray) -> bool:
-        if np.isnan(values).all():
-            return False
-        out[name] = values
-        presence[name] = name
-        return True
-
-    for dyad, (least, _) in zip(mechanism.dyads, each(
-            [cols[f"mu_{dyad.number}_deg"] for dyad in mechanism.dyads],
-            figures_.least_transmission)):
-        given(f"mu_{dyad.number}_min_deg", least)
-    sliders = ["{}_{}".format(*joint.name) for joint in mechanism.joints
-               if not isinstance(joint, Revolute)]
-    rockers = [link for link in mechanism.moving_links[1:] if figures_.pivoted(mechanism, link)]
-    strokes = each([cols[f"s_{tag}"] for tag in sliders], figures_.strokes)
-    swings = each([cols[f"phi_{link}_deg"] for link in rockers], figures_.swings)
-    outputs = [cols[f"s_{tag}"] for tag in sliders] + [turned for _, turned in swings]
-    ratios = each(outputs, lambda rows: figures_.time_ratios(angle_deg, rows))
-    for tag, (stroke,), (ratio,) in zip(sliders, strokes, ratios):
-        if given(f"stroke_{tag}", stroke):
-            out[f"time_ratio_{tag}"] = np.where(np.isnan(stroke), np.nan, ratio)
-            presence[f"time_ratio_{tag}"] = f"stroke_{tag}"
-    for link, (swing, _), (ratio,) in zip(rockers, swings, ratios[len(sliders):]):
-        if given(f"swing_{link}_deg", swing):
-            out[f"time_ratio_{link}"] = np.where(np.isnan(swing), np.nan, ratio)
-            presence[f"time_ratio_{link}"] = f"swing_{link}_deg"
-    if not forces:
-        return out
-    radians = np.deg2rad(angle_deg)
-    torque = cols["M_drive"]
-    force = np.hypot(cols["Fx_shake"], cols["Fy_shake"])
-    (rms,), (shake_rms,) = each([torque, force], lambda rows: cycle.rmss(radians, rows))
-    out.update(M_drive_max=np.fmax.reduce(torque, axis=1),
-               M_drive_min=np.fmin.reduce(torque, axis=1), M_drive_rms=rms,
-               P_drive_mean=cycle.means(radians, cols["P_drive"]))
-    names = figures_.joint_force_names(mechanism)
-    for name, (peak, _) in zip(names, each([cols[name] for name in names], figures_.peaks)):
-        given(f"{name}_peak", peak)
-    out.update(F_shake_max=np.fmax.reduce(force, axis=1), F_shake_rms=shake_rms,
-               M_shake_max=np.fmax.reduce(np.abs(cols["M_shake"]), axis=1))
-    return out
 
 
 def status_of(values: dict[str, float]) -> str:
@@ -190,7 +115,8 @@ class Evaluator:
     extra outputs, parameters that are numbers of the file): the file read once with
     ``Variants`` at the parameters' key paths (checked against the first and the last
     variant read alone), the variants × positions swept in one run, the key results
-    by the summary's own functions over (variants, positions). Every variant that is
+    by the summary's own functions over (variants, positions)
+    (``dyade.linkage.summary.key_figures``). Every variant that is
     not clean there (it does not close, comes near a dead centre, is refused, ...) and
     every block that cannot be stacked is evaluated alone (``one``)."""
 
@@ -337,8 +263,10 @@ class Evaluator:
         except (ValueError, TypeError):  # NotStackable, or a number the engine takes
             self.stacks = False          # as one: every block variant by variant
             return {}
+        from dyade.linkage.summary import key_figures
+
         presence: dict[str, str] = {}
-        out = figures(stacked, swept.angle_deg, swept.columns, swept.forces, presence)
+        out = key_figures(stacked, swept.angle_deg, swept.columns, swept.forces, presence)
         clean = np.flatnonzero(swept.clean)
         self.calls += clean.size
         self.together += clean.size

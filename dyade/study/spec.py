@@ -409,6 +409,8 @@ def _optimise(label: str, table: dict, params) -> dict[str, Any]:
         names = [names] if isinstance(names, str) else names
         if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
             raise fail(label, f"optimise.{sense}", f"must name outputs, got {names!r}.")
+        for name in names:
+            _current(label, f"optimise.{sense}", name)
         objectives += [(n, 1.0 if sense == "minimise" else -1.0) for n in names]
     if not objectives:
         raise fail(label, "optimise", "needs minimise or maximise (one output, or several "
@@ -417,6 +419,7 @@ def _optimise(label: str, table: dict, params) -> dict[str, Any]:
     _keys(label, bounds, "optimise.bounds", set(bounds) if isinstance(bounds, dict) else set())
     limits = {}
     for name, pair in bounds.items():
+        _current(label, f"optimise.bounds.{name}", name)
         if not (isinstance(pair, list) and len(pair) == 2):
             raise fail(label, f"optimise.bounds.{name}", f"must be [low, high] (\"\" for none), "
                                                          f"got {pair!r}.")
@@ -427,6 +430,19 @@ def _optimise(label: str, table: dict, params) -> dict[str, Any]:
            "maxiter": int(table.get("maxiter", 200)), "popsize": int(table.get("popsize", 15)),
            "tol": float(table.get("tol", 1e-10)), "polish": bool(table.get("polish", True))}
     return out
+
+
+def _current(label: str, key: str, name: str) -> None:
+    """Refuse an output named as before issue 36 (an old study output, or a key of the
+    former nested JSON summary such as ``drive.M_max``), naming its name now."""
+    from dyade.linkage.summary import renamed
+    from dyade.study.evaluate import RENAMED
+
+    new = RENAMED.get(name) or renamed(name)
+    if new is not None and new != name:
+        raise fail(label, key, f"names the output {name!r}, which is now {new!r} (a study's "
+                               f"outputs are the summary's figures, docs/reference/json.md "
+                               f"lists the old names and the new).")
 
 
 def _flatten(table: dict, prefix: str = "") -> dict[str, Any]:

@@ -82,3 +82,12 @@ def test_converged_takes_the_run_of_settings_within_the_tolerance():
     assert converged(rows(1e-2, 1e-4, 1e-5, nan)) == "1"
     assert converged(rows(1e-4, 1e-2, 1e-5, nan)) == "2"  # one coarser within does not count
     assert converged(rows(1e-2, 1e-2, nan)) is None
+
+
+def test_the_bounds_of_a_run():
+    out = cli("accuracy", shipped("fourbar.toml"), "--max-memory", 1)
+    assert out.exit_code == 2 and "--max-memory is 1.05 MB, and this sweep of 7,201 positions" \
+        in out.output
+    out = cli("accuracy", shipped("dyade-16.toml"), "--max-time", 0.01)
+    assert out.exit_code == 2 and "--max-time is 0.01 s, and DYADE-16 processing-machine " \
+        "drive: the accuracy studies would take about" in out.output

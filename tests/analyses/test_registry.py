@@ -52,6 +52,9 @@ RUNS = {
     "balance": (FOURBAR, {}, ["balance", FOURBAR]),
     "study": (shipped("studies/press-slide-tolerance.toml"), {},
               ["study", str(shipped("studies/press-slide-tolerance.toml"))]),
+    "sweep": (shipped("self-locking.toml"), {"step_deg": 2.0},
+              ["analyse", str(shipped("self-locking.toml")), "--step", "2"]),
+    "describe": (shipped("dyade-16.toml"), {}, ["describe", str(shipped("dyade-16.toml"))]),
 }
 """an invocation of each entry, from Python and from the command line"""
 

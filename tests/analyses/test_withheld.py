@@ -26,9 +26,6 @@ COMMANDS = {
     "balance": ["balance", FOURBAR, *FAST],
     "flywheel": ["flywheel", FOURBAR, *FAST, "--fluctuation", "0.02"],
 }
-OTHER_BRANCH = pytest.mark.xfail(strict=False, reason="other branch")
-"""analyse (the sweep) and clearance are other helpers' commands of issue 36: the lead
-removes these marks at the merge"""
 
 
 def test_every_position_of_the_four_bar_at_1e9_rpm_is_withheld():
@@ -39,9 +36,7 @@ def test_every_position_of_the_four_bar_at_1e9_rpm_is_withheld():
     assert np.isnan(cols["M_drive"]).all() and np.isnan(cols["alpha_3"]).all()
 
 
-@pytest.mark.parametrize("command", [
-    pytest.param(name, marks=OTHER_BRANCH) if name in ("analyse", "clearance") else name
-    for name in COMMANDS])
+@pytest.mark.parametrize("command", COMMANDS)
 def test_a_run_whose_every_position_is_withheld_exits_1_saying_so(command):
     result = CliRunner().invoke(main, [str(a) for a in COMMANDS[command]])
     assert result.exit_code == 1, result.output

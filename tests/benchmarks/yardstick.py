@@ -136,7 +136,7 @@ def fourbar_variants(r3: np.ndarray, r4: np.ndarray, phi: np.ndarray, omega: flo
             "swing_4_deg": rocker.max(axis=1) - rocker.min(axis=1),
             "time_ratio_4": (360.0 - short) / short,
             "F_shake_max": shake.max(axis=1), "F_shake_rms": np.sqrt(mean(shake * shake)),
-            "M_shake_max": np.abs(moment).max(axis=1)}
+            "M_shake_abs_max": np.abs(moment).max(axis=1)}
 
 
 def _vertex(values: np.ndarray, sign: float) -> np.ndarray:

@@ -1,4 +1,6 @@
-"""The columns of a sweep in blocks, kept in a temporary file instead of memory."""
+"""The columns of a sweep in blocks, kept in a temporary file instead of memory: the
+columns of a ``sweep`` Outcome (``dyade.analyses.sweep``), which every writer reads one
+column at a time."""
 
 from __future__ import annotations
 
@@ -71,14 +73,32 @@ class Spool(Mapping):
         self.kept = {name: out}
         return out
 
+    def parts(self, names: list[str] | None = None) -> Iterator[dict[str, FloatArray]]:
+        """The columns ``names`` (all) block by block, as they were added."""
+        names = self.names if names is None else names
+        for offset, rows in self.blocks:
+            table = np.empty((len(self.names), rows))
+            self.file.seek(offset)
+            self.file.readinto(memoryview(table).cast("B"))
+            yield {name: table[self.where[name]] for name in names}
+        self.file.seek(0, 2)
+
     def __iter__(self) -> Iterator[str]:
         return iter(self.names)
+
+    def __contains__(self, name: object) -> bool:  # (Mapping's would read the column)
+        return name in self.where
 
     def __len__(self) -> int:
         return len(self.names)
 
     def close(self) -> None:
         self.file.close()
+
+    def __del__(self) -> None:  # collected: the temporary file goes with it
+        file = getattr(self, "file", None)
+        if file is not None:
+            file.close()
 
     def __enter__(self) -> "Spool":
         return self
