@@ -26,7 +26,6 @@ from dyade.analyses import inputs
 from dyade.analyses.base import Analysis, Budget, Option, Outcome, withheld
 
 SIM_TIME = 1e-4  # [s per case and RK4 step per contact period] a direct simulation
-SWEEP_TIME = 1e-5  # [s per position and dyad] a sweep with forces (the check of a speed)
 TITLE = "Dresig & Thümmel, eq. (36)"
 
 MASS = Option("mass", float, "kg", multiple=True, positive=True, metavar="KG",
@@ -144,6 +143,7 @@ def reduced(masses) -> float | None:
 
 
 def sim_steps(options: dict[str, Any]) -> int:
+    """The RK4 steps per contact period, at least 10."""
     from dyade.errors import InputError
 
     steps = options[SIM_STEPS.api]
@@ -212,6 +212,8 @@ def row_notes(row: dict, where: str = "") -> list[str]:
 
 # -- standalone ---------------------------------------------------------------------------
 def run_peak(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``clearance-peak``: the peak force of the four numbers (at each speed of a speed
+    range), with the direct simulation beside it where asked."""
     from dyade import clearance as engine
     from dyade.analyses.ranges import values
     from dyade.errors import InputError
@@ -263,7 +265,7 @@ def run_peak(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     worst = max(rows, key=lambda row: row["F_max"])
     where = {"speed_rpm": worst["speed_rpm"]} if speeds else None
     outcome.add("F_max", worst["F_max"], "N", where=where,
-                description="peak force F12max = c·s·f(τ)" + (" (the largest)" if speeds else ""))
+                description="peak force F12max = c·s·f(τ)" + (" (the largest)" * bool(speeds)))
     outcome.add("tau", worst["tau"], "-", where=where, description="τ = ω·t1 there, eq. (23)")
     if simulate:
         outcome.add("F_sim", worst["F_sim"], "N", where=where,
@@ -403,9 +405,10 @@ def label_of(loaded) -> str:
     return loaded.label if loaded.label == "<stdin>" else os.path.basename(loaded.label)
 
 
-def mechanism_outcome(name: str, loaded, study, options, simulate: bool, steps: int,
-                      speeds: bool) -> Outcome:
-    """The Outcome of a check over a mechanism at one speed or several."""
+def mechanism_outcome(name: str, loaded, study, arguments: dict[str, Any], simulate: bool,
+                      steps: int, speeds: bool) -> Outcome:
+    """The Outcome of a check over a mechanism at one speed or several (``study``: (speed
+    [rpm] or None, checks) per speed; ``arguments``: those of the check)."""
     from dyade.units import RPM
 
     mechanism = loaded.mechanism
@@ -413,7 +416,7 @@ def mechanism_outcome(name: str, loaded, study, options, simulate: bool, steps: 
     outcome = Outcome(name, figures=("clearance",))
     columns(outcome, rows, (["speed_rpm"] if speeds else []) + MECHANISM
             + (MECHANISM_SIMULATION if simulate else []) + (["note"] if speeds else []))
-    joints = options["joints"] or [j.name for j in mechanism.joints if j.kind == "R"]
+    joints = arguments["joints"] or [j.name for j in mechanism.joints if j.kind == "R"]
     outcome.meta = {"name": mechanism.name, "source": None if loaded.text is None
                     else loaded.label, "joints": [f"{a}-{b}" for a, b in joints]}
     peaks = [row for row in rows if "F_max" in row]
@@ -439,22 +442,27 @@ def mechanism_outcome(name: str, loaded, study, options, simulate: bool, steps: 
 
 
 def run_check(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``clearance-check``: every reversal of the mechanism's revolute joints (those
+    asked) with its peak force; the largest simulated with its history where asked."""
+    from dyade.analyses.machine import withholding
     from dyade.errors import InputError
     from dyade.linkage.clearance_study import check
+    from dyade.linkage.sweep import analyse
 
     loaded = inputs.load(source, options)
     arguments = check_options(options)
     simulate, steps = bool(options[SIMULATE.api]), sim_steps(options)
+    result = analyse(loaded.mechanism, allow_partial=arguments["allow_partial"])
     try:
-        checks = check(loaded.mechanism, **arguments)
+        checks = check(loaded.mechanism, result=result, **arguments)
     except InputError as err:
         raise err.naming(ENGINE) from None
     label = label_of(loaded)
     nothing_to_compute(checks, label)
-    blank = Outcome("clearance-check")
-    withheld(blank, [check.missing != "forces" for check in checks],
+    why = withholding(result.notes)
+    withheld(Outcome("clearance-check"), [check.missing != "forces" for check in checks],
              f"{label}: no crank position of the sweep has its joint forces given (every "
-             f"position is withheld; `dyade analyse` says why)")
+             f"position is withheld{f': {why}' if why else ''})")
     if simulate:
         count = sum(len(c.reversals) for c in checks)
         budget.time(SIM_TIME * steps * (count + 1),
@@ -471,6 +479,9 @@ def run_check(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
 
 
 def run_speeds(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``clearance-speeds``: the check at each crank speed of a range (the crank keeps
+    its sense of rotation), every joint accounted for at every speed."""
+    from dyade.analyses.machine import sweep_seconds
     from dyade.analyses.ranges import values
     from dyade.errors import InputError
     from dyade.linkage.clearance_study import speed_study
@@ -488,9 +499,8 @@ def run_speeds(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                                    value=jobs)
     workers = jobs if jobs > 0 else (os.cpu_count() or 1)
     mechanism = loaded.mechanism
-    positions = mechanism.sweep.count * (len(mechanism.dyads) + 1)
-    budget.time(SWEEP_TIME * positions * len(speeds) / min(workers, len(speeds)),
-                f"the clearance check at {len(speeds):,} speeds")
+    budget.time(sweep_seconds(mechanism, mechanism.sweep.count) * len(speeds)
+                / min(workers, len(speeds)), f"the clearance check at {len(speeds):,} speeds")
     try:
         study = speed_study(mechanism, speeds, progress=budget.progress, workers=workers,
                             **arguments)
@@ -498,8 +508,7 @@ def run_speeds(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         raise err.naming(ENGINE) from None
     label = label_of(loaded)
     nothing_to_compute([check for _, checks in study for check in checks], label)
-    blank = Outcome("clearance-speeds")
-    withheld(blank, [any(check.missing != "forces" for check in checks) for _, checks in study],
+    withheld(Outcome("clearance-speeds"), [any(check.missing != "forces" for check in checks) for _, checks in study],
              f"{label}: no crank speed of the study has its joint forces given at any crank "
              f"position (every position is withheld; `dyade analyse` says why)")
     if simulate:

@@ -44,12 +44,13 @@ CHECK = Option("check", bool, study=False,
                help="Solve the paper's eliminated form (eqs. (27)–(33)) beside the "
                     "null-space solution: its frequencies, their relative difference and its "
                     "extra zero eigenvalues (one per mesh)")
-SPEED_RANGE = Option("speed-range", str, "rpm", metavar="START:STOP:STEP",
+SPEED_RANGE = Option("speed-range", str, "rpm", metavar="START:STOP:STEP", old=("--campbell",),
                      help="Input speeds of the Campbell diagram (default: 0 to 1.5 × the "
                           "file's [speed] rpm, in 200 steps)")
 HARMONICS = Option("harmonics", int, default=3, metavar="N",
                    help="Tooth-mesh harmonics in the Campbell diagram")
 FREQUENCY_RANGE = Option("frequency-range", str, "Hz", metavar="START:STOP:STEP",
+                         old=("--response",),
                          help="Frequencies of the forced response to the file's excitations "
                               "(harmonic torques, transmission errors)")
 DOF = Option("dof", str, multiple=True, metavar="BODY.DOF",
@@ -224,6 +225,8 @@ def shape_columns(modes, count: int) -> tuple[dict[str, Any], dict[str, str], di
 
 
 def run_modes(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``gear-modes``: one row per elastic mode (with the first ``modes`` shapes; with
+    the elimination check beside it where asked)."""
     import numpy as np
 
     loaded = load(source, options)
@@ -388,6 +391,8 @@ def crossing_columns(diagram) -> dict[str, Any]:
 
 
 def run_campbell(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``gear-campbell``: one row per resonance of the speed range; the lines and the
+    natural frequencies in the summary."""
     from dyade.errors import InputError
     from dyade.vibration.gears.campbell import campbell, orders
 
@@ -498,6 +503,7 @@ def identifier(name: str) -> str:
 
 
 def run_response(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``gear-response``: one row per frequency; each amplitude's peak in the summary."""
     import numpy as np
 
     from dyade.analyses.ranges import values

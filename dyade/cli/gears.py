@@ -8,11 +8,9 @@ import click
 
 from dyade.analyses.gears import ENTRIES, FREQUENCY_RANGE, SPEED_RANGE
 from dyade.cli import contract, main
-from dyade.cli.options import Renamed
 
-MODES, CAMPBELL, RESPONSE = ENTRIES["gear-modes"], ENTRIES["gear-campbell"], ENTRIES["gear-response"]
-RENAMED = {SPEED_RANGE.api: "--campbell", FREQUENCY_RANGE.api: "--response"}
-"""options with a former flag kept as a hidden alias"""
+MODES, CAMPBELL, RESPONSE = (ENTRIES[name] for name in ("gear-modes", "gear-campbell",
+                                                       "gear-response"))
 
 
 def read_source(gear_file: str):
@@ -27,16 +25,12 @@ def read_source(gear_file: str):
 
 
 def gear_options(entries, skip: tuple[str, ...] = ()):
-    """Decorate a command with the options of the gear ``entries``, each once (the former
-    flags of ``RENAMED`` as hidden aliases), less those in ``skip`` (API names)."""
+    """Decorate a command with the options of the gear ``entries``, each once (former
+    flags such as ``--campbell`` as hidden aliases), less those in ``skip`` (API
+    names)."""
     def decorate(command):
         for option in reversed(contract.declared(entries, skip)):
-            if option.api in RENAMED:
-                command = click.option(option.flag, option.api, cls=Renamed,
-                                       old=(RENAMED[option.api],), metavar=option.metavar,
-                                       help=option.text)(command)
-            else:
-                command = contract.click_option(option)(command)
+            command = contract.click_option(option)(command)
         return command
 
     return decorate
