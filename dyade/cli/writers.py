@@ -36,8 +36,9 @@ def named(entry):
         if str(err).startswith(", ".join(err.parameters) + ": "):  # "a, b: reason"
             text = f"{' and '.join(named.parameters)}: {named.reason}"
         text = re.sub(r"crank_angle_deg=\[\.\.\.\]|at_deg=\[\.\.\.\]", "--at DEG", text)
-        text = re.sub(r"\b(" + "|".join(map(re.escape, names)) + r")\b",
-                      lambda match: names[match.group(1)], text)
+        text = re.sub(r"\b(" + "|".join(map(re.escape, names)) + r")\b(=?)",
+                      lambda match: names[match.group(1)] + (" " if match.group(2) else ""),
+                      text)
         out = InputError(text, key=named.key, value=named.value, unit=named.unit,
                          reason=named.reason)
         out.parameters = named.parameters

@@ -1,8 +1,11 @@
-"""The one JSON shape of every command: columns, units, summary, warnings, meta.
+"""The JSON writer's parts: the columns of a document written a column and a block of
+values at a time (``write_columns``, for columns kept on disk), numbers as the CSV
+writes them (``json_numbers``).
 
-``{"columns": {name: [...]}, "units": {name: unit}, "summary": {...}, "warnings": [...],
-"meta": {...}}`` so that ``pandas.DataFrame(j["columns"])`` is the table; numbers are
-written as in the CSV (15 significant digits), NaN and infinities as null
+``document`` is the former shape of a command's JSON (schema 1: ``{"columns", "units",
+"summary", "warnings", "meta"}``), kept for the commands that do not yet run a registry
+entry; an entry's command writes ``Outcome.to_document()`` (docs/reference/json.md).
+Numbers are written as in the CSV (15 significant digits), NaN and infinities as null
 (``dyade.cli.output.jsonable``).
 """
 
@@ -14,7 +17,7 @@ from typing import Any
 
 def document(command: str, columns: dict[str, Any], units: dict[str, str],
              summary: dict[str, Any], warnings: list[str], **meta: Any) -> dict[str, Any]:
-    """The JSON document of a command's result."""
+    """The former JSON document of a command's result (schema 1)."""
     from dyade import __version__
 
     return {"columns": columns, "units": {name: units.get(name, "") for name in columns},

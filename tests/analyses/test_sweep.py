@@ -139,6 +139,11 @@ def test_the_shaking_force_is_the_resultant_of_the_frame_bearings():
     assert outcome.summary["F_shake_rms"].value == pytest.approx(rms, rel=1e-9)
     moment = np.abs(cols["M_shake"])
     assert outcome.summary["M_shake_abs_max"].value == pytest.approx(moment.max(), rel=1e-15)
+    # the shaking moment's largest magnitude, of either sign: dyade-16's is its trough
+    sixteen = dyade.run("sweep", str(shipped("dyade-16.toml"))).summary
+    assert sixteen["M_shake_abs_max"].value == -sixteen["M_shake_min"].value
+    assert sixteen["M_shake_abs_max"].where == sixteen["M_shake_min"].where
+    assert sixteen["M_shake_max"].value < sixteen["M_shake_abs_max"].value
     # a machine without losses, loads or gravity at constant speed: its kinetic energy
     # is periodic, so the drive's mean power over a revolution is zero
     assert outcome.summary["P_drive_mean"].value == 0.0

@@ -57,8 +57,8 @@ def test_did_you_mean():
 
 
 def test_step_beyond_the_sweep():
-    expect(["analyse", FOURBAR, "--step", "400"], 2, "--step", "400° is larger than the sweep",
-           "at most 360°")
+    expect(["analyse", FOURBAR, "--step", "400"], 2, "--step is 400°, more than one revolution",
+           "It is in degrees: --step 0.5 sweeps every half degree")
 
 
 def test_a_closed_pipe_ends_quietly_with_sigpipe_status():

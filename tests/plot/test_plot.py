@@ -267,7 +267,7 @@ def test_still_mechanism_at_the_angles_asked():
     assert [ax.get_title() for ax in fig.axes if ax.get_visible()] == [
         "φ21 = 0°", "φ21 = 45°", "φ21 = 200°"]
     for ax, deg in zip(fig.axes, (0, 45, 200)):
-        table = csv_of(shipped("slider-crank.toml"), "--start", str(deg), "--stop", str(deg))
+        table = csv_of(shipped("slider-crank.toml"), "--at", str(deg))
         pins = line(ax, "pins").get_xydata()
         expected = [[table[f"x_{a}_{b}"][0], table[f"y_{a}_{b}"][0]]
                     for a, b in ((1, 2), (2, 3), (3, 4))]
