@@ -23,12 +23,13 @@ import os
 import sys
 import types
 from dataclasses import dataclass, field
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from dyade.errors import InputError
 from dyade.study.spec import Parameter, Spec, needs, parse, read
+
+if TYPE_CHECKING:  # numpy only in annotations: `dyade --help` lists the study without it
+    import numpy as np
 
 __all__ = ["Parameter", "Spec", "Study", "needs", "parse", "read", "study"]
 
