@@ -226,3 +226,34 @@ def test_the_commands_table_shows_no_python_repr(name):
 def test_every_entry_has_a_run():
     missing = sorted(set(ENTRIES) - set(RUNS))
     assert not missing, f"no invocation in RUNS for {missing}"
+
+
+SHIPPED_MECHANISMS = sorted(str(p) for p in shipped("").glob("*.toml"))
+SHIPPED_TABLES = [
+    *[["analyse", path] for path in SHIPPED_MECHANISMS],
+    *[["analyse", path, "--all"] for path in SHIPPED_MECHANISMS],
+    *[["describe", path] for path in SHIPPED_MECHANISMS],
+    *[["balance", path] for path in SHIPPED_MECHANISMS],
+    *[["flywheel", path, "--fluctuation", "0.02"] for path in SHIPPED_MECHANISMS],
+    *[["clearance", path, "--stiffness", "1e8", "--clearance", "1e-4"]
+      for path in SHIPPED_MECHANISMS],
+    *[["accuracy", path, "--repeats", "1"] for path in SHIPPED_MECHANISMS],
+    *[["gears", str(path), *extra] for path in sorted(shipped("gears").glob("*.toml"))
+      for extra in ([], ["--modes", "2"], ["--check"], ["--speed-range", "0:3000:500"])],
+    ["coupling", str(shipped("coupling/stiff-coupling.toml"))],
+    ["coupling", "--J", "1", "--c1", "1", "--c2", "1"],  # undamped: unbounded peaks
+    ["flywheel", str(shipped("torque/engine.csv")), "--speed", "250", "--fluctuation", "0.01"],
+    *[["driveline", DYADE_16, "--set", "drive_line.stiffness=1000", "--analysis", analysis]
+      for analysis in ("frequency", "steady")],
+]
+"""every command's tables on the shipped files"""
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("argv", SHIPPED_TABLES, ids=lambda argv: " ".join(
+    a.rsplit("/", 1)[-1] for a in argv))
+def test_no_table_on_the_shipped_files_shows_a_python_repr(argv):
+    out = CliRunner().invoke(main, argv, catch_exceptions=False)
+    assert out.exit_code in (0, 1, 2), out.output  # a file without masses: said, exit 2
+    found = REPR.findall(out.stdout)
+    assert not found, f"{' '.join(argv)} shows {found[:5]}"
