@@ -27,7 +27,10 @@ def report_options(command):
 @click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True),
               help="The HTML file to write  [default: NAME-report.html here].")
 @report_options
-def report(file: str, output: str | None, **options) -> None:
+@click.option("--units", type=click.Choice(["file", "si"]), default="file", show_default=True,
+              help="The tables' lengths in the mechanism file's length unit or in SI (m), "
+                   "as dyade analyse's.")
+def report(file: str, output: str | None, units: str, **options) -> None:
     """The design report of FILE (a mechanism, gear, study or coupling file) as one
     self-contained HTML page to read, share or print: what `dyade describe` says, the key
     results, the notes on where the model holds, the figures of `dyade plot` and the
@@ -56,7 +59,8 @@ def report(file: str, output: str | None, **options) -> None:
     given = options_of_declared(OPTIONS, options)
     overrides = dict(schema.parse_assignment(a) for a in given.pop(SET.api, ()))
     with flags({option.api: option.flag for option in OPTIONS} | FLAGS), options_named():
-        page = design_report(file, overrides or None, **given)
+        page = design_report(file, overrides or None, **given,
+                             **({"units": "si"} if units == "si" else {}))
     output = output or f"{os.path.splitext(os.path.basename(file))[0]}-report.html"
     with atomic(output) as handle:
         handle.write(page)

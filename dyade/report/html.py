@@ -172,7 +172,9 @@ def report(path: str, overrides: dict[str, Any] | None = None, **options: Any) -
         The options of the analyses the report composes, by their API names, as the
         commands take them: for a mechanism ``start_deg``, ``stop_deg``, ``step_deg``
         and ``allow_partial`` (a mechanism that closes over part of the turn is
-        reported over that part, the gaps shaded in the figures and said in the notes).
+        reported over that part, the gaps shaded in the figures and said in the notes),
+        ``units`` (``"file"``: the tables' lengths in the file's length unit, as
+        ``dyade analyse``'s; ``"si"``: in metres).
 
     Returns
     -------
@@ -221,7 +223,7 @@ def report(path: str, overrides: dict[str, Any] | None = None, **options: Any) -
 # -- a mechanism -------------------------------------------------------------------------
 def mechanism_report(mechanism, *, source: str = "", start_deg: float | None = None,
                      stop_deg: float | None = None, step_deg: float | None = None,
-                     allow_partial: bool = False) -> str:
+                     allow_partial: bool = False, units: str = "file") -> str:
     """The design report of a mechanism (see ``report``), over the sweep the options
     give (``dyade.analyse``'s)."""
     import dyade
@@ -236,7 +238,8 @@ def mechanism_report(mechanism, *, source: str = "", start_deg: float | None = N
     cols = result.columns()
     outcome = outcome_of(result, cols)  # the sweep's Outcome, as dyade analyse gives it
     page = Page(f"{mechanism.name}: design report", source)
-    parts = [table_html(tables.key_results(outcome, "m"), caption=False)]
+    length = mechanism.units[0] if units == "file" else "m"  # tables: the file's lengths
+    parts = [table_html(tables.key_results(outcome, length), caption=False)]
     if result.drive is not None:
         parts.append(table_html(tables.motion_table(outcome)))
     page.section("Key results", "".join(parts))
