@@ -394,12 +394,17 @@ def run_campbell(source: Any, options: dict[str, Any], budget: Budget) -> Outcom
     """``gear-campbell``: one row per resonance of the speed range; the lines and the
     natural frequencies in the summary."""
     from dyade.errors import InputError
-    from dyade.vibration.gears.campbell import campbell, orders
+    from dyade.limits import check_memory
+    from dyade.vibration.gears.campbell import campbell, campbell_size, orders
 
     loaded = load(source, options)
     names = naming(loaded.label)
     harmonics = options[HARMONICS.api]
     try:
+        if harmonics >= 0:  # the size before the lines are listed (a million harmonics)
+            check_memory(campbell_size(loaded.drive, 1, harmonics),
+                         f"a Campbell diagram of {harmonics:,} tooth-mesh harmonics",
+                         budget.max_memory, "Ask for fewer harmonics")
         lines = orders(loaded.drive, harmonics)  # a [speed] body, harmonics ≥ 0: first
         speeds = campbell_speeds(loaded, options)
         modes = solve_modes(loaded, budget)

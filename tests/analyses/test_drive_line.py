@@ -65,6 +65,7 @@ def outcomes():
     return {name: REGISTRY[name](source, **options) for name, (source, options) in CASES.items()}
 
 
+@pytest.mark.slow  # the registry walk (test_registry.py) runs these cases by default
 @pytest.mark.parametrize("name", CASES)
 def test_json_is_the_outcome_document(name, outcomes):
     result = invoke(arguments(name, "json"))
@@ -90,6 +91,7 @@ def test_every_figure_and_column_has_its_unit(name, outcomes):
 REPR = re.compile(r"np\.float64|np\.bool|\bTrue\b|\bFalse\b|\bNone\b|\bnan\b|\binf\b|\(\(|\[\[")
 
 
+@pytest.mark.slow  # the registry walk (test_registry.py) runs these cases by default
 @pytest.mark.parametrize("name", CASES)
 def test_no_python_repr_in_the_tables(name):
     result = invoke(arguments(name, "table"))
