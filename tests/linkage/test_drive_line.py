@@ -10,6 +10,7 @@ import pytest
 
 from dyade.machine import drive_line as engine
 from dyade.model.drive import Asynchronous
+from dyade.units import RAD_PER_S_TO_RPM
 
 
 def disc(steps: int, inertia: float, load: np.ndarray | None = None,
@@ -234,7 +235,7 @@ def test_floquet_multipliers_against_long_integration(name, settings, inside, ou
     mechanism = dyade.read_mechanism(shipped(name), settings)
     line = api.line_of(mechanism)
     tables = api.crank_tables(mechanism, 720)
-    lanes = engine.Lanes.of(line, np.array([inside, outside]) / api.RPM)
+    lanes = engine.Lanes.of(line, np.array([inside, outside]) / RAD_PER_S_TO_RPM)
     solution = engine.periodic(line, tables, lanes, engine.linear_guess(line, tables, lanes))
     assert solution.converged.all()
     mu = np.abs(solution.multipliers[:, 0])
