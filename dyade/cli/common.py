@@ -11,7 +11,7 @@ from typing import Any, NamedTuple
 
 import click
 
-from dyade.cli.output import atomic, console, flags
+from dyade.cli.output import atomic, flags
 
 FLAGS = {"friction_tol": "--friction-tol", "friction_max_iter": "--friction-max-iter",
          "start": "--start", "stop": "--stop", "step": "--step",
@@ -147,18 +147,9 @@ def sweep(mechanism, allow_partial: bool, friction_tol: float | None = None,
 
 
 def warn(notes, mechanism, prefix: str = "") -> None:
-    """A sweep's notes (of ``mechanism``) on stderr, each a warning: one line each, as
-    they are, into a pipe or a file (or a batch worker's capture); through rich on a
-    terminal, which wraps them (rich is loaded only then: about 20 ms of every batch
-    worker's start)."""
-    if not notes:
-        return
+    """A sweep's notes (of ``mechanism``) worded, on stderr as warnings
+    (``dyade.cli.writers.warn``)."""
+    from dyade.cli.writers import warn as warn_words
     from dyade.report.notes import say
 
-    notes = [say(note, mechanism) for note in notes]
-    if not sys.stderr.isatty():
-        sys.stderr.write("".join(f"warning: {prefix}{note}\n" for note in notes))
-        return
-    err = console(stderr=True)
-    for note in notes:
-        err.print(f"warning: {prefix}{note}", markup=False)
+    warn_words([say(note, mechanism) for note in notes], prefix)
