@@ -72,7 +72,9 @@ def clearance_paper():
 
 def two_stage_campbell():
     drive = dyade.read_gears(MECHANISMS / "gears" / "two-stage.toml")
-    diagram = dyade.campbell(drive, campbell.default_speeds(drive.speed.rpm))
+    from dyade.vibration.gears.campbell import default_speeds
+
+    diagram = dyade.campbell(drive, default_speeds(drive.speed.rpm))
     return campbell.figure(diagram)
 
 

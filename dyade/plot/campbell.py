@@ -27,7 +27,6 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from dyade.plot import canvas
-from dyade.vibration.gears.campbell import default_speeds  # noqa: F401  (its home: the engine)
 
 WEAK = 1e-4  # [-] κ below this share of the largest: the mode hardly loads the mesh
 SIZES = (12.0, 110.0)  # [pt²] marker areas at κ = WEAK·largest and at the largest
@@ -67,8 +66,9 @@ def figure(diagram, *, fig: Figure | None = None) -> Figure:
     --------
     >>> import numpy as np, dyade
     >>> from dyade.plot import campbell as plot
+    >>> from dyade.vibration.gears.campbell import default_speeds
     >>> drive = dyade.read_gears("mechanisms/gears/two-stage.toml")
-    >>> diagram = dyade.campbell(drive, plot.default_speeds(drive.speed.rpm))
+    >>> diagram = dyade.campbell(drive, default_speeds(drive.speed.rpm))
     >>> fig = plot.figure(diagram)
     >>> mode = [l for l in fig.axes[0].get_lines() if l.get_gid() == "mode-1"][0]
     >>> bool(np.all(mode.get_ydata() == diagram.modes.frequencies[0]))
