@@ -139,7 +139,7 @@ def flywheel(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         raise InputError.parameter("inertia", f"must lie in 0…{most:g} kg·m² (what a machine "
                                               f"has), got {inertia:g}.", value=inertia,
                                    unit="kg·m²")
-    speed_rpm, step_deg = options.get("speed_rpm"), options.get(STEP.api)
+    speed_rpm = options.get("speed_rpm")
     mechanism_only = [name for name in ("set", START.api, STEP.api) if options.get(name)
                       not in (None, ())]
     if isinstance(source, engine.TorqueCurve):

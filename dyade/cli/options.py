@@ -83,19 +83,6 @@ max_memory_option = click.option(
 """--max-memory [MB]: give it to the API as ``max_memory * 2**20`` [B]"""
 
 
-def value_range_checked(text: str, hint: str, unit: str, quantity: str,
-                        positive_start: bool = False) -> list[float]:
-    """``value_range`` whose STOP must be plausible for ``quantity``
-    (``dyade.limits.PLAUSIBLE``)."""
-    from dyade.limits import PLAUSIBLE, plausible_range
-
-    values = value_range(text, hint, unit, positive_start)
-    if values[-1] > PLAUSIBLE[quantity][1]:
-        raise click.BadParameter(f"must stay within {plausible_range(quantity)} (what a "
-                                 f"machine has), got {text!r}.", param_hint=hint)
-    return values
-
-
 jobs_option = click.option(
     "-j", "--jobs", type=click.IntRange(min=0), default=1, show_default=True, metavar="N",
     help="Analyse several files (or speeds) on N processes at once (0: all cores); the "

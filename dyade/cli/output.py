@@ -8,7 +8,6 @@ run never leaves a half-written result.
 
 from __future__ import annotations
 
-import math
 import os
 import sys
 from contextlib import contextmanager
@@ -140,60 +139,13 @@ def show(parts: Iterable[Any], output: str | os.PathLike | None = None, width: i
     con.print(*parts)
 
 
-def cell(value: Any) -> str:
-    """One CSV field: 15 significant digits, empty for NaN/inf (no value), 1/0 for flags."""
-    if isinstance(value, bool):
-        return "1" if value else "0"
-    if value is None:
-        return ""
-    if isinstance(value, float):
-        return f"{value + 0.0:.15g}" if math.isfinite(value) else ""
-    return str(value)
-
-
-def write_rows(rows: list[dict], names: list[str], output: str | os.PathLike | None) -> None:
-    """CSV from dict rows, stable column order ``names``."""
-    def emit(handle: TextIO) -> None:
-        handle.write(",".join(names) + "\n")
-        for row in rows:
-            handle.write(",".join(cell(row.get(name)) for name in names) + "\n")
-
-    if to_file(output):
-        with atomic(output) as handle:
-            emit(handle)
-    else:
-        emit(sys.stdout)
-
-
-def jsonable(value: Any) -> Any:
-    """numpy and floats to JSON values, numbers as in the CSV (15 significant digits: no
-    3.0000000000000004 where the CSV says 3); NaN and inf become null (and so does a
-    value within 10⁻¹⁵ of the largest double, whose 15 digits read back as inf: JSON has
-    no infinity)."""
-    import numpy as np
-
-    if isinstance(value, dict):
-        return {str(k): jsonable(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [jsonable(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return [jsonable(v) for v in value.tolist()]
-    if isinstance(value, (np.floating, float)):
-        value = float(value)
-        rounded = float(f"{value + 0.0:.15g}")  # ±1.79769313486232e+308 is inf
-        return rounded if math.isfinite(rounded) else None
-    if isinstance(value, (np.integer,)):
-        return int(value)
-    if isinstance(value, np.bool_):
-        return bool(value)
-    return value
-
-
 def write_json(obj: dict, output: str | os.PathLike | None) -> None:
     """The document as ``json.dumps(jsonable(obj), indent=1)`` writes it; columns that
     are float arrays (a sweep's, perhaps spooled on disk) are written a column and a
     block of values at a time, in the same text (``report.document.write_columns``)."""
     import json  # only here: the import is not free
+
+    from dyade.analyses.base import jsonable
 
     def emit(handle) -> None:
         if _arrays_first(obj):

@@ -17,7 +17,7 @@ from rich.markup import escape
 from rich.tree import Tree
 
 from dyade.analyses.base import MISSING
-from dyade.model.mechanism import CRANK, FRAME, Mechanism, Prismatic, Revolute
+from dyade.model.mechanism import CRANK, FRAME, Mechanism, Revolute
 from dyade.report.effects import effects
 from dyade.report.format import number
 from dyade.units import LENGTH_FACTORS, RAD_PER_S_TO_RPM

@@ -2,27 +2,14 @@
 values at a time (``write_columns``, for columns kept on disk), numbers as the CSV
 writes them (``json_numbers``).
 
-``document`` is the former shape of a command's JSON (schema 1: ``{"columns", "units",
-"summary", "warnings", "meta"}``), kept for the commands that do not yet run a registry
-entry; an entry's command writes ``Outcome.to_document()`` (docs/reference/json.md).
-Numbers are written as in the CSV (15 significant digits), NaN and infinities as null
-(``dyade.cli.output.jsonable``).
+The document itself is ``Outcome.to_document()`` (docs/reference/json.md); numbers are
+written as in the CSV (15 significant digits), NaN and infinities as null
+(``dyade.analyses.base.jsonable``).
 """
 
 from __future__ import annotations
 
 import math
-from typing import Any
-
-
-def document(command: str, columns: dict[str, Any], units: dict[str, str],
-             summary: dict[str, Any], warnings: list[str], **meta: Any) -> dict[str, Any]:
-    """The former JSON document of a command's result (schema 1)."""
-    from dyade import __version__
-
-    return {"columns": columns, "units": {name: units.get(name, "") for name in columns},
-            "summary": summary, "warnings": [str(w) for w in warnings],
-            "meta": {"command": command, "dyade": __version__, **meta}}
 
 
 CHUNK = 1 << 16
