@@ -90,8 +90,8 @@ def figure(outcome, *, fig: Figure | None = None) -> Figure:
         for n, (segment, left, right) in enumerate(zip(profile.segments, edges[:-1],
                                                        edges[1:]), start=1):
             name = laws[n - 1].name if laws[n - 1] is not None else "dwell"
-            top.annotate(f"{n}\n{name}", ((left + right) / 2, 1.0),
-                         xycoords=("data", "axes fraction"), xytext=(0, 3),
+            top.annotate(f"{n} {name}", ((left + right) / 2, 1.0),
+                         xycoords=("data", "axes fraction"), xytext=(0, 3 + 9 * (n % 2)),
                          textcoords="offset points", ha="center", va="bottom", fontsize=6.5,
                          gid=f"segment-{n}")
         axes[-1].set_xlabel(x_axis)
