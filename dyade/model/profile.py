@@ -230,6 +230,11 @@ class Profile:
             raise segment_error(number, segment, "to", f"= {segment.lift_to:g} is above "
                                 f"`from` = {segment.lift_from:g}: a return goes down (make "
                                 f"it a rise).", segment.lift_to)
+        if segment.kind == "constant-velocity" and segment.law not in (None,
+                                                                        "constant-velocity"):
+            raise segment_error(number, segment, "law", f"= {segment.law!r} for a constant "
+                                f"velocity, which runs its own law: leave `law` out, or make "
+                                f"the segment a rise or a return.", segment.law)
         if segment.law_name is None:
             raise segment_error(number, segment, "law", f"is missing: a {segment.kind} "
                                 f"needs a motion law (for example \"modified-sine\").")
