@@ -36,7 +36,7 @@ def versus(result, output: str, x: str, y: str | None = None, fig: Figure | None
         fig = canvas.new(7.0, 5.0, fig)
         ax = fig.add_subplot()
         if y is None:
-            others = [p for p in result.parameters if p != x]
+            others = [p.key for p in result.spec.free if p.key != x]  # linked ones follow
             keys = [tuple(cols[p][i] for p in others) for i in range(len(ok))]
             for k, key in enumerate(dict.fromkeys(keys)):
                 rows = np.array([i for i, other in enumerate(keys) if other == key])

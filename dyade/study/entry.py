@@ -234,7 +234,7 @@ def optimum(outcome: Outcome, result) -> None:
     outcome.add("evaluations", best["evaluations"], "-", description="evaluations of the "
                                                                        "optimiser")
     if not best.get("success", True):
-        outcome.notes.append(f"the optimiser did not converge: {best['message']}.")
+        outcome.notes.append(f"the optimiser did not converge: {best['message'].rstrip('.')}.")
 
 
 ENTRIES = {"study": Analysis("study", "A design study: many variants of one mechanism file",

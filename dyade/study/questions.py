@@ -28,7 +28,7 @@ def sensitivity(columns: dict, spec: Spec, outputs: list[str],
     rows = []
     centre, pairs = layout
     y0 = {name: columns[name][centre] for name in outputs}
-    for p, (minus, plus, h, nominal) in zip(spec.parameters, pairs):
+    for p, (minus, plus, h, nominal) in zip(spec.free, pairs):
         for name in outputs:
             derivative = (columns[name][plus] - columns[name][minus]) / (2.0 * h)
             normalised = (derivative * nominal / y0[name]
@@ -98,10 +98,14 @@ class Objective:
     pickles for the executor's processes)."""
 
     def __init__(self, evaluator: Evaluator, name: str, sense: float,
-                 bounds: dict[str, tuple[float, float]]) -> None:
+                 bounds: dict[str, tuple[float, float]], spec: Spec | None = None) -> None:
         self.evaluator, self.name, self.sense, self.bounds = evaluator, name, sense, bounds
+        self.spec = spec
+        """completes the free parameters ``x`` with the linked ones (None: none linked)"""
 
     def __call__(self, x) -> float:
+        if self.spec is not None:
+            x = self.spec.complete(x)[0]
         status, _, out = self.evaluator.one(x)
         value = out.get(self.name, math.nan)
         for name, (low, high) in self.bounds.items():
@@ -121,13 +125,15 @@ def optimise(spec: Spec, evaluator: Evaluator, workers=1) -> dict[str, Any]:
 
     settings = spec.optimise
     (name, sense), = settings["objectives"]
-    objective = Objective(evaluator, name, sense, settings["bounds"])
-    bounds = [(p.low, p.high) for p in spec.parameters]
+    linked = len(spec.free) < len(spec.parameters)
+    objective = Objective(evaluator, name, sense, settings["bounds"], spec if linked else None)
+    bounds = [(p.low, p.high) for p in spec.free]
     result = differential_evolution(
         objective, bounds, seed=spec.seed, maxiter=settings["maxiter"],
         popsize=settings["popsize"], tol=settings["tol"], polish=settings["polish"],
         workers=workers, updating="immediate" if workers == 1 else "deferred")
     return {"objective": name, "sense": "minimise" if sense > 0 else "maximise",
-            "x": [float(v) for v in result.x], "value": float(sense * result.fun),
+            "x": [float(v) for v in spec.complete(result.x)[0]],  # linked ones included
+            "value": float(sense * result.fun),
             "evaluations": int(result.nfev), "success": bool(result.success),
             "message": str(result.message)}
