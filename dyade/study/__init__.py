@@ -197,6 +197,7 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
     if spec.question == "sensitivity":
         result.sensitivity = questions.sensitivity(table, spec, outputs,
                                                    plans.differences(spec))
+        per_unit(result.sensitivity, units)
     if spec.question == "tolerance":
         result.tolerance = questions.tolerance(table, outputs, spec.tolerance)
     if spec.question == "optimise":  # several objectives over a sampled plan
@@ -292,6 +293,44 @@ def bound(evaluator, nominal, variants: int, columns: int, processes: int,
     check_memory(need, f"this study of {variants:,} variants"
                        f"{f' ({processes} at a time)' if processes > 1 else ''}", max_memory,
                  "Use fewer variants or processes")
+
+
+def coherent(unit: str) -> tuple[str, float]:
+    """The unit a derivative takes a parameter in, and how many of it one of ``unit``
+    is: lengths in metres as the outputs are (``mm`` -> ``("m", 1e-3)``), angles in
+    degrees as the outputs are (``rad`` -> ``("°", 57.3)``), the others as they are."""
+    from dyade.units import DEG, LENGTH_FACTORS
+
+    if unit in LENGTH_FACTORS:
+        return "m", LENGTH_FACTORS[unit]
+    if unit in ("deg", "°"):
+        return "°", 1.0
+    if unit == "rad":
+        return "°", 1.0 / DEG
+    return unit, 1.0
+
+
+def ratio_unit(top: str, bottom: str) -> str:
+    """The unit of a derivative: ``N·m`` per ``m`` -> ``N·m/m``; a quantity per its own
+    unit (``m`` per ``m``, ``°`` per ``°``) -> ``-``."""
+    top = "" if top == "-" else top
+    bottom = "" if bottom == "-" else bottom
+    if not bottom:
+        return top or "-"
+    if top == bottom:
+        return "-"
+    return f"{top or '1'}/{bottom}"
+
+
+def per_unit(rows: list[dict], units: dict[str, str]) -> None:
+    """The sensitivity's derivatives (``questions.sensitivity``, per the parameter's unit
+    in the mechanism file) in one consistent unit each: the output's unit per the
+    parameter's coherent unit (``coherent``: lengths in m, angles in °, as the outputs
+    are), never metres per millimetre; its unit as ``unit``."""
+    for row in rows:
+        bottom, factor = coherent(units.get(row["parameter"], ""))
+        row["derivative"] = row["derivative"] / factor
+        row["unit"] = ratio_unit(units.get(row["output"], ""), bottom)
 
 
 LENGTHS = {"length", "lengths", "centre", "points", "slider_length", "slider_height",

@@ -17,8 +17,24 @@ import re
 from typing import Any
 
 from dyade.analyses.base import Analysis, Budget, Option, Outcome
+from dyade.analyses.inputs import SET
 
-OPTIONS = (
+OVERRIDES = (
+    Option("set", str, multiple=True, metavar="KEY=VALUE", study=False,
+           help="Override a key of the mechanism file for every variant, as the study "
+                "file's `set` does (repeatable): --set crank.speed_rpm=600. Not a key the "
+                "study varies"),
+    Option("samples", int, positive=True, metavar="N", study=False,
+           help="Variants of a monte-carlo or latin-hypercube plan (overrides plan.samples): "
+                "--samples 20 for a quick look"),
+    Option("seed", int, metavar="N", study=False,
+           help="The plan's seed (overrides plan.seed): the same rows on any number of "
+                "workers"),
+)
+"""the study file's keys a run may override (``dyade.study.spec.override``)"""
+assert OVERRIDES[0].api == SET.api  # the one --set of every entry that reads a mechanism
+
+OPTIONS = (*OVERRIDES,
     Option("jobs", int, default=1, metavar="N", study=False,
            help="Run the variants on N processes (0: all cores); the same table as one "
                 "process gives"),
@@ -49,19 +65,10 @@ def identifier(key: str) -> str:
     return re.sub(r"\W", "_", key)
 
 
-def ratio_unit(top: str, bottom: str) -> str:
-    """The unit of a derivative: ``N·m`` per ``mm`` -> ``N·m/mm``."""
-    top = "" if top == "-" else top
-    bottom = "" if bottom == "-" else bottom
-    if not bottom:
-        return top or "-"
-    return f"{top or '1'}/{bottom}"
-
-
 def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     from dyade.errors import InputError
     from dyade.study import study as run_study
-    from dyade.study.spec import Spec, read
+    from dyade.study.spec import Spec, override, read
 
     jobs = options["jobs"]
     if jobs < 0:
@@ -71,6 +78,8 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         raise InputError.parameter("resume", "needs the journal: the CSV of the interrupted "
                                              "run.")
     spec = source if isinstance(source, Spec) else read(source)
+    spec = override(spec, options.get("set") or (), options.get("samples"),
+                    options.get("seed"))
     client = connect(options["scheduler"]) if options.get("scheduler") else None
     try:
         result = run_study(spec, jobs=jobs if jobs > 0 else (os.cpu_count() or 1),
@@ -185,15 +194,14 @@ def outcome_of(result) -> Outcome:
 
 def sensitivities(outcome: Outcome, result) -> None:
     """d output/d parameter and its normalised form, per output and parameter."""
-    units = result.units
     zero = False
     for row in result.sensitivity:
         output, key = row["output"], row["parameter"]
         place = {"parameter": key, "output": output, "nominal": row["nominal"],
                  "step": row["step"]}
-        outcome.add(f"d_{output}_d_{identifier(key)}", row["derivative"],
-                    ratio_unit(units.get(output, ""), units.get(key, "")), where=place,
-                    description=f"d {output}/d {key} (central differences)")
+        outcome.add(f"d_{output}_d_{identifier(key)}", row["derivative"], row["unit"],
+                    where=place, description=f"d {output}/d {key} (central differences; "
+                                             f"lengths in m, angles in °)")
         outcome.add(f"sensitivity_{output}_{identifier(key)}", row["normalised"], "-",
                     where=place, description=f"{output} per {key}, normalised (% per %)")
         zero = zero or math.isnan(row["normalised"])

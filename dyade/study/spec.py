@@ -121,6 +121,53 @@ class Spec:
         return np.column_stack(columns) if columns else free
 
 
+def override(spec: Spec, assignments=(), samples: int | None = None,
+             seed: int | None = None) -> Spec:
+    """The study with a run's overrides (``dyade study --set/--samples/--seed``, the
+    API's ``set``, ``samples``, ``seed``): ``set`` (``KEY=VALUE`` texts, or (key, value)
+    pairs) joins the study file's `set`; an ``InputError`` on ``set`` for a key the
+    study varies or the mechanism file does not have, on ``samples`` for a plan that
+    does not sample, on ``seed`` below 0."""
+    from dataclasses import replace
+
+    from dyade.errors import InputError
+    from dyade.files.schema import parse_assignment
+
+    if assignments:
+        pairs = [parse_assignment(a) if isinstance(a, str) else tuple(a) for a in assignments]
+        varied = {p.key for p in spec.parameters}
+        for key, _ in pairs:
+            if key in varied:
+                raise InputError.parameter("set", f"{key} is a parameter of {spec.label}: the "
+                                                  f"study varies it; --set fixes the others "
+                                                  f"(or change [parameters]).", value=key)
+        from dyade.files.mechanism import build, load_data
+
+        try:  # a key the file has not: named here, not as a parameter's
+            build(load_data(spec.mechanism, dict(pairs), "--set"), spec.mechanism)
+        except InputError as err:
+            if any(words in str(err) for words in ("unknown key", "are numbered",
+                                                   "is a value, not a table")):
+                raise InputError.parameter("set", str(err), value=dict(pairs)) from None
+        spec = replace(spec, fixed={**spec.fixed, **dict(pairs)})
+    if samples is not None:
+        if spec.plan not in SAMPLED:
+            raise InputError.parameter("samples", f"counts the variants of a monte-carlo or "
+                                                  f"latin-hypercube plan; {spec.label}'s "
+                                                  f"plan.kind is \"{spec.plan}\".",
+                                       value=samples)
+        spec = replace(spec, samples=int(samples))
+        from dyade.study.plans import refuse_too_many
+
+        refuse_too_many(spec)
+    if seed is not None:
+        if seed < 0:
+            raise InputError.parameter("seed", f"must be a whole number ≥ 0, got {seed}.",
+                                       value=seed)
+        spec = replace(spec, seed=int(seed))
+    return spec
+
+
 def needs(module: str, what: str, extra: str = "study") -> None:
     """Refuse, with the extra to install, when an optional module is missing."""
     import importlib.util
