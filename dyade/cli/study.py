@@ -71,15 +71,31 @@ def study(study_file: str, output: str | None, fmt: str | None, resume: bool,
     write(outcome, output, fmt)
     if journal and journal != output and os.path.exists(journal):
         os.unlink(journal)
+    if output and fmt != "table":  # the table went to the file: the answers on the terminal
+        from dyade.cli.output import show
+        from dyade.report.study import tables as report_tables
+
+        show(report_tables(outcome), None)
     contract.notes(outcome, prefix="note: ")
     if output:
         from dyade.cli.output import console
 
-        total = outcome.summary["variants"].value
-        computed = outcome.meta["evaluations"]
-        console(stderr=True).print(f"wrote {output}: {total} variants"
-                                   + (f" ({computed} computed, {total - computed} kept from "
-                                      f"the interrupted run)" if resume else ""))
+        console(stderr=True).print(wrote(output, outcome.summary["variants"].value,
+                                         outcome.meta["evaluations"], resume))
+
+
+def wrote(output: str, total: int, computed: int, resume: bool) -> str:
+    """What ``dyade study -o`` says it wrote: with --resume, how many variants it computed
+    and how many it kept (all of them: the study was already complete)."""
+    text = f"wrote {output}: {total} variant{'s' * (total != 1)}"
+    if not resume:
+        return text
+    kept = total - computed
+    if computed == 0:
+        return f"{text} (all kept from {output}: the study was already complete, none computed)"
+    if kept == 0:
+        return f"{text} ({computed} computed; none was there to keep)"
+    return f"{text} ({computed} computed, {kept} kept from the interrupted run)"
 
 
 def journal_of(output: str | None, fmt: str) -> str | None:

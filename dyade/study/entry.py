@@ -219,14 +219,24 @@ def tolerance(outcome: Outcome, result) -> None:
                         description=f"{name}: {stat} over the {stats['count']} variants that "
                                     f"give it")
     limits = tol.get("limits", {})
-    words = {"no_closure": "does not close", "refused": "is refused",
-             "self_locks": "self-locks",
-             "joint_force_above": f"has a joint force above {limits.get('joint_force', 0):g} N",
-             "transmission_below": f"has a transmission angle below "
-                                   f"{limits.get('transmission_deg', 0):g}°"}
     for name, share in tol["probability"].items():
         outcome.add(f"probability_{name}", share, "-",
-                    description=f"share of the variants that {words.get(name, name)}")
+                    description=f"share of the variants: {failure(name, limits)}")
+
+
+FAILURES = {"no_closure": "does not close", "refused": "refused by the reader",
+            "withheld": "every position withheld", "self_locks": "self-locks"}
+"""a tolerance study's failures -> their words (the limits': ``failure``)"""
+
+
+def failure(name: str, limits: dict[str, float]) -> str:
+    """A failure of a tolerance study in words, a limit with its value and unit: "joint
+    force above 5000 N", "transmission angle below 40°"."""
+    if name == "joint_force_above":
+        return f"joint force above {limits.get('joint_force', math.nan):g} N"
+    if name == "transmission_below":
+        return f"transmission angle below {limits.get('transmission_deg', math.nan):g}°"
+    return FAILURES.get(name, name.replace("_", " "))
 
 
 def optimum(outcome: Outcome, result) -> None:

@@ -39,9 +39,26 @@ def sensitivity(columns: dict, spec: Spec, outputs: list[str],
     return rows
 
 
+CONSTANT = 1e-9
+"""[-] an output whose values spread less than this share of their magnitude is constant
+over the variants (round-off: 0.16 m give or take 1e-17)"""
+
+
+def constant(values) -> bool:
+    """Whether finite ``values`` are one value to rounding: their spread within
+    ``CONSTANT`` of their magnitude, or all numerically zero (``ZERO``)."""
+    values = np.asarray(values, dtype=float)
+    values = values[np.isfinite(values)]
+    if not values.size:
+        return False
+    spread, size = float(np.ptp(values)), float(np.abs(values).max())
+    return spread <= CONSTANT * size or size <= ZERO
+
+
 def tolerance(columns: dict, outputs: list[str], limits: dict[str, float]) -> dict[str, Any]:
     """Statistics of every output over the variants that give it (mean, sd, percentiles
-    1, 5, 50, 95, 99, min, max) and the probability (share of all variants) of each
+    1, 5, 50, 95, 99, min, max; an output ``constant`` over them has its one value as
+    each, sd 0, and ``constant`` True) and the probability (share of all variants) of each
     failure: no closure, refused, self-locking, a joint force above ``joint_force`` [N],
     a transmission angle below ``transmission_deg`` [°]."""
     status = columns["status"]
@@ -51,7 +68,14 @@ def tolerance(columns: dict, outputs: list[str], limits: dict[str, float]) -> di
         values = columns[name][np.isfinite(columns[name])]
         if not values.size:
             continue
-        stats[name] = {"count": int(values.size), "mean": float(values.mean()),
+        if constant(values):  # one value to rounding (sd 2.8e-17): said so, not scattered
+            value = float(np.median(values))
+            stats[name] = {"count": int(values.size), "constant": True, "mean": value,
+                           "sd": 0.0, "min": value, "max": value,
+                           **{f"p{q}": value for q in PERCENTILES}}
+            continue
+        stats[name] = {"count": int(values.size), "constant": False,
+                       "mean": float(values.mean()),
                        "sd": float(values.std(ddof=1)) if values.size > 1 else 0.0,
                        "min": float(values.min()), "max": float(values.max()),
                        **{f"p{q}": float(np.percentile(values, q)) for q in PERCENTILES}}
