@@ -79,6 +79,9 @@ class Study:
     """(n,) bool: the non-dominated variants, for two or more objectives"""
     optimum: dict[str, Any] | None = None
     units: dict[str, str] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+    """what the answers need said (a sensitivity of an extreme that crosses a grid point
+    of the sweep, ``questions.crossings``)"""
 
     def columns(self) -> dict[str, np.ndarray]:
         """The table as named columns, one entry per variant, in the plan's order."""
@@ -198,6 +201,8 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
         result.sensitivity = questions.sensitivity(table, spec, outputs,
                                                    plans.differences(spec))
         per_unit(result.sensitivity, units)
+        result.notes += questions.crossings(result.sensitivity, evaluator, matrix,
+                                            plans.differences(spec), spec, units)
     if spec.question == "tolerance":
         result.tolerance = questions.tolerance(table, outputs, spec.tolerance)
     if spec.question == "optimise":  # several objectives over a sampled plan

@@ -51,10 +51,11 @@ OPTIONS = (*OVERRIDES,
 )
 
 STATUS_WORDS = {"ok": "ok", "locks": "self-lock", "does not close": "do not close",
-                "refused": "were refused", "failed": "failed"}
+                "refused": "were refused", "failed": "failed",
+                "withheld": "have every position withheld"}
 """a variant's status -> the words of a note on the variants with it"""
 STATUS_NAMES = {"ok": "ok", "locks": "locks", "does not close": "not_closing",
-                "refused": "refused", "failed": "failed"}
+                "refused": "refused", "failed": "failed", "withheld": "withheld"}
 """a variant's status -> its count's figure (``variants_NAME``)"""
 STATISTICS = ("mean", "sd", "p1", "p5", "p50", "p95", "p99", "min", "max")
 """the tolerance statistics of every output, each a figure ``STAT_OUTPUT``"""
@@ -145,7 +146,7 @@ def outcome_of(result) -> Outcome:
 
     spec, cols, units = result.spec, result.columns(), result.units
     descriptions = {"variant": "the variant's number in the plan",
-                    "status": "ok, locks, does not close, refused or failed",
+                    "status": "ok, locks, does not close, refused, failed or withheld",
                     "reason": "why a variant gives no outputs, or which joint self-locks"}
     descriptions.update({key: f"the parameter {key}, as --set takes it"
                          for key in result.parameters})
@@ -170,6 +171,7 @@ def outcome_of(result) -> Outcome:
             because = f": {reason}" if reason else ""
             outcome.notes.append(f"{where.size} of {count} variants {words} (the first, variant "
                                  f"{int(cols['variant'][first])}{because}).")
+    outcome.notes += list(getattr(result, "notes", []))
     if result.sensitivity is not None:
         sensitivities(outcome, result)
     elif result.tolerance is not None:

@@ -22,12 +22,15 @@ import numpy as np
 from dyade.units import RAD_PER_S_TO_RPM
 
 EXTRA_UNITS = {"flywheel_inertia": "kg·m²", "omega_bar": "rad/s",
-               "resonance_speed_rpm": "rpm", "speed_ratio": "-"}
+               "resonance_speed_rpm": "rpm", "speed_ratio": "-", "M_drive_abs_max": "N·m"}
 """units of the outputs ``[outputs] extra`` adds; the others are summary figures
 (``dyade.linkage.summary.unit``)"""
 
 OK, LOCKS, OPEN, REFUSED, FAILED = "ok", "locks", "does not close", "refused", "failed"
-STATUSES = (OK, LOCKS, OPEN, REFUSED, FAILED)
+WITHHELD = "withheld"
+"""a variant whose every position is withheld (values beyond what a machine has): no
+outputs, never a row of zeros"""
+STATUSES = (OK, LOCKS, OPEN, REFUSED, FAILED, WITHHELD)
 
 RENAMED = {"M_shake_max": "M_shake_abs_max"}
 """outputs of a study that were renamed when they became summary figures (issue 36):
@@ -59,9 +62,18 @@ def outputs(figures: dict, extras: tuple[str, ...] = ()) -> dict[str, float]:
     (``STUDIED``; ``CLEARANCE`` with that extra), as floats (a flag 1.0 or 0.0, NaN
     where a figure is not given). The names and values are the summary's."""
     clearance = "clearance" in extras
-    return {name: math.nan if value is None else float(value)
-            for name, value in figures.items()
-            if STUDIED.fullmatch(name) or clearance and CLEARANCE.fullmatch(name)}
+    return peaks({name: math.nan if value is None else float(value)
+                  for name, value in figures.items()
+                  if STUDIED.fullmatch(name) or clearance and CLEARANCE.fullmatch(name)})
+
+
+def peaks(out: dict[str, float]) -> dict[str, float]:
+    """``out`` with the peak |M_drive| (``M_drive_abs_max`` [N·m], the larger of
+    |M_drive_max| and |M_drive_min|: what a motor or a gear must carry) after them."""
+    if "M_drive_max" in out and "M_drive_min" in out:
+        out["M_drive_abs_max"] = float(np.fmax(abs(out["M_drive_max"]),
+                                               abs(out["M_drive_min"])))
+    return out
 
 
 def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
@@ -163,6 +175,11 @@ class Evaluator:
             return OPEN, str(err), {}
         except DyadeError as err:
             return FAILED, str(err), {}
+        if not np.any(result.valid[result.rows]):  # (issue 42) never a row of blanks as "ok"
+            from dyade.analyses.machine import withholding
+
+            why = withholding(result.notes)
+            return WITHHELD, f"every position is withheld{f': {why}' if why else ''}", {}
         out = key_results(result, self.extras, self.fluctuation)
         status = status_of(out)
         reason = ""
@@ -275,8 +292,8 @@ class Evaluator:
         rows = {}
         for i, numbers in zip(clean.tolist(), table):
             row = dict(zip(names, numbers))  # the figures this variant has, as alone
-            row = {name: value for name, value in row.items()
-                   if name not in presence or not math.isnan(row[presence[name]])}
+            row = peaks({name: value for name, value in row.items()
+                         if name not in presence or not math.isnan(row[presence[name]])})
             rows[read[i]] = (status_of(row), "", row)
         return rows
 

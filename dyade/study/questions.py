@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from dyade.study.evaluate import LOCKS, OK, OPEN, REFUSED, Evaluator
+from dyade.study.evaluate import LOCKS, OK, OPEN, REFUSED, WITHHELD, Evaluator
 from dyade.study.spec import Spec
 
 PERCENTILES = (1, 5, 50, 95, 99)
@@ -35,6 +35,8 @@ def sensitivity(columns: dict, spec: Spec, outputs: list[str],
                           if abs(y0[name]) > ZERO and np.isfinite(y0[name]) else math.nan)
             rows.append({"parameter": p.key, "output": name, "nominal": float(nominal),
                          "step": float(h), "value": float(y0[name]),
+                         "below": float(columns[name][minus]),
+                         "above": float(columns[name][plus]),
                          "derivative": float(derivative), "normalised": float(normalised)})
     return rows
 
@@ -45,14 +47,88 @@ over the variants (round-off: 0.16 m give or take 1e-17)"""
 
 
 def constant(values) -> bool:
-    """Whether finite ``values`` are one value to rounding: their spread within
+    """Whether the finite ``values`` (two or more) are one value to rounding: their spread within
     ``CONSTANT`` of their magnitude, or all numerically zero (``ZERO``)."""
     values = np.asarray(values, dtype=float)
     values = values[np.isfinite(values)]
-    if not values.size:
+    if values.size < 2:  # one variant's value is no evidence of a constant
         return False
     spread, size = float(np.ptp(values)), float(np.abs(values).max())
     return spread <= CONSTANT * size or size <= ZERO
+
+
+RESOLVED = 0.01
+"""[-] the one-sided slopes of an extreme that crosses a grid point agree within this share
+of its derivative at the crank step ``crossings`` names"""
+
+
+def crossings(rows: list[dict], evaluator: Evaluator, matrix: np.ndarray,
+              layout: tuple[int, list[tuple[int, int, float, float]]], spec: Spec,
+              units: dict[str, str] | None = None) -> list[str]:
+    """Notes on the sensitivities of sampled extremes (a peak, the least transmission
+    angle: figures of one crank position of the sweep's grid) whose crank angle moves to
+    another grid point between the rows −h and +h: the central difference then mixes the
+    slopes of two crank angles (its one-sided slopes, backward and forward, differ). Each
+    note names the crank step (``sweep.step``) that brings them within ``RESOLVED`` of
+    the derivative, the difference shrinking with the step. The rows −h, 0 and +h are
+    swept again (``dyade.analyse``) for the crank angles of their extremes."""
+    from dyade.errors import DyadeError
+    from dyade.linkage.summary import figures
+    from dyade.linkage.sweep import analyse
+    from dyade.units import DEG
+
+    _, pairs = layout
+    seen: dict[int, tuple[dict[str, float], float]] = {}
+
+    def places(index: int) -> tuple[dict[str, float], float]:
+        if index not in seen:
+            try:
+                result = analyse(evaluator.mechanism(matrix[index]))
+                stats = figures(result, result.columns(), False)
+                seen[index] = ({name: stat.where["angle_deg"] for name, stat in stats.items()
+                                if stat.where and "angle_deg" in stat.where},
+                               result.mechanism.sweep.step / DEG)
+            except (DyadeError, ValueError):
+                seen[index] = ({}, math.nan)
+        return seen[index]
+
+    notes = []
+    by = {(row["parameter"], row["output"]): row for row in rows}
+    for p, (minus, plus, h, nominal) in zip(spec.free, pairs):
+        low, step = places(minus)
+        high, _ = places(plus)
+        for name in sorted(set(low) & set(high), key=lambda n: list(low).index(n)):
+            row = by.get((p.key, name))
+            if row is None or low[name] == high[name] or not math.isfinite(step):
+                continue
+            backward = (row["value"] - row["below"]) / h
+            forward = (row["above"] - row["value"]) / h
+            central = 0.5 * (backward + forward)
+            gap = abs(forward - backward)
+            if not gap > RESOLVED * abs(central) or not math.isfinite(gap):
+                continue  # the slopes agree: the crossing costs nothing here
+            finer = nice_below(step * RESOLVED * abs(central) / gap)
+            notes.append(f"d {name}/d {p.key}: the extreme moves from crank angle "
+                         f"{low[name]:g}° to {high[name]:g}° between the variants at −h and +h "
+                         f"(h = {h:g} {(units or {}).get(p.key, '')}".rstrip() +
+                         f"), across a grid point of the sweep's {step:g}° step: its one-sided "
+                         f"slopes differ by {100 * gap / abs(central):.0f} %, the central "
+                         f"difference mixes two crank angles. That part shrinks with the crank "
+                         f"step: {finer:g}° resolves it to about {100 * RESOLVED:g} % (set = "
+                         f"{{ \"sweep.step\" = {finer:g} }} in the study file, or --set "
+                         f"sweep.step={finer:g}).")
+    return notes
+
+
+def nice_below(value: float) -> float:
+    """The largest of 1, 2, 5 × 10^k not above ``value`` (a crank step to name)."""
+    if not value > 0:
+        return value
+    power = 10.0 ** math.floor(math.log10(value))
+    for factor in (5.0, 2.0, 1.0):
+        if factor * power <= value * (1 + 1e-12):
+            return float(f"{factor * power:.12g}")
+    return float(f"{power:.12g}")
 
 
 def tolerance(columns: dict, outputs: list[str], limits: dict[str, float]) -> dict[str, Any]:
@@ -82,6 +158,8 @@ def tolerance(columns: dict, outputs: list[str], limits: dict[str, float]) -> di
     failures = {"no_closure": float(np.mean(status == OPEN)) if n else math.nan,
                 "refused": float(np.mean(status == REFUSED)) if n else math.nan,
                 "self_locks": float(np.mean(status == LOCKS)) if n else math.nan}
+    if np.any(status == WITHHELD):  # (only where some are: the model breaks down there)
+        failures["withheld"] = float(np.mean(status == WITHHELD))
     if "joint_force" in limits:
         forces = [columns[k] for k in outputs if k.endswith("_peak")]
         above = np.zeros(n, dtype=bool)
