@@ -68,12 +68,15 @@ def crossings(rows: list[dict], evaluator: Evaluator, matrix: np.ndarray,
     """Notes on the sensitivities of sampled extremes (a peak, the least transmission
     angle: figures of one crank position of the sweep's grid) whose crank angle moves to
     another grid point between the rows −h and +h: the central difference then mixes the
-    slopes of two crank angles (its one-sided slopes, backward and forward, differ). Each
-    note names the crank step (``sweep.step``) that brings them within ``RESOLVED`` of
-    the derivative, the difference shrinking with the step. The rows −h, 0 and +h are
+    slopes of two crank angles (its one-sided slopes, backward and forward, differ by
+    more than ``RESOLVED`` of the derivative). Each note names the crank step
+    (``sweep.step``) at which the grid's part of that difference, which shrinks in
+    proportion to the step, is within ``RESOLVED`` (at least ten times finer); what
+    stays at that step is the curvature over ±h (a smaller ``plan.rel_step``). The rows −h, 0 and +h are
     swept again (``dyade.analyse``) for the crank angles of their extremes."""
     from dyade.errors import DyadeError
     from dyade.linkage.summary import figures
+    from dyade.study import coherent
     from dyade.linkage.sweep import analyse
     from dyade.units import DEG
 
@@ -107,16 +110,19 @@ def crossings(rows: list[dict], evaluator: Evaluator, matrix: np.ndarray,
             gap = abs(forward - backward)
             if not gap > RESOLVED * abs(central) or not math.isfinite(gap):
                 continue  # the slopes agree: the crossing costs nothing here
-            finer = nice_below(step * RESOLVED * abs(central) / gap)
+            finer = nice_below(step * min(0.1, RESOLVED * abs(central) / gap))
+            scale = coherent((units or {}).get(p.key, ""))[1]  # the derivatives' unit
             notes.append(f"d {name}/d {p.key}: the extreme moves from crank angle "
                          f"{low[name]:g}° to {high[name]:g}° between the variants at −h and +h "
                          f"(h = {h:g} {(units or {}).get(p.key, '')}".rstrip() +
-                         f"), across a grid point of the sweep's {step:g}° step: its one-sided "
-                         f"slopes differ by {100 * gap / abs(central):.0f} %, the central "
-                         f"difference mixes two crank angles. That part shrinks with the crank "
-                         f"step: {finer:g}° resolves it to about {100 * RESOLVED:g} % (set = "
+                         f"), across a grid point of the sweep's {step:g}° step: the central "
+                         f"difference mixes the slopes at two crank angles (one-sided: "
+                         f"{backward / scale:.4g} and {forward / scale:.4g} {row['unit']}, "
+                         f"{100 * gap / abs(central):.0f} % apart). A crank "
+                         f"step of {finer:g}° resolves the grid's part (set = "
                          f"{{ \"sweep.step\" = {finer:g} }} in the study file, or --set "
-                         f"sweep.step={finer:g}).")
+                         f"sweep.step={finer:g}); a difference that stays is the curvature over "
+                         f"±h: a smaller plan.rel_step.")
     return notes
 
 
