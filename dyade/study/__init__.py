@@ -300,21 +300,6 @@ def bound(evaluator, nominal, variants: int, columns: int, processes: int,
                  "Use fewer variants or processes")
 
 
-def coherent(unit: str) -> tuple[str, float]:
-    """The unit a derivative takes a parameter in, and how many of it one of ``unit``
-    is: lengths in metres as the outputs are (``mm`` -> ``("m", 1e-3)``), angles in
-    degrees as the outputs are (``rad`` -> ``("°", 57.3)``), the others as they are."""
-    from dyade.units import DEG, LENGTH_FACTORS
-
-    if unit in LENGTH_FACTORS:
-        return "m", LENGTH_FACTORS[unit]
-    if unit in ("deg", "°"):
-        return "°", 1.0
-    if unit == "rad":
-        return "°", 1.0 / DEG
-    return unit, 1.0
-
-
 def ratio_unit(top: str, bottom: str) -> str:
     """The unit of a derivative: ``N·m`` per ``m`` -> ``N·m/m``; a quantity per its own
     unit (``m`` per ``m``, ``°`` per ``°``) -> ``-``."""
@@ -332,6 +317,8 @@ def per_unit(rows: list[dict], units: dict[str, str]) -> None:
     in the mechanism file) in one consistent unit each: the output's unit per the
     parameter's coherent unit (``coherent``: lengths in m, angles in °, as the outputs
     are), never metres per millimetre; its unit as ``unit``."""
+    from dyade.study.questions import coherent
+
     for row in rows:
         bottom, factor = coherent(units.get(row["parameter"], ""))
         row["derivative"] = row["derivative"] / factor

@@ -22,7 +22,7 @@ import numpy as np
 from dyade.units import RAD_PER_S_TO_RPM
 
 EXTRA_UNITS = {"flywheel_inertia": "kg·m²", "omega_bar": "rad/s",
-               "resonance_speed_rpm": "rpm", "speed_ratio": "-", "M_drive_abs_max": "N·m"}
+               "resonance_speed_rpm": "rpm", "speed_ratio": "-"}
 """units of the outputs ``[outputs] extra`` adds; the others are summary figures
 (``dyade.linkage.summary.unit``)"""
 
@@ -46,7 +46,7 @@ def unit(name: str) -> str:
 
 
 STUDIED = re.compile(r"mu_\d+_min_deg|stroke_\d+_\d+|time_ratio_\d+(_\d+)?|swing_\d+_deg"
-                     r"|M_drive_(max|min|rms)|P_drive_mean|FN?_\d+_\d+_peak|F_shake_(max|rms)"
+                     r"|M_drive_(max|min|rms|abs_max)|P_drive_mean|FN?_\d+_\d+_peak|F_shake_(max|rms)"
                      r"|M_shake_abs_max|P_friction_mean|locks_\d+_\d+"
                      r"|lock_(start|stop)_\d+_\d+_deg|lock_margin_\d+_\d+_min"
                      r"|speed_mean_rpm|fluctuation")
@@ -62,18 +62,9 @@ def outputs(figures: dict, extras: tuple[str, ...] = ()) -> dict[str, float]:
     (``STUDIED``; ``CLEARANCE`` with that extra), as floats (a flag 1.0 or 0.0, NaN
     where a figure is not given). The names and values are the summary's."""
     clearance = "clearance" in extras
-    return peaks({name: math.nan if value is None else float(value)
-                  for name, value in figures.items()
-                  if STUDIED.fullmatch(name) or clearance and CLEARANCE.fullmatch(name)})
-
-
-def peaks(out: dict[str, float]) -> dict[str, float]:
-    """``out`` with the peak |M_drive| (``M_drive_abs_max`` [N·m], the larger of
-    |M_drive_max| and |M_drive_min|: what a motor or a gear must carry) after them."""
-    if "M_drive_max" in out and "M_drive_min" in out:
-        out["M_drive_abs_max"] = float(np.fmax(abs(out["M_drive_max"]),
-                                               abs(out["M_drive_min"])))
-    return out
+    return {name: math.nan if value is None else float(value)
+            for name, value in figures.items()
+            if STUDIED.fullmatch(name) or clearance and CLEARANCE.fullmatch(name)}
 
 
 def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
@@ -292,8 +283,8 @@ class Evaluator:
         rows = {}
         for i, numbers in zip(clean.tolist(), table):
             row = dict(zip(names, numbers))  # the figures this variant has, as alone
-            row = peaks({name: value for name, value in row.items()
-                         if name not in presence or not math.isnan(row[presence[name]])})
+            row = {name: value for name, value in row.items()
+                   if name not in presence or not math.isnan(row[presence[name]])}
             rows[read[i]] = (status_of(row), "", row)
         return rows
 

@@ -57,6 +57,21 @@ def constant(values) -> bool:
     return spread <= CONSTANT * size or size <= ZERO
 
 
+def coherent(unit: str) -> tuple[str, float]:
+    """The unit a derivative takes a parameter in, and how many of it one of ``unit``
+    is: lengths in metres as the outputs are (``mm`` -> ``("m", 1e-3)``), angles in
+    degrees as the outputs are (``rad`` -> ``("°", 57.3)``), the others as they are."""
+    from dyade.units import DEG, LENGTH_FACTORS
+
+    if unit in LENGTH_FACTORS:
+        return "m", LENGTH_FACTORS[unit]
+    if unit in ("deg", "°"):
+        return "°", 1.0
+    if unit == "rad":
+        return "°", 1.0 / DEG
+    return unit, 1.0
+
+
 RESOLVED = 0.01
 """[-] the one-sided slopes of an extreme that crosses a grid point agree within this share
 of its derivative at the crank step ``crossings`` names"""
@@ -76,7 +91,6 @@ def crossings(rows: list[dict], evaluator: Evaluator, matrix: np.ndarray,
     swept again (``dyade.analyse``) for the crank angles of their extremes."""
     from dyade.errors import DyadeError
     from dyade.linkage.summary import figures
-    from dyade.study import coherent
     from dyade.linkage.sweep import analyse
     from dyade.units import DEG
 

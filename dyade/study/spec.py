@@ -156,10 +156,7 @@ def override(spec: Spec, assignments=(), samples: int | None = None,
                                                   f"latin-hypercube plan; {spec.label}'s "
                                                   f"plan.kind is \"{spec.plan}\".",
                                        value=samples)
-        spec = replace(spec, samples=int(samples))
-        from dyade.study.plans import refuse_too_many
-
-        refuse_too_many(spec)
+        spec = replace(spec, samples=int(samples))  # (sized by plans.variants before any)
     if seed is not None:
         if seed < 0:
             raise InputError.parameter("seed", f"must be a whole number ≥ 0, got {seed}.",
