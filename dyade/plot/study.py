@@ -92,7 +92,6 @@ def histograms(result, outputs: list[str], fig: Figure | None = None) -> Figure:
     percentiles and the study's limit where one applies; the outputs constant over the
     variants (``questions.constant``: one value to rounding) are not drawn as
     histograms of round-off but named with their one value under the title."""
-    from dyade.report.format import number
     from dyade.study.entry import failure
     from dyade.study.questions import constant
 
@@ -129,7 +128,7 @@ def histograms(result, outputs: list[str], fig: Figure | None = None) -> Figure:
                  f"results (mean solid, 5 %/95 % dotted)\n{words}")
         if same:
             values = ", ".join(
-                f"{name} = {number(float(np.median(cols[name][ok & np.isfinite(cols[name])])))}"
+                f"{name} = {float(np.median(cols[name][ok & np.isfinite(cols[name])])):.6g}"
                 f"{' ' + result.units.get(name, '') if result.units.get(name, '') not in ('', '-') else ''}"
                 for name in same)
             title += f"\nconstant over the variants: {values}"
