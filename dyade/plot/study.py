@@ -230,9 +230,9 @@ def question_figure(result, outputs=None, x: str | None = None, y: str | None = 
     >>> import dyade.study
     >>> from dyade.plot import study as figures
     >>> result = dyade.study.study("mechanisms/studies/press-slide-tolerance.toml")
-    >>> fig = figures.question_figure(result, ["mu_2_min_deg", "FN_1_4_peak"])
-    >>> [ax.get_xlabel() for ax in fig.axes]
-    ['mu_2_min_deg [°]', 'FN_1_4_peak [N]']
+    >>> fig = figures.question_figure(result, ["M_drive_rms", "FN_1_4_peak", "stroke_1_4"])
+    >>> [ax.get_xlabel() for ax in fig.axes]  # the stroke is constant: named, not drawn
+    ['M_drive_rms [N·m]', 'FN_1_4_peak [N]']
     """
     chosen = list(outputs or []) or None
     if result.tolerance is not None:

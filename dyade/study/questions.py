@@ -87,8 +87,9 @@ def crossings(rows: list[dict], evaluator: Evaluator, matrix: np.ndarray,
     more than ``RESOLVED`` of the derivative). Each note names the crank step
     (``sweep.step``) at which the grid's part of that difference, which shrinks in
     proportion to the step, is within ``RESOLVED`` (at least ten times finer); what
-    stays at that step is the curvature over ±h (a smaller ``plan.rel_step``). The rows −h, 0 and +h are
-    swept again (``dyade.analyse``) for the crank angles of their extremes."""
+    stays at that step is the curvature over ±h (a smaller ``plan.rel_step``). The rows
+    −h and +h of a parameter whose one-sided slopes differ for some output are swept
+    again (``dyade.analyse``) for the crank angles of their extremes."""
     from dyade.errors import DyadeError
     from dyade.linkage.summary import figures
     from dyade.linkage.sweep import analyse
@@ -109,22 +110,26 @@ def crossings(rows: list[dict], evaluator: Evaluator, matrix: np.ndarray,
                 seen[index] = ({}, math.nan)
         return seen[index]
 
+    def slopes(row: dict, h: float) -> tuple[float, float, float, float]:
+        backward = (row["value"] - row["below"]) / h
+        forward = (row["above"] - row["value"]) / h
+        return backward, forward, 0.5 * (backward + forward), abs(forward - backward)
+
     notes = []
     by = {(row["parameter"], row["output"]): row for row in rows}
     for p, (minus, plus, h, nominal) in zip(spec.free, pairs):
+        apart = {row["output"] for row in rows if row["parameter"] == p.key
+                 and slopes(row, h)[3] > RESOLVED * abs(slopes(row, h)[2])}
+        if not apart:  # every output's one-sided slopes agree: nothing to sweep again
+            continue
         low, step = places(minus)
         high, _ = places(plus)
-        for name in sorted(set(low) & set(high), key=lambda n: list(low).index(n)):
-            row = by.get((p.key, name))
-            if row is None or low[name] == high[name] or not math.isfinite(step):
+        for name in [name for name in low if name in high and name in apart]:
+            row = by[(p.key, name)]
+            if low[name] == high[name] or not math.isfinite(step):
                 continue
-            backward = (row["value"] - row["below"]) / h
-            forward = (row["above"] - row["value"]) / h
-            central = 0.5 * (backward + forward)
-            gap = abs(forward - backward)
-            if not gap > RESOLVED * abs(central) or not math.isfinite(gap):
-                continue  # the slopes agree: the crossing costs nothing here
-            finer = nice_below(step * min(0.1, RESOLVED * abs(central) / gap))
+            backward, forward, central, gap = slopes(row, h)
+            finer = nice_below(step * max(min(0.1, RESOLVED * abs(central) / gap), 1e-3))
             scale = coherent((units or {}).get(p.key, ""))[1]  # the derivatives' unit
             notes.append(f"d {name}/d {p.key}: the extreme moves from crank angle "
                          f"{low[name]:g}° to {high[name]:g}° between the variants at −h and +h "
@@ -132,11 +137,11 @@ def crossings(rows: list[dict], evaluator: Evaluator, matrix: np.ndarray,
                          f"), across a grid point of the sweep's {step:g}° step: the central "
                          f"difference mixes the slopes at two crank angles (one-sided: "
                          f"{backward / scale:.4g} and {forward / scale:.4g} {row['unit']}, "
-                         f"{100 * gap / abs(central):.0f} % apart). A crank "
-                         f"step of {finer:g}° resolves the grid's part (set = "
-                         f"{{ \"sweep.step\" = {finer:g} }} in the study file, or --set "
-                         f"sweep.step={finer:g}); a difference that stays is the curvature over "
-                         f"±h: a smaller plan.rel_step.")
+                         f"{100 * gap / abs(central) if central else math.inf:.0f} % apart). "
+                         f"A crank step of {finer:g}° resolves the grid's part, which shrinks "
+                         f"with the step (set = {{ \"sweep.step\" = {finer:g} }} in the study "
+                         f"file, or --set sweep.step={finer:g}); a difference that stays is the "
+                         f"curvature over ±h: a smaller plan.rel_step.")
     return notes
 
 
