@@ -39,8 +39,8 @@ def study(study_file: str, output: str | None, fmt: str | None, resume: bool,
           **options) -> None:
     """Run the design study of STUDY_FILE: one row per variant of its mechanism file,
     the parameters first (by their --set key paths, in the file's units), then status
-    and reason (ok, locks, does not close, refused), then every key result of
-    `dyade analyse`'s summary (SI; angles in degrees).
+    and reason (ok, locks, does not close, refused, failed, withheld), then every key
+    result of `dyade analyse`'s summary (SI; angles in degrees).
 
     The study file names the parameters (lists, ranges, distributions), the plan (grid,
     latin-hypercube, monte-carlo, sensitivity, optimise) and the question (tolerance
@@ -50,6 +50,7 @@ def study(study_file: str, output: str | None, fmt: str | None, resume: bool,
     \b
         dyade study tolerance.toml -j 0 -o tolerance.csv
         dyade study tolerance.toml -j 0 -o tolerance.csv --resume
+        dyade study tolerance.toml --samples 20 --seed 2 --set crank.speed_rpm=600
 
     Exit status 2 for a bad study file or an unreachable --scheduler; a variant that
     fails is a row with its reason, not an error.

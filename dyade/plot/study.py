@@ -158,6 +158,10 @@ def sensitivity_bars(result, outputs: list[str], fig: Figure | None = None) -> F
             ax.axvline(0.0, color="black", linewidth=0.8)
             ax.set_title(name, fontsize="small")
             ax.set_xlabel("% per %", fontsize="small")
+            if not np.isfinite(values).any():  # an output numerically zero: no % per %
+                ax.text(0.5, 0.5, "numerically zero at the nominal:\nno % per %",
+                        ha="center", va="center", fontsize="small", transform=ax.transAxes,
+                        bbox={"facecolor": "white", "edgecolor": "none"})
         fig.suptitle(f"{result.spec.label}: normalised sensitivity (central differences)",
                      fontsize="small")
     return fig

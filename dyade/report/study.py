@@ -37,7 +37,8 @@ def tables(outcome) -> list:
     result, cols, figures = outcome.result, outcome.columns, outcome.summary
     units, out = outcome.units, []
     counts = Counter(np.asarray(cols["status"]).tolist())
-    title = (f"Study {outcome.meta['study']}: {len(cols['variant'])} variants of "
+    count = len(cols["variant"])
+    title = (f"Study {outcome.meta['study']}: {count} variant{'s' * (count != 1)} of "
              f"{outcome.meta['mechanism'].rsplit('/', 1)[-1]} ({outcome.meta['plan']})")
     summary = Table(title=title, title_justify="left", min_width=len(title))
     summary.add_column("status")
