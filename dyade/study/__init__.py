@@ -115,7 +115,8 @@ class Study:
 def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
           output: str | os.PathLike | None = None, resume: bool = False,
           block_size: int | None = None, progress=None, max_memory: float | None = None,
-          check_time=None) -> Study:
+          check_time=None, set=(), samples: int | None = None,
+          seed: int | None = None) -> Study:
     """Run a design study.
 
     Parameters
@@ -145,6 +146,12 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
         ``check_time(seconds, what)`` hears the estimate of the whole run [s], from the
         probe's time per variant, before the variants run; it may refuse it
         (``dyade.analyses.base.Budget.time``).
+    set : sequence of str or (key, value) pairs, optional
+        Overrides of the mechanism file for every variant, as the study file's ``set``
+        (``"crank.speed_rpm=600"``); not a key the study varies.
+    samples, seed : int, optional
+        Override ``plan.samples`` (a sampled plan only) and ``plan.seed``
+        (``dyade.study.spec.override``; ``dyade study --set/--samples/--seed``).
 
     Returns
     -------
@@ -168,7 +175,9 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
     """
     from dyade.study import plans, questions, run
 
-    spec = file if isinstance(file, Spec) else read(file)
+    from dyade.study.spec import override
+
+    spec = override(file if isinstance(file, Spec) else read(file), set, samples, seed)
     if block_size is not None and not (isinstance(block_size, int) and block_size >= 1):
         raise InputError.parameter("block_size", f"must be a whole number ≥ 1, got "
                                                  f"{block_size!r}.", value=block_size)

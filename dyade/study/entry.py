@@ -78,9 +78,8 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     if options.get("resume") and not options.get("journal"):
         raise InputError.parameter("resume", "needs the journal: the CSV of the interrupted "
                                              "run.")
-    spec = source if isinstance(source, Spec) else read(source)
-    spec = override(spec, options.get("set") or (), options.get("samples"),
-                    options.get("seed"))
+    spec = override(source if isinstance(source, Spec) else read(source),
+                    options.get("set") or (), options.get("samples"), options.get("seed"))
     client = connect(options["scheduler"]) if options.get("scheduler") else None
     try:
         result = run_study(spec, jobs=jobs if jobs > 0 else (os.cpu_count() or 1),

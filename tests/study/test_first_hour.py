@@ -135,6 +135,8 @@ def test_samples_seed_and_set_override_the_study_file(tmp_path):
     quick = dyade.run("study", path, samples=2, seed=7, set=("crank.speed_rpm=600",))
     fixed = dyade.run("study", same, set=("crank.speed_rpm=600",))
     assert quick.columns["links.3.mass"].tolist() == fixed.columns["links.3.mass"].tolist()
+    api = dyade.study(path, samples=2, seed=7, set=["crank.speed_rpm=600"]).columns()
+    assert api["M_drive_rms"].tolist() == quick.columns["M_drive_rms"].tolist()
     mass = quick.columns["links.3.mass"][0]
     alone = dyade.analyse(dyade.read_mechanism(FOURBAR, {"links.3.mass": mass,
                                                          "crank.speed_rpm": 600}))
