@@ -43,8 +43,15 @@ def init(kind: str, file: str, force: bool) -> None:
         console(stderr=True).print(f"wrote {file} (a motion profile); next: dyade profile "
                                    f"{file}")
         return
-    if name == "study":
-        console(stderr=True).print(f"wrote {file} (a design study); next: dyade study {file}")
+    if name == "study":  # and the mechanism it names, beside it, where it is not there yet
+        mechanism = os.path.join(os.path.dirname(file), "fourbar.toml")
+        wrote = "" if os.path.exists(mechanism) else f" and {mechanism} (its mechanism)"
+        if wrote:
+            with atomic(mechanism) as handle:
+                handle.write(files("dyade").joinpath("templates", "fourbar.toml").read_text(
+                    encoding="utf-8"))
+        console(stderr=True).print(f"wrote {file} (a design study){wrote}; next: dyade study "
+                                   f"{file}")
         return
     console(stderr=True).print(f"wrote {file} ({name}, dyad kind {TEMPLATES[name]}); next: "
                                f"dyade describe {file}")
