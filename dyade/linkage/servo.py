@@ -246,10 +246,11 @@ def inverse_dynamics(mechanism: Mechanism, motion: ServoMotion, **options) -> Se
     torque = columns["M_drive"]
     valid = np.asarray(columns.get("forces_valid", np.ones(torque.size)), dtype=bool)
     if torque.size != motion.time.size or not valid.all():
-        bad = motion.time[~valid] if torque.size == motion.time.size else motion.time
-        raise DyadeError(f"the drive torque is not given at t = {bad[0]:.6g}–{bad[-1]:.6g} s "
-                         f"(a dyad at or near a dead centre there, crank angle "
-                         f"{math.degrees(motion.angle[~valid][0] if valid.size == motion.time.size else motion.angle[0]):.6g}°).")
+        bad = ~valid if valid.size == motion.time.size else np.ones(motion.time.size, bool)
+        times, angles = motion.time[bad], np.degrees(motion.angle[bad])
+        raise DyadeError(f"the drive torque is not given at t = {times[0]:.6g}–{times[-1]:.6g} "
+                         f"s (crank angles {angles.min():.6g}°–{angles.max():.6g}°): a dyad "
+                         f"is at or near a dead centre there.")
     inertia, slope, load = columns["J_red"], columns["dJ_red"], columns["M_load"]
     speed, accel = motion.speed, motion.acceleration
     motion.torque = torque

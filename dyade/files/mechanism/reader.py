@@ -13,15 +13,16 @@ from dyade.files.mechanism.drive_line import DriveLineReader
 from dyade.files.mechanism.dyads import DyadReader
 from dyade.files.mechanism.links import FRAME_KEYS
 from dyade.files.mechanism.loads import LoadReader
+from dyade.files.mechanism.servo import ServoReader
 from dyade.files.schema import fmt, show
 from dyade.model.mechanism import CRANK, FRAME, Link, Mechanism, Sweep, sweep_problem
 
 TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
-            "gravity", "load", "spring", "friction", "drive", "drive_line"}
+            "gravity", "load", "spring", "friction", "drive", "drive_line", "servo", "profile"}
 SWEEP_KEYS = {"start", "stop", "step", "dead_centre", "transmission_warning"}
 
 
-class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader):
+class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader):
     """Walks the parsed TOML of a mechanism file with key paths for the error messages."""
 
     top_keys = TOP_KEYS
@@ -80,9 +81,28 @@ class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader):
             raise self.fail("drive_line.rotor_inertia", "is missing: with a [drive] motor the "
                                                         "drive line needs the rotor's moment of "
                                                         "inertia [kg·m²] on the motor shaft.")
+        servo = None
+        if "servo" in data:
+            if drive is not None:
+                raise self.fail("servo", "and [drive] both drive the crank: a servo follows "
+                                         "its motion profile, a [drive] motor turns it by its "
+                                         "characteristic. Keep one of the two tables.")
+            if line is not None:
+                raise self.fail("servo", "with a [drive_line] is not analysed: the elastic "
+                                         "line between the servo and the crank would make "
+                                         "the crank lag its profile, and dyade sizes a servo "
+                                         "for a rigid line only. Remove [drive_line] (its "
+                                         "vibration under a constant-speed drive: dyade "
+                                         "driveline), or [servo].")
+            sliders = {joint.name for joint in (j for dyad in dyads for j in dyad.joints)
+                       if joint.kind == "P"}
+            servo = self.servo(data["servo"], data, sliders, [n for n in self.placed if n > 1])
+        elif "profile" in data:
+            raise self.fail("profile", "is given without a [servo] table that follows it "
+                                       "(`dyade profile FILE` analyses a profile alone).")
         return Mechanism(name, self.source, crank, dyads, links, sweep, gravity, loads, springs,
                          dead_centre, friction_tol, friction_max_iter, warning,
-                         (self.length_unit, self.angle_unit), drive, line)
+                         (self.length_unit, self.angle_unit), drive, line, servo=servo)
 
     def sweep(self, table: Any) -> tuple[Sweep, float, float]:
         self.keys(table, "sweep", SWEEP_KEYS)
