@@ -22,7 +22,7 @@ U reversal (v = 0, a ≠ 0), G constant velocity (v ≠ 0, a = 0), B motion (v �
 >>> law("cycloide")
 Traceback (most recent call last):
 ...
-dyade.errors.InputError: law `cycloide` is not a motion law. Did you mean `cycloid`?
+dyade.errors.InputError: law = "cycloide" is not a motion law. Did you mean `cycloid`?
 """
 
 from __future__ import annotations
@@ -428,7 +428,7 @@ def canonical(name: str) -> str:
     close = difflib.get_close_matches(key, [*BUILDERS, *ALIASES], n=1, cutoff=0.6)
     hint = (f" Did you mean `{ALIASES.get(close[0], close[0])}`?" if close
             else f" Known laws: {', '.join(BUILDERS)}.")
-    raise InputError.parameter("law", f"`{name}` is not a motion law.{hint}", value=name)
+    raise InputError.parameter("law", f"= \"{name}\" is not a motion law.{hint}", value=name)
 
 
 def law(name: str, **params: Any) -> Law:
