@@ -21,13 +21,13 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.errors import DyadeError
-from dyade.linkage.plan import Plan
+from dyade.linkage.plan import Plan, plan
 from dyade.linkage.sweep import analyse
 from dyade.machine import servo as engine
 from dyade.model.mechanism import Mechanism
@@ -236,9 +236,12 @@ def inverse_dynamics(mechanism: Mechanism, motion: ServoMotion, **options) -> Se
     DyadeError
         The forces are not given at some instants (a dyad at a dead centre), naming them.
     """
+    # the clearance check asks for a sweep over the crank angle, which a cycle in time is
+    # not (a dwell repeats its angle): left out here
+    stages = replace(plan(mechanism), clearance=())
     result = analyse(mechanism, crank_angle_deg=np.degrees(motion.angle),
                      crank_speed=motion.speed, crank_acceleration=motion.acceleration,
-                     **options)
+                     plan=stages, **options)
     columns = result.columns()
     if "M_drive" not in columns:
         raise DyadeError("the linkage has no masses, loads or springs: the servo's crank "

@@ -131,5 +131,18 @@ class ServoReader(UnitReader):
 
     def servo_profile(self, table: dict[str, Any], data: dict[str, Any]):
         """The profile of the servo: the file's [profile] table, or the file that
-        ``servo.profile`` names."""
-        raise NotImplementedError
+        ``servo.profile`` names (one or the other)."""
+        from dyade.files.profile import ProfileReader, read_profile
+
+        if "profile" in table:
+            if "profile" in data:
+                raise self.fail("servo.profile", "names a profile file, and the file has a "
+                                                 "[profile] table too: keep one.")
+            return read_profile(self.relative(table["profile"], "servo.profile",
+                                              "a profile file (TOML)"))
+        if "profile" not in data:
+            raise self.fail("servo", "needs a motion profile: a [profile] table in this file "
+                                     "(with [[profile.segment]] tables), or `servo.profile = "
+                                     "\"FILE.toml\"` naming a profile file.")
+        name = data.get("name") if isinstance(data.get("name"), str) else "profile"
+        return ProfileReader(self.label, self.source).profile(data["profile"], name)
