@@ -97,9 +97,6 @@ class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader):
             sliders = {joint.name for joint in (j for dyad in dyads for j in dyad.joints)
                        if joint.kind == "P"}
             servo = self.servo(data["servo"], data, sliders, [n for n in self.placed if n > 1])
-        elif "profile" in data:
-            raise self.fail("profile", "is given without a [servo] table that follows it "
-                                       "(`dyade profile FILE` analyses a profile alone).")
         return Mechanism(name, self.source, crank, dyads, links, sweep, gravity, loads, springs,
                          dead_centre, friction_tol, friction_max_iter, warning,
                          (self.length_unit, self.angle_unit), drive, line, servo=servo)
