@@ -113,6 +113,26 @@ def target(servo, samples: int):
                   motion.a * rate ** 2, motion.j * rate ** 3)
 
 
+def checked_profile(profile, label: str) -> tuple[str, ...]:
+    """The profile checked continuous (``dyade.motion.profile.check``), its errors
+    naming the file: the notes of the jumps its laws allow."""
+    import math
+
+    from dyade.errors import InputError
+    from dyade.files.profile import output_factor
+    from dyade.motion.profile import check
+
+    master = ("s", 1.0) if profile.master == "time" else (
+        "°" if profile.master_unit == "deg" else "rad",
+        math.pi / 180.0 if profile.master_unit == "deg" else 1.0)
+    name = os.path.basename(label)
+    try:
+        return check(profile, units=(*master, profile.unit, output_factor(profile.unit)))
+    except InputError as err:
+        raise InputError(f"{name}: {err}", source=label, key=err.key, value=err.value,
+                         unit=err.unit, reason=err.reason) from None
+
+
 def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     import math
 
@@ -149,10 +169,10 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         catalogue = read_catalogue(options["catalogue"])
     budget.time(samples * 2e-5 * max(1, len(mechanism.dyads)), f"the cycle at {samples} instants")
 
+    notes = [f"note: {text}" for text in checked_profile(servo.profile, label)]
     motion = linkage.crank_motion(mechanism, servo.output, servo.start, target(servo, samples))
     motion = linkage.inverse_dynamics(mechanism, motion)
     cycle = motion.cycle()
-    notes = []
     if bounds is not None:
         count = options.get("ratio_count") or 25
         ratios = np.geomspace(bounds[0], bounds[1], count)
