@@ -182,6 +182,11 @@ def invert(mechanism: Mechanism, name: str, start: float, target: Target
     wanted = s0 + target.position - target.position[0]
     lowest, highest = float(np.min(table_s)), float(np.max(table_s))
     beyond = (wanted <= lowest) | (wanted >= highest)
+    if beyond[0]:
+        raise DyadeError(f"the output {name} is at a dead centre at the start crank angle "
+                         f"{math.degrees(start):.6g}° (its dead centres: crank angles "
+                         f"{math.degrees(first):.6g}° and {math.degrees(last):.6g}°): start "
+                         f"the cycle inside a stroke (`servo.start`).")
     if beyond.any():
         factor = output_columns(name)[3]
         unit = "°" if factor != 1.0 else " mm"

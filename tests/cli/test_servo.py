@@ -1,0 +1,120 @@
+"""`dyade servo` (issue 39): the shipped servo press and four-bar, the catalogue's choice,
+the cam table for a motion controller, and bad input with its exit code and message."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import shutil
+
+import numpy as np
+import pytest
+
+import dyade
+from tests.helpers import shipped
+from tests.hostile_common import expect
+
+PRESS = shipped("servo/press.toml")
+FOURBAR = shipped("servo/fourbar.toml")
+
+
+@pytest.fixture(scope="module")
+def press():
+    return dyade.run("servo", PRESS, ratio_count=5)
+
+
+def test_press_sizes_a_motor_over_the_ratio_range(press):
+    summary = press.summary
+    # the RMS optimum of the range is a true minimum among the range's ratios
+    sizing = press.result.sizing
+    assert summary["ratio_optimum"].value == pytest.approx(
+        sizing.ratio[np.argmin(sizing.rms_torque)])
+    assert np.all(sizing.rms_torque >= summary["ratio_optimum"].value * 0 + sizing.rms_torque.min())
+    # the chosen motor passes, and every smaller one of the catalogue fails at every ratio
+    chosen = press.result.chosen
+    assert summary["motor"].value == chosen.motor.name
+    assert min(summary[f"margin_{k}"].value for k in ("thermal", "peak", "speed", "inertia")) >= 0
+    for check in press.result.checks:
+        if check.motor.rated_torque < chosen.motor.rated_torque:
+            assert check.best is None
+    # the slider follows its profile: the ram's travel rises 60 mm and comes back
+    assert np.max(press.columns["s"]) == pytest.approx(0.06, rel=1e-12)
+    assert press.units["s"] == "m" and press.units["M_motor"] == "N·m"
+
+
+def test_command_table_json_csv_and_the_controller_table(tmp_path):
+    result = expect(["servo", FOURBAR], 0, "RMS motor torque", "inertia ratio")
+    assert "nan" not in result.output and "True" not in result.output
+    document = json.loads(expect(["servo", FOURBAR, "--format", "json"], 0).output)
+    assert document["analysis"] == "servo"
+    assert document["summary"]["motor_torque_rms"]["unit"] == "N·m"
+    rows = list(csv.reader(io.StringIO(expect(["servo", FOURBAR, "--format", "csv"], 0).output)))
+    assert rows[0][:3] == ["t", "angle_deg", "omega_2"] and len(rows) == 722
+    table = tmp_path / "cam.csv"
+    expect(["servo", FOURBAR, "--controller", table, "-o", tmp_path / "out.json"], 0)
+    cam = np.loadtxt(table, delimiter=",", skiprows=1)
+    assert table.read_text().splitlines()[0] == \
+        "t,position_deg,velocity_deg_s,acceleration_deg_s2"
+    assert cam[0, 1] == 0 and cam[-1, 1] == pytest.approx(360.0, rel=1e-12)
+    # the velocity column is the derivative of the position (central differences)
+    dt = cam[1, 0] - cam[0, 0]
+    middle = (cam[2:, 1] - cam[:-2, 1]) / (2 * dt)
+    assert np.max(np.abs(middle - cam[1:-1, 2])) < 1e-3 * np.max(cam[:, 2])
+
+
+def servo_file(tmp_path, text: str, name: str = "m.toml"):
+    """The shipped press with ``text`` replaced as asked, in tmp_path with its catalogue."""
+    shutil.copy(shipped("servo/motors.csv"), tmp_path / "motors.csv")
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+PRESS_TEXT = PRESS.read_text()
+BAD = {
+    "velocity jump": (PRESS_TEXT.replace('kind = "dwell"          # pressing',
+                                         'kind = "rise"\nlaw = "constant-velocity"\nto = 61'),
+                      2, ("segment 3", "velocity jump", "m.toml")),
+    "cycle time": (PRESS_TEXT.replace("period = 0.6", "period = 0"), 2,
+                   ("`profile.period`", "positive")),
+    "cycle time of an angle master": (
+        FOURBAR.read_text().replace('master = "time"', 'master = "angle"').replace(
+            "period = 0.4", "period = 360").replace("end = 0.3", "end = 270").replace(
+            "end = 0.4", "end = 360").replace("ratio = 8", "ratio = 8\ncycle_time = -0.5"),
+        2, ("`servo.cycle_time`", "positive")),
+    "drive and servo": (PRESS_TEXT.replace("[servo]", '[drive]\nmotor = "constant"\n\n[servo]'),
+                        2, ("`servo`", "[drive]", "Keep one")),
+    "drive line": (PRESS_TEXT.replace("[servo]", '[drive_line]\nstiffness = 1000\n\n[servo]'),
+                   2, ("`servo`", "[drive_line]")),
+    "unknown output": (PRESS_TEXT.replace('output = "s_1_4"', 'output = "s_1_5"'), 2,
+                       ("`servo.output`", "s_i_j")),
+    "odd samples": (PRESS_TEXT.replace("samples = 720", "samples = 721"), 2,
+                    ("`servo.samples`", "even")),
+    "beyond a dead centre": (PRESS_TEXT.replace("to = 60", "to = 90").replace(
+        "to = 0\n", "to = 0\n", 1), 1, ("beyond a dead centre", "2.86599°", "184.78°")),
+}
+
+
+@pytest.mark.parametrize("case", BAD)
+def test_bad_input_is_refused_with_its_code(tmp_path, case):
+    text, code, words = BAD[case]
+    expect(["servo", servo_file(tmp_path, text)], code, *words)
+
+
+def test_catalogue_missing_a_column_names_the_file_and_column(tmp_path):
+    bad = tmp_path / "short.csv"
+    bad.write_text("name,rated_torque,peak_torque,rated_speed_rpm,top_speed_rpm\nX,1,3,3000,6000\n")
+    expect(["servo", PRESS, "--catalogue", bad], 2, "short.csv", "`rotor_inertia`", "is missing")
+
+
+def test_a_motor_too_small_for_every_ratio_exits_1_naming_the_catalogue(tmp_path):
+    small = tmp_path / "small.csv"
+    small.write_text("name,rated_torque,peak_torque,rated_speed_rpm,top_speed_rpm,rotor_inertia\n"
+                     "tiny,0.05,0.15,3000,6000,1e-5\n")
+    expect(["servo", PRESS, "--catalogue", small, "--ratio-count", "5"], 1,
+           "no motor of small.csv passes at any gear ratio 3–40", "tiny", "thermal (RMS)")
+
+
+def test_a_file_without_servo_is_refused():
+    expect(["servo", shipped("fourbar.toml")], 2, "no [servo] table", "dyade init servo")
