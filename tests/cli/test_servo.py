@@ -76,7 +76,7 @@ BAD = {
     "velocity jump": (PRESS_TEXT.replace('kind = "dwell"          # pressing',
                                          'kind = "rise"\nlaw = "constant-velocity"\nto = 61'),
                       2, ("segment 3", "velocity jump", "m.toml")),
-    "cycle time": (PRESS_TEXT.replace("period = 0.6", "period = 0"), 2,
+    "cycle time": (PRESS_TEXT.replace("period = 0.5", "period = 0"), 2,
                    ("`profile.period`", "positive")),
     "cycle time of an angle master": (
         FOURBAR.read_text().replace('master = "time"', 'master = "angle"').replace(
