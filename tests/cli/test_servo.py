@@ -118,3 +118,10 @@ def test_a_motor_too_small_for_every_ratio_exits_1_naming_the_catalogue(tmp_path
 
 def test_a_file_without_servo_is_refused():
     expect(["servo", shipped("fourbar.toml")], 2, "no [servo] table", "dyade init servo")
+
+
+def test_init_servo_writes_a_file_that_sizes_as_written(tmp_path):
+    path = tmp_path / "servo.toml"
+    expect(["init", "servo", path], 0, "dyade servo")
+    expect(["servo", path, "--ratio-count", "3"], 0, "RMS-optimal gear ratio")
+    expect(["analyse", path, "--format", "csv"], 0, "M_drive")   # at its constant speed
