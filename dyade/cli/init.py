@@ -11,7 +11,7 @@ from dyade.cli.output import atomic, console
 
 
 TEMPLATES = {"fourbar": "RRR", "slider-crank": "RRP", "slotted-lever": "RPR",
-             "tangent-drive": "PRP", "scotch-yoke": "PPR", "study": "",
+             "tangent-drive": "PRP", "scotch-yoke": "PPR", "study": "", "profile": "",
              "servo": "RRP"}
 KIND_ALIASES = {"rrr": "fourbar", "four-bar": "fourbar", "rrp": "slider-crank",
                 "rpr": "slotted-lever", "prp": "tangent-drive", "ppr": "scotch-yoke"}
@@ -26,8 +26,10 @@ def init(kind: str, file: str, force: bool) -> None:
     """Write a commented starting mechanism FILE for KIND: fourbar (RRR), slider-crank
     (RRP), slotted-lever (RPR), tangent-drive (PRP) or scotch-yoke (PPR). The file is
     valid and analysable as written: edit the numbers, then `dyade analyse FILE`.
-    KIND study writes a design study of fourbar.toml (`dyade study FILE`); KIND servo a
-    servo press, a slider-crank whose ram follows a motion profile (`dyade servo FILE`).
+    KIND study writes a design study of fourbar.toml (`dyade study FILE`); KIND profile
+    a motion profile of VDI 2143 laws over a machine cycle (`dyade profile FILE`); KIND
+    servo a servo press, a slider-crank whose ram follows a motion profile (`dyade servo
+    FILE`).
     FILE "-" prints the template."""
     from importlib.resources import files
 
@@ -40,6 +42,10 @@ def init(kind: str, file: str, force: bool) -> None:
         raise click.UsageError(f"{file} exists; give --force to overwrite it.")
     with atomic(file) as handle:
         handle.write(text)
+    if name == "profile":
+        console(stderr=True).print(f"wrote {file} (a motion profile); next: dyade profile "
+                                   f"{file}")
+        return
     if name == "study":
         console(stderr=True).print(f"wrote {file} (a design study); next: dyade study {file}")
         return
