@@ -11,14 +11,13 @@ from typing import Any
 from dyade.files.mechanism.drive import DriveReader
 from dyade.files.mechanism.drive_line import DriveLineReader
 from dyade.files.mechanism.dyads import DyadReader
+from dyade.files.mechanism.keys import TOP_KEYS
 from dyade.files.mechanism.links import FRAME_KEYS
 from dyade.files.mechanism.loads import LoadReader
 from dyade.files.mechanism.servo import ServoReader
 from dyade.files.schema import fmt, show
 from dyade.model.mechanism import CRANK, FRAME, Link, Mechanism, Sweep, sweep_problem
 
-TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
-            "gravity", "load", "spring", "friction", "drive", "drive_line", "servo", "profile"}
 SWEEP_KEYS = {"start", "stop", "step", "dead_centre", "transmission_warning"}
 
 
