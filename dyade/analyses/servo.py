@@ -54,6 +54,8 @@ COLUMNS = {
     "M_motor": ("N·m", "motor torque (rotor and gear inertia, gear losses included)"),
     "P_motor": ("W", "motor power M·ω (negative: fed back)"),
     "P_gear_loss": ("W", "power the gear loses"),
+    "M_line": ("N·m", "torque of the [drive_line] shaft on the crank (elastic line)"),
+    "lag_deg": ("°", "the crank's angle behind the elastic line minus the profile's"),
 }
 """column -> (unit, description)"""
 
@@ -173,6 +175,25 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     motion = linkage.crank_motion(mechanism, servo.output, servo.start, target(servo, samples))
     motion = linkage.inverse_dynamics(mechanism, motion)
     cycle = motion.cycle()
+    line = None
+    if mechanism.drive_line is not None:  # the crank behind an elastic shaft
+        refine = linkage.line_refinement(mechanism.drive_line, motion.inertia, cycle.period,
+                                         samples)
+        budget.time(refine * samples * 4e-4, f"the elastic drive line at {refine * samples:,} "
+                                              f"steps per cycle")
+        fine = linkage.crank_motion(mechanism, servo.output, servo.start,
+                                    target(servo, 2 * refine * samples))
+        line = linkage.elastic_line(mechanism, fine, np.interp(fine.time, motion.time,
+                                                               motion.friction))
+        torque = line.torque[::refine]
+        cycle = engine.Cycle(cycle.time, cycle.speed, cycle.acceleration, torque, cycle.inertia)
+        notes.append(
+            f"note: the crank is driven through the [drive_line] shaft ({mechanism.drive_line.stiffness:g} "
+            f"N·m/rad, {mechanism.drive_line.damping:g} N·m·s/rad) whose gear end follows the "
+            f"profile: the crank lags it by up to "
+            f"{np.degrees(np.max(np.abs(line.angle[::refine] - motion.angle))):.3g}°, and the motor "
+            f"is sized by the shaft's torque M_line (the periodic state; friction as at the "
+            f"rigid motion).")
     if bounds is not None:
         count = options.get("ratio_count") or 25
         ratios = np.geomspace(bounds[0], bounds[1], count)
@@ -215,6 +236,9 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                "n_motor_rpm": load_at.speed[0] * RAD_PER_S_TO_RPM, "M_motor": load_at.torque[0],
                "P_motor": load_at.torque[0] * load_at.speed[0],
                "P_gear_loss": load_at.gear_loss[0]}
+    if line is not None:
+        columns["M_line"] = cycle.torque
+        columns["lag_deg"] = np.degrees(line.angle[::refine] - motion.angle)
     unit = "m" if servo.profile.output == "length" else "rad"
     outcome.columns = columns
     outcome.units = {name: COLUMNS[name][0] for name in columns}
@@ -223,7 +247,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     outcome.descriptions = {name: COLUMNS[name][1] for name in columns}
     add = outcome.add
     add("cycle_time", float(cycle.period), "s", description="cycle time T")
-    add("output", servo.output, "", description="what the profile moves")
+    add("output", servo.output, "-", description="what the profile moves")
     add("ratio", ratio, "-", description="gear ratio i of the columns"
         + (" (the chosen motor's)" if chosen is not None else
            " (the RMS optimum)" if optimum is not None else ""))
@@ -259,7 +283,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                          f"({optimum:.6g}): widen the range to find the true optimum.")
     if chosen is not None:
         row = chosen.best
-        add("motor", chosen.motor.name, "", description="smallest motor of the catalogue that "
+        add("motor", chosen.motor.name, "-", description="smallest motor of the catalogue that "
                                                         "passes")
         add("motors_passing", sum(check.best is not None for check in checks), "-",
             description=f"motors of {len(checks)} that pass at some ratio")
@@ -270,6 +294,14 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         add("margin_speed", float(chosen.speed[row]), "-", description="speed margin 1 − max|ω|/n_max")
         add("margin_inertia", float(chosen.inertia[row]), "-",
             description="inertia margin 1 − λ/λ_max")
+    if line is not None:
+        add("line_frequency", math.sqrt(mechanism.drive_line.stiffness / float(np.mean(
+            motion.inertia))), "rad/s", description="the line's natural frequency √(k/J̄)")
+        add("crank_lag_max_deg", float(np.max(np.abs(columns["lag_deg"]))), "°",
+            description="largest lag of the crank behind its profile (elastic line)")
+        add("line_torque_peak", float(np.max(np.abs(cycle.torque))), "N·m",
+            where={"t": float(motion.time[np.argmax(np.abs(cycle.torque))])},
+            description="peak torque of the drive line's shaft")
     if motion.branch is not None:
         add("dead_centre_first_deg", math.degrees(motion.branch[0]), "°",
             description="the output's dead centre before the start (crank angle)")

@@ -289,3 +289,30 @@ def machine_function(mechanism: Mechanism, low: float, high: float, step: float
                 load[k] + x * (load[k + 1] - load[k]))
 
     return at
+
+
+LINE_STEPS_PER_PERIOD = 40  # RK4 steps per period of the line's natural frequency, at least
+LINE_MARGIN = math.radians(20.0)  # [rad] the machine's tables reach this beyond the profile
+
+
+def line_refinement(line, inertia: FloatArray, period: float, samples: int) -> int:
+    """How many times finer than the cycle's samples the elastic line is integrated: at
+    least ``LINE_STEPS_PER_PERIOD`` steps per period of its highest natural frequency
+    √(k/min J) [-]."""
+    omega = math.sqrt(line.stiffness / float(np.min(inertia)))
+    return max(1, math.ceil(LINE_STEPS_PER_PERIOD * period * omega / (2.0 * math.pi * samples)))
+
+
+def elastic_line(mechanism: Mechanism, fine: ServoMotion, friction: FloatArray
+                 ) -> engine.LineCycle:
+    """The crank's periodic motion behind the ``[drive_line]`` shaft whose motor end
+    follows the crank's profile motion ``fine`` (at the half steps of its instants; the
+    friction torque M_F there, frozen at the rigid motion's): ``machine.servo.
+    line_periodic`` on the linkage's J, J′ and M_L."""
+    line = mechanism.drive_line
+    low = float(np.min(fine.angle)) - LINE_MARGIN
+    high = float(np.max(fine.angle)) + LINE_MARGIN
+    machine = machine_function(mechanism, low, high, math.radians(0.05))
+    advance = float(fine.angle[-1] - fine.angle[0])
+    return engine.line_periodic(machine, fine.angle, fine.speed, friction, fine.time,
+                                line.stiffness, line.damping, advance)

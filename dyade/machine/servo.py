@@ -311,3 +311,98 @@ def follow(machine: Callable[[float], tuple[float, float, float]], torque: Float
         angles.append(phi)
         speeds.append(w)
     return Followed(np.asarray(time[0::2]), np.array(angles), np.array(speeds))
+
+
+LINE_TOL = 1e-10  # [-] periodic when the state repeats to this share of its scale
+LINE_MAX_ITER = 20  # most Newton (shooting) iterations of the elastic line
+
+
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class LineCycle:
+    """The crank's periodic motion behind an elastic line whose motor end follows the
+    profile, at the steps' ends."""
+
+    time: FloatArray
+    """(K+1,) t [s]"""
+    angle: FloatArray
+    """(K+1,) φ [rad]"""
+    speed: FloatArray
+    """(K+1,) φ̇ [rad/s]"""
+    torque: FloatArray
+    """(K+1,) the line's torque on the crank T = k·(φ_p − φ) + b·(φ̇_p − φ̇) [N·m]"""
+    iterations: int
+    """shooting iterations"""
+    miss: float
+    """|state(T) − state(0) − advance| at the end, scaled [-]"""
+
+
+def line_periodic(machine: Callable[[float], tuple[float, float, float]], angle: FloatArray,
+                  speed: FloatArray, friction: FloatArray, time: FloatArray, stiffness: float,
+                  damping: float, advance: float) -> LineCycle:
+    """The periodic motion of a crank driven through an elastic line (stiffness k,
+    damping b, as the crank shaft sees them) whose other end follows the profile
+    φ_p(t) exactly (a stiff servo):
+
+        J(φ)·φ̈ + ½·J′(φ)·φ̇² = k·(φ_p − φ) + b·(φ̇_p − φ̇) + M_L(φ) − M_F(t),
+
+    RK4 in time over the half steps of ``time`` (``angle``, ``speed``, ``friction``: φ_p,
+    φ̇_p and M_F there), the periodic state (φ(T) = φ(0) + ``advance``, φ̇(T) = φ̇(0))
+    by shooting: Newton's method on the state at t = 0 with the Jacobian by forward
+    differences, from the profile's own state.
+
+    Raises
+    ------
+    DyadeError
+        No periodic state within ``LINE_MAX_ITER`` iterations (a line in resonance
+        without damping).
+    """
+    from dyade.errors import DyadeError
+
+    p, v, rub = angle.tolist(), speed.tolist(), friction.tolist()
+    dt = float(time[2] - time[0])
+
+    def accel(j: int, phi: float, w: float) -> float:
+        inertia, slope, load = machine(phi)
+        line = stiffness * (p[j] - phi) + damping * (v[j] - w)
+        return (line + load - rub[j] - 0.5 * slope * w * w) / inertia
+
+    def cycle(phi: float, w: float) -> tuple[list, list]:
+        angles, speeds = [phi], [w]
+        for k in range(0, len(p) - 1, 2):
+            a1 = accel(k, phi, w)
+            p2, v2 = phi + 0.5 * dt * w, w + 0.5 * dt * a1
+            a2 = accel(k + 1, p2, v2)
+            p3, v3 = phi + 0.5 * dt * v2, w + 0.5 * dt * a2
+            a3 = accel(k + 1, p3, v3)
+            p4, v4 = phi + dt * v3, w + dt * a3
+            a4 = accel(k + 2, p4, v4)
+            phi += dt * (w + 2.0 * v2 + 2.0 * v3 + v4) / 6.0
+            w += dt * (a1 + 2.0 * a2 + 2.0 * a3 + a4) / 6.0
+            angles.append(phi)
+            speeds.append(w)
+        return angles, speeds
+
+    scale_phi = max(abs(advance), float(np.max(np.abs(angle - angle[0]))), 1e-3)
+    scale_w = max(float(np.max(np.abs(speed))), scale_phi / float(time[-1] - time[0]))
+    state = np.array([p[0], v[0]])
+    miss = math.inf
+    for iteration in range(1, LINE_MAX_ITER + 1):
+        angles, speeds = cycle(*state)
+        residual = np.array([angles[-1] - state[0] - advance, speeds[-1] - state[1]])
+        miss = float(max(abs(residual[0]) / scale_phi, abs(residual[1]) / scale_w))
+        if miss <= LINE_TOL:
+            phi, w = np.array(angles), np.array(speeds)
+            torque = stiffness * (angle[0::2] - phi) + damping * (speed[0::2] - w)
+            return LineCycle(np.asarray(time[0::2]), phi, w, torque, iteration, miss)
+        jacobian = np.empty((2, 2))
+        for column, size in enumerate((1e-7 * scale_phi, 1e-7 * scale_w)):
+            moved = state.copy()
+            moved[column] += size
+            a2, s2 = cycle(*moved)
+            jacobian[:, column] = (np.array([a2[-1] - moved[0] - advance, s2[-1] - moved[1]])
+                                   - residual) / size
+        state = state - np.linalg.solve(jacobian, residual)
+    raise DyadeError(f"the crank behind the elastic drive line has no periodic motion under "
+                     f"the profile within {LINE_MAX_ITER} shooting iterations (left "
+                     f"{miss:.3g} of the state's scale): the line may be in resonance with "
+                     f"the profile's harmonics; give it damping or stiffness.")

@@ -86,13 +86,16 @@ class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader):
                 raise self.fail("servo", "and [drive] both drive the crank: a servo follows "
                                          "its motion profile, a [drive] motor turns it by its "
                                          "characteristic. Keep one of the two tables.")
-            if line is not None:
-                raise self.fail("servo", "with a [drive_line] is not analysed: the elastic "
-                                         "line between the servo and the crank would make "
-                                         "the crank lag its profile, and dyade sizes a servo "
-                                         "for a rigid line only. Remove [drive_line] (its "
-                                         "vibration under a constant-speed drive: dyade "
-                                         "driveline), or [servo].")
+            if line is not None:  # the shaft between the servo's gear and the crank
+                for key, bad in (("coupling", line.coupling is not None),
+                                 ("ratio", line.ratio != 1.0),
+                                 ("rotor_inertia", line.rotor_inertia is not None)):
+                    if bad:
+                        raise self.fail(f"drive_line.{key}", "is not taken with a [servo]: "
+                                        "under a servo the drive line is a shaft (stiffness, "
+                                        "damping) between the gear and the crank; the gear "
+                                        "ratio and the rotor are the servo's "
+                                        "(`servo.ratio`, `servo.rotor_inertia`).")
             sliders = {joint.name for joint in (j for dyad in dyads for j in dyad.joints)
                        if joint.kind == "P"}
             servo = self.servo(data["servo"], data, sliders, [n for n in self.placed if n > 1])
