@@ -85,8 +85,9 @@ BAD = {
         2, ("`servo.cycle_time`", "positive")),
     "drive and servo": (PRESS_TEXT.replace("[servo]", '[drive]\nmotor = "constant"\n\n[servo]'),
                         2, ("`servo`", "[drive]", "Keep one")),
-    "drive line": (PRESS_TEXT.replace("[servo]", '[drive_line]\nstiffness = 1000\n\n[servo]'),
-                   2, ("`servo`", "[drive_line]")),
+    "drive line's own ratio": (PRESS_TEXT.replace(
+        "[servo]", '[drive_line]\nstiffness = 1000\nratio = 2\n\n[servo]'), 2,
+        ("`drive_line.ratio`", "servo.ratio")),
     "unknown output": (PRESS_TEXT.replace('output = "s_1_4"', 'output = "s_1_5"'), 2,
                        ("`servo.output`", "s_i_j")),
     "odd samples": (PRESS_TEXT.replace("samples = 720", "samples = 721"), 2,
@@ -125,3 +126,31 @@ def test_init_servo_writes_a_file_that_sizes_as_written(tmp_path):
     expect(["init", "servo", path], 0, "dyade servo")
     expect(["servo", path, "--ratio-count", "3"], 0, "RMS-optimal gear ratio")
     expect(["analyse", path, "--format", "csv"], 0, "M_drive")   # at its constant speed
+
+
+@pytest.mark.slow
+def test_elastic_line_under_a_cycloid_matches_the_forced_oscillator(tmp_path):
+    # the four-bar with only its crank's inertia J0 (J constant, no loads), turned once per
+    # cycle T by a cycloid through a shaft k, b: the crank's lag e = φ − φ_p obeys
+    # J0·ë + b·ė + k·e = −J0·φ̈_p, φ̈_p = A·sin Ωt (A = 2π·2π/T², Ω = 2π/T), whose
+    # periodic solution is e = −J0·A·((k − J0·Ω²)·sin Ωt − b·Ω·cos Ωt)/D²
+    J0, k, b, T = 0.01, 400.0, 0.3, 0.4
+    text = FOURBAR.read_text()
+    text = text[:text.index("[[profile.segment]]")] + (
+        '[[profile.segment]]\nkind = "rise"\nlaw = "cycloid"\nend = 0.4\nto = 360\n')
+    text = text.replace("mass = 1.2", "mass = 0").replace("mass = 0.9", "mass = 0").replace(
+        "inertia = 0.004", "inertia = 0").replace("inertia = 0.0017", "inertia = 0")
+    text += f"\n[links.2]\ninertia = {J0}\n\n[drive_line]\nstiffness = {k}\ndamping = {b}\n"
+    path = servo_file(tmp_path, text)
+    outcome = dyade.run("servo", path)
+    t = outcome.columns["t"]
+    A, omega = 4 * np.pi ** 2 / T ** 2, 2 * np.pi / T
+    D2 = (k - J0 * omega ** 2) ** 2 + (b * omega) ** 2
+    lag = -J0 * A * ((k - J0 * omega ** 2) * np.sin(omega * t) - b * omega * np.cos(omega * t)) / D2
+    # RK4 at ≥ 40 steps per natural period (here 360 per cycle, ω̄·Δt = 0.22): ~1e-6
+    scale = np.max(np.degrees(np.abs(lag)))
+    assert np.degrees(lag) == pytest.approx(outcome.columns["lag_deg"], abs=1e-5 * scale)
+    # the shaft's torque −(k·e + b·ė) and the rigid torque J0·φ̈_p differ by the line's dynamics
+    line = -(k * lag + b * np.gradient(lag, t))
+    assert np.max(np.abs(outcome.columns["M_line"] - line)) < 2e-3 * np.max(np.abs(line))
+    assert outcome.value("line_frequency") == pytest.approx(np.sqrt(k / J0))
