@@ -258,13 +258,13 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     add("crank_torque_peak", float(np.max(np.abs(motion.torque))), "N·m",
         where={"t": float(motion.time[np.argmax(np.abs(motion.torque))])},
         description="peak torque the crank shaft needs")
-    add("crank_speed_max", float(np.max(np.abs(motion.speed))) * RAD_PER_S_TO_RPM, "rpm",
+    add("crank_speed_max_rpm", float(np.max(np.abs(motion.speed))) * RAD_PER_S_TO_RPM, "rpm",
         description="top crank speed")
     add("motor_torque_peak", float(figures.peak_torque[0]), "N·m", where={"t": peak_t},
         description="peak motor torque")
     add("motor_torque_rms", float(figures.rms_torque[0]), "N·m",
         description="RMS motor torque √(1/T·∫M²dt) (heating)")
-    add("motor_speed_max", float(figures.top_speed[0]) * RAD_PER_S_TO_RPM, "rpm",
+    add("motor_speed_max_rpm", float(figures.top_speed[0]) * RAD_PER_S_TO_RPM, "rpm",
         description="top motor speed")
     add("inertia_ratio", None if not rotor else float(figures.inertia_ratio[0]), "-",
         limit=limit, description="inertia ratio λ = (max J/i² + J_G)/J_M")
@@ -343,6 +343,26 @@ def no_motor(checks, source, ratios, bounds) -> str:
             f"{best.motor.top_speed * RAD_PER_S_TO_RPM:.5g}, inertia ratio "
             f"{figures.inertia_ratio[row]:.3g}. Add a larger motor, widen the ratio range or "
             f"slow the profile.")
+
+
+STUDY_OUTPUTS = {"motor_torque_peak": "N·m", "motor_torque_rms": "N·m",
+                 "motor_speed_max_rpm": "rpm", "inertia_ratio": "-", "regenerated": "J",
+                 "crank_torque_peak": "N·m", "ratio": "-"}
+"""the servo's figures a design study gives with ``[outputs] extra = ["servo"]``, and
+their units: the motor's at the ratio of the columns (the servo's own, the RMS optimum of
+its range, or the chosen catalogue motor's)"""
+
+
+def study_outputs(mechanism) -> dict[str, float]:
+    """The ``STUDY_OUTPUTS`` of a mechanism with a ``[servo]`` (its file's settings),
+    for one variant of a design study."""
+    from dyade.errors import InputError
+
+    if mechanism.servo is None:
+        raise InputError("the study's extra output \"servo\" needs a [servo] table in the "
+                         "mechanism file.", key="outputs.extra")
+    outcome = ENTRIES["servo"](mechanism)
+    return {name: outcome.value(name) for name in STUDY_OUTPUTS}
 
 
 ENTRIES = {"servo": Analysis("servo", "Servo-driven crank: motor torque over the cycle and "
