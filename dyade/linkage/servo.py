@@ -257,8 +257,10 @@ def inverse_dynamics(mechanism: Mechanism, motion: ServoMotion, **options) -> Se
         bad = ~valid if valid.size == motion.time.size else np.ones(motion.time.size, bool)
         times, angles = motion.time[bad], np.degrees(motion.angle[bad])
         raise DyadeError(f"the drive torque is not given at t = {times[0]:.6g}–{times[-1]:.6g} "
-                         f"s (crank angles {angles.min():.6g}°–{angles.max():.6g}°): a dyad "
-                         f"is at or near a dead centre there.")
+                         f"s (crank angles {angles.min():.6g}°–{angles.max():.6g}°): the sweep "
+                         f"withholds the forces there (a dyad at or near a dead centre, or "
+                         f"a slider that self-locks; `dyade analyse` at these angles says "
+                         f"which).")
     inertia, slope, load = columns["J_red"], columns["dJ_red"], columns["M_load"]
     speed, accel = motion.speed, motion.acceleration
     motion.torque = torque
