@@ -156,11 +156,12 @@ def test_elastic_line_under_a_cycloid_matches_the_forced_oscillator(tmp_path):
     assert outcome.value("line_frequency") == pytest.approx(np.sqrt(k / J0))
 
 
+@pytest.mark.slow
 def test_joint_friction_dissipates_through_the_crank():
     # Coulomb friction in every pin (μ = 0.1, r = 5 mm): its share of the crank torque
     # M_F (from the joint forces) takes power from the crank at every instant, never gives
     outcome = dyade.run("servo", FOURBAR, set=("friction.coefficient=0.1",
-                                               "friction.pin_radius=5"))
+                                               "friction.pin_radius=5"), samples=120)
     power = outcome.columns["M_friction"] * outcome.columns["omega_2"]
     assert power.min() >= -1e-12 * power.max() and power.max() > 1.0      # [W]
     assert any("M_friction" in note for note in outcome.notes)
