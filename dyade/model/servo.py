@@ -99,6 +99,7 @@ class Servo:
     """time points per cycle [-]"""
     max_inertia_ratio: float = 10.0
     """the largest load-to-motor inertia ratio a motor passes with [-]"""
-    master_speed: float | None = None
-    """Ω [rad/s] of the master axis when the profile's master is an angle (a virtual
-    line shaft): the cycle time is then 2π/Ω... per the profile's period"""
+    cycle_time: float | None = None
+    """T [s], the time of one cycle when the profile's master is an angle (a virtual
+    line shaft turning once per ``profile.period``); None: the profile's master is time
+    and its period is the cycle time"""

@@ -165,3 +165,14 @@ def test_joint_friction_dissipates_through_the_crank():
     power = outcome.columns["M_friction"] * outcome.columns["omega_2"]
     assert power.min() >= -1e-12 * power.max() and power.max() > 1.0      # [W]
     assert any("M_friction" in note for note in outcome.notes)
+
+
+def test_a_profile_over_a_master_angle_with_its_cycle_time_is_the_same_cycle(tmp_path):
+    # 360° of a virtual master shaft in servo.cycle_time = 0.4 s is the time profile of
+    # 0.4 s: the derivatives per degree scaled by the master's speed
+    text = (FOURBAR.read_text().replace('master = "time"', 'master = "angle"')
+            .replace("period = 0.4 ", "period = 360 ").replace("end = 0.3\n", "end = 270\n")
+            .replace("end = 0.4\n", "end = 360\n").replace("ratio = 8\n", "ratio = 8\ncycle_time = 0.4\n"))
+    by_angle = dyade.run("servo", servo_file(tmp_path, text), samples=120)
+    by_time = dyade.run("servo", FOURBAR, samples=120)
+    assert by_angle.columns["M_motor"] == pytest.approx(by_time.columns["M_motor"], abs=1e-12)
