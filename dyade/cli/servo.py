@@ -62,9 +62,9 @@ def servo(mechanism_file: str, controller: str | None, fmt: str | None, output: 
     its envelope at its speed, top speed, λ) and the smallest that passes named.
 
     \b
-        dyade servo mechanisms/servo-press.toml
-        dyade servo mechanisms/servo-press.toml --ratio-range 2:40 --catalogue motors.csv
-        dyade servo mechanisms/servo-press.toml --controller cam-table.csv
+        dyade servo mechanisms/servo/press.toml
+        dyade servo mechanisms/servo/press.toml --ratio-range 2:40 --catalogue motors.csv
+        dyade servo mechanisms/servo/fourbar.toml --controller cam-table.csv
 
     `dyade init servo FILE` writes a commented example; `dyade plot servo` draws the
     torque-speed points over the motor's envelope and the profile's s, v, a, j.
