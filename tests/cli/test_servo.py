@@ -176,3 +176,18 @@ def test_a_profile_over_a_master_angle_with_its_cycle_time_is_the_same_cycle(tmp
     by_angle = dyade.run("servo", servo_file(tmp_path, text), samples=120)
     by_time = dyade.run("servo", FOURBAR, samples=120)
     assert by_angle.columns["M_motor"] == pytest.approx(by_time.columns["M_motor"], abs=1e-12)
+
+
+def test_the_profile_may_be_a_file_of_its_own(tmp_path):
+    text = FOURBAR.read_text()
+    cut = text.index("[profile]")
+    (tmp_path / "turn.toml").write_text(text[cut:])
+    path = servo_file(tmp_path, text[:cut].replace("ratio = 8\n", 'ratio = 8\nprofile = "turn.toml"\n'))
+    alone = dyade.run("servo", path, samples=120)
+    assert alone.value("motor_torque_rms") == pytest.approx(
+        dyade.run("servo", FOURBAR, samples=120).value("motor_torque_rms"), rel=1e-14)
+    both = servo_file(tmp_path, text.replace("ratio = 8\n", 'ratio = 8\nprofile = "turn.toml"\n'),
+                      "both.toml")
+    expect(["servo", both], 2, "`servo.profile`", "keep one")
+    none = servo_file(tmp_path, text[:cut], "none.toml")
+    expect(["servo", none], 2, "`servo`", "needs a motion profile")

@@ -104,3 +104,18 @@ def test_power_balance_of_motor_gear_loads_and_kinetic_energy(name):
     work = engine.trapezoid(power, motion.time)
     assert work == pytest.approx(engine.trapezoid(load.gear_loss[0] - motion.load * w,
                                                   motion.time), abs=1e-9 * np.max(np.abs(power)))
+
+
+def test_profile_on_the_rocker_angle_is_reproduced():
+    # a rocker swing of 20° by a cycloid from crank angle 30°: the sweep at the crank's
+    # motion gives the rocker's angle, speed and acceleration back
+    fourbar = dyade.read_mechanism(MECHANISMS / "fourbar.toml")
+    target = cycloid(0.3, math.radians(20.0), 240)
+    motion = servo.crank_motion(fourbar, "phi_4", math.radians(30.0), target)
+    columns = dyade.analyse(fourbar, crank_angle_deg=np.degrees(motion.angle),
+                            crank_speed=motion.speed,
+                            crank_acceleration=motion.acceleration).columns()
+    swing = np.radians(columns["phi_4_deg"] - columns["phi_4_deg"][0])
+    assert np.max(np.abs(swing - target.position)) < 1e-12                     # [rad]
+    assert np.max(np.abs(columns["alpha_4"] - target.acceleration)) < 1e-9 * np.max(
+        np.abs(target.acceleration))
