@@ -26,6 +26,7 @@ OPTIONS = (
            help="Master speed (an angle master): the table in time, v, a, j per second"),
 )
 
+BYTES_PER_POINT = 30 * 8.0  # [B] the arrays of one point: master, s, v, a, j, masks, columns
 MASTER_WORDS = {"deg": "°", "s": "s", "rad": "rad"}
 """the master's unit in files -> as tables show it"""
 OUTPUT_WORDS = {"deg": "°", "rad": "rad", "m": "m", "cm": "cm", "mm": "mm", "um": "µm"}
@@ -66,6 +67,11 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     if points < 2:
         raise InputError.parameter("points", f"must be at least 2, got {points}.",
                                    value=points)
+    from dyade.analyses.base import MAX_MEMORY
+    from dyade.limits import check_memory
+
+    check_memory(points * BYTES_PER_POINT, f"the profile at {points:,} points",
+                 budget.max_memory, "Ask for fewer points", MAX_MEMORY.api)
     budget.time(points * 2e-7, f"the profile at {points:,} points")
     try:
         laws = engine.segment_laws(profile)

@@ -46,6 +46,18 @@ def figure(outcome, *, fig: Figure | None = None) -> Figure:
     """s, v, a, j of a ``profile`` Outcome over the cycle, in its units, the segments
     marked.
 
+    Parameters
+    ----------
+    outcome : Outcome
+        ``dyade.run("profile", ...)`` (its ``result``: the profile, its laws, the
+        motion and the master speed).
+    fig : Figure, optional
+        A figure to draw on (default: a new one).
+
+    Returns
+    -------
+    Figure
+
     Examples
     --------
     >>> import dyade
@@ -103,6 +115,19 @@ def figure(outcome, *, fig: Figure | None = None) -> Figure:
 def law_figure(law, *, samples: int = 801, fig: Figure | None = None) -> Figure:
     """A motion law over its normalised time: s, v = s′, a = s″, j = s‴ in four small
     panels, its characteristic values in the titles.
+
+    Parameters
+    ----------
+    law : Law
+        ``dyade.motion.laws.law(name, ...)``.
+    samples : int
+        Points over the law (each piece drawn on its own, broken at the joins).
+    fig : Figure, optional
+        A figure to draw on (default: a new one).
+
+    Returns
+    -------
+    Figure
 
     >>> from dyade.motion.laws import LAWS
     >>> from dyade.plot import profile as plot

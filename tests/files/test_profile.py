@@ -85,3 +85,13 @@ def test_bad_files_name_file_and_key(tmp_path, body, key, words):
 def test_no_profile_table(tmp_path):
     with pytest.raises(InputError, match="has no \\[profile\\] table"):
         read_profile(write(tmp_path, "", head='name = "x"\n'))
+
+
+def test_constant_velocity_runs_its_own_law(tmp_path):
+    body = (segment(kind="rise", law="cycloid", end=180, to=10)
+            + segment(kind="constant-velocity", law="cycloid", end=200, to=11)
+            + segment(kind="return", law="cycloid", end=360, to=0))
+    with pytest.raises(InputError, match=r"p.toml: segment 2 \(constant-velocity, cycloid\): "
+                                         r"`law` = 'cycloid' for a constant velocity") as err:
+        read_profile(write(tmp_path, body))
+    assert err.value.key == "profile.segment.2.law"
