@@ -111,8 +111,12 @@ def target(servo, samples: int):
     t = np.linspace(0.0, period, samples + 1)
     rate = profile.period / period  # master per second
     motion = evaluate(profile, profile.start + t * rate)
+    jerk = motion.j.copy()
+    # the cycle's last instant is the next cycle's first for s, v, a (continuous), but
+    # its jerk is the last segment's (a law may start with a jerk of its own)
+    jerk[-1] = evaluate(profile, np.array([profile.start + profile.period * (1.0 - 1e-12)])).j[0]
     return Target(t, np.asarray(motion.s, dtype=float), motion.v * rate,
-                  motion.a * rate ** 2, motion.j * rate ** 3)
+                  motion.a * rate ** 2, jerk * rate ** 3)
 
 
 def checked_profile(profile, label: str) -> tuple[str, ...]:
