@@ -191,13 +191,13 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                                                                motion.friction))
         torque = line.torque[::refine]
         cycle = engine.Cycle(cycle.time, cycle.speed, cycle.acceleration, torque, cycle.inertia)
+        shaft = mechanism.drive_line
+        lag = np.degrees(np.max(np.abs(line.angle[::refine] - motion.angle)))
         notes.append(
-            f"note: the crank is driven through the [drive_line] shaft ({mechanism.drive_line.stiffness:g} "
-            f"N·m/rad, {mechanism.drive_line.damping:g} N·m·s/rad) whose gear end follows the "
-            f"profile: the crank lags it by up to "
-            f"{np.degrees(np.max(np.abs(line.angle[::refine] - motion.angle))):.3g}°, and the motor "
-            f"is sized by the shaft's torque M_line (the periodic state; friction as at the "
-            f"rigid motion).")
+            f"note: the crank is driven through the [drive_line] shaft ({shaft.stiffness:g} "
+            f"N·m/rad, {shaft.damping:g} N·m·s/rad) whose gear end follows the profile: the "
+            f"crank lags it by up to {lag:.3g}°, and the motor is sized by the shaft's torque "
+            f"M_line (the periodic state; friction as at the rigid motion).")
     if bounds is not None:
         count = options.get("ratio_count") or 25
         ratios = np.geomspace(bounds[0], bounds[1], count)
@@ -233,7 +233,8 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                       result=run_result)
     target_motion = motion.target
     columns = {"t": motion.time, "angle_deg": np.degrees(motion.angle), "omega_2": motion.speed,
-               "alpha_2": motion.acceleration, "s": target_motion.position - target_motion.position[0],
+               "alpha_2": motion.acceleration,
+               "s": target_motion.position - target_motion.position[0],
                "v": target_motion.velocity, "a": target_motion.acceleration,
                "j": target_motion.jerk, "M_crank": motion.torque, "J_red": motion.inertia,
                "M_load": motion.load, "M_friction": motion.friction,
@@ -295,7 +296,8 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
             description="thermal margin 1 − RMS/M_N")
         add("margin_peak", float(chosen.peak[row]), "-",
             description="peak margin 1 − |M|/envelope(ω), the least over the cycle")
-        add("margin_speed", float(chosen.speed[row]), "-", description="speed margin 1 − max|ω|/n_max")
+        add("margin_speed", float(chosen.speed[row]), "-",
+            description="speed margin 1 − max|ω|/n_max")
         add("margin_inertia", float(chosen.inertia[row]), "-",
             description="inertia margin 1 − λ/λ_max")
     if line is not None:

@@ -56,7 +56,8 @@ def parse_catalogue(text: str, label: str = "catalogue"):
     from dyade.model.servo import Catalogue, ServoMotor
     from dyade.units import RPM
 
-    lines = [line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#")]
+    lines = [line for line in text.splitlines()
+             if line.strip() and not line.lstrip().startswith("#")]
     reader = csv.DictReader(io.StringIO("\n".join(lines)))
     header = [name.strip() for name in (reader.fieldnames or [])]
     missing = [name for name in COLUMNS if name not in header]

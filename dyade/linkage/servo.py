@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -270,7 +271,7 @@ def inverse_dynamics(mechanism: Mechanism, motion: ServoMotion, **options) -> Se
 
 
 def machine_function(mechanism: Mechanism, low: float, high: float, step: float
-                     ) -> callable:
+                     ) -> Callable[[float], tuple[float, float, float]]:
     """J(φ), J′(φ) and M_L(φ) between the crank angles ``low`` and ``high`` [rad] as a
     function of one angle, from tables every ``step`` [rad] (J by the cubic Hermite with
     its slope J′, J′ and M_L linear): the reduced machine for ``machine.servo.follow``."""

@@ -172,7 +172,8 @@ def test_a_profile_over_a_master_angle_with_its_cycle_time_is_the_same_cycle(tmp
     # 0.4 s: the derivatives per degree scaled by the master's speed
     text = (FOURBAR.read_text().replace('master = "time"', 'master = "angle"')
             .replace("period = 0.4 ", "period = 360 ").replace("end = 0.3\n", "end = 270\n")
-            .replace("end = 0.4\n", "end = 360\n").replace("ratio = 8\n", "ratio = 8\ncycle_time = 0.4\n"))
+            .replace("end = 0.4\n", "end = 360\n")
+            .replace("ratio = 8\n", "ratio = 8\ncycle_time = 0.4\n"))
     by_angle = dyade.run("servo", servo_file(tmp_path, text), samples=120)
     by_time = dyade.run("servo", FOURBAR, samples=120)
     assert by_angle.columns["M_motor"] == pytest.approx(by_time.columns["M_motor"], abs=1e-12)
@@ -182,7 +183,8 @@ def test_the_profile_may_be_a_file_of_its_own(tmp_path):
     text = FOURBAR.read_text()
     cut = text.index("[profile]")
     (tmp_path / "turn.toml").write_text(text[cut:])
-    path = servo_file(tmp_path, text[:cut].replace("ratio = 8\n", 'ratio = 8\nprofile = "turn.toml"\n'))
+    own = 'ratio = 8\nprofile = "turn.toml"\n'
+    path = servo_file(tmp_path, text[:cut].replace("ratio = 8\n", own))
     alone = dyade.run("servo", path, samples=120)
     assert alone.value("motor_torque_rms") == pytest.approx(
         dyade.run("servo", FOURBAR, samples=120).value("motor_torque_rms"), rel=1e-14)

@@ -54,7 +54,8 @@ def test_a_profile_beyond_the_dead_centre_is_refused_naming_the_angles(slider_cr
                                          r"184\.7.*°"):
         servo.crank_motion(slider_crank, "s_1_4", math.radians(30.0), cycloid(0.3, -0.09, 72))
     with pytest.raises(DyadeError, match="at a dead centre at the start crank angle"):
-        servo.crank_motion(slider_crank, "s_1_4", math.radians(184.78018822), cycloid(0.3, 0.01, 72))
+        servo.crank_motion(slider_crank, "s_1_4", math.radians(184.78018822),
+                           cycloid(0.3, 0.01, 72))
 
 
 def forward_error(mechanism, target, step_deg):

@@ -56,8 +56,9 @@ class ServoReader(UnitReader):
         if "cycle_time" in table:
             cycle_time = self.number(table["cycle_time"], "servo.cycle_time", "s")
             if not cycle_time > 0.0:
+                given = show(table["cycle_time"])
                 raise self.fail("servo.cycle_time", f"must be positive [s] (the time of one "
-                                                    f"machine cycle), got {show(table['cycle_time'])}.",
+                                                    f"machine cycle), got {given}.",
                                 table["cycle_time"], "s")
             if profile.master == "time":
                 raise self.fail("servo.cycle_time", "is given, but the profile's master is "
@@ -73,7 +74,8 @@ class ServoReader(UnitReader):
             raise self.fail("servo.output", f"is {show(output)}, which is "
                                             f"{'an angle' if want_angle else 'a length'}, but "
                                             f"the profile's unit is {show(profile.unit)}: give "
-                                            f"the profile in {'deg or rad' if want_angle else 'a length unit'}.",
+                                            f"the profile in "
+                                            f"{'deg or rad' if want_angle else 'a length unit'}.",
                             output)
         ratio = self.number(table.get("ratio", 1.0), "servo.ratio", "-", positive=True)
         efficiency = self.number(table.get("efficiency", 1.0), "servo.efficiency", "-",
