@@ -19,7 +19,8 @@ from typing import Any
 
 import numpy as np
 
-from dyade.analyses.servo import STUDY_OUTPUTS as SERVO_OUTPUTS, study_outputs as servo_outputs
+from dyade.analyses.servo import STUDY_OUTPUTS as SERVO_OUTPUTS
+from dyade.analyses.servo import study_outputs as servo_outputs
 from dyade.units import RAD_PER_S_TO_RPM
 
 EXTRA_UNITS = {"flywheel_inertia": "kg·m²", "omega_bar": "rad/s",
