@@ -24,5 +24,6 @@ ENTRIES = {
     "driveline-map": "dyade.analyses.drive_line",
     "driveline-run-up": "dyade.analyses.drive_line",
     "profile": "dyade.analyses.profile",
+    "servo": "dyade.analyses.servo",
 }
 """entry name -> the module that defines it (in its ``ENTRIES`` dict)"""

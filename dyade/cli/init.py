@@ -11,7 +11,8 @@ from dyade.cli.output import atomic, console
 
 
 TEMPLATES = {"fourbar": "RRR", "slider-crank": "RRP", "slotted-lever": "RPR",
-             "tangent-drive": "PRP", "scotch-yoke": "PPR", "study": "", "profile": ""}
+             "tangent-drive": "PRP", "scotch-yoke": "PPR", "study": "", "profile": "",
+             "servo": "RRP"}
 KIND_ALIASES = {"rrr": "fourbar", "four-bar": "fourbar", "rrp": "slider-crank",
                 "rpr": "slotted-lever", "prp": "tangent-drive", "ppr": "scotch-yoke"}
 
@@ -26,7 +27,9 @@ def init(kind: str, file: str, force: bool) -> None:
     (RRP), slotted-lever (RPR), tangent-drive (PRP) or scotch-yoke (PPR). The file is
     valid and analysable as written: edit the numbers, then `dyade analyse FILE`.
     KIND study writes a design study of fourbar.toml (`dyade study FILE`); KIND profile
-    a motion profile of VDI 2143 laws over a machine cycle (`dyade profile FILE`).
+    a motion profile of VDI 2143 laws over a machine cycle (`dyade profile FILE`); KIND
+    servo a servo press, a slider-crank whose ram follows a motion profile (`dyade servo
+    FILE`).
     FILE "-" prints the template."""
     from importlib.resources import files
 
@@ -52,6 +55,9 @@ def init(kind: str, file: str, force: bool) -> None:
                     encoding="utf-8"))
         console(stderr=True).print(f"wrote {file} (a design study){wrote}; next: dyade study "
                                    f"{file}")
+        return
+    if name == "servo":
+        console(stderr=True).print(f"wrote {file} (a servo press); next: dyade servo {file}")
         return
     console(stderr=True).print(f"wrote {file} ({name}, dyad kind {TEMPLATES[name]}); next: "
                                f"dyade describe {file}")

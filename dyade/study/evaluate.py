@@ -19,12 +19,15 @@ from typing import Any
 
 import numpy as np
 
+from dyade.analyses.servo import STUDY_OUTPUTS as SERVO_OUTPUTS
+from dyade.analyses.servo import study_outputs as servo_outputs
 from dyade.units import RAD_PER_S_TO_RPM
 
 EXTRA_UNITS = {"flywheel_inertia": "kg·m²", "omega_bar": "rad/s",
                "resonance_speed_rpm": "rpm", "speed_ratio": "-"}
 """units of the outputs ``[outputs] extra`` adds; the others are summary figures
 (``dyade.linkage.summary.unit``)"""
+EXTRA_UNITS.update(SERVO_OUTPUTS)  # [outputs] extra = ["servo"] (dyade.analyses.servo)
 
 OK, LOCKS, OPEN, REFUSED, FAILED = "ok", "locks", "does not close", "refused", "failed"
 WITHHELD = "withheld"
@@ -95,6 +98,8 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
         line = natural_frequency(result.mechanism)
         out.update(omega_bar=line.omega_bar, resonance_speed_rpm=line.omega_bar * RAD_PER_S_TO_RPM,
                    speed_ratio=line.ratio)
+    if "servo" in extras:  # the servo motor's sizing over the cycle (``[servo]``)
+        out.update(servo_outputs(result.mechanism))
     return {name: math.nan if value is None else float(value) for name, value in out.items()}
 
 

@@ -16,7 +16,7 @@ from dyade.errors import InputError
 
 PLANS = ("grid", "latin-hypercube", "monte-carlo", "sensitivity", "optimise")
 QUESTIONS = ("table", "sensitivity", "tolerance", "optimise")
-EXTRAS = ("flywheel", "clearance", "coupling")
+EXTRAS = ("flywheel", "clearance", "coupling", "servo")
 TOP = {"mechanism", "set", "parameters", "plan", "outputs", "sensitivity", "tolerance",
        "optimise"}
 POSITIVE = ("length", "lengths", "mass", "inertia", "slider_length", "slider_height",
