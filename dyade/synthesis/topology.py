@@ -52,14 +52,22 @@ class Topology:
         raise NotImplementedError
 
     def path(self, values: FloatArray, variant: int, crank: FloatArray) -> np.ndarray:
+        """(candidates, positions) complex: the coupler point in the canonical frame at
+        the crank angles ``crank`` [rad], in closed form; NaN where it does not close."""
         raise NotImplementedError
+
+    def named(self, values) -> dict[str, Any]:
+        """Dimensions by name: a dict as it is, a sequence in ``names``' order as floats."""
+        if isinstance(values, dict):
+            return values
+        return dict(zip(self.names, (float(v) for v in values)))
 
     def turns(self, values: FloatArray) -> FloatArray:
         """(candidates,) bool: the crank can turn fully (Grashof), for each row of values."""
         raise NotImplementedError
 
 
-def _bar(length, per_length: float | None, each: float | None) -> dict:
+def bar(length, per_length: float | None, each: float | None) -> dict:
     """Mass data of a bar of ``length`` [m] from its end at the link's origin along ξ:
     mass per length [kg/m] or a mass each [kg], centre mid-way, J = m·l²/12."""
     mass = each if each is not None else per_length * abs(length)
@@ -77,6 +85,7 @@ class FourBar(Topology):
 
     def data(self, values, variant, placement=Placement(), speed_rpm=60.0, masses=None,
              sweep=(0.0, 360.0, 1.0), name="") -> dict:
+        values = self.named(values)
         s, turn = placement.scale, np.exp(1j * placement.angle)
         a, b, c, d, p, q = (values[k] for k in self.names)
         b0 = placement.origin + s * d * turn
@@ -95,9 +104,9 @@ class FourBar(Topology):
                 "links": {"3": {"points": {"P": [s * p, s * q]}}}}
         if masses:
             per, each = masses.get("per_length"), masses.get("each")
-            data["links"]["2"] = _bar(s * a, per, each)
-            data["links"]["3"].update(_bar(s * b, per, each))
-            data["links"]["4"] = _bar(s * c, per, each)
+            data["links"]["2"] = bar(s * a, per, each)
+            data["links"]["3"].update(bar(s * b, per, each))
+            data["links"]["4"] = bar(s * c, per, each)
         return data
 
     def path(self, values, variant, crank):
@@ -127,6 +136,7 @@ class SliderCrank(Topology):
 
     def data(self, values, variant, placement=Placement(), speed_rpm=60.0, masses=None,
              sweep=(0.0, 360.0, 1.0), name="") -> dict:
+        values = self.named(values)
         s = placement.scale
         a, b, e, p, q = (values[k] for k in self.names)
         turn = np.exp(1j * placement.angle)
@@ -147,8 +157,8 @@ class SliderCrank(Topology):
                 "links": {"3": {"points": {"P": [s * p, s * q]}}}}
         if masses:
             per, each = masses.get("per_length"), masses.get("each")
-            data["links"]["2"] = _bar(s * a, per, each)
-            data["links"]["3"].update(_bar(s * b, per, each))
+            data["links"]["2"] = bar(s * a, per, each)
+            data["links"]["3"].update(bar(s * b, per, each))
             data["links"]["4"] = {"mass": each if each is not None else per * s * b * 0.25}
         return data
 
@@ -169,3 +179,18 @@ class SliderCrank(Topology):
 
 TOPOLOGIES = {"fourbar": FourBar(), "slider-crank": SliderCrank()}
 """name -> topology"""
+
+
+def fourbar_from_points(a0: complex, a: complex, b: complex, b0: complex, p: complex
+                        ) -> tuple[FloatArray, int, Placement, float]:
+    """A four-bar given by its pivots and coupler point at one position (complex [m]):
+    (canonical dimensions (a, b, c, d, p, q) [m], assembly variant, placement, the crank
+    angle of that position in the canonical frame [rad])."""
+    theta = float(np.angle(b0 - a0))
+    turn = np.exp(-1j * theta)
+    ca, cb, cb0 = (a - a0) * turn, (b - a0) * turn, (b0 - a0) * turn
+    unit = (cb - ca) / abs(cb - ca)
+    local = ((p - a0) * turn - ca) / unit
+    values = np.array([abs(ca), abs(cb - ca), abs(cb - cb0), abs(cb0), local.real, local.imag])
+    side = ((cb0 - ca).conjugate() * (cb - ca)).imag  # (B0 − A) × (B − A)
+    return values, 1 if side > 0 else -1, Placement(complex(a0), 1.0, theta), float(np.angle(ca))
