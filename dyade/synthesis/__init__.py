@@ -1,0 +1,397 @@
+"""Dimensional synthesis (``dyade synthesise``): which mechanism moves like this.
+
+A synthesis problem (``dyade.model.synthesis``, read from a synthesis file by
+``dyade.files.synthesis``) names a topology (four-bar, slider-crank), a target and the
+bounds of the dimensions; ``synthesise`` answers with the best mechanisms, each as the
+data of a mechanism file ready for ``dyade analyse``:
+
+- function generation: Freudenstein's closed form through three precision points
+  (given, or Chebyshev-spaced over the table), or the least squares of the whole table
+  (``dyade.synthesis.function``);
+- motion generation: three poses in closed form, four by the Burmester curves
+  (``dyade.synthesis.closed``, ``dyade.synthesis.motion``);
+- path generation: many candidates (Latin hypercube or random, seeded per block) traced
+  in blocks of variants × positions through dyade's positions-only stage
+  (``dyade.linkage.positions``), filtered (the crank turns fully, the least
+  transmission angle), matched by a start-point-free Fourier shape distance
+  (``dyade.synthesis.shape``) or by a straight-line / circular-arc stretch's deviation
+  (``dyade.synthesis.stretch``), the best refined by least squares (scipy);
+- with masses (links as bars), each result's sweep figures (drive torque, joint forces,
+  transmission angle, shaking force) from ``dyade.linkage.sweep.analyse`` and the
+  Pareto set of the match error against one of them.
+
+The package sits above the engine (``dyade.linkage``) and the readers (it builds the
+candidates' mechanisms from file data, ``dyade.files.mechanism.build``) and below the
+analyses (the ``synthesis`` entry, ``dyade.analyses.synthesis``).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from dyade.errors import DyadeError, InputError
+from dyade.model.synthesis import Synthesis
+
+ERROR_UNITS = {"function": "deg", "path": "-", "line": "-", "arc": "-", "poses": "m"}
+"""the unit of a design's match error, by target kind"""
+ERROR_WORDS = {"function": "largest structural error |ψ − ψ_target|",
+               "path": "RMS distance to the target points over the target's RMS radius",
+               "line": "largest deviation from a straight line over the stretch's length",
+               "arc": "largest deviation from a circular arc over the arc's length",
+               "poses": "largest distance of the coupler point from the poses"}
+REACH = 0.02
+"""[-] a path whose best match is worse than this (RMS over the target's size) is
+not reached: an error, not a result"""
+FIGURES = ("M_drive_max", "M_drive_rms", "F_joint_peak", "mu_min_deg", "F_shake_max",
+           "locks")
+"""the sweep figures of every design (with masses): peak and RMS drive torque, the
+largest joint force, the least transmission angle, the peak shaking force, self-locking"""
+
+
+@dataclass(eq=False)
+class Design:
+    """One synthesised mechanism."""
+
+    name: str
+    data: dict
+    """the mechanism file's data (lengths in m, angles in degrees)"""
+    error: float
+    """the match error, in ``ERROR_UNITS`` of the target's kind"""
+    converged: bool
+    """the local fit converged (its tolerances met)"""
+    crank: np.ndarray
+    """(n,) the crank angles of ``traced`` [rad] (world)"""
+    traced: np.ndarray
+    """(n,) what the mechanism does there, through dyade's engine: the coupler point
+    (complex [m]) or the output angle [rad]"""
+    figures: dict[str, float] = field(default_factory=dict)
+    """the sweep's figures (``FIGURES``), with masses"""
+    notes: list[str] = field(default_factory=list)
+
+
+@dataclass(eq=False)
+class Result:
+    """The answer of a synthesis: its designs, best first."""
+
+    problem: Synthesis
+    designs: list[Design]
+    evaluated: int = 0
+    """candidates traced by the search"""
+    assembled: int = 0
+    """of these, those that assembled over the range and passed the filters"""
+    seconds: float = 0.0
+    pareto: np.ndarray | None = None
+    """(designs,) bool: non-dominated in (error, the problem's figure), with masses"""
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def rate(self) -> float:
+        """candidates per second of the search"""
+        return self.evaluated / self.seconds if self.seconds > 0 else 0.0
+
+
+def synthesise(problem: Synthesis, jobs: int = 1, executor=None, progress=None) -> Result:
+    """Solve a synthesis problem.
+
+    Parameters
+    ----------
+    problem : Synthesis
+        From ``dyade.files.synthesis.read_synthesis`` or ``parse``.
+    jobs : int
+        Processes for the search's blocks (``dyade.parallel``); the same candidates
+        and result on any number.
+    executor : concurrent.futures.Executor, optional
+        Runs the blocks instead (a Dask cluster's ``Client.get_executor()``).
+    progress : callable, optional
+        ``progress(evaluated, total, best_error)`` as the blocks come.
+
+    Returns
+    -------
+    Result
+
+    Raises
+    ------
+    InputError
+        The bounds let no candidate assemble; too few points for the method.
+    DyadeError
+        The topology cannot reach the target (the message gives the best error found).
+    """
+    started = time.perf_counter()
+    kind = problem.target.kind
+    if kind == "function":
+        result = _function(problem)
+    elif kind == "poses":
+        from dyade.synthesis.motion import poses
+
+        result = poses(problem)
+    elif kind in ("line", "arc"):
+        result = _stretch(problem, jobs, executor, progress)
+    else:
+        result = _path(problem, jobs, executor, progress)
+    result.seconds = time.perf_counter() - started
+    if problem.masses:
+        score(result)
+    return result
+
+
+def topology_of(problem: Synthesis):
+    from dyade.synthesis.topology import TOPOLOGIES
+
+    return TOPOLOGIES[problem.topology]
+
+
+def speed_rpm(problem: Synthesis) -> float:
+    from dyade.units import RAD_PER_S_TO_RPM
+
+    return problem.speed * RAD_PER_S_TO_RPM
+
+
+def _function(problem: Synthesis) -> Result:
+    from dyade.synthesis import function
+
+    target = problem.target
+    made = function.generate(target.crank, target.output, target.method, problem.frame)
+    sweep = (float(np.rad2deg(target.crank[0])), float(np.rad2deg(target.crank[-1])),
+             _step(target.crank))
+    data = function.data(made.linkage, speed_rpm(problem), sweep, problem.name,
+                         problem.masses)
+    error = float(np.rad2deg(np.nanmax(np.abs(made.error)))) if np.isfinite(
+        made.error).any() else math.inf
+    notes = []
+    if not np.isfinite(made.error).all():
+        notes.append(f"the four-bar does not close at {np.count_nonzero(~np.isfinite(made.error))}"
+                     f" of the table's {made.error.size} crank angles")
+    design = Design(problem.name, data, error, True, made.crank, made.traced, notes=notes)
+    design.figures["structural_error_deg"] = error
+    result = Result(problem, [design])
+    result.function = made  # the structural error at every row, for the table
+    return result
+
+
+def _step(crank: np.ndarray) -> float:
+    """A sweep step [°] that covers a table's range in about a degree."""
+    span = float(np.rad2deg(crank[-1] - crank[0]))
+    return span / max(1, round(span)) if span > 0 else 1.0
+
+
+def settings_of(problem: Synthesis, scale: bool | None = None):
+    """The search's settings of a problem, the bounds completed from the topology's
+    defaults (scaled to the target's size where the match is not free in scale)."""
+    from dyade.synthesis.search import Settings
+
+    topology = topology_of(problem)
+    bounds = dict(topology.defaults)
+    size = 1.0
+    points = problem.target.points
+    if points is not None and not problem.scale:
+        size = float(np.sqrt(np.mean(np.abs(points - points.mean()) ** 2))) or 1.0
+        bounds = {k: (lo * size, hi * size) for k, (lo, hi) in bounds.items()}
+    bounds.update(problem.bounds)
+    if problem.scale and "d" in bounds and "d" not in problem.bounds:
+        bounds["d"] = (1.0, 1.0)
+    return Settings(bounds=bounds, candidates=problem.candidates, block=problem.block,
+                    method=problem.method, seed=problem.seed, positions=problem.positions,
+                    min_transmission=problem.min_transmission, scale=problem.scale,
+                    rounds=problem.rounds, keep=max(40, 4 * problem.keep))
+
+
+def _no_candidate(problem: Synthesis, evaluated: int) -> InputError:
+    return InputError(
+        f"{problem.name}: none of the {evaluated:,} candidates assembles over the whole crank "
+        f"turn with a transmission angle of at least "
+        f"{np.rad2deg(problem.min_transmission):.3g}° within the [bounds]: widen the bounds "
+        f"(a crank that turns fully needs Grashof's s + l ≤ p + q with the crank or the frame "
+        f"the shortest) or lower search.min_transmission.", source=problem.source,
+        key="bounds")
+
+
+def _path(problem: Synthesis, jobs, executor, progress) -> Result:
+    from dyade.synthesis.search import fit, placement_of, search, traced
+    from dyade.synthesis.shape import SAMPLES, closed_match, resample
+    from dyade.synthesis.topology import Placement
+
+    topology = topology_of(problem)
+    target = problem.target
+    settings = settings_of(problem)
+    found = search(topology, target.points, settings, jobs, executor, progress)
+    if not len(found.error):
+        raise _no_candidate(problem, found.evaluated)
+    crank = np.linspace(0.0, 2.0 * np.pi, settings.positions, endpoint=False)
+    resampled = resample(target.points[None, :], SAMPLES)[0]
+    designs: list[Design] = []
+    tried = 0
+    best_error = math.inf
+    for values, variant in zip(found.values, found.variant):
+        if len(designs) >= problem.keep or tried >= 2 * problem.keep + 4:
+            break
+        tried += 1
+        curve, _, _ = traced(topology, values[None, :], int(variant), crank)
+        match = closed_match(resampled, resample(curve, SAMPLES), scale=settings.scale)
+        start = placement_of(match.factor[0], match.centre[0], target.points)
+        if match.reversed[0] and target.crank is None:
+            start = Placement(start.origin, start.scale, start.angle)
+        fitted = fit(topology, values, int(variant), target.points, target.crank,
+                     start=start)
+        best_error = min(best_error, fitted.error)
+        if not np.isfinite(fitted.error) or any(_same(fitted, d) for d in designs):
+            continue
+        design = _design(problem, topology, fitted, len(designs) + 1)
+        design.fitted = fitted
+        designs.append(design)
+    designs.sort(key=lambda d: d.error)
+    if not designs or designs[0].error > REACH:
+        raise DyadeError(
+            f"{problem.name}: no {topology.name} within the bounds traces this path: the best "
+            f"of {found.evaluated:,} candidates ({found.assembled:,} assembled) deviates by "
+            f"{100 * min(best_error, float(found.error[0])):.3g} % RMS of the path's size after "
+            f"the local fit (at most {100 * REACH:g} % counts as reached). A {topology.name}'s "
+            f"coupler curve is of degree six and cannot follow every shape: widen the bounds, "
+            f"draw more candidates, or try another topology.")
+    return Result(problem, designs, found.evaluated, found.assembled)
+
+
+def _same(fitted, design: Design) -> bool:
+    """The fit found a mechanism already among the designs (within 1e-6 relative)."""
+    other = design.fitted
+    return (other.variant == fitted.variant
+            and np.allclose(other.values, fitted.values, rtol=1e-6, atol=1e-9)
+            and abs(other.placement.origin - fitted.placement.origin) < 1e-6)
+
+
+def _design(problem: Synthesis, topology, fitted, rank: int) -> Design:
+    """A fitted candidate as a design: its mechanism data and its path through dyade."""
+    from dyade.synthesis.topology import Placement
+
+    placement = Placement(fitted.placement.origin, 1.0, fitted.placement.angle)
+    data = topology.data(fitted.values, fitted.variant, placement, speed_rpm(problem),
+                         problem.masses, name=f"{problem.name}: design {rank}")
+    crank, path = trace(data, placement.angle)
+    notes = [] if fitted.converged else [
+        f"the local fit stopped {fitted.error:.3g} from the target (RMS over its size)"]
+    return Design(f"design {rank}", data, fitted.error, fitted.converged, crank, path,
+                  notes=notes)
+
+
+def trace(data: dict, offset: float = 0.0, count: int = 361) -> tuple[np.ndarray, np.ndarray]:
+    """(crank angles [rad], coupler point P (complex [m])) of a mechanism's data over a
+    turn, through dyade's positions-only stage."""
+    from dyade.files.mechanism import build
+    from dyade.linkage.positions import positions
+    from dyade.synthesis.topology import COUPLER
+
+    mechanism = build(data)
+    crank = offset + np.linspace(0.0, 2.0 * np.pi, count)
+    found = positions(mechanism, crank, [(COUPLER, mechanism.links[COUPLER].points["P"])])
+    return crank, found.points[:, 0, 0] + 1j * found.points[:, 0, 1]
+
+
+def _stretch(problem: Synthesis, jobs, executor, progress) -> Result:
+    from dyade.synthesis.search import merge, run_blocks
+    from dyade.synthesis.stretch import StretchBlock, refine
+    from dyade.synthesis.topology import Placement
+
+    topology = topology_of(problem)
+    target = problem.target
+    settings = settings_of(problem)
+    blocks = max(1, math.ceil(settings.candidates / settings.block))
+    total = blocks * settings.block * settings.rounds
+    state = {"done": 0, "best": math.inf}
+
+    def heard(part):
+        state["done"] += part.evaluated
+        if len(part.error):
+            state["best"] = min(state["best"], float(part.error[0]))
+        if progress is not None:
+            progress(state["done"], total, state["best"])
+
+    best, parts_all = None, []
+    for round_ in range(settings.rounds):
+        spread = 0.15 / (3.0 ** (round_ - 1)) if round_ else 0.0
+        function = StretchBlock(topology, settings, target.stretch, target.kind, round_, best,
+                                spread)
+        parts_all += run_blocks(function, list(range(blocks)), jobs, executor, heard)
+        best = merge(parts_all, settings.keep)
+    if not len(best.error):
+        raise _no_candidate(problem, best.evaluated)
+    designs = []
+    for values, variant in zip(best.values[:problem.keep + 2], best.variant):
+        refined = refine(topology, values, int(variant), target.stretch, settings.bounds,
+                         target.kind, problem.min_transmission)
+        if any(np.allclose(refined.values, d.values, rtol=1e-4) for d in designs):
+            continue
+        designs.append(refined)
+    designs.sort(key=lambda r: r.error)
+    out = []
+    for rank, refined in enumerate(designs[:problem.keep], start=1):
+        data = topology.data(refined.values, refined.variant, Placement(), speed_rpm(problem),
+                             problem.masses, name=f"{problem.name}: design {rank}")
+        crank, path = trace(data)
+        design = Design(f"design {rank}", data, refined.error, True, crank, path)
+        design.stretch = (refined.start, refined.start + target.stretch)
+        design.notes.append(f"the stretch runs from crank angle {np.rad2deg(refined.start) % 360:.2f}° "
+                            f"to {np.rad2deg(refined.start + target.stretch) % 360:.2f}°")
+        out.append(design)
+    return Result(problem, out, best.evaluated, best.assembled)
+
+
+def score(result: Result) -> None:
+    """Each design's sweep figures (``FIGURES``) with its masses, by dyade's sweep of its
+    mechanism data (as ``dyade analyse`` of its written file gives them), and the Pareto
+    set of (error, the problem's figure)."""
+    from dyade.files.mechanism import build
+    from dyade.linkage.summary import summary
+    from dyade.linkage.sweep import analyse
+
+    for design in result.designs:
+        try:
+            swept = analyse(build(design.data))
+        except DyadeError as err:
+            design.notes.append(f"no sweep figures: {err}")
+            continue
+        figures = summary(swept, swept.columns(), extremes=False)
+        joints = [v for k, v in figures.items() if k.startswith("F_") and k.endswith("_peak")
+                  and not k.startswith("F_shake") and v is not None]
+        mus = [v for k, v in figures.items() if k.startswith("mu_") and v is not None]
+        locks = [v for k, v in figures.items() if k.startswith("locks_") and v is not None]
+        design.figures.update({
+            "M_drive_max": _abs_max(figures.get("M_drive_max"), figures.get("M_drive_min")),
+            "M_drive_rms": figures.get("M_drive_rms"),
+            "F_joint_peak": max(joints) if joints else None,
+            "mu_min_deg": min(mus) if mus else None,
+            "F_shake_max": figures.get("F_shake_max"),
+            "locks": float(any(locks)) if locks else 0.0})
+        design.all_figures = figures
+    name = result.problem.figure
+    values = np.array([_number(d.figures.get(name, d.all_figures.get(name) if hasattr(
+        d, "all_figures") else None)) for d in result.designs])
+    errors = np.array([d.error for d in result.designs])
+    result.pareto = pareto(np.column_stack([errors, values]))
+
+
+def _abs_max(top, bottom):
+    if top is None or bottom is None:
+        return None
+    return max(abs(top), abs(bottom))
+
+
+def _number(value: Any) -> float:
+    return math.nan if value is None else float(value)
+
+
+def pareto(objectives: np.ndarray) -> np.ndarray:
+    """(n,) bool: the rows no other row dominates (every objective as low or lower, one
+    lower); a row with a NaN is not in the set."""
+    objectives = np.asarray(objectives, dtype=float)
+    ok = ~np.isnan(objectives).any(axis=1)
+    front = np.zeros(len(objectives), dtype=bool)
+    for i in np.flatnonzero(ok):
+        other = objectives[ok]
+        dominated = np.any(np.all(other <= objectives[i], axis=1)
+                           & np.any(other < objectives[i], axis=1))
+        front[i] = not dominated
+    return front

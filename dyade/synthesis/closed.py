@@ -133,13 +133,13 @@ def circumcentre(points: np.ndarray) -> complex:
     return complex(z1 + c)
 
 
-def pose_points(poses: np.ndarray, local: complex) -> np.ndarray:
-    """The world positions of a coupler point ``local`` (in the frame of pose 0) in every
-    pose (x, y, θ): (poses,) complex [m]."""
+def pose_points(poses: np.ndarray, local) -> np.ndarray:
+    """The world positions of coupler points ``local`` (complex, world positions in pose
+    0; a number or an array) in every pose (x, y, θ): (..., poses) complex [m]."""
     poses = np.asarray(poses, dtype=float)
     origin = poses[:, 0] + 1j * poses[:, 1]
     turn = np.exp(1j * (poses[:, 2] - poses[0, 2]))
-    return origin + (local - origin[0]) * turn
+    return origin + (np.asarray(local)[..., None] - origin[0]) * turn
 
 
 def three_poses(poses: np.ndarray, moving: tuple[complex, complex]) -> tuple[complex, ...]:
