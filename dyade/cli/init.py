@@ -11,7 +11,8 @@ from dyade.cli.output import atomic, console
 
 
 TEMPLATES = {"fourbar": "RRR", "slider-crank": "RRP", "slotted-lever": "RPR",
-             "tangent-drive": "PRP", "scotch-yoke": "PPR", "study": ""}
+             "tangent-drive": "PRP", "scotch-yoke": "PPR", "study": "",
+             "synthesis": ""}
 KIND_ALIASES = {"rrr": "fourbar", "four-bar": "fourbar", "rrp": "slider-crank",
                 "rpr": "slotted-lever", "prp": "tangent-drive", "ppr": "scotch-yoke"}
 
@@ -25,7 +26,8 @@ def init(kind: str, file: str, force: bool) -> None:
     """Write a commented starting mechanism FILE for KIND: fourbar (RRR), slider-crank
     (RRP), slotted-lever (RPR), tangent-drive (PRP) or scotch-yoke (PPR). The file is
     valid and analysable as written: edit the numbers, then `dyade analyse FILE`.
-    KIND study writes a design study of fourbar.toml (`dyade study FILE`).
+    KIND study writes a design study of fourbar.toml (`dyade study FILE`), KIND synthesis
+    a synthesis file (`dyade synthesise FILE`).
     FILE "-" prints the template."""
     from importlib.resources import files
 
@@ -40,6 +42,10 @@ def init(kind: str, file: str, force: bool) -> None:
         handle.write(text)
     if name == "study":
         console(stderr=True).print(f"wrote {file} (a design study); next: dyade study {file}")
+        return
+    if name == "synthesis":
+        console(stderr=True).print(f"wrote {file} (a synthesis file); next: dyade synthesise "
+                                   f"{file}")
         return
     console(stderr=True).print(f"wrote {file} ({name}, dyad kind {TEMPLATES[name]}); next: "
                                f"dyade describe {file}")

@@ -37,7 +37,7 @@ import numpy as np
 from dyade.errors import DyadeError, InputError
 from dyade.model.synthesis import Synthesis
 
-ERROR_UNITS = {"function": "deg", "path": "-", "line": "-", "arc": "-", "poses": "m"}
+ERROR_UNITS = {"function": "°", "path": "-", "line": "-", "arc": "-", "poses": "m"}
 """the unit of a design's match error, by target kind"""
 ERROR_WORDS = {"function": "largest structural error |ψ − ψ_target|",
                "path": "RMS distance to the target points over the target's RMS radius",
@@ -167,7 +167,6 @@ def _function(problem: Synthesis) -> Result:
         notes.append(f"the four-bar does not close at {np.count_nonzero(~np.isfinite(made.error))}"
                      f" of the table's {made.error.size} crank angles")
     design = Design(problem.name, data, error, True, made.crank, made.traced, notes=notes)
-    design.figures["structural_error_deg"] = error
     result = Result(problem, [design])
     result.function = made  # the structural error at every row, for the table
     return result
