@@ -70,7 +70,10 @@ def figure(result, *, fig: Figure | None = None) -> Figure:
         made = result.function
         left.plot(np.rad2deg(made.crank), np.rad2deg(made.target), "o", ms=3, color="0.3",
                   label="target")
-        left.plot(np.rad2deg(made.crank), np.rad2deg(made.target + made.error), "-",
+        from dyade.synthesis.function import traced
+
+        dense = np.linspace(made.crank[0], made.crank[-1], 241)
+        left.plot(np.rad2deg(dense), np.rad2deg(np.unwrap(traced(made.linkage, dense))), "-",
                   color=colours[0], label="four-bar (dyade)")
         if made.precision.size:
             left.plot(np.rad2deg(made.precision), np.rad2deg(np.interp(
@@ -122,7 +125,22 @@ def figure(result, *, fig: Figure | None = None) -> Figure:
             right.plot(pivot.real, pivot.imag, "^", ms=9, color="0.2")
         if np.isfinite(p):
             right.plot(p.real, p.imag, "*", ms=9, color=colours[k])
-    right.set_aspect("equal", adjustable="datalim")
+    if designs:  # the best design and the target set the view (a far pivot may be cut)
+        bodies, frame, p = joints(designs[0].data, float(designs[0].crank[0]) if target.kind
+                                  not in ("function", "poses") else np.deg2rad(0.5 * (
+                                      designs[0].data["sweep"]["start"]
+                                      + designs[0].data["sweep"]["stop"])))
+        seen = np.concatenate([*bodies.values(), np.array(frame, dtype=complex),
+                               designs[0].traced if target.kind != "function" else []])
+        seen = seen[np.isfinite(seen)]
+        if seen.size:
+            pad = 0.15 * max(np.ptp(seen.real), np.ptp(seen.imag), 1e-9)
+            right.set_xlim(seen.real.min() - pad, seen.real.max() + pad)
+            right.set_ylim(seen.imag.min() - pad, seen.imag.max() + pad)
+        if target.kind != "function":
+            right.plot(designs[0].traced.real, designs[0].traced.imag, ":", lw=0.8,
+                       color=colours[0])
+    right.set_aspect("equal", adjustable="box")
     right.set_xlabel("x [m]")
     right.set_ylabel("y [m]")
     right.set_title("Designs (▲ frame pivots, ★ coupler point)")

@@ -212,8 +212,6 @@ def _no_candidate(problem: Synthesis, evaluated: int) -> InputError:
 def _path(problem: Synthesis, jobs, executor, progress) -> Result:
     from dyade.synthesis.search import fit, placement_of, search, traced
     from dyade.synthesis.shape import SAMPLES, closed_match, resample
-    from dyade.synthesis.topology import Placement
-
     topology = topology_of(problem)
     target = problem.target
     settings = settings_of(problem)
@@ -222,27 +220,24 @@ def _path(problem: Synthesis, jobs, executor, progress) -> Result:
         raise _no_candidate(problem, found.evaluated)
     crank = np.linspace(0.0, 2.0 * np.pi, settings.positions, endpoint=False)
     resampled = resample(target.points[None, :], SAMPLES)[0]
-    designs: list[Design] = []
+    fits: list = []
     tried = 0
     best_error = math.inf
     for values, variant in zip(found.values, found.variant):
-        if len(designs) >= problem.keep or tried >= 2 * problem.keep + 4:
+        if len(fits) >= problem.keep or tried >= 2 * problem.keep + 4:
             break
         tried += 1
         curve, _, _ = traced(topology, values[None, :], int(variant), crank)
         match = closed_match(resampled, resample(curve, SAMPLES), scale=settings.scale)
         start = placement_of(match.factor[0], match.centre[0], target.points)
-        if match.reversed[0] and target.crank is None:
-            start = Placement(start.origin, start.scale, start.angle)
         fitted = fit(topology, values, int(variant), target.points, target.crank,
                      start=start)
         best_error = min(best_error, fitted.error)
-        if not np.isfinite(fitted.error) or any(_same(fitted, d) for d in designs):
-            continue
-        design = _design(problem, topology, fitted, len(designs) + 1)
-        design.fitted = fitted
-        designs.append(design)
-    designs.sort(key=lambda d: d.error)
+        if np.isfinite(fitted.error) and not any(_same(fitted, other) for other in fits):
+            fits.append(fitted)
+    fits.sort(key=lambda f: f.error)
+    designs = [_design(problem, topology, fitted, rank)
+               for rank, fitted in enumerate(fits, start=1)]
     if not designs or designs[0].error > REACH:
         raise DyadeError(
             f"{problem.name}: no {topology.name} within the bounds traces this path: the best "
@@ -254,9 +249,8 @@ def _path(problem: Synthesis, jobs, executor, progress) -> Result:
     return Result(problem, designs, found.evaluated, found.assembled)
 
 
-def _same(fitted, design: Design) -> bool:
-    """The fit found a mechanism already among the designs (within 1e-6 relative)."""
-    other = design.fitted
+def _same(fitted, other) -> bool:
+    """Two fits found the same mechanism (within 1e-6 relative)."""
     return (other.variant == fitted.variant
             and np.allclose(other.values, fitted.values, rtol=1e-6, atol=1e-9)
             and abs(other.placement.origin - fitted.placement.origin) < 1e-6)

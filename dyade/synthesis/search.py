@@ -302,7 +302,7 @@ def fit(topology: Topology, values: FloatArray, variant: int, target: np.ndarray
     placement = Placement(complex(x[dims], x[dims + 1]), 1.0, float(x[dims + 2]))
     fitted = x[:dims].copy()
     return Fitted(fitted, variant, placement, np.asarray(phi, dtype=float), rms / size, rms,
-                  rms / size <= tolerance)
+                  bool(solution.success) or rms / size <= tolerance)
 
 
 def placement_of(match_factor: complex, candidate_centre: complex, target: np.ndarray
