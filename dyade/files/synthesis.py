@@ -167,6 +167,9 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
     points = np.array([complex(reader.length_of(p[0], "target.points"),
                                reader.length_of(p[1], "target.points")) for p in raw])
     closed = bool(table.get("closed", kind == "path"))
+    if not closed and crank is None:
+        raise reader.fail("target.crank", "is missing: an open path needs the crank angle of "
+                                          "each point (or closed = true for a closed curve).")
     least = 8 if crank is None else 4
     if points.size < least:
         raise reader.fail("target.points", f"a path needs at least {least} points "
@@ -174,8 +177,5 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
                                            f"crank angles), got {points.size}.")
     if crank is not None and crank.size != points.size:
         raise reader.fail("target.crank", f"has {crank.size} angles for {points.size} points.")
-    if not closed and crank is None:
-        raise reader.fail("target.crank", "is missing: an open path needs the crank angle of "
-                                          "each point (or closed = true for a closed curve).")
     return Target(kind, crank=crank, points=points, closed=closed)
 

@@ -211,11 +211,12 @@ def _no_candidate(problem: Synthesis, evaluated: int) -> InputError:
 
 def _path(problem: Synthesis, jobs, executor, progress) -> Result:
     from dyade.synthesis.search import fit, placement_of, search, traced
-    from dyade.synthesis.shape import SAMPLES, closed_match, resample
+    from dyade.synthesis.shape import SAMPLES, closed_match, resample, timed_match
+    from dyade.synthesis.topology import Placement
     topology = topology_of(problem)
     target = problem.target
     settings = settings_of(problem)
-    found = search(topology, target.points, settings, jobs, executor, progress)
+    found = search(topology, target.points, settings, jobs, executor, progress, target.crank)
     if not len(found.error):
         raise _no_candidate(problem, found.evaluated)
     crank = np.linspace(0.0, 2.0 * np.pi, settings.positions, endpoint=False)
@@ -228,8 +229,14 @@ def _path(problem: Synthesis, jobs, executor, progress) -> Result:
             break
         tried += 1
         curve, _, _ = traced(topology, values[None, :], int(variant), crank)
-        match = closed_match(resampled, resample(curve, SAMPLES), scale=settings.scale)
-        start = placement_of(match.factor[0], match.centre[0], target.points)
+        if target.crank is not None:
+            match = timed_match(target.points, target.crank, curve, settings.scale)
+            centre = complex(np.mean(target.points))
+            start = Placement(centre - match.factor[0] * match.centre[0],
+                              float(abs(match.factor[0])), float(np.angle(match.factor[0])))
+        else:
+            match = closed_match(resampled, resample(curve, SAMPLES), scale=settings.scale)
+            start = placement_of(match.factor[0], match.centre[0], target.points)
         fitted = fit(topology, values, int(variant), target.points, target.crank,
                      start=start)
         best_error = min(best_error, fitted.error)

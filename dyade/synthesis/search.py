@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from dyade.arrays import FloatArray, Variants
-from dyade.synthesis.shape import SAMPLES, closed_match, resample
+from dyade.synthesis.shape import SAMPLES, closed_match, resample, timed_match
 from dyade.synthesis.topology import COUPLER, Placement, Topology
 
 
@@ -116,10 +116,13 @@ class Block:
     topology: Topology
     settings: Settings
     target: np.ndarray
-    """the target resampled (``shape.resample``), complex [m]"""
+    """the target resampled (``shape.resample``), or its points where ``crank`` is
+    given, complex [m]"""
     round_: int = 0
     around: Found | None = None
     spread: float = 0.15
+    crank: np.ndarray | None = None
+    """the target points' crank angles [rad] (from an unknown zero); None: no timing"""
 
     def __call__(self, block: int) -> Found:
         s = self.settings
@@ -137,8 +140,11 @@ class Block:
             ok = closes & (least >= s.min_transmission)
             kept += int(ok.sum())
             if ok.any():
-                match = closed_match(self.target, resample(curves[ok], SAMPLES),
-                                     scale=s.scale)
+                if self.crank is not None:
+                    match = timed_match(self.target, self.crank, curves[ok], s.scale)
+                else:
+                    match = closed_match(self.target, resample(curves[ok], SAMPLES),
+                                         scale=s.scale)
                 error[rows[ok]] = match.error
         order = np.argsort(error, kind="stable")[:s.keep]
         order = order[np.isfinite(error[order])]
@@ -177,7 +183,7 @@ def run_blocks(function, blocks: list[int], jobs: int = 1, executor=None, progre
 
 
 def search(topology: Topology, target: np.ndarray, settings: Settings, jobs: int = 1,
-           executor=None, progress=None) -> Found:
+           executor=None, progress=None, crank: np.ndarray | None = None) -> Found:
     """The best candidates for a closed path ``target`` (complex points [m], in order
     along the curve, start and timing unknown).
 
@@ -185,7 +191,8 @@ def search(topology: Topology, target: np.ndarray, settings: Settings, jobs: int
     again about the best so far, closer each time. ``progress(evaluated, total, best)``
     hears every block.
     """
-    resampled = resample(np.asarray(target)[None, :], SAMPLES)[0]
+    resampled = (np.asarray(target) if crank is not None
+                 else resample(np.asarray(target)[None, :], SAMPLES)[0])
     blocks = max(1, math.ceil(settings.candidates / settings.block))
     total = blocks * settings.block * settings.rounds
     state = {"done": 0, "best": math.inf}
@@ -201,7 +208,7 @@ def search(topology: Topology, target: np.ndarray, settings: Settings, jobs: int
     parts_all: list[Found] = []
     for round_ in range(settings.rounds):
         spread = 0.15 / (3.0 ** (round_ - 1)) if round_ else 0.0
-        function = Block(topology, settings, resampled, round_, best, spread)
+        function = Block(topology, settings, resampled, round_, best, spread, crank)
         parts = run_blocks(function, list(range(blocks)), jobs, executor, heard)
         parts_all += parts
         best = merge(parts_all, settings.keep)

@@ -125,3 +125,42 @@ def _shifts(spectra: np.ndarray, w: np.ndarray, norm_z: float, scale: bool):
     with np.errstate(invalid="ignore", divide="ignore"):
         factor = c / norm_w if scale else c / np.abs(c)
     return residual[rows, shift], factor, shift
+
+
+def timed_match(target: np.ndarray, crank: FloatArray, curves: np.ndarray,
+                scale: bool = True) -> Match:
+    """The distance of every candidate to a target whose points come at known crank
+    angles (relative to an unknown zero): each candidate (C, M) sampled at M equal steps
+    of a turn is read at the target's angles from every one of its M samples as the
+    zero (linearly between samples), and the best similarity z ≈ α·w + β of each start
+    kept.
+
+    Returns a ``Match`` whose ``shift`` is the sample of the best zero.
+    """
+    z = np.asarray(target)
+    count, m = curves.shape
+    steps = (np.asarray(crank) - crank[0]) / (2.0 * np.pi / m)
+    base = np.floor(steps).astype(int)
+    t = steps - base
+    index = (np.arange(m)[:, None] + base[None, :]) % m  # (M, N)
+    w = curves[:, index] * (1.0 - t) + curves[:, (index + 1) % m] * t  # (C, M, N)
+    zc = z - z.mean()
+    norm_z = float(np.vdot(zc, zc).real)
+    wc = w - w.mean(axis=2, keepdims=True)
+    corr = np.einsum("cmn,n->cm", wc.conj(), zc)
+    norm_w = np.einsum("cmn,cmn->cm", wc.conj(), wc).real
+    with np.errstate(invalid="ignore", divide="ignore"):
+        if scale:
+            residual = norm_z - np.abs(corr) ** 2 / norm_w
+        else:
+            residual = norm_z + norm_w - 2.0 * np.abs(corr)
+    residual = np.where(np.isnan(residual), np.inf, residual)
+    shift = np.argmin(residual, axis=1)
+    rows = np.arange(count)
+    c = corr[rows, shift]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        factor = c / norm_w[rows, shift] if scale else c / np.abs(c)
+        error = np.sqrt(np.maximum(residual[rows, shift], 0.0) / norm_z)
+    centre = w[rows, shift].mean(axis=1)
+    return Match(np.where(np.isfinite(error), error, np.inf), factor, shift,
+                 np.zeros(count, dtype=bool), centre)
