@@ -47,6 +47,8 @@ ERROR_WORDS = {"function": "largest structural error |ψ − ψ_target|",
 REACH = 0.02
 """[-] a path whose best match is worse than this (RMS over the target's size) is
 not reached: an error, not a result"""
+HOPELESS = 10 * REACH
+"""[-] a first pass this far from the target is not refined: no local fit closes it"""
 FIGURES = ("M_drive_max", "M_drive_rms", "F_joint_peak", "mu_min_deg", "F_shake_max",
            "locks")
 """the sweep figures of every design (with masses): peak and RMS drive torque, the
@@ -224,6 +226,8 @@ def _path(problem: Synthesis, jobs, executor, progress) -> Result:
     fits: list = []
     tried = 0
     best_error = math.inf
+    if found.error[0] > HOPELESS:  # no local fit closes such a gap: say so at once
+        raise _unreached(problem, topology, found, float(found.error[0]), "the search")
     for values, variant in zip(found.values, found.variant):
         if len(fits) >= problem.keep or tried >= 2 * problem.keep + 4:
             break
@@ -246,14 +250,19 @@ def _path(problem: Synthesis, jobs, executor, progress) -> Result:
     designs = [_design(problem, topology, fitted, rank)
                for rank, fitted in enumerate(fits, start=1)]
     if not designs or designs[0].error > REACH:
-        raise DyadeError(
-            f"{problem.name}: no {topology.name} within the bounds traces this path: the best "
-            f"of {found.evaluated:,} candidates ({found.assembled:,} assembled) deviates by "
-            f"{100 * min(best_error, float(found.error[0])):.3g} % RMS of the path's size after "
-            f"the local fit (at most {100 * REACH:g} % counts as reached). A {topology.name}'s "
-            f"coupler curve is of degree six and cannot follow every shape: widen the bounds, "
-            f"draw more candidates, or try another topology.")
+        raise _unreached(problem, topology, found, min(best_error, float(found.error[0])),
+                         "the local fit")
     return Result(problem, designs, found.evaluated, found.assembled)
+
+
+def _unreached(problem: Synthesis, topology, found, error: float, after: str) -> DyadeError:
+    return DyadeError(
+        f"{problem.name}: no {topology.name} within the bounds traces this path: the best of "
+        f"{found.evaluated:,} candidates ({found.assembled:,} assembled) deviates by "
+        f"{100 * error:.3g} % RMS of the path's size after {after} (at most {100 * REACH:g} % "
+        f"counts as reached). A {topology.name}'s coupler curve cannot follow every shape "
+        f"(a four-bar's is of degree six, without sharp corners): widen the bounds, draw more "
+        f"candidates, or try another topology.")
 
 
 def _same(fitted, other) -> bool:
@@ -273,8 +282,10 @@ def _design(problem: Synthesis, topology, fitted, rank: int) -> Design:
     crank, path = trace(data, placement.angle)
     notes = [] if fitted.converged else [
         f"the local fit stopped {fitted.error:.3g} from the target (RMS over its size)"]
-    return Design(f"design {rank}", data, fitted.error, fitted.converged, crank, path,
-                  notes=notes)
+    design = Design(f"design {rank}", data, fitted.error, fitted.converged, crank, path,
+                    notes=notes)
+    design.fitted = fitted  # the target points' crank angles, for checks and figures
+    return design
 
 
 def trace(data: dict, offset: float = 0.0, count: int = 361) -> tuple[np.ndarray, np.ndarray]:

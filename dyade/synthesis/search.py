@@ -216,6 +216,10 @@ def search(topology: Topology, target: np.ndarray, settings: Settings, jobs: int
 
 
 # -- the local fit ---------------------------------------------------------------------
+MAX_STEPS = 150
+"""Levenberg–Marquardt steps of a local fit at most (an exact target converges in
+tens; one the topology cannot reach stops here)"""
+
 @dataclass(slots=True, eq=False)
 class Fitted:
     """A candidate fitted to the target points by least squares."""
@@ -301,7 +305,7 @@ def fit(topology: Topology, values: FloatArray, variant: int, target: np.ndarray
         return columns
 
     solution = least_squares(residual, x0, jac=jacobian, method="lm", xtol=1e-15, ftol=1e-15,
-                             gtol=1e-15, max_nfev=200 * (dims + 4))
+                             gtol=1e-15, max_nfev=MAX_STEPS)
     x = solution.x
     miss = np.abs(placed(x) - target)
     rms = float(np.sqrt(np.mean(miss ** 2))) if np.all(np.isfinite(miss)) else math.inf
