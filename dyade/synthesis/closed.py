@@ -259,7 +259,7 @@ def cognates(linkage: FourBar, crank: float = 0.3) -> tuple[Cognate, Cognate, Co
     """
     at = points(linkage, crank)
     a0, a, b, b0, p = at["A0"], at["A"], at["B"], at["B0"], at["P"]
-    r1, r2, r3, r4 = b0 - a0, a - a0, b - a, b - b0
+    r1, r2, r3 = b0 - a0, a - a0, b - a
     rho = (p - a) / (b - a)
     c0 = a0 + rho * r1
     d = a0 + rho * r3

@@ -93,7 +93,7 @@ def poses(problem):
     """The ``poses`` target of a synthesis problem as its result (``dyade.synthesis``)."""
     from dyade.files.mechanism import build
     from dyade.linkage.positions import positions
-    from dyade.synthesis import Design, Result, speed_rpm
+    from dyade.synthesis.designs import Design, Result, speed_rpm
     from dyade.synthesis.topology import FourBar, fourbar_from_points
 
     target = problem.target
