@@ -5,7 +5,7 @@ The crank, then each dyad's closed-form closure in assembly order (``dyade.linka
 the very closures of the full sweep), then the world positions of the points asked for;
 no velocities, accelerations or forces. A mechanism's numbers may be one per (variant,
 position), variant-major (``dyade.linkage.stack``): ``count`` variants over the same
-crank angles are swept at once by ``positions(stacked, np.tile(angle, count), ...)``.
+crank angles are swept at once by ``positions(stacked, angle, ..., repeat=count)``.
 
 >>> import numpy as np, dyade
 >>> fourbar = dyade.read_mechanism("mechanisms/fourbar.toml")
@@ -46,7 +46,7 @@ class Positions:
 
 
 def positions(mechanism: Mechanism, crank_angle: FloatArray,
-              points: Sequence[tuple[int, Vec]]) -> Positions:
+              points: Sequence[tuple[int, Vec]], repeat: int = 1) -> Positions:
     """World positions of ``points`` (link, local point (ξ, η) [m]) at every crank angle.
 
     Parameters
@@ -60,17 +60,22 @@ def positions(mechanism: Mechanism, crank_angle: FloatArray,
     points : sequence of (int, (ξ, η))
         The link and link-fixed point of each point asked for [m]; a coordinate may be
         one per position like any number of a stacked mechanism.
+    repeat : int
+        The crank angles are ``crank_angle`` repeated ``repeat`` times (``repeat``
+        stacked variants over the same angles): their cosines and sines are taken once.
 
     Returns
     -------
     Positions
     """
-    angle = np.asarray(crank_angle, dtype=np.float64)
-    n = angle.shape[0]
+    turn = np.asarray(crank_angle, dtype=np.float64)
+    n = turn.shape[0] * repeat
     motion = Motion.at_rest(n, mechanism.max_link + 1, tuple(mechanism.moving_links))
     motion.origin[:, CRANK] = mechanism.crank.pivot
-    motion.angle[:, CRANK] = angle
-    cos_sin(angle, motion.cos[:, CRANK], motion.sin[:, CRANK])
+    cos, sin = np.empty(turn.shape[0]), np.empty(turn.shape[0])
+    cos_sin(turn, cos, sin)
+    for array, values in ((motion.angle, turn), (motion.cos, cos), (motion.sin, sin)):
+        array[:, CRANK].reshape(repeat, -1)[:] = values
     count = len(mechanism.dyads)
     transmission, conditioning = np.empty((n, count)), np.empty((n, count))
     ok = np.ones(n, dtype=bool)

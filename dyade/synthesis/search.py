@@ -85,21 +85,73 @@ def draw(settings: Settings, names: tuple[str, ...], block: int, round_: int = 0
     return np.column_stack([lows + unit * (highs - lows), variant])
 
 
+SENTINEL = 0.7182818284590452
+"""the template's stand-in for dimension k is SENTINEL + k/1024: numbers no reader
+arithmetic on lengths in metres turns into another of them"""
+_TEMPLATES: dict = {}
+"""(topology, variant) -> the mechanism read once from stand-ins (per process)"""
+
+
+def template(topology: Topology, variant: int):
+    """The topology's mechanism read once (``dyade.files.mechanism.build``) with a
+    stand-in number for each dimension: the candidates' mechanisms are this one with
+    their numbers put in (``stacked``), without reading each block again."""
+    key = (topology.name, variant)
+    if key not in _TEMPLATES:
+        from dyade.files.mechanism import build
+
+        stand_ins = {name: SENTINEL + k / 1024 for k, name in enumerate(topology.names)}
+        data = topology.data(stand_ins, variant)
+        data["sweep"] = {"start": 0.0, "stop": 0.0, "step": 1.0}
+        _TEMPLATES[key] = (build(data), {v: k for k, v in enumerate(stand_ins.values())})
+    return _TEMPLATES[key]
+
+
+def stacked(topology: Topology, values: FloatArray, variant: int, positions: int):
+    """The candidates (rows of ``values``) as one stacked mechanism: each dimension one
+    number per (candidate, position), candidate-major (``dyade.linkage.stack``)."""
+    from dyade.linkage.stack import spread
+
+    mechanism, index = template(topology, variant)
+    columns = [Variants(values[:, k]) for k in range(values.shape[1])]
+    return spread(_substitute(mechanism, index, columns), positions)
+
+
+def _substitute(value, index: dict, columns: list):
+    """``value`` with every stand-in number replaced by its dimension's column."""
+    import dataclasses
+
+    if type(value) is float:
+        k = index.get(value)
+        return value if k is None else columns[k]
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        changes = {}
+        for f in dataclasses.fields(value):
+            part = getattr(value, f.name)
+            mapped = _substitute(part, index, columns)
+            if mapped is not part:
+                changes[f.name] = mapped
+        return dataclasses.replace(value, **changes) if changes else value
+    if isinstance(value, dict):
+        items = {k: _substitute(v, index, columns) for k, v in value.items()}
+        return items if any(items[k] is not v for k, v in value.items()) else value
+    if isinstance(value, tuple) and not hasattr(value, "_fields"):
+        parts = tuple(_substitute(v, index, columns) for v in value)
+        return parts if any(p is not v for p, v in zip(parts, value)) else value
+    return value
+
+
 def traced(topology: Topology, values: FloatArray, variant: int, crank: FloatArray):
     """(curves (candidates, positions) complex [m], assembles (candidates,) bool, least
     transmission (candidates,) [rad]): the coupler point of each candidate through the
-    positions-only stage, the candidates read at once as one stacked mechanism."""
-    from dyade.files.mechanism import build
+    positions-only stage, the candidates as one stacked mechanism (``stacked``), the
+    crank angles ``crank`` the same for each."""
     from dyade.linkage.positions import positions
-    from dyade.linkage.stack import spread
 
     count = len(values)
-    columns = {name: Variants(values[:, k]) for k, name in enumerate(topology.names)}
-    data = topology.data(columns, variant)
-    data["sweep"] = {"start": 0.0, "stop": 0.0, "step": 1.0}
-    mechanism = spread(build(data), crank.size)
+    mechanism = stacked(topology, values, variant, crank.size)
     point = mechanism.links[COUPLER].points["P"]
-    found = positions(mechanism, np.tile(crank, count), [(COUPLER, point)])
+    found = positions(mechanism, crank, [(COUPLER, point)], repeat=count)
     z = found.points[:, 0, 0] + 1j * found.points[:, 0, 1]
     z = z.reshape(count, crank.size)
     closes = found.closes.reshape(count, crank.size).all(axis=1)

@@ -100,7 +100,7 @@ def test_a_straight_line_stretch_no_worse_than_hoeken():
     hoeken = hoeken_deviation(120.0)
     assert 1e-4 < hoeken < 1e-2  # the textbook linkage is straight to about 0.2 %
     problem = parse({"target": {"kind": "line", "stretch": 120},
-                     "search": {"candidates": 6000, "rounds": 1, "seed": 2},
+                     "search": {"candidates": 4000, "rounds": 1, "seed": 2},
                      "output": {"keep": 1}})
     design = synthesise(problem).designs[0]
     start, stop = design.stretch
@@ -135,3 +135,20 @@ def test_a_path_the_topology_cannot_reach_says_the_best_error():
     with pytest.raises(DyadeError, match=r"deviates by [\d.]+ % RMS of the path's size") as err:
         synthesise(problem)
     assert not isinstance(err.value, InputError)
+
+
+@pytest.mark.slow
+def test_a_dask_cluster_gives_the_same_best_candidates_as_one_process():
+    distributed = pytest.importorskip("distributed")
+    from dyade.synthesis.search import search
+
+    points = np.exp(1j * np.linspace(0, 2 * np.pi, 30, endpoint=False))
+    points = points + 0.3 * points ** 2
+    settings = Settings(bounds=BOUNDS, candidates=1000, block=250, seed=4, rounds=2)
+    here = search(FourBar(), points, settings)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, host="127.0.0.1",
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        there = search(FourBar(), points, settings, executor=client.get_executor())
+    assert np.array_equal(here.number, there.number)
+    assert np.array_equal(here.error, there.error)
