@@ -52,8 +52,16 @@ def test_chebyshev_spacing_and_the_structural_error_at_every_row():
     assert np.abs(result.error).max() > 1e-3
     signs = np.sign(result.error[np.abs(result.error) > 1e-6])
     assert np.count_nonzero(np.diff(signs)) >= 2
+
+
+@pytest.mark.slow
+def test_the_least_squares_fit_of_a_table_beats_its_chebyshev_start():
+    x = np.linspace(1.0, 10.0, 46)
+    phi = np.deg2rad(200.0 + 90.0 * (x - 1.0) / 9.0)
+    psi = np.deg2rad(300.0 + 60.0 * np.log10(x))
+    start = function.generate(phi, psi, method="chebyshev")
     fitted = function.generate(phi, psi, method="fit")
-    assert np.abs(fitted.error).max() < np.abs(result.error).max()
+    assert np.abs(fitted.error).max() < np.abs(start.error).max()
 
 
 def test_too_few_precision_points_are_refused():

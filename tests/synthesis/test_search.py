@@ -124,10 +124,12 @@ def test_bounds_that_let_no_linkage_assemble_are_refused():
 
 
 def test_a_path_the_topology_cannot_reach_says_the_best_error():
-    # a square with sharp corners, and links too short to come near it
-    side = np.linspace(0.0, 1.0, 10, endpoint=False)
-    square = np.concatenate([side, 1 + 1j * side, 1j + 1 - side, 1j * (1 - side)])
-    problem = parse({"target": {"kind": "path", "points": [[z.real, z.imag] for z in square]},
+    # a five-pointed star drawn in one stroke (it crosses itself five times), and links
+    # too short to come near it
+    tips = np.exp(1j * (np.pi / 2 + 4 * np.pi / 5 * np.arange(6)))
+    star = np.concatenate([a + (b - a) * np.linspace(0, 1, 8, endpoint=False)
+                           for a, b in zip(tips[:-1], tips[1:])])
+    problem = parse({"target": {"kind": "path", "points": [[z.real, z.imag] for z in star]},
                      "bounds": {"a": [0.1, 0.12], "b": [2.5, 3], "c": [2.5, 3],
                                 "p": [0, 0.1], "q": [0, 0.1]},
                      "search": {"candidates": 400, "block": 200, "rounds": 1},
