@@ -270,7 +270,7 @@ def _stretch(problem: Synthesis, jobs, executor, progress) -> Result:
     if not len(best.error):
         raise _no_candidate(problem, best.evaluated)
     designs = []
-    for values, variant in zip(best.values[:problem.keep + 2], best.variant):
+    for values, variant in zip(best.values[:problem.keep + 1], best.variant):
         refined = refine(topology, values, int(variant), target.stretch, settings.bounds,
                          target.kind, problem.min_transmission)
         if any(np.allclose(refined.values, d.values, rtol=1e-4) for d in designs):
