@@ -119,7 +119,9 @@ def poses(problem):
     if not (miss <= TOLERANCE * size and np.abs(turned).max() <= TOLERANCE):
         raise DyadeError(f"the four-bar through the poses misses them by {miss:.3g} m in "
                          f"dyade's engine (a branch defect): choose other poses or pivots.")
-    design = Design(problem.name, data, miss, True, crank, traced,
+    dense = np.linspace(crank[0], crank[-1], 121)  # the path between the poses
+    between = positions(mechanism, dense, [(3, (values[4], values[5]))]).points[:, 0]
+    design = Design(problem.name, data, miss, True, dense, between[:, 0] + 1j * between[:, 1],
                     notes=[f"least transmission angle between the first and last pose "
                            f"{np.rad2deg(least):.1f}°"])
     design.figures["mu_motion_deg"] = float(np.rad2deg(least))
