@@ -26,7 +26,7 @@ OPTIONS = (
     Option("seed", int, metavar="N", study=False,
            help="The search's seed  [default: the file's search.seed, else 0]"),
     Option("candidates", int, positive=True, metavar="N", study=False,
-           help="Candidates of the search's first round  [default: the file's "
+           help="Candidates per round of the search  [default: the file's "
                 "search.candidates, else 20000]"),
 )
 
