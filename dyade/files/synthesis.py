@@ -14,7 +14,8 @@ from dyade.files.schema import UnitReader, read_toml, suggest
 from dyade.model.synthesis import TARGETS, Synthesis, Target
 from dyade.units import RPM
 
-TOP = {"name", "topology", "units", "target", "bounds", "search", "scores", "output"}
+TOP = {"name", "topology", "units", "target", "bounds", "regions", "search", "scores",
+       "output"}
 TOPOLOGIES = {"fourbar": ("a", "b", "c", "d", "p", "q"),
               "slider-crank": ("a", "b", "e", "p", "q")}
 """topology -> its canonical dimensions (``dyade.synthesis.topology``)"""
@@ -62,6 +63,21 @@ def parse(data: dict[str, Any], label: str = "synthesis", source: str | None = N
         if high < low:
             raise reader.fail(where, f"must be [least, largest]: {value[0]} > {value[1]}.")
         bounds[key] = (low, high)
+    regions = {}
+    pivots = {"A0", "B0"} if topology == "fourbar" else {"A0"}
+    for key, value in reader.keys(data.get("regions", {}), "regions", pivots).items():
+        where = f"regions.{key}"
+        if not (isinstance(value, list) and len(value) == 2
+                and all(isinstance(v, list) and len(v) == 2 for v in value)):
+            raise reader.fail(where, f"must be [[x least, x largest], [y least, y largest]] "
+                                     f"[{reader.length_unit}], got {value!r}.", value)
+        (x0, x1), (y0, y1) = ((reader.length_of(v, where) for v in pair) for pair in value)
+        if x1 < x0 or y1 < y0:
+            raise reader.fail(where, "must give each range as [least, largest].")
+        regions[key] = (x0, x1, y0, y1)
+    if regions and target.kind not in ("path",):
+        raise reader.fail("regions", "apply to path targets (where the design's placement "
+                                     "is found); the other targets fix the frame pivots.")
     search = reader.keys(data.get("search", {}), "search", SEARCH_KEYS)
     scores = reader.keys(data.get("scores", {}), "scores", SCORE_KEYS)
     output = reader.keys(data.get("output", {}), "output", OUTPUT_KEYS)
@@ -90,7 +106,7 @@ def parse(data: dict[str, Any], label: str = "synthesis", source: str | None = N
         method=method, seed=whole(search, "seed", 0, least=0),
         positions=whole(search, "positions", 100, least=8),
         rounds=whole(search, "rounds", 2),
-        min_transmission=reader.angle_of(least, "search.min_transmission"),
+        min_transmission=reader.angle_of(least, "search.min_transmission"), regions=regions,
         scale=bool(search.get("scale", True)),
         keep=whole(output, "keep", 3),
         speed=reader.number(scores.get("speed_rpm", 60.0), "scores.speed_rpm", "rpm",

@@ -60,6 +60,9 @@ class Synthesis:
     rounds: int = 2
     min_transmission: float = 0.0
     """[rad]"""
+    regions: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
+    """frame pivot ("A0", "B0") -> (x least, x largest, y least, y largest) [m]: where a
+    path's design may put it"""
     scale: bool = True
     """path: the match is free in scale (the bounds then only shape the linkage)"""
     keep: int = 3

@@ -138,7 +138,9 @@ def settings_of(problem: Synthesis, scale: bool | None = None):
     return Settings(bounds=bounds, candidates=problem.candidates, block=problem.block,
                     method=problem.method, seed=problem.seed, positions=problem.positions,
                     min_transmission=problem.min_transmission, scale=problem.scale,
-                    rounds=problem.rounds, keep=max(40, 4 * problem.keep))
+                    rounds=problem.rounds, keep=max(40, 4 * problem.keep),
+                    regions=tuple((0 if name == "A0" else 1, *box)
+                                  for name, box in problem.regions.items()))
 
 
 def _no_candidate(problem: Synthesis, evaluated: int) -> InputError:
@@ -160,6 +162,11 @@ def _path(problem: Synthesis, jobs, executor, progress) -> Result:
     settings = settings_of(problem)
     found = search(topology, target.points, settings, jobs, executor, progress, target.crank)
     if not len(found.error):
+        if settings.regions:
+            raise DyadeError(
+                f"{problem.name}: of {found.evaluated:,} candidates ({found.assembled:,} "
+                f"assembled), none matched to the path puts its frame pivots within the "
+                f"[regions]: widen them, or the bounds.")
         raise _no_candidate(problem, found.evaluated)
     crank = np.linspace(0.0, 2.0 * np.pi, settings.positions, endpoint=False)
     resampled = resample(target.points[None, :], SAMPLES)[0]
@@ -184,6 +191,8 @@ def _path(problem: Synthesis, jobs, executor, progress) -> Result:
         fitted = fit(topology, values, int(variant), target.points, target.crank,
                      start=start)
         best_error = min(best_error, fitted.error)
+        if settings.regions and not _placed_within(fitted, settings.regions):
+            continue  # the fit moved a pivot out of its region
         if np.isfinite(fitted.error) and not any(_same(fitted, other) for other in fits):
             fits.append(fitted)
     fits.sort(key=lambda f: f.error)
@@ -203,6 +212,16 @@ def _unreached(problem: Synthesis, topology, found, error: float, after: str) ->
         f"counts as reached). A {topology.name}'s coupler curve cannot follow every shape "
         f"(a four-bar's is of degree six, without sharp corners): widen the bounds, draw more "
         f"candidates, or try another topology.")
+
+
+def _placed_within(fitted, regions: tuple) -> bool:
+    """A fit's frame pivots lie in their regions."""
+    from dyade.synthesis.search import within
+
+    a0 = fitted.placement.origin
+    b0 = a0 + fitted.values[3] * np.exp(1j * fitted.placement.angle) \
+        if fitted.values.size == 6 else a0
+    return bool(within(np.array([[a0, b0]]), regions)[0])
 
 
 def _same(fitted, other) -> bool:

@@ -35,6 +35,9 @@ class Settings:
     """crank angles per turn of the first pass"""
     min_transmission: float = 0.0
     """the least transmission angle over the turn [rad] a candidate may have"""
+    regions: tuple = ()
+    """(pivot index (0: A0, 1: B0), x least, x largest, y least, y largest) [m]: where
+    the placed candidate's frame pivots must lie"""
     variants: tuple[int, ...] = (1, -1)
     scale: bool = True
     """the match is free in scale"""
@@ -176,6 +179,13 @@ class Block:
     crank: np.ndarray | None = None
     """the target points' crank angles [rad] (from an unknown zero); None: no timing"""
 
+    def inside(self, values: FloatArray, match) -> np.ndarray:
+        """(candidates,) bool: the placed frame pivots lie in the settings' regions."""
+        if not self.settings.regions:
+            return np.ones(len(values), dtype=bool)
+        return within(pivots(values, match, complex(np.mean(self.target))),
+                      self.settings.regions)
+
     def __call__(self, block: int) -> Found:
         s = self.settings
         drawn = draw(s, self.topology.names, block, self.round_, self.around, self.spread)
@@ -197,12 +207,30 @@ class Block:
                 else:
                     match = closed_match(self.target, resample(curves[ok], SAMPLES),
                                          scale=s.scale)
-                error[rows[ok]] = match.error
+                error[rows[ok]] = np.where(self.inside(values[rows[ok]], match),
+                                           match.error, np.inf)
         order = np.argsort(error, kind="stable")[:s.keep]
         order = order[np.isfinite(error[order])]
         number = self.round_ * 10 ** 9 + block * s.block + order
         return Found(values[order], variant[order], error[order], number,
                      evaluated=len(values), assembled=kept)
+
+
+def pivots(values: FloatArray, match, centre: complex) -> np.ndarray:
+    """(candidates, 2) complex: the frame pivots A0 and B0 (canonical (0, 0) and (d, 0))
+    placed by each candidate's best similarity onto a target of centroid ``centre``."""
+    origin = centre - match.factor * match.centre
+    return np.column_stack([origin, origin + match.factor * values[:, 3]]) \
+        if values.shape[1] == 6 else np.column_stack([origin, origin])
+
+
+def within(placed: np.ndarray, regions: tuple) -> np.ndarray:
+    """(candidates,) bool: every placed pivot lies in its region."""
+    ok = np.ones(len(placed), dtype=bool)
+    for index, x0, x1, y0, y1 in regions:
+        z = placed[:, index]
+        ok &= (z.real >= x0) & (z.real <= x1) & (z.imag >= y0) & (z.imag <= y1)
+    return ok
 
 
 def merge(parts: list[Found], keep: int) -> Found:

@@ -59,6 +59,13 @@ def test_recovers_a_fourbar_from_60_points_of_its_coupler_curve():
     best = lengths(result.designs[0].data)
     misses = [np.abs(best / c - 1).max() for c in cognates]
     assert min(misses) < 1e-6, misses
+    # a region about the original's crank pivot leaves only the original
+    problem = parse({"target": {"kind": "path", "points": [[z.real, z.imag] for z in points]},
+                     "regions": {"A0": [[0.02, 0.04], [0.01, 0.03]]},
+                     "search": {"candidates": 6000, "seed": 1}, "output": {"keep": 1}})
+    placed = synthesise(problem).designs[0].data
+    assert np.abs(lengths(placed) / cognates[0] - 1).max() < 1e-6
+    assert placed["frame"]["points"]["A0"] == pytest.approx([0.03, 0.02], abs=1e-9)
     # ... and its mechanism file traces the target through dyade's engine
     design = result.designs[0]
     mechanism = build(design.data)
@@ -121,6 +128,15 @@ def test_bounds_that_let_no_linkage_assemble_are_refused():
     with pytest.raises(InputError, match="none of the 200 candidates assembles") as err:
         synthesise(problem)
     assert err.value.key == "bounds"
+
+
+def test_regions_no_placed_candidate_meets_are_said():
+    points = np.exp(1j * np.linspace(0, 2 * np.pi, 30, endpoint=False)) * (1 + 0.3j)
+    problem = parse({"target": {"kind": "path", "points": [[z.real, z.imag] for z in points]},
+                     "regions": {"A0": [[50, 51], [50, 51]]},
+                     "search": {"candidates": 200, "block": 100, "rounds": 1}})
+    with pytest.raises(DyadeError, match=r"frame pivots within the \[regions\]"):
+        synthesise(problem)
 
 
 def test_a_path_the_topology_cannot_reach_says_the_best_error():
