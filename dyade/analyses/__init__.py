@@ -25,5 +25,6 @@ ENTRIES = {
     "driveline-run-up": "dyade.analyses.drive_line",
     "profile": "dyade.analyses.profile",
     "servo": "dyade.analyses.servo",
+    "synthesis": "dyade.analyses.synthesis",
 }
 """entry name -> the module that defines it (in its ``ENTRIES`` dict)"""

@@ -68,6 +68,7 @@ def identifier(key: str) -> str:
 
 def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     from dyade.errors import InputError
+    from dyade.parallel import connect
     from dyade.study import study as run_study
     from dyade.study.spec import Spec, override, read
 
@@ -93,49 +94,6 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         if client is not None:
             client.close()
     return outcome_of(result)
-
-
-def connect(address: str):
-    """A Dask client of the scheduler at ``address``; an InputError on ``scheduler``
-    when it does not answer within 5 s."""
-    from dyade.errors import InputError
-    from dyade.study import needs
-
-    needs("distributed", "scheduler", extra="dask")
-    import logging
-
-    from distributed import Client
-
-    logging.getLogger("distributed").setLevel(logging.CRITICAL)
-    reachable(address)
-    try:
-        return Client(address, timeout="5s")
-    except (OSError, TimeoutError, ValueError) as err:
-        raise InputError.parameter("scheduler", f"{address}: no Dask scheduler answers there "
-                                                f"({err}).", value=address) from None
-
-
-def reachable(address: str, timeout: float = 3.0) -> None:
-    """Refuse at once a tcp:// address where nothing listens (Dask's client would try
-    again until its timeout)."""
-    import socket
-
-    from dyade.errors import InputError
-
-    if not address.startswith("tcp://"):
-        return
-    host, _, port = address[len("tcp://"):].rpartition(":")
-    try:
-        number = int(port.strip("/"))
-    except ValueError:
-        raise InputError.parameter("scheduler", f"{address}: give tcp://HOST:PORT.",
-                                   value=address) from None
-    try:
-        socket.create_connection((host.strip("[]"), number), timeout=timeout).close()
-    except OSError as err:
-        raise InputError.parameter("scheduler", f"{address}: no Dask scheduler answers there "
-                                                f"({err.strerror or err}).",
-                                   value=address) from None
 
 
 def outcome_of(result) -> Outcome:
