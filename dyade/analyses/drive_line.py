@@ -29,13 +29,16 @@ from dyade.analyses.inputs import SET, load
 SPEED_RANGE = Option("speed-range", str, "rpm", metavar="START:STOP:STEP",
                      help="Crank speeds of an ideal motor, STOP included (a [drive] motor is "
                           "replaced by one; at the API also a sequence of speeds)")
+ETA_RANGE = Option("eta-range", str, metavar="START:STOP:STEP",
+                   help="Crank speeds as η = Ω/ω̄ instead of --speed-range (ω̄: the line's "
+                        "lowest natural frequency with the mean inertia), e.g. 0.2:1.6:0.01")
 SPEED_RPM = Option("speed", float, "rpm", positive=True, metavar="RPM", old=("--speed-rpm",),
                    help="The ideal motor's speed for the steady state (default: the crank's; "
                         "not with a [drive] motor)")
 MAP = Option("map", str, metavar="stiffness|damping=START:STOP:STEP",
              help="The shaft's parameter to map against speed and its values [N·m/rad or "
                   "N·m·s/rad]")
-OPTIONS = (SET, SPEED_RANGE, SPEED_RPM, MAP)
+OPTIONS = (SET, SPEED_RANGE, ETA_RANGE, SPEED_RPM, MAP)
 """every option of the drive line's entries (``dyade driveline`` declares them all)"""
 
 MOST_SPEEDS = 2000  # the most speeds (or map values) one run takes
@@ -89,7 +92,20 @@ COLUMNS = {
     "twist_amplitude_deg": ("°", "(max − min)/2 of the twist"),
     "fluctuation": ("-", "(max − min)/mean of the crank speed"),
     "floquet": ("-", "largest |Floquet multiplier| (empty: no periodic state)"),
-    "unstable": ("1/0", "a Floquet multiplier outside the unit circle (|μ| > 1)"),
+    "unstable": ("1/0", "a Floquet multiplier outside the unit circle (|μ| > 1); empty: "
+                        "not converged, no verdict"),
+    "solution": ("-", "the periodic solution's number at its speed (several where a "
+                      "resonance folds over), by twist amplitude"),
+    "twist_max_deg": ("°", "largest |twist| over the period"),
+    "instability": ("-", "how it is unstable: fold (μ = +1), period doubling (μ = −1), "
+                         "Neimark–Sacker (a complex pair); empty: stable or no verdict"),
+    "converged": ("1/0", "periodic to the tolerance, unchanged with twice the steps and its "
+                         "energy balance closed"),
+    "steps": ("-", "RK4 steps per revolution of the solution"),
+    "accuracy": ("-", "change of the solution (scaled) and its multipliers with twice the "
+                      "steps"),
+    "balance": ("-", "energy balance over the period: |motor − loads − friction − damping| "
+                     "of the largest work"),
     "stiffness": ("N·m/rad", "the shaft's torsional stiffness"),
     "damping": ("N·m·s/rad", "the shaft's damping"),
     "time": ("s", "time from rest"),
@@ -235,8 +251,10 @@ def speeds_of(value: Any, name: str = SPEED_RANGE.api, quantity: str = "speed_rp
             if len(values) > MOST_SPEEDS:
                 raise ValueError(f"asks for {len(values)} values; at most {MOST_SPEEDS}.")
             first, last = min(values), max(values)
-        if any(implausible(quantity, abs(end)) for end in (first, last)
-               if end or quantity != "damping"):
+        if quantity == "eta" and not 0.0 < first <= last <= 100.0:
+            raise ValueError(f"η = Ω/ω̄ must lie in (0, 100], got {value!r}.")
+        if quantity != "eta" and any(implausible(quantity, abs(end)) for end in (first, last)
+                                     if end or quantity != "damping"):
             raise ValueError(f"values must lie in {plausible_range(quantity)} (what a machine "
                              f"has), got {value!r}.")
     except (TypeError, ValueError) as err:
@@ -339,9 +357,25 @@ def steady(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     return outcome
 
 
+def speeds_asked(options: dict[str, Any], shaft) -> list[float]:
+    """The speeds [rpm] of ``speed_range_rpm`` or of ``eta_range`` (η = Ω/ω̄, one of the
+    two)."""
+    from dyade.errors import InputError
+
+    given = options.get(SPEED_RANGE.api), options.get(ETA_RANGE.api)
+    if given[0] is not None and given[1] is not None:
+        raise InputError.parameter(ETA_RANGE.api, f"give {SPEED_RANGE.flag} or "
+                                                  f"{ETA_RANGE.flag}, not both.")
+    if given[1] is None:
+        return speeds_of(given[0])
+    etas = speeds_of(given[1], ETA_RANGE.api, "eta", "-")
+    return [rpm(eta * shaft.frequency.omega_bar) for eta in etas]
+
+
 def curve(name: str):
     """The resonance curve (``driveline-resonance``) or the stability chart
-    (``driveline-stability``) over ``speed_range_rpm``: one integration gives both."""
+    (``driveline-stability``) over ``speed_range_rpm`` or ``eta_range``: one run gives
+    both."""
 
     def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         import numpy as np
@@ -351,54 +385,112 @@ def curve(name: str):
         from dyade.linkage import drive_line as api
         from dyade.units import RPM
 
-        speeds = speeds_of(options.get(SPEED_RANGE.api))
+        if options.get(ETA_RANGE.api) is None:
+            speeds_of(options.get(SPEED_RANGE.api))  # a bad range refused before the file
         shaft, outcome = start(source, options, name, ("driveline",))
         what = name.removeprefix("driveline-")
         try:
+            speeds = speeds_asked(options, shaft)
             line = shaft.ideal_line
             low = min(abs(s) for s in speeds) * RPM
             steps = steps_of(shaft, line, low) if low > 0 else 0
-            check_memory((steps + 1) * len(speeds) * orbit_values(line) * 8.0,
-                         f"the orbits of {len(speeds):,} speeds over {steps:,} steps",
+            check_memory((2 * steps + 1) * len(speeds) * orbit_values(line) * 8.0,
+                         f"the orbits of {len(speeds):,} speeds over {2 * steps:,} steps",
                          budget.max_memory, "Ask for fewer speeds", MAX_MEMORY.api)
-            budget.time(shooting_seconds(steps, len(speeds), line.dimension),
+            budget.time(scan_seconds(steps, len(speeds), line.dimension),
                         f"the {what} at {len(speeds):,} speeds ({steps:,} steps per "
-                        f"revolution)")
+                        f"revolution and more, by accuracy)")
             found = api.resonance_curve(shaft.mechanism, speeds, shaft=shaft,
-                                        progress=ticker(budget, ITERATIONS))
+                                        progress=ticker(budget, SCAN_INTEGRATIONS))
         except InputError as err:
             raise naming(err) from None
         withheld(Outcome(name, notes=[NO_STATE]), found.converged,
                  "no speed of the range has a periodic state of the drive line")
         outcome.notes += friction_note(shaft, what)
-        if not found.converged.all():
-            outcome.notes.append(f"no periodic state at {int((~found.converged).sum())} speeds "
-                                 f"({NO_STATE}): left empty.")
+        missing = ~found.converged
+        if missing.any():
+            reasons = sorted(set(r for r in found.reason if r))
+            outcome.notes.append(f"not converged at {int(missing.sum())} speeds, no verdict "
+                                 f"there (left empty): {'; '.join(reasons[:3])}"
+                                 f"{' …' if len(reasons) > 3 else ''}.")
         speed = rpm(found.speed)
+        several = np.unique(speed[found.solution > 1])
+        if several.size:
+            stable_many = [s for s in several
+                           if np.sum((speed == s) & found.converged & ~found.unstable) > 1]
+            outcome.notes.append(
+                f"several periodic solutions at {several.size} speeds "
+                f"({number_range(several)} rpm; two or more stable at {len(stable_many)}): "
+                f"which one the machine runs in depends on how it got there (a sweep upwards "
+                f"jumps at {_list(f for f, up in found.folds if up)} rpm, downwards at "
+                f"{_list(f for f, up in found.folds if not up)} rpm).")
         set_columns(outcome, {"speed_rpm": speed, "eta": found.eta,
+                              "solution": found.solution,
                               "peak_torque": found.peak_torque,
                               "rigid_peak_torque": found.rigid_peak_torque,
                               "twist_amplitude_deg": np.degrees(found.twist_amplitude),
+                              "twist_max_deg": np.degrees(found.twist_max),
                               "fluctuation": found.fluctuation, "floquet": found.stability,
-                              "unstable": found.unstable})
+                              "unstable": found.verdict,
+                              "instability": np.array(found.kind, dtype=object),
+                              "converged": found.converged,
+                              "steps": found.steps_used, "accuracy": found.accuracy,
+                              "balance": found.balance})
         add = outcome.add
         for k, at, kind in found.resonances:
             add(f"{kind}_k{k}_rpm", rpm(at), "rpm", {"eta": at / found.omega_bar},
                 f"{kind} resonance Ω = {'2' if kind == 'parametric' else ''}ω̄/{k} "
                 f"(harmonic {k} of J(φ){'' if kind == 'parametric' else ' or M_L(φ)'})")
-        add("unstable_rpm", unstable_ranges(speed, found.unstable), "rpm",
-            description="speeds where the periodic motion is unstable (|μ| > 1)")
+        first = found.solution == 1
+        add("unstable_rpm", unstable_ranges(speed[first], found.unstable[first]), "rpm",
+            description="speeds where the (first) periodic motion is unstable (|μ| > 1)")
+        add("jump_up_rpm", [rpm(f) for f, up in found.folds if up], "rpm",
+            description="folds where a sweep upwards in speed jumps (the branch turns back)")
+        add("jump_down_rpm", [rpm(f) for f, up in found.folds if not up], "rpm",
+            description="folds where a sweep downwards in speed jumps")
         k = int(np.nanargmax(found.stability))
         add("stability_max", float(found.stability[k]), "-", {"speed_rpm": speed[k]},
             "largest |Floquet multiplier| over the speeds")
         k = int(np.nanargmax(found.peak_torque))
         add("peak_torque_max", float(found.peak_torque[k]), "N·m", {"speed_rpm": speed[k]},
             "largest shaft torque over the speeds")
-        add("steps_per_revolution", found.steps, "-", description="RK4 steps per revolution")
+        add("accuracy_max", float(np.nanmax(found.accuracy)), "-",
+            description="largest change of a solution with twice the steps", limit=None)
+        add("tolerance", found.tolerance, "-",
+            description="the change with twice the steps that counts as converged")
+        add("not_converged", int(missing.sum()), "-",
+            description="speeds without a periodic solution to the tolerance (no verdict)")
+        add("steps_per_revolution", found.steps, "-",
+            description="RK4 steps per revolution to start with (doubled by accuracy)")
         outcome.result = found
         return outcome
 
     return run
+
+
+def _list(values) -> str:
+    from dyade.report.format import number
+
+    out = [number(rpm(v)) for v in values]
+    return ", ".join(out) if out else "none in the range"
+
+
+def number_range(values) -> str:
+    from dyade.report.format import number
+
+    return f"{number(min(values))}–{number(max(values))}"
+
+
+SCAN_INTEGRATIONS = 40  # [-] integrations of a typical scan (shooting, doubling, branches)
+
+
+def scan_seconds(steps: int, speeds: int, dimension: int) -> float:
+    """The time estimate of a scan over ``speeds`` speeds [s]: the shooting of all speeds
+    at ``steps`` and twice the steps, and the continuation (one lane's 2d + 3 runs per
+    integration)."""
+    return (shooting_seconds(steps, speeds, dimension, 4)
+            + 2 * shooting_seconds(2 * steps, speeds, dimension, 1)
+            + SCAN_INTEGRATIONS * steps * (SECONDS_PER_STEP * 0.3))
 
 
 def unstable_ranges(speed_rpm, unstable) -> list[list[float]]:
@@ -516,11 +608,11 @@ ENTRIES = {
         command="dyade driveline --analysis steady"),
     "driveline-resonance": Analysis(
         "driveline-resonance", "Resonance curve of the drive line (ideal motor)",
-        curve("driveline-resonance"), (SET, SPEED_RANGE), figures=("driveline",),
+        curve("driveline-resonance"), (SET, SPEED_RANGE, ETA_RANGE), figures=("driveline",),
         command="dyade driveline --analysis resonance"),
     "driveline-stability": Analysis(
         "driveline-stability", "Floquet multipliers of the drive line over speed (ideal motor)",
-        curve("driveline-stability"), (SET, SPEED_RANGE), figures=("driveline",),
+        curve("driveline-stability"), (SET, SPEED_RANGE, ETA_RANGE), figures=("driveline",),
         command="dyade driveline --analysis stability"),
     "driveline-map": Analysis(
         "driveline-map", "Largest Floquet multiplier over speed × stiffness or damping",
