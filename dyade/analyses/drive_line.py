@@ -413,6 +413,9 @@ def curve(name: str):
             outcome.notes.append(f"not converged at {int(missing.sum())} speeds, no verdict "
                                  f"there (left empty): {'; '.join(reasons[:3])}"
                                  f"{' …' if len(reasons) > 3 else ''}.")
+        for words in found.stopped:
+            outcome.notes.append(f"the branch was not followed over the whole range ({words}): "
+                                 f"further solutions beyond may be missed.")
         speed = rpm(found.speed)
         several = np.unique(speed[found.solution > 1])
         if several.size:

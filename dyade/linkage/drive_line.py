@@ -368,6 +368,8 @@ class ResonanceCurve:
     branch followed by continuation"""
     tolerance: float = math.nan
     """the accuracy asked for [-]"""
+    stopped: list = field(default_factory=list)
+    """why a continuation stopped before the end of the range (worded), if one did"""
 
     @property
     def unstable(self) -> FloatArray:
@@ -474,17 +476,18 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                "accuracy": list(first.accuracy), "mult": list(first.multipliers),
                "converged": list(first.converged), "reason": list(first.reason),
                "speed": list(speeds)}
-    folds, branches = [], []
+    folds, branches, stopped = [], [], []
     if follow and first.converged.any() and speeds.size > 1:
         low, high = float(speeds.min()), float(speeds.max())
         j0 = int(np.flatnonzero(first.converged)[np.argmin(speeds[first.converged])])
         level = max(n, int(first.steps[j0]) // 2)
         followed = []
+        most = max(40, 2 * speeds.size)  # the points of a branch, at most
         for direction in (1.0, -1.0):
             if direction < 0 and speeds[j0] <= low:
                 continue
             followed.append(periodic.continuation(problem, first.start[j0], p[j0], (low, high),
-                                                  steps=level, direction=direction,
+                                                  steps=level, direction=direction, most=most,
                                                   progress=tick))
         scale = problem.scale(p)
         extra_p, extra_x, extra_j = [], [], []
@@ -514,6 +517,8 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                                    ("reason", ""), ("speed", speeds[j])):
                     records[key].append(value)
         branches = [_branch_curve(line, shaft, branch) for branch in followed]
+        stopped = [f"{branch.stopped}, at {branch.parameter[-1, 0] * RAD_PER_S_TO_RPM:.6g} rpm"
+                   for branch in followed if branch.stopped and branch.parameter.size]
     rows = []  # (record, speed index)
     for j in range(speeds.size):
         rows += [(r, j) for r in found[j]] or [(j, j)]
@@ -548,7 +553,7 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                           used, np.array(records["accuracy"], dtype=float)[record], balance,
                           reason, omega_bar,
                           resonances(mechanism, omega_bar, speeds.min(), speeds.max(),
-                                     shaft=shaft), n, sorted(folds), branches, tol)
+                                     shaft=shaft), n, sorted(folds), branches, tol, stopped)
 
 
 def _orbit_values(line, shaft, speed, start, steps, converged):

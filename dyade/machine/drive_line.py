@@ -766,4 +766,13 @@ def problem(line: Line, tables_at: Callable[[int], Tables], steps: int):
     def scale(p: FloatArray) -> FloatArray:
         return scales(line, coarse, lanes_of(line, p))
 
-    return Problem(line.dimension, field, scale, 2.0 * math.pi, steps)
+    def span(p: FloatArray) -> FloatArray:  # speeds: Ω; twists and node speeds: a radian
+        out = np.ones((p.shape[0], line.dimension))
+        out[:, 0] = p[:, 0]
+        out[:, 1 + m:] = p[:, :1]
+        return np.maximum(out * SPAN, scale(p))
+
+    return Problem(line.dimension, field, scale, 2.0 * math.pi, steps, span)
+
+
+SPAN = 0.1  # [-] a branch's step is measured against this share of Ω and of a radian

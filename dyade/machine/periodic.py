@@ -84,6 +84,9 @@ class Problem:
     scale: Callable[[FloatArray], FloatArray]
     period: float = 2.0 * math.pi
     steps: int = 720
+    span: Callable[[FloatArray], FloatArray] | None = None
+    """``span(p)`` (B, q) -> (B, d): how far each component may range along a branch
+    (the continuation measures its steps against it; default ``scale``)"""
     _fields: dict = field(default_factory=dict, repr=False)
 
     def at(self, steps: int) -> Field:
@@ -406,8 +409,8 @@ def _tangent(a: FloatArray, previous: FloatArray | None, direction: float) -> Fl
 
 
 def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple[float, float],
-                 *, steps: int, direction: float = 1.0, ds: float = 0.02, ds_max: float = 0.25,
-                 ds_min: float = 1e-7, most: int = 2000, turn: float = 0.25,
+                 *, steps: int, direction: float = 1.0, ds: float = 0.02, ds_max: float = 0.5,
+                 ds_min: float = 1e-7, most: int = 400, turn: float = 0.3,
                  progress: Callable[[], None] | None = None) -> Branch:
     """Follow the periodic solution through ``x0`` at ``p0`` (q,) in p[0] until it leaves
     ``bounds`` (the last point lies just beyond), by pseudo-arclength continuation
@@ -444,8 +447,11 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
     p0 = np.asarray(p0, dtype=np.float64).ravel()
     low, high = bounds
     width = (high - low) or abs(p0[0]) or 1.0
-    s_x = problem.scale(p0[None, :])[0]
     d = problem.dimension
+    # the state measured against its own size at the start (at least the problem's scale):
+    # steps along the branch follow the parameter unless the state changes by its size
+    s_x = np.maximum((problem.span or problem.scale)(p0[None, :])[0],
+                     np.abs(np.asarray(x0, dtype=np.float64)))
 
     def evaluate(y):
         x = y[:d] * s_x
