@@ -488,6 +488,7 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                 continue
             followed.append(periodic.continuation(problem, first.start[j0], p[j0], (low, high),
                                                   steps=level, direction=direction, most=most,
+                                                  finest=n * 2 ** periodic.MOST_DOUBLINGS,
                                                   progress=tick))
         scale = problem.scale(p)
         extra_p, extra_x, extra_j = [], [], []
@@ -559,33 +560,44 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
 def _orbit_values(line, shaft, speed, start, steps, converged):
     """Twist amplitude and largest |twist| [rad], peak shaft torque [N·m], speed
     fluctuation [-] and the energy balance [-] of each row's orbit (NaN where not
-    converged), one integration per step count."""
+    converged), one integration per step count (the scans' line: an ideal motor, one
+    shaft)."""
+    from dyade.machine import periodic
+
     rows = speed.size
     out = [np.full(rows, np.nan) for _ in range(5)]
     for n in np.unique(steps[converged]):
         idx = np.flatnonzero(converged & (steps == n))
-        lanes = engine.Lanes.of(line, speed[idx])
-        orbit = engine.integrate(line, shaft.tables_at(int(n)), lanes, start[idx])
-        twist = orbit.state[:, :, 1]
-        crank = speed[idx][None, :] + orbit.state[:, :, 0]
+        problem = engine.problem(line, shaft.tables_at, int(n), works=True)
+        p = engine.parameters(line, speed[idx])
+        x0 = np.pad(start[idx], ((0, 0), (0, 3)))
+        path = periodic.trajectory(problem, int(n), x0, p)
+        twist = path[:, :, 1]
+        crank = speed[idx][None, :] + path[:, :, 0]
+        torque = p[:, 1] * path[:, :, 1] - p[:, 2] * path[:, :, 0]
         out[0][idx] = 0.5 * (twist.max(axis=0) - twist.min(axis=0))
         out[1][idx] = np.max(np.abs(twist), axis=0)
-        out[2][idx] = np.max(np.abs(orbit.torque[:, :, -1]), axis=0)
+        out[2][idx] = np.max(np.abs(torque), axis=0)
         out[3][idx] = (crank.max(axis=0) - crank.min(axis=0)) / speed[idx]
-        work = orbit.quadratures[-1, :, 1:]  # motor, loads, friction, damping [J]
-        out[4][idx] = (np.abs(work[:, 0] - work[:, 1] - work[:, 2] - work[:, 3])
+        work = path[-1, :, 2:]  # motor, damping, loads (∫ s·M_L du: what they give) [J]
+        out[4][idx] = (np.abs(work[:, 0] + work[:, 2] - work[:, 1])
                        / np.maximum(np.max(np.abs(work), axis=1), 1e-300))
     return out
 
 
 def _branch_curve(line, shaft, branch) -> tuple:
     """(speed, largest |twist|, unstable, kind) along a branch of the continuation."""
+    from dyade.machine import periodic
+
     if not branch.parameter.shape[0]:
         return (np.empty(0), np.empty(0), np.empty(0, dtype=bool), [])
     speed = branch.parameter[:, 0]
-    orbit = engine.integrate(line, shaft.tables_at(branch.steps), engine.Lanes.of(line, speed),
-                             branch.start)
-    twist = np.max(np.abs(orbit.state[:, :, 1]), axis=0)
+    twist = np.empty(speed.size)
+    for n in np.unique(branch.steps):
+        idx = np.flatnonzero(branch.steps == n)
+        problem = engine.problem(line, shaft.tables_at, int(n))
+        path = periodic.trajectory(problem, int(n), branch.start[idx], branch.parameter[idx])
+        twist[idx] = np.max(np.abs(path[:, :, 1]), axis=0)
     return speed, twist, branch.unstable, branch.kind
 
 

@@ -728,11 +728,15 @@ def parameters(line: Line, speed: FloatArray, stiffness: FloatArray | None = Non
     return np.column_stack((lanes.speed, lanes.stiffness, lanes.damping))
 
 
-def problem(line: Line, tables_at: Callable[[int], Tables], steps: int):
+def problem(line: Line, tables_at: Callable[[int], Tables], steps: int, works: bool = False):
     """The line with its crank shaft as a ``periodic.Problem`` in the crank's path u
     (period 2π), the parameters per lane ``parameters(...)`` (p[0] = Ω is continued);
     ``tables_at(n)`` gives the crank shaft on n steps per revolution; ``steps`` is the
-    first step count."""
+    first step count. With ``works`` (an ideal motor and one shaft only) the state
+    carries three quadratures more: the work of the motor, of damping and of the loads
+    (∫ s·M_L du) since u = 0 [J] (for ``periodic.trajectory``, not for shooting)."""
+    if works and not (line.ideal and line.elements == 1):
+        raise ValueError("the works ride along only on an ideal motor's single shaft")
     from dyade.machine.periodic import Problem
 
     coarse = tables_at(steps)
@@ -750,9 +754,13 @@ def problem(line: Line, tables_at: Callable[[int], Tables], steps: int):
                 v = p[:, 0] + dv
                 slow = 1.0 / np.where(v > 0.0, v, np.nan)
                 out = np.empty_like(x)
-                out[:, 0] = (p[:, 1] * x[:, 1] - p[:, 2] * dv + drive[k]
-                             - 0.5 * slope[k] * v * v) * slow / inertia[k]
+                torque = p[:, 1] * x[:, 1] - p[:, 2] * dv
+                out[:, 0] = (torque + drive[k] - 0.5 * slope[k] * v * v) * slow / inertia[k]
                 out[:, 1] = -dv * slow
+                if works:
+                    out[:, 2] = torque * p[:, 0] * slow
+                    out[:, 3] = p[:, 2] * dv * dv * slow
+                    out[:, 4] = drive[k]
                 return out
             return f
         rub = np.append(tables.friction, tables.friction[0])
@@ -772,6 +780,10 @@ def problem(line: Line, tables_at: Callable[[int], Tables], steps: int):
         out[:, 1 + m:] = p[:, :1]
         return np.maximum(out * SPAN, scale(p))
 
+    if works:
+        def wide(p: FloatArray) -> FloatArray:
+            return np.pad(scale(p), ((0, 0), (0, 3)), constant_values=1.0)
+        return Problem(line.dimension + 3, field, wide, 2.0 * math.pi, steps)
     return Problem(line.dimension, field, scale, 2.0 * math.pi, steps, span)
 
 

@@ -47,7 +47,7 @@ Field = Callable[[int, FloatArray, FloatArray], FloatArray]
 p (L, q) -> (L, d)"""
 
 NEWTON_TOL = 1e-10  # [-] scaled residual of the period map that counts as periodic
-NEWTON_MAX_ITER = 25  # most Newton iterations of a shooting
+NEWTON_MAX_ITER = 15  # most Newton iterations of a shooting
 DIFFERENCE = 1e-6  # [-] central-difference step of the monodromy matrix, per scale
 ACCURACY = 1e-6  # [-] the change of the solution and multipliers with twice the steps
 MOST_DOUBLINGS = 4  # [-] the steps are doubled at most this often (720 -> 11520)
@@ -111,6 +111,25 @@ def flow(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, periods: i
         k4 = f(k + 2, x + h * k3, p)
         x = x + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
     return x
+
+
+def trajectory(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, periods: int = 1
+               ) -> FloatArray:
+    """The states at the grid nodes s = n·h, n = 0 … steps·periods: (K + 1, L, d)."""
+    f = problem.at(steps)
+    h = problem.period / steps
+    x = np.array(x0, dtype=np.float64)
+    out = np.empty((steps * periods + 1,) + x.shape)
+    out[0] = x
+    for n in range(steps * periods):
+        k = 2 * (n % steps)
+        k1 = f(k, x, p)
+        k2 = f(k + 1, x + 0.5 * h * k1, p)
+        k3 = f(k + 1, x + 0.5 * h * k2, p)
+        k4 = f(k + 2, x + h * k3, p)
+        x = x + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+        out[n + 1] = x
+    return out
 
 
 def period_map(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, scale: FloatArray,
@@ -361,8 +380,8 @@ class Branch:
     """(n, d) complex, largest modulus first"""
     tangent: FloatArray
     """(n, d + 1) the unit tangents in scaled variables (state, p[0])"""
-    steps: int
-    """steps per period of the integration"""
+    steps: FloatArray
+    """(n,) int: steps per period of each point's integration"""
     folds: list
     """``Fold``s, along the branch"""
     stopped: str = ""
@@ -411,6 +430,7 @@ def _tangent(a: FloatArray, previous: FloatArray | None, direction: float) -> Fl
 def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple[float, float],
                  *, steps: int, direction: float = 1.0, ds: float = 0.02, ds_max: float = 0.5,
                  ds_min: float = 1e-7, most: int = 400, turn: float = 0.3,
+                 finest: int | None = None, refine: float = 1e-3,
                  progress: Callable[[], None] | None = None) -> Branch:
     """Follow the periodic solution through ``x0`` at ``p0`` (q,) in p[0] until it leaves
     ``bounds`` (the last point lies just beyond), by pseudo-arclength continuation
@@ -437,6 +457,13 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
     turn : float
         The largest angle between neighbouring tangents [rad]: a step that turns more
         is halved (resolves the folds).
+    finest : int, optional
+        The most steps per period: where the step along the branch falls below
+        ``refine`` (the branch bends sharply, or the corrector fails: the integration
+        is too coarse there, e.g. where a crank nearly stops), the steps are doubled up
+        to this and the point corrected again.
+    refine : float
+        The step along the branch below which the steps are doubled.
     progress : callable, optional
         ``progress()`` hears each integration.
 
@@ -495,11 +522,13 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
     first = correct(y)
     if first is None:
         return Branch(np.empty((0, p0.size)), np.empty((0, d)), np.empty((0, d), complex),
-                      np.empty((0, d + 1)), steps, [],
+                      np.empty((0, d + 1)), np.empty(0, dtype=int), [],
                       "the first point did not converge")
     y, a, jac, _ = first
     t = _tangent(a, None, direction)
     points, tangents, mults = [y], [t], [ordered(np.linalg.eigvals(jac)[None])[0]]
+    used = [steps]
+    finest = finest or steps
     stopped = ""
     while len(points) < most:
         if not (low <= y[d] * width <= high):
@@ -514,6 +543,17 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
                     done = None
             if done is None:
                 ds *= 0.5
+                if ds < refine and 2 * steps <= finest:
+                    steps *= 2  # finer, and the last point again on the finer grid
+                    again = correct(y, t, y)
+                    if again is None:
+                        steps //= 2
+                    else:
+                        y, t = again[0], _tangent(again[1], t, direction)
+                        points[-1], tangents[-1] = y, t
+                        mults[-1] = ordered(np.linalg.eigvals(again[2])[None])[0]
+                        used[-1] = steps
+                        ds = 4.0 * refine
                 if ds < ds_min:
                     break
         if done is None:
@@ -525,6 +565,7 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
         points.append(y)
         tangents.append(t)
         mults.append(ordered(np.linalg.eigvals(jac)[None])[0])
+        used.append(steps)
         if iterations <= 3:
             ds = min(ds * 1.5, ds_max)
     else:
@@ -536,7 +577,7 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
     for i in range(len(points) - 1):
         if ts[i, d] * ts[i + 1, d] < 0.0:
             folds.append(_fold(ys[i], ys[i + 1], ts[i], ts[i + 1], d, s_x, width, i))
-    return Branch(params, ys[:, :d] * s_x, np.array(mults), ts, steps, folds, stopped)
+    return Branch(params, ys[:, :d] * s_x, np.array(mults), ts, np.array(used), folds, stopped)
 
 
 def _fold(y0, y1, t0, t1, d, s_x, width, index) -> Fold:

@@ -1,0 +1,106 @@
+"""The drive line on the periodic-orbit engine (issue 37): steps by accuracy, no verdict
+from an orbit that is not periodic, every solution at a speed, speeds as η. The
+slider-crank of the issue: r = 0.1 m, l = 0.4 m, a 5 kg slider, crank and rod massless,
+J_c on the crank, an ideal motor through k = 1e4 N·m/rad and damping d
+(``slider-crank-line.toml`` beside this file)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import dyade
+from dyade.registry import REGISTRY
+from dyade.linkage.drive import crank_shaft
+from dyade.machine import drive_line as engine
+from dyade.machine import periodic
+from tests.helpers import shipped
+
+HERE = Path(__file__).parent
+SLIDER = str(HERE / "slider-crank-line.toml")
+LINE = {"drive_line.stiffness": 1000.0, "drive_line.damping": 0.04}
+
+
+def slider(inertia: float, damping: float):
+    mechanism = dyade.read_mechanism(SLIDER, {"links.2.inertia": inertia,
+                                              "drive_line.damping": damping})
+    return crank_shaft(mechanism)
+
+
+def independent(shaft, speed: float, start, revolutions: int = 1):
+    """x(2π·revolutions) of the line by scipy's DOP853 at rtol 1e-11 over u, the crank
+    shaft's tables as Fourier series in u (``engine.Periodic1D``): an integrator that
+    shares nothing with the engine's RK4 on the grid."""
+    integrate = pytest.importorskip("scipy.integrate")
+    tables = shaft.tables_at(720)
+    inertia = engine.Periodic1D(tables.inertia[0::2])
+    slope = engine.Periodic1D(tables.slope[0::2])
+    load = engine.Periodic1D(tables.load[0::2])
+    k, b = shaft.line.stiffness[0], shaft.line.damping[0]
+
+    def rates(u, x):
+        v = speed + x[0]
+        torque = k * x[1] - b * x[0]
+        return [(torque + load(u) - 0.5 * slope(u) * v * v) / (inertia(u) * v), -x[0] / v]
+
+    out = integrate.solve_ivp(rates, (0.0, 2 * math.pi * revolutions), start, method="DOP853",
+                              rtol=1e-11, atol=1e-13)
+    return out.y[:, -1]
+
+
+@pytest.mark.slow
+def test_near_stop_multipliers_converge_as_the_steps_grow_and_no_verdict_before():
+    """J_c = 0.01 kg·m², d = 0.7526 N·m·s/rad at η = 0.6: the crank nearly stops in the
+    cycle. With 720 and 1440 steps the solution still changes by more than the
+    tolerance: no verdict (not converged, no |μ|, not unstable). The doubling goes on
+    until it does not; the multipliers converge like RK4's h⁴ and agree with an
+    independent integration (scipy's DOP853) of the same orbit: periodic, same |μ|."""
+    shaft = slider(0.01, 0.7526)
+    line = shaft.ideal_line
+    speed = 0.6 * shaft.frequency.omega_bar
+    problem = engine.problem(line, shaft.tables_at, 720)
+    p = engine.parameters(line, [speed])
+    guess = engine.linear_guess(line, shaft.tables_at(720), engine.Lanes.of(line, [speed]))
+    coarse = periodic.shoot(problem, p, guess, doublings=1)
+    assert not coarse.converged[0] and coarse.reason[0]
+    assert np.isnan(coarse.stability[0]) and not coarse.unstable[0]
+    found = periodic.shoot(problem, p, guess, doublings=3)
+    assert found.converged[0], found.reason
+    assert found.steps[0] >= 2880 and found.accuracy[0] <= periodic.ACCURACY
+    mu = []
+    for n in (1440, 2880, 5760):
+        x, ok, _, jac, _ = periodic.newton(problem, n, p, found.start, problem.scale(p))
+        assert ok[0]
+        mu.append(np.max(np.abs(np.linalg.eigvals(jac[0]))))
+    assert abs(mu[2] - mu[1]) < abs(mu[1] - mu[0]) / 8.0  # RK4: 1/16 per doubling
+    # the independent integrator: the orbit is periodic, its monodromy the same
+    start = found.start[0]
+    assert np.allclose(independent(shaft, speed, start), start, rtol=0, atol=1e-6 * np.abs(
+        problem.scale(p)[0]).max())
+    scale = problem.scale(p)[0] * 1e-5
+    columns = [(independent(shaft, speed, start + scale[i] * np.eye(2)[i])
+                - independent(shaft, speed, start - scale[i] * np.eye(2)[i])) / (2 * scale[i])
+               for i in range(2)]
+    seen = np.max(np.abs(np.linalg.eigvals(np.column_stack(columns))))
+    assert seen == pytest.approx(found.stability[0], abs=1e-4)
+
+
+def test_eta_range_gives_the_rows_of_the_equivalent_speed_range():
+    omega_bar = crank_shaft(dyade.read_mechanism(shipped("dyade-16.toml"), LINE)).frequency.omega_bar
+    settings = [f"{key}={value}" for key, value in LINE.items()]
+    by_eta = REGISTRY["driveline-stability"](shipped("dyade-16.toml"), set=settings,
+                                             eta_range="1.9:1.95:0.05")
+    speeds = [eta * omega_bar * 30.0 / math.pi for eta in (1.9, 1.95)]
+    by_speed = REGISTRY["driveline-stability"](shipped("dyade-16.toml"), set=settings,
+                                               speed_range_rpm=speeds)
+    assert list(by_eta.columns) == list(by_speed.columns)
+    for name, values in by_eta.columns.items():
+        other = by_speed.columns[name]
+        if np.asarray(values).dtype.kind == "f":
+            assert np.allclose(values, other, rtol=1e-9, equal_nan=True), name
+        else:
+            assert list(values) == list(other), name
+    assert np.allclose(by_eta.columns["eta"], [1.9, 1.95])
