@@ -104,3 +104,34 @@ def test_eta_range_gives_the_rows_of_the_equivalent_speed_range():
         else:
             assert list(values) == list(other), name
     assert np.allclose(by_eta.columns["eta"], [1.9, 1.95])
+
+
+class Ran(Exception):
+    pass
+
+
+@pytest.mark.parametrize("entry, options, work", [
+    ("driveline-steady", {"set": ["drive_line.stiffness=1e7"]}, "steady_state"),
+    ("driveline-stability", {"set": ["drive_line.stiffness=1e7"],
+                             "speed_range_rpm": "300:400:50"}, "resonance_curve"),
+])
+def test_a_stiff_line_says_its_estimate_before_the_work(monkeypatch, entry, options, work):
+    """Issue 42: a line of 1e7 N·m/rad (41 354 steps per revolution) is estimated from
+    its steps and a measured rate before anything is integrated: refused above
+    --max-time, said above 5 s. A slow rate (monkeypatched) keeps the test cheap."""
+    from dyade.analyses import drive_line as entries
+    from dyade.errors import InputError
+    from dyade.linkage import drive_line as api
+
+    monkeypatch.setattr(entries, "SECONDS_PER_STEP", 1e-2)
+
+    def ran(*args, **kwargs):
+        raise Ran
+
+    monkeypatch.setattr(api, work, ran)
+    with pytest.raises(InputError, match="max_time_s.*about"):
+        REGISTRY[entry](shipped("dyade-16.toml"), **options, max_time_s=1.0)
+    told = []
+    with pytest.raises(Ran):
+        REGISTRY[entry](shipped("dyade-16.toml"), **options, told=told.append)
+    assert told and "about" in told[0] and "steps per revolution" in told[0]
