@@ -491,20 +491,36 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                                                   finest=n * 2 ** periodic.MOST_DOUBLINGS,
                                                   progress=tick))
         scale = problem.scale(p)
-        extra_p, extra_x, extra_j = [], [], []
+        extra_p, extra_x, extra_j, extra_n = [], [], [], []
         for branch in followed:
             folds += [(fold.parameter, fold.upper) for fold in branch.folds]
             for j in range(speeds.size):
-                for x in periodic.branch_guesses(branch, float(speeds[j])):
-                    known = starts[j] + [extra_x[i] for i in range(len(extra_x))
-                                         if extra_j[i] == j]
+                for i, frac in branch.crossings(float(speeds[j])):
+                    x = branch.start[i] + frac * (branch.start[i + 1] - branch.start[i])
+                    known = starts[j] + [extra_x[k] for k in range(len(extra_x))
+                                         if extra_j[k] == j]
                     if all(np.max(np.abs(x - y) / scale[j]) > 1e-3 for y in known):
                         extra_p.append(p[j])
                         extra_x.append(x)
                         extra_j.append(j)
-        if extra_x:
-            more = periodic.shoot(problem, np.array(extra_p), np.array(extra_x), tol=tol,
-                                  progress=tick)
+                        extra_n.append(int(max(branch.steps[i], branch.steps[i + 1])))
+        if extra_x:  # shot from the branch's own steps (finer where the crank nearly stops)
+            extra_n = np.array(extra_n)
+            more = periodic.Solutions(np.array(extra_p), np.array(extra_x),
+                                      np.zeros(len(extra_x), dtype=bool), extra_n,
+                                      np.full(len(extra_x), np.nan), np.full(len(extra_x), np.inf),
+                                      np.zeros((len(extra_x), 2, 2)),
+                                      np.zeros((len(extra_x), line.dimension), complex),
+                                      [""] * len(extra_x))
+            for level in np.unique(extra_n):
+                idx = np.flatnonzero(extra_n == level)
+                part = periodic.shoot(problem, np.array(extra_p)[idx], np.array(extra_x)[idx],
+                                      tol=tol, steps=int(level), progress=tick,
+                                      doublings=max(1, periodic.MOST_DOUBLINGS
+                                                    - int(round(math.log2(level / n)))))
+                more.start[idx], more.converged[idx] = part.start, part.converged
+                more.steps[idx], more.accuracy[idx] = part.steps, part.accuracy
+                more.multipliers[idx] = part.multipliers
             for i, j in enumerate(extra_j):
                 if not more.converged[i]:
                     continue

@@ -157,7 +157,8 @@ def period_map(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, scal
 
 
 def ordered(multipliers: FloatArray) -> FloatArray:
-    """Multipliers (B, d) sorted by modulus, largest first."""
+    """Multipliers (B, d) sorted by modulus, largest first (complex)."""
+    multipliers = np.asarray(multipliers, dtype=complex)
     order = np.argsort(-np.abs(multipliers), axis=-1, kind="stable")
     return np.take_along_axis(multipliers, order, axis=-1)
 
@@ -576,6 +577,16 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
     folds = []
     for i in range(len(points) - 1):
         if ts[i, d] * ts[i + 1, d] < 0.0:
+            # confirmed with twice the steps: both points again, their tangents' p[0]
+            # components still of opposite sign (else an artefact of a coarse grid)
+            steps = 2 * max(used[i], used[i + 1])
+            if steps <= 2 * finest:
+                again = [correct(ys[j], ts[j], ys[j]) for j in (i, i + 1)]
+                if all(a is not None for a in again):
+                    signs = [_tangent(a[1], ts[j], direction)[d]
+                             for a, j in zip(again, (i, i + 1))]
+                    if signs[0] * signs[1] >= 0.0:
+                        continue
             folds.append(_fold(ys[i], ys[i + 1], ts[i], ts[i + 1], d, s_x, width, i))
     return Branch(params, ys[:, :d] * s_x, np.array(mults), ts, np.array(used), folds, stopped)
 
