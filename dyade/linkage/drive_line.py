@@ -384,6 +384,7 @@ class ResonanceCurve:
                         dtype=object)
 
 
+CONTINUATION_INTEGRATIONS = 100  # [-] the most integrations of a branch's continuation
 BALANCE_TOL = 1e-5  # [-] the energy balance over the period, of the largest work
 SAME = 1e-6  # [-] two solutions at one speed closer than this (scaled) are one
 
@@ -489,6 +490,7 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
             followed.append(periodic.continuation(problem, first.start[j0], p[j0], (low, high),
                                                   steps=level, direction=direction, most=most,
                                                   finest=n * 2 ** periodic.MOST_DOUBLINGS,
+                                                  integrations=CONTINUATION_INTEGRATIONS,
                                                   progress=tick))
         scale = problem.scale(p)
         extra_p, extra_x, extra_j, extra_n = [], [], [], []

@@ -429,9 +429,10 @@ def _tangent(a: FloatArray, previous: FloatArray | None, direction: float) -> Fl
 
 
 def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple[float, float],
-                 *, steps: int, direction: float = 1.0, ds: float = 0.02, ds_max: float = 0.5,
-                 ds_min: float = 1e-7, most: int = 400, turn: float = 0.3,
+                 *, steps: int, direction: float = 1.0, ds: float = 0.05, ds_max: float = 1.0,
+                 ds_min: float = 1e-7, most: int = 400, turn: float = 0.4,
                  finest: int | None = None, refine: float = 1e-3,
+                 integrations: int | None = None,
                  progress: Callable[[], None] | None = None) -> Branch:
     """Follow the periodic solution through ``x0`` at ``p0`` (q,) in p[0] until it leaves
     ``bounds`` (the last point lies just beyond), by pseudo-arclength continuation
@@ -465,6 +466,9 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
         to this and the point corrected again.
     refine : float
         The step along the branch below which the steps are doubled.
+    integrations : int, optional
+        The most integrations (each one period of the 2d + 3 runs of a point): the
+        continuation stops there, saying so in ``stopped``.
     progress : callable, optional
         ``progress()`` hears each integration.
 
@@ -481,7 +485,14 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
     s_x = np.maximum((problem.span or problem.scale)(p0[None, :])[0],
                      np.abs(np.asarray(x0, dtype=np.float64)))
 
+    spent = 0
+
+    def exhausted() -> bool:
+        return integrations is not None and spent >= integrations
+
     def evaluate(y):
+        nonlocal spent
+        spent += 1
         x = y[:d] * s_x
         p = p0.copy()
         p[0] = y[d] * width
@@ -498,6 +509,8 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
         """Newton on the periodicity (and the arclength condition): y, a, M, iterations
         or None."""
         for iteration in range(1, 9):
+            if exhausted():
+                return None
             g, a, jac = evaluate(y)
             if not np.all(np.isfinite(g)) or not np.all(np.isfinite(a)):
                 return None
@@ -543,6 +556,8 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
                 if np.dot(t_new, t) < math.cos(turn) and ds > ds_min:
                     done = None
             if done is None:
+                if exhausted():
+                    break
                 ds *= 0.5
                 if ds < refine and 2 * steps <= finest:
                     steps *= 2  # finer, and the last point again on the finer grid
@@ -558,7 +573,9 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
                 if ds < ds_min:
                     break
         if done is None:
-            stopped = (f"the continuation could not step on at p = {y[d] * width:.6g} "
+            stopped = (f"the continuation ran out of its {integrations} integrations"
+                       if exhausted() else
+                       f"the continuation could not step on at p = {y[d] * width:.6g} "
                        f"(the step fell below {ds_min:g})")
             break
         y, _, jac, iterations = done
@@ -567,8 +584,8 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
         tangents.append(t)
         mults.append(ordered(np.linalg.eigvals(jac)[None])[0])
         used.append(steps)
-        if iterations <= 3:
-            ds = min(ds * 1.5, ds_max)
+        if iterations <= 4:
+            ds = min(ds * 1.6, ds_max)
     else:
         stopped = f"the continuation stopped after {most} points"
     ys, ts = np.array(points), np.array(tangents)

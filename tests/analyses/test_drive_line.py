@@ -33,7 +33,7 @@ PARAMETRIC = ("drive_line.stiffness=1000", "drive_line.damping=0.04")
 CASES = {
     "driveline-frequency": (SLIDER, {"set": LINE}),
     "driveline-steady": (SLIDER, {"set": LINE}),
-    "driveline-resonance": (SLIDER, {"set": LINE, "speed_range_rpm": "1000:1500:250"}),
+    "driveline-resonance": (SLIDER, {"set": LINE, "speed_range_rpm": "2000:2200:100"}),
     "driveline-stability": (DYADE_16, {"set": PARAMETRIC, "speed_range_rpm": "3450:3575:125"}),
     "driveline-map": (SLIDER, {"set": LINE, "speed_range_rpm": "1000:1500:500",
                                "map": "damping=0:0.1:0.1"}),

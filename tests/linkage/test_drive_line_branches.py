@@ -52,40 +52,44 @@ def independent(shaft, speed: float, start, revolutions: int = 1):
 
 
 @pytest.mark.slow
-def test_near_stop_multipliers_converge_as_the_steps_grow_and_no_verdict_before():
-    """J_c = 0.01 kg·m², d = 0.7526 N·m·s/rad at η = 0.6: the crank nearly stops in the
-    cycle. With 720 and 1440 steps the solution still changes by more than the
-    tolerance: no verdict (not converged, no |μ|, not unstable). The doubling goes on
-    until it does not; the multipliers converge like RK4's h⁴ and agree with an
-    independent integration (scipy's DOP853) of the same orbit: periodic, same |μ|."""
+def test_no_verdict_without_a_periodic_orbit_and_multipliers_converge_with_the_steps():
+    """J_c = 0.01 kg·m², d = 0.7526 N·m·s/rad. At η = 0.58 the shooting from the linear
+    response does not converge (the crank turns back in the iterations): no verdict (not
+    converged, no |μ|, not unstable, a reason). At η = 0.6 (the crank falls to 37 % of
+    Ω in the cycle) the multipliers converge like RK4's h⁴ as the steps grow (360, 720,
+    1440: the change falls by more than 8 per doubling) and agree with an independent
+    integration of the same orbit (scipy's DOP853): periodic there too, the same |μ|."""
     shaft = slider(0.01, 0.7526)
     line = shaft.ideal_line
-    speed = 0.6 * shaft.frequency.omega_bar
     problem = engine.problem(line, shaft.tables_at, 720)
-    p = engine.parameters(line, [speed])
-    guess = engine.linear_guess(line, shaft.tables_at(720), engine.Lanes.of(line, [speed]))
-    coarse = periodic.shoot(problem, p, guess, doublings=1)
-    assert not coarse.converged[0] and coarse.reason[0]
-    assert np.isnan(coarse.stability[0]) and not coarse.unstable[0]
-    found = periodic.shoot(problem, p, guess, doublings=3)
+
+    def shot(eta, doublings):
+        speed = eta * shaft.frequency.omega_bar
+        p = engine.parameters(line, [speed])
+        guess = engine.linear_guess(line, shaft.tables_at(720), engine.Lanes.of(line, [speed]))
+        return speed, p, periodic.shoot(problem, p, guess, doublings=doublings)
+
+    _, _, lost = shot(0.58, 1)
+    assert not lost.converged[0] and "did not converge" in lost.reason[0]
+    assert np.isnan(lost.stability[0]) and not lost.unstable[0]
+    speed, p, found = shot(0.6, 2)
     assert found.converged[0], found.reason
-    assert found.steps[0] >= 2880 and found.accuracy[0] <= periodic.ACCURACY
+    assert found.accuracy[0] <= periodic.ACCURACY
     mu = []
-    for n in (1440, 2880, 5760):
-        x, ok, _, jac, _ = periodic.newton(problem, n, p, found.start, problem.scale(p))
+    for n in (360, 720, 1440):
+        _, ok, _, jac, _ = periodic.newton(problem, n, p, found.start, problem.scale(p))
         assert ok[0]
         mu.append(np.max(np.abs(np.linalg.eigvals(jac[0]))))
     assert abs(mu[2] - mu[1]) < abs(mu[1] - mu[0]) / 8.0  # RK4: 1/16 per doubling
-    # the independent integrator: the orbit is periodic, its monodromy the same
     start = found.start[0]
-    assert np.allclose(independent(shaft, speed, start), start, rtol=0, atol=1e-6 * np.abs(
-        problem.scale(p)[0]).max())
-    scale = problem.scale(p)[0] * 1e-5
-    columns = [(independent(shaft, speed, start + scale[i] * np.eye(2)[i])
-                - independent(shaft, speed, start - scale[i] * np.eye(2)[i])) / (2 * scale[i])
+    scale = problem.scale(p)[0]
+    assert np.all(np.abs(independent(shaft, speed, start) - start) <= 1e-6 * scale)
+    delta = scale * 1e-4
+    columns = [(independent(shaft, speed, start + delta[i] * np.eye(2)[i])
+                - independent(shaft, speed, start - delta[i] * np.eye(2)[i])) / (2 * delta[i])
                for i in range(2)]
     seen = np.max(np.abs(np.linalg.eigvals(np.column_stack(columns))))
-    assert seen == pytest.approx(found.stability[0], abs=1e-4)
+    assert seen == pytest.approx(found.stability[0], abs=1e-5)
 
 
 def test_eta_range_gives_the_rows_of_the_equivalent_speed_range():
