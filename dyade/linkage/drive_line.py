@@ -364,8 +364,8 @@ class ResonanceCurve:
     upwards jumps (the branch's speed is largest there), False where a sweep downwards
     jumps"""
     branches: list = field(default_factory=list)
-    """(speed (n,) [rad/s], twist_max (n,) [rad], unstable (n,) bool, kind list) of each
-    branch followed by continuation"""
+    """(speed (n,) [rad/s], twist_max (n,) [rad], unstable (n,) bool, kind list, largest
+    |μ| (n,)) of each branch followed by continuation"""
     tolerance: float = math.nan
     """the accuracy asked for [-]"""
     stopped: list = field(default_factory=list)
@@ -604,11 +604,12 @@ def _orbit_values(line, shaft, speed, start, steps, converged):
 
 
 def _branch_curve(line, shaft, branch) -> tuple:
-    """(speed, largest |twist|, unstable, kind) along a branch of the continuation."""
+    """(speed, largest |twist|, unstable, kind, largest |μ|) along a branch of the
+    continuation."""
     from dyade.machine import periodic
 
     if not branch.parameter.shape[0]:
-        return (np.empty(0), np.empty(0), np.empty(0, dtype=bool), [])
+        return (np.empty(0), np.empty(0), np.empty(0, dtype=bool), [], np.empty(0))
     speed = branch.parameter[:, 0]
     twist = np.empty(speed.size)
     for n in np.unique(branch.steps):
@@ -616,7 +617,7 @@ def _branch_curve(line, shaft, branch) -> tuple:
         problem = engine.problem(line, shaft.tables_at, int(n))
         path = periodic.trajectory(problem, int(n), branch.start[idx], branch.parameter[idx])
         twist[idx] = np.max(np.abs(path[:, :, 1]), axis=0)
-    return speed, twist, branch.unstable, branch.kind
+    return speed, twist, branch.unstable, branch.kind, np.abs(branch.multipliers[:, 0])
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==

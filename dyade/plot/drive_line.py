@@ -84,41 +84,39 @@ def resonance(curve, fig: Figure | None = None) -> Figure:
     return fig
 
 
-def _runs(mask):
-    """(first, last + 1) of each run of True in ``mask``."""
-    out, first = [], None
-    for k, value in enumerate(list(mask) + [False]):
-        if value and first is None:
-            first = k
-        if not value and first is not None:
-            out.append((first, k))
-            first = None
-    return out
-
-
 def branches(ax, curve) -> None:
     """The largest twist over the period against speed along the followed branches,
     stable solid, unstable dashed, the folds (jump speeds) marked; the solutions at the
     scan's speeds as dots (a cross where not converged: no verdict)."""
     labelled = set()
-    for speed, twist, unstable, _ in curve.branches:
+    styles = {False: ("stable branch", dict(linestyle="-", color="C0", linewidth=1.4)),
+              True: ("unstable branch", dict(linestyle="--", color="C3", linewidth=1.2))}
+
+    def draw(xs, ys, bad):
+        label, style = styles[bool(bad)]
+        ax.plot(xs, ys, label=None if label in labelled else label, **style)
+        labelled.add(label)
+
+    for speed, twist, unstable, _, modulus in curve.branches:
         rpm = speed * RAD_PER_S_TO_RPM
         deg = np.degrees(twist)
-        for stable, style in ((True, dict(linestyle="-", color="C0", linewidth=1.4)),
-                              (False, dict(linestyle="--", color="C3", linewidth=1.2))):
-            mask = ~unstable if stable else unstable
-            for first, last in _runs(mask):
-                lo, hi = max(first - 1, 0) if not stable else first, min(last + 1, rpm.size)
-                label = ("stable branch" if stable else "unstable branch")
-                ax.plot(rpm[lo:hi], deg[lo:hi], label=None if label in labelled else label,
-                        **style)
-                labelled.add(label)
+        for i in range(rpm.size - 1):  # a segment changing stability: split where |μ| = 1
+            if unstable[i] == unstable[i + 1]:
+                draw(rpm[i:i + 2], deg[i:i + 2], unstable[i])
+                continue
+            edge = 1.0 + UNSTABLE_MARGIN
+            f = (edge - modulus[i]) / (modulus[i + 1] - modulus[i])
+            x = rpm[i] + f * (rpm[i + 1] - rpm[i])
+            y = deg[i] + f * (deg[i + 1] - deg[i])
+            draw([rpm[i], x], [deg[i], y], unstable[i])
+            draw([x, rpm[i + 1]], [y, deg[i + 1]], unstable[i + 1])
     ok = curve.converged
     speed = curve.speed * RAD_PER_S_TO_RPM
     ax.plot(speed[ok], np.degrees(curve.twist_max[ok]), "o", color="k", markersize=2.0,
             label="solutions at the speeds asked")
-    if (~ok).any():
-        ax.plot(speed[~ok], np.zeros(int((~ok).sum())), "x", color="C1", markersize=5,
+    if (~ok).any():  # on the axis's foot: they have no value
+        ax.plot(speed[~ok], np.full(int((~ok).sum()), 0.02), "x", color="C1", markersize=5,
+                transform=ax.get_xaxis_transform(), clip_on=False,
                 label="not converged (no verdict)")
     for fold, upper in curve.folds:
         ax.axvline(fold * RAD_PER_S_TO_RPM, color="0.4", linewidth=0.8, linestyle=":")
