@@ -68,7 +68,7 @@ FREQUENCY = {
                            "(J(φ) largest)"),
     "omega_max": ("rad/s", "… and its largest (J(φ) smallest)"),
     "inertia_mean": ("kg·m²", "J̄: the crank shaft's mean reduced moment of inertia"),
-    "speed_rpm": ("rpm", "the crank's operating speed Ω (the file's)"),
+    "speed_rpm": ("rpm", "the crank's operating speed Ω (--speed, else the file's)"),
     "speed_ratio": ("-", "η = Ω/ω̄"),
     "vdi_2149": ("1/0", "the rigid drive's model holds (VDI 2149 Part 1: Ω/ω̄ ≤ 0.1)"),
 }
@@ -125,7 +125,8 @@ def rpm(speed):
 
 def start(source: Any, options: dict[str, Any], name: str, figures: tuple[str, ...] = ()):
     """The mechanism of ``source`` with ``set``, its crank shaft (built once), and the
-    Outcome with the natural frequency's figures and the VDI 2149 note."""
+    Outcome with the natural frequency's figures and the VDI 2149 note (at ``--speed``
+    where the entry has it and it is given, else the file's speed)."""
     from dyade.linkage.drive import crank_shaft
 
     loaded = load(source, options)
@@ -134,16 +135,24 @@ def start(source: Any, options: dict[str, Any], name: str, figures: tuple[str, .
     outcome = Outcome(name, figures=figures,
                       meta={"mechanism": mechanism.name,
                             "source": None if loaded.text is None else loaded.label})
-    frequency_figures(outcome, shaft.frequency)
+    speed_rpm = options.get(SPEED_RPM.api)
+    frequency_figures(outcome, shaft.frequency, None if speed_rpm is None else abs(speed_rpm))
     return shaft, outcome
 
 
-def frequency_figures(outcome: Outcome, freq) -> None:
+def frequency_figures(outcome: Outcome, freq, speed_rpm: float | None = None) -> None:
     """ω̄ and its range, J̄, Ω, η and the VDI 2149 verdict in the summary; the note when
-    the rigid model does not hold."""
+    the rigid model does not hold. ``speed_rpm``: the run's speed (``--speed``), in
+    place of the file's."""
+    import dataclasses
+
     import numpy as np
 
     from dyade.linkage.drive import VDI_2149_RATIO
+    from dyade.units import RPM
+
+    if speed_rpm is not None:
+        freq = dataclasses.replace(freq, speed=speed_rpm * RPM)
 
     angle = np.degrees(freq.crank_angle)
     values = {"omega_bar": (freq.omega_bar, None),

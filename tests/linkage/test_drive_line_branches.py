@@ -140,3 +140,17 @@ def test_a_stiff_line_says_its_estimate_before_the_work(monkeypatch, entry, opti
     with pytest.raises(Ran):
         REGISTRY[entry](shipped("dyade-16.toml"), **options, told=told.append)
     assert told and "about" in told[0] and "steps per revolution" in told[0]
+
+
+def test_the_speed_reaches_the_natural_frequency_block():
+    """--speed is the run's speed everywhere: Ω and η = Ω/ω̄ of the natural-frequency
+    block are at it, not at the file's 300 rpm."""
+    outcome = REGISTRY["driveline-frequency"](shipped("dyade-16.toml"), set=["drive_line.stiffness=1000"])
+    assert outcome.value("speed_rpm") == pytest.approx(300.0)
+    steady = REGISTRY["driveline-steady"](shipped("dyade-16.toml"), set=[
+        "drive_line.stiffness=1000", "drive_line.damping=0.04", "drive_line.steps=360"],
+        speed_rpm=150.0)
+    assert steady.value("speed_rpm") == pytest.approx(150.0)
+    assert steady.value("speed_ratio") == pytest.approx(
+        150.0 * math.pi / 30.0 / steady.value("omega_bar"), rel=1e-12)
+    assert steady.value("eta") == pytest.approx(steady.value("speed_ratio"), rel=1e-3)
