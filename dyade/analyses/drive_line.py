@@ -45,8 +45,9 @@ MOST_SPEEDS = 2000  # the most speeds (or map values) one run takes
 VDI_2149_WORDS = ("Ω/ω̄ = {ratio:.3g} exceeds {limit:g} (VDI 2149 Part 1): the rigid drive's "
                   "model does not hold for this line.")
 """the VDI 2149 note, worded here only"""
-NO_STATE = ("the crank would stop or turn back within the cycle, or the shooting did not "
-            "converge")
+NO_STATE = ("the crank would stop or turn back within the cycle, the shooting did not "
+            "converge, or the solution was not periodic to the tolerance (or its energy "
+            "balance did not close)")
 """why a speed has no periodic state"""
 
 # the time estimate of a run (measured on a 2-core machine, issue 36): the shooting's

@@ -108,6 +108,10 @@ def test_eta_range_gives_the_rows_of_the_equivalent_speed_range():
         else:
             assert list(values) == list(other), name
     assert np.allclose(by_eta.columns["eta"], [1.95])
+    # the energy balance over the period closes (motor = damping − loads' work) and the
+    # solution did not change with twice the steps
+    assert by_eta.columns["converged"].all() and np.max(by_eta.columns["balance"]) < 1e-7
+    assert np.max(by_eta.columns["accuracy"]) <= periodic.ACCURACY
     assert by_eta.options["eta_range"] == "1.95:1.95:0.05"
 
 
