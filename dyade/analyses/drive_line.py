@@ -374,8 +374,8 @@ def speeds_asked(options: dict[str, Any], shaft) -> list[float]:
 
     given = options.get(SPEED_RANGE.api), options.get(ETA_RANGE.api)
     if given[0] is not None and given[1] is not None:
-        raise InputError.parameter(ETA_RANGE.api, f"give {SPEED_RANGE.flag} or "
-                                                  f"{ETA_RANGE.flag}, not both.")
+        raise InputError.parameter(ETA_RANGE.api, f"is given with {SPEED_RANGE.flag}: give "
+                                                  f"one of the two (η = Ω/ω̄ or rpm).")
     if given[1] is None:
         return speeds_of(given[0])
     etas = speeds_of(given[1], ETA_RANGE.api, "eta", "-")
