@@ -158,3 +158,19 @@ def test_the_speed_reaches_the_natural_frequency_block():
     assert steady.value("speed_ratio") == pytest.approx(
         150.0 * math.pi / 30.0 / steady.value("omega_bar"), rel=1e-12)
     assert steady.value("eta") == pytest.approx(steady.value("speed_ratio"), rel=1e-3)
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--eta-range", "1:2:0.1", "--speed-range", "100:200:10"], "give one of the two"),
+    (["--eta-range", "0:2:0.1"], "must lie in (0, 100]"),
+])
+def test_a_bad_eta_range_exits_2_naming_the_flag(args, words):
+    from click.testing import CliRunner
+
+    from dyade.cli import main
+
+    out = CliRunner().invoke(main, ["driveline", shipped("dyade-16.toml"), "--set",
+                                    "drive_line.stiffness=1000", "--analysis", "stability",
+                                    *args])
+    assert out.exit_code == 2 and "--eta-range" in out.output and words in out.output
+    assert "Traceback" not in out.output
