@@ -169,7 +169,7 @@ def test_a_bad_eta_range_exits_2_naming_the_flag(args, words):
 
     from dyade.cli import main
 
-    out = CliRunner().invoke(main, ["driveline", shipped("dyade-16.toml"), "--set",
+    out = CliRunner().invoke(main, ["driveline", str(shipped("dyade-16.toml")), "--set",
                                     "drive_line.stiffness=1000", "--analysis", "stability",
                                     *args])
     assert out.exit_code == 2 and "--eta-range" in out.output and words in out.output
