@@ -437,6 +437,14 @@ def curve(name: str):
                 f"which one the machine runs in depends on how it got there (a sweep upwards "
                 f"jumps at {_list(f for f, up in found.folds if up)} rpm, downwards at "
                 f"{_list(f for f, up in found.folds if not up)} rpm).")
+        alone = [s for s in np.unique(speed[found.converged])
+                 if not np.any((speed == s) & found.converged & ~found.unstable)]
+        if alone:
+            outcome.notes.append(
+                f"at {len(alone)} speeds ({number_range(alone)} rpm) every periodic solution "
+                f"found is unstable: the machine does not settle on it (a perturbation grows "
+                f"as |μ| per revolution); a period-2 or quasi-periodic motion, or a jump to "
+                f"another branch, follows — not computed here (integrate in time to see it).")
         set_columns(outcome, {"speed_rpm": speed, "eta": found.eta,
                               "solution": found.solution,
                               "peak_torque": found.peak_torque,
