@@ -385,7 +385,7 @@ class ResonanceCurve:
 
 
 CONTINUATION_INTEGRATIONS = 400  # [-] the most integrations of a branch's continuation
-# (and 4 per speed asked, at least 24: a scan of a few speeds follows its branch briefly)
+# (and 4 per speed asked, at least 100)
 BALANCE_TOL = 1e-5  # [-] the energy balance over the period, of the largest work
 SAME = 1e-6  # [-] two solutions at one speed closer than this (scaled) are one
 
@@ -492,7 +492,7 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                                                   steps=level, direction=direction, most=most,
                                                   finest=n * 2 ** periodic.MOST_DOUBLINGS,
                                                   integrations=min(CONTINUATION_INTEGRATIONS,
-                                                                   max(24, 4 * speeds.size)),
+                                                                   max(100, 4 * speeds.size)),
                                                   progress=tick))
         scale = problem.scale(p)
         extra_p, extra_x, extra_j, extra_n = [], [], [], []
