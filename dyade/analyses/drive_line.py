@@ -490,16 +490,14 @@ def curve(name: str):
 
 
 def _list(values) -> str:
-    from dyade.report.format import number
-
-    out = [number(rpm(v)) for v in values]
+    """Speeds [rad/s] as words in rpm (a note's numbers, 6 digits)."""
+    out = [f"{rpm(v):.6g}" for v in values]
     return ", ".join(out) if out else "none in the range"
 
 
 def number_range(values) -> str:
-    from dyade.report.format import number
-
-    return f"{number(min(values))}–{number(max(values))}"
+    """``first–last`` of values (a note's numbers, 6 digits)."""
+    return f"{min(values):.6g}–{max(values):.6g}"
 
 
 SCAN_INTEGRATIONS = 40  # [-] integrations of a typical scan (shooting, doubling, branches)
