@@ -146,6 +146,7 @@ def test_a_stiff_line_says_its_estimate_before_the_work(monkeypatch, entry, opti
     assert told and "about" in told[0] and "steps per revolution" in told[0]
 
 
+@pytest.mark.slow
 def test_the_speed_reaches_the_natural_frequency_block():
     """--speed is the run's speed everywhere: Ω and η = Ω/ω̄ of the natural-frequency
     block are at it, not at the file's 300 rpm."""
