@@ -29,21 +29,25 @@ from dyade.analyses.inputs import SET, load
 SPEED_RANGE = Option("speed-range", str, "rpm", metavar="START:STOP:STEP",
                      help="Crank speeds of an ideal motor, STOP included (a [drive] motor is "
                           "replaced by one; at the API also a sequence of speeds)")
+ETA_RANGE = Option("eta-range", str, metavar="START:STOP:STEP",
+                   help="Crank speeds as η = Ω/ω̄ instead of --speed-range (ω̄: the line's "
+                        "lowest natural frequency with the mean inertia), e.g. 0.2:1.6:0.01")
 SPEED_RPM = Option("speed", float, "rpm", positive=True, metavar="RPM", old=("--speed-rpm",),
                    help="The ideal motor's speed for the steady state (default: the crank's; "
                         "not with a [drive] motor)")
 MAP = Option("map", str, metavar="stiffness|damping=START:STOP:STEP",
              help="The shaft's parameter to map against speed and its values [N·m/rad or "
                   "N·m·s/rad]")
-OPTIONS = (SET, SPEED_RANGE, SPEED_RPM, MAP)
+OPTIONS = (SET, SPEED_RANGE, ETA_RANGE, SPEED_RPM, MAP)
 """every option of the drive line's entries (``dyade driveline`` declares them all)"""
 
 MOST_SPEEDS = 2000  # the most speeds (or map values) one run takes
 VDI_2149_WORDS = ("Ω/ω̄ = {ratio:.3g} exceeds {limit:g} (VDI 2149 Part 1): the rigid drive's "
                   "model does not hold for this line.")
 """the VDI 2149 note, worded here only"""
-NO_STATE = ("the crank would stop or turn back within the cycle, or the shooting did not "
-            "converge")
+NO_STATE = ("the crank would stop or turn back within the cycle, the shooting did not "
+            "converge, or the solution was not periodic to the tolerance (or its energy "
+            "balance did not close)")
 """why a speed has no periodic state"""
 
 # the time estimate of a run (measured on a 2-core machine, issue 36): the shooting's
@@ -65,7 +69,7 @@ FREQUENCY = {
                            "(J(φ) largest)"),
     "omega_max": ("rad/s", "… and its largest (J(φ) smallest)"),
     "inertia_mean": ("kg·m²", "J̄: the crank shaft's mean reduced moment of inertia"),
-    "speed_rpm": ("rpm", "the crank's operating speed Ω (the file's)"),
+    "speed_rpm": ("rpm", "the crank's operating speed Ω (--speed, else the file's)"),
     "speed_ratio": ("-", "η = Ω/ω̄"),
     "vdi_2149": ("1/0", "the rigid drive's model holds (VDI 2149 Part 1: Ω/ω̄ ≤ 0.1)"),
 }
@@ -89,7 +93,20 @@ COLUMNS = {
     "twist_amplitude_deg": ("°", "(max − min)/2 of the twist"),
     "fluctuation": ("-", "(max − min)/mean of the crank speed"),
     "floquet": ("-", "largest |Floquet multiplier| (empty: no periodic state)"),
-    "unstable": ("1/0", "a Floquet multiplier outside the unit circle (|μ| > 1)"),
+    "unstable": ("1/0", "a Floquet multiplier outside the unit circle (|μ| > 1); empty: "
+                        "not converged, no verdict"),
+    "solution": ("-", "the periodic solution's number at its speed (several where a "
+                      "resonance folds over), by twist amplitude"),
+    "twist_max_deg": ("°", "largest |twist| over the period"),
+    "instability": ("-", "how it is unstable: fold (μ = +1), period doubling (μ = −1), "
+                         "Neimark–Sacker (a complex pair); empty: stable or no verdict"),
+    "converged": ("1/0", "periodic to the tolerance, unchanged with twice the steps and its "
+                         "energy balance closed"),
+    "steps": ("-", "RK4 steps per revolution of the solution"),
+    "accuracy": ("-", "change of the solution (scaled) and its multipliers with twice the "
+                      "steps"),
+    "balance": ("-", "energy balance over the period: |motor − loads − friction − damping| "
+                     "of the largest work"),
     "stiffness": ("N·m/rad", "the shaft's torsional stiffness"),
     "damping": ("N·m·s/rad", "the shaft's damping"),
     "time": ("s", "time from rest"),
@@ -109,7 +126,8 @@ def rpm(speed):
 
 def start(source: Any, options: dict[str, Any], name: str, figures: tuple[str, ...] = ()):
     """The mechanism of ``source`` with ``set``, its crank shaft (built once), and the
-    Outcome with the natural frequency's figures and the VDI 2149 note."""
+    Outcome with the natural frequency's figures and the VDI 2149 note (at ``--speed``
+    where the entry has it and it is given, else the file's speed)."""
     from dyade.linkage.drive import crank_shaft
 
     loaded = load(source, options)
@@ -118,16 +136,24 @@ def start(source: Any, options: dict[str, Any], name: str, figures: tuple[str, .
     outcome = Outcome(name, figures=figures,
                       meta={"mechanism": mechanism.name,
                             "source": None if loaded.text is None else loaded.label})
-    frequency_figures(outcome, shaft.frequency)
+    speed_rpm = options.get(SPEED_RPM.api)
+    frequency_figures(outcome, shaft.frequency, None if speed_rpm is None else abs(speed_rpm))
     return shaft, outcome
 
 
-def frequency_figures(outcome: Outcome, freq) -> None:
+def frequency_figures(outcome: Outcome, freq, speed_rpm: float | None = None) -> None:
     """ω̄ and its range, J̄, Ω, η and the VDI 2149 verdict in the summary; the note when
-    the rigid model does not hold."""
+    the rigid model does not hold. ``speed_rpm``: the run's speed (``--speed``), in
+    place of the file's."""
+    import dataclasses
+
     import numpy as np
 
     from dyade.linkage.drive import VDI_2149_RATIO
+    from dyade.units import RPM
+
+    if speed_rpm is not None:
+        freq = dataclasses.replace(freq, speed=speed_rpm * RPM)
 
     angle = np.degrees(freq.crank_angle)
     values = {"omega_bar": (freq.omega_bar, None),
@@ -235,8 +261,10 @@ def speeds_of(value: Any, name: str = SPEED_RANGE.api, quantity: str = "speed_rp
             if len(values) > MOST_SPEEDS:
                 raise ValueError(f"asks for {len(values)} values; at most {MOST_SPEEDS}.")
             first, last = min(values), max(values)
-        if any(implausible(quantity, abs(end)) for end in (first, last)
-               if end or quantity != "damping"):
+        if quantity == "eta" and not 0.0 < first <= last <= 100.0:
+            raise ValueError(f"η = Ω/ω̄ must lie in (0, 100], got {value!r}.")
+        if quantity != "eta" and any(implausible(quantity, abs(end)) for end in (first, last)
+                                     if end or quantity != "damping"):
             raise ValueError(f"values must lie in {plausible_range(quantity)} (what a machine "
                              f"has), got {value!r}.")
     except (TypeError, ValueError) as err:
@@ -339,9 +367,25 @@ def steady(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     return outcome
 
 
+def speeds_asked(options: dict[str, Any], shaft) -> list[float]:
+    """The speeds [rpm] of ``speed_range_rpm`` or of ``eta_range`` (η = Ω/ω̄, one of the
+    two)."""
+    from dyade.errors import InputError
+
+    given = options.get(SPEED_RANGE.api), options.get(ETA_RANGE.api)
+    if given[0] is not None and given[1] is not None:
+        raise InputError.parameter(ETA_RANGE.api, f"is given with {SPEED_RANGE.flag}: give "
+                                                  f"one of the two (η = Ω/ω̄ or rpm).")
+    if given[1] is None:
+        return speeds_of(given[0])
+    etas = speeds_of(given[1], ETA_RANGE.api, "eta", "-")
+    return [rpm(eta * shaft.frequency.omega_bar) for eta in etas]
+
+
 def curve(name: str):
     """The resonance curve (``driveline-resonance``) or the stability chart
-    (``driveline-stability``) over ``speed_range_rpm``: one integration gives both."""
+    (``driveline-stability``) over ``speed_range_rpm`` or ``eta_range``: one run gives
+    both."""
 
     def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         import numpy as np
@@ -351,54 +395,121 @@ def curve(name: str):
         from dyade.linkage import drive_line as api
         from dyade.units import RPM
 
-        speeds = speeds_of(options.get(SPEED_RANGE.api))
+        if options.get(ETA_RANGE.api) is None:
+            speeds_of(options.get(SPEED_RANGE.api))  # a bad range refused before the file
         shaft, outcome = start(source, options, name, ("driveline",))
         what = name.removeprefix("driveline-")
         try:
+            speeds = speeds_asked(options, shaft)
             line = shaft.ideal_line
             low = min(abs(s) for s in speeds) * RPM
             steps = steps_of(shaft, line, low) if low > 0 else 0
-            check_memory((steps + 1) * len(speeds) * orbit_values(line) * 8.0,
-                         f"the orbits of {len(speeds):,} speeds over {steps:,} steps",
+            check_memory((2 * steps + 1) * len(speeds) * orbit_values(line) * 8.0,
+                         f"the orbits of {len(speeds):,} speeds over {2 * steps:,} steps",
                          budget.max_memory, "Ask for fewer speeds", MAX_MEMORY.api)
-            budget.time(shooting_seconds(steps, len(speeds), line.dimension),
+            budget.time(scan_seconds(steps, len(speeds), line.dimension),
                         f"the {what} at {len(speeds):,} speeds ({steps:,} steps per "
-                        f"revolution)")
+                        f"revolution and more, by accuracy)")
             found = api.resonance_curve(shaft.mechanism, speeds, shaft=shaft,
-                                        progress=ticker(budget, ITERATIONS))
+                                        progress=ticker(budget, SCAN_INTEGRATIONS))
         except InputError as err:
             raise naming(err) from None
         withheld(Outcome(name, notes=[NO_STATE]), found.converged,
                  "no speed of the range has a periodic state of the drive line")
         outcome.notes += friction_note(shaft, what)
-        if not found.converged.all():
-            outcome.notes.append(f"no periodic state at {int((~found.converged).sum())} speeds "
-                                 f"({NO_STATE}): left empty.")
+        missing = ~found.converged
+        if missing.any():
+            reasons = sorted(set(r for r in found.reason if r))
+            outcome.notes.append(f"not converged at {int(missing.sum())} speeds, no verdict "
+                                 f"there (left empty): {'; '.join(reasons[:3])}"
+                                 f"{' …' if len(reasons) > 3 else ''}.")
+        for words in found.stopped:
+            outcome.notes.append(f"the branch was not followed over the whole range ({words}): "
+                                 f"further solutions beyond may be missed.")
         speed = rpm(found.speed)
+        several = np.unique(speed[found.solution > 1])
+        if several.size:
+            stable_many = [s for s in several
+                           if np.sum((speed == s) & found.converged & ~found.unstable) > 1]
+            outcome.notes.append(
+                f"several periodic solutions at {several.size} speeds "
+                f"({number_range(several)} rpm; two or more stable at {len(stable_many)}): "
+                f"which one the machine runs in depends on how it got there (a sweep upwards "
+                f"jumps at {_list(f for f, up in found.folds if up)} rpm, downwards at "
+                f"{_list(f for f, up in found.folds if not up)} rpm).")
+        alone = [s for s in np.unique(speed[found.converged])
+                 if not np.any((speed == s) & found.converged & ~found.unstable)]
+        if alone:
+            outcome.notes.append(
+                f"at {len(alone)} speeds ({number_range(alone)} rpm) every periodic solution "
+                f"found is unstable: the machine does not settle on it (a perturbation grows "
+                f"as |μ| per revolution); a period-2 or quasi-periodic motion, or a jump to "
+                f"another branch, follows — not computed here (integrate in time to see it).")
         set_columns(outcome, {"speed_rpm": speed, "eta": found.eta,
+                              "solution": found.solution,
                               "peak_torque": found.peak_torque,
                               "rigid_peak_torque": found.rigid_peak_torque,
                               "twist_amplitude_deg": np.degrees(found.twist_amplitude),
+                              "twist_max_deg": np.degrees(found.twist_max),
                               "fluctuation": found.fluctuation, "floquet": found.stability,
-                              "unstable": found.unstable})
+                              "unstable": found.verdict,
+                              "instability": np.array(found.kind, dtype=object),
+                              "converged": found.converged,
+                              "steps": found.steps_used, "accuracy": found.accuracy,
+                              "balance": found.balance})
         add = outcome.add
         for k, at, kind in found.resonances:
             add(f"{kind}_k{k}_rpm", rpm(at), "rpm", {"eta": at / found.omega_bar},
                 f"{kind} resonance Ω = {'2' if kind == 'parametric' else ''}ω̄/{k} "
                 f"(harmonic {k} of J(φ){'' if kind == 'parametric' else ' or M_L(φ)'})")
-        add("unstable_rpm", unstable_ranges(speed, found.unstable), "rpm",
-            description="speeds where the periodic motion is unstable (|μ| > 1)")
+        first = found.solution == 1
+        add("unstable_rpm", unstable_ranges(speed[first], found.unstable[first]), "rpm",
+            description="speeds where the (first) periodic motion is unstable (|μ| > 1)")
+        add("jump_up_rpm", [rpm(f) for f, up in found.folds if up], "rpm",
+            description="folds where a sweep upwards in speed jumps (the branch turns back)")
+        add("jump_down_rpm", [rpm(f) for f, up in found.folds if not up], "rpm",
+            description="folds where a sweep downwards in speed jumps")
         k = int(np.nanargmax(found.stability))
         add("stability_max", float(found.stability[k]), "-", {"speed_rpm": speed[k]},
             "largest |Floquet multiplier| over the speeds")
         k = int(np.nanargmax(found.peak_torque))
         add("peak_torque_max", float(found.peak_torque[k]), "N·m", {"speed_rpm": speed[k]},
             "largest shaft torque over the speeds")
-        add("steps_per_revolution", found.steps, "-", description="RK4 steps per revolution")
+        add("accuracy_max", float(np.nanmax(found.accuracy)), "-",
+            description="largest change of a solution with twice the steps", limit=None)
+        add("tolerance", found.tolerance, "-",
+            description="the change with twice the steps that counts as converged")
+        add("not_converged", int(missing.sum()), "-",
+            description="speeds without a periodic solution to the tolerance (no verdict)")
+        add("steps_per_revolution", found.steps, "-",
+            description="RK4 steps per revolution to start with (doubled by accuracy)")
         outcome.result = found
         return outcome
 
     return run
+
+
+def _list(values) -> str:
+    """Speeds [rad/s] as words in rpm (a note's numbers, 6 digits)."""
+    out = [f"{rpm(v):.6g}" for v in values]
+    return ", ".join(out) if out else "none in the range"
+
+
+def number_range(values) -> str:
+    """``first–last`` of values (a note's numbers, 6 digits)."""
+    return f"{min(values):.6g}–{max(values):.6g}"
+
+
+SCAN_INTEGRATIONS = 40  # [-] integrations of a typical scan (shooting, doubling, branches)
+
+
+def scan_seconds(steps: int, speeds: int, dimension: int) -> float:
+    """The time estimate of a scan over ``speeds`` speeds [s]: the shooting of all speeds
+    at ``steps`` and twice the steps, and the continuation (one lane's 2d + 3 runs per
+    integration)."""
+    return (shooting_seconds(steps, speeds, dimension, 4)
+            + 2 * shooting_seconds(2 * steps, speeds, dimension, 1)
+            + SCAN_INTEGRATIONS * steps * (SECONDS_PER_STEP * 0.3))
 
 
 def unstable_ranges(speed_rpm, unstable) -> list[list[float]]:
@@ -516,11 +627,11 @@ ENTRIES = {
         command="dyade driveline --analysis steady"),
     "driveline-resonance": Analysis(
         "driveline-resonance", "Resonance curve of the drive line (ideal motor)",
-        curve("driveline-resonance"), (SET, SPEED_RANGE), figures=("driveline",),
+        curve("driveline-resonance"), (SET, SPEED_RANGE, ETA_RANGE), figures=("driveline",),
         command="dyade driveline --analysis resonance"),
     "driveline-stability": Analysis(
         "driveline-stability", "Floquet multipliers of the drive line over speed (ideal motor)",
-        curve("driveline-stability"), (SET, SPEED_RANGE), figures=("driveline",),
+        curve("driveline-stability"), (SET, SPEED_RANGE, ETA_RANGE), figures=("driveline",),
         command="dyade driveline --analysis stability"),
     "driveline-map": Analysis(
         "driveline-map", "Largest Floquet multiplier over speed × stiffness or damping",

@@ -315,34 +315,79 @@ def _steady(shaft: CrankShaft, tables, lanes, orbit, solution) -> SteadyState:
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
 class ResonanceCurve:
-    """The periodic states of the line with an ideal motor over a range of speeds."""
+    """The periodic states of the line with an ideal motor over a range of speeds: one
+    row per periodic solution found at a speed (several where a resonance's branch folds
+    over: the coexisting solutions), one row with ``converged`` False where none was
+    found to the tolerance (its values NaN: no verdict)."""
 
     speed: FloatArray
-    """(s,) Ω [rad/s]"""
+    """(r,) Ω [rad/s]"""
     eta: FloatArray
-    """(s,) Ω/ω̄ [-]"""
+    """(r,) Ω/ω̄ [-]"""
+    solution: FloatArray
+    """(r,) int: the solution's number at its speed (1, 2, …, by twist amplitude)"""
     peak_torque: FloatArray
-    """(s,) largest |shaft torque| over the cycle [N·m]; NaN where no periodic state"""
+    """(r,) largest |shaft torque| over the cycle [N·m]; NaN where no periodic state"""
     rigid_peak_torque: FloatArray
-    """(s,) largest |drive torque| of the rigid drive at that speed [N·m]"""
+    """(r,) largest |drive torque| of the rigid drive at that speed [N·m]"""
     twist_amplitude: FloatArray
-    """(s,) (max − min)/2 of the twist [rad]"""
+    """(r,) (max − min)/2 of the twist [rad]"""
+    twist_max: FloatArray
+    """(r,) the largest |twist| over the period [rad]"""
     fluctuation: FloatArray
-    """(s,) (max − min)/mean of the crank speed [-]"""
+    """(r,) (max − min)/mean of the crank speed [-]"""
     stability: FloatArray
-    """(s,) the largest |Floquet multiplier| [-]"""
+    """(r,) the largest |Floquet multiplier| [-]"""
     converged: FloatArray
-    """(s,) bool"""
+    """(r,) bool: periodic to the tolerance and unchanged (to ``tolerance``) with twice
+    the steps"""
+    kind: list
+    """(r,) how the solution is unstable: "" (stable or not converged), "fold",
+    "period doubling", "Neimark–Sacker" (``dyade.machine.periodic``)"""
+    steps_used: FloatArray
+    """(r,) RK4 steps per revolution of the solution"""
+    accuracy: FloatArray
+    """(r,) the change of the solution and its multipliers with twice the steps [-]"""
+    balance: FloatArray
+    """(r,) the energy balance over the period: |motor + loads − friction − damping|
+    over the largest of them [-]"""
+    reason: list
+    """(r,) why a row has no periodic state ("" where it has one)"""
     omega_bar: float
     """ω̄ [rad/s]"""
     resonances: list
     """(k, speed [rad/s], "forced" | "parametric") expected in the range"""
     steps: int
-    """RK4 steps per revolution"""
+    """RK4 steps per revolution to start with"""
+    folds: list = field(default_factory=list)
+    """(speed [rad/s], upper) of each fold of the branches: upper True where a sweep
+    upwards jumps (the branch's speed is largest there), False where a sweep downwards
+    jumps"""
+    branches: list = field(default_factory=list)
+    """(speed (n,) [rad/s], twist_max (n,) [rad], unstable (n,) bool, kind list, largest
+    |μ| (n,)) of each branch followed by continuation"""
+    tolerance: float = math.nan
+    """the accuracy asked for [-]"""
+    stopped: list = field(default_factory=list)
+    """why a continuation stopped before the end of the range (worded), if one did"""
 
     @property
     def unstable(self) -> FloatArray:
-        return self.stability > 1.0 + engine.UNSTABLE_MARGIN
+        """(r,) bool: a multiplier outside the unit circle (False where not converged)."""
+        return self.converged & (np.nan_to_num(self.stability) > 1.0 + engine.UNSTABLE_MARGIN)
+
+    @property
+    def verdict(self) -> FloatArray:
+        """(r,) object: True unstable, False stable, None not converged (no verdict)."""
+        return np.array([bool(u) if ok else None for u, ok in zip(self.unstable,
+                                                                   self.converged)],
+                        dtype=object)
+
+
+CONTINUATION_INTEGRATIONS = 400  # [-] the most integrations of a branch's continuation
+# (and 4 per speed asked, at least 100)
+BALANCE_TOL = 1e-5  # [-] the energy balance over the period, of the largest work
+SAME = 1e-6  # [-] two solutions at one speed closer than this (scaled) are one
 
 
 def _speeds(speeds_rpm) -> FloatArray:
@@ -358,12 +403,22 @@ def _speeds(speeds_rpm) -> FloatArray:
 
 
 def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
+                    tolerance: float | None = None, follow: bool = True,
                     shaft: CrankShaft | None = None,
                     progress: Callable[[int], None] | None = None) -> ResonanceCurve:
     """The resonance curve and the Floquet multipliers over the ideal motor's speeds
-    ``speeds_rpm`` [rpm] (vectorised over speeds): peak shaft torque, twist amplitude,
-    speed fluctuation against speed, and the resonances to be expected in the range.
+    ``speeds_rpm`` [rpm]: peak shaft torque, twist, speed fluctuation against speed, the
+    resonances to be expected in the range, every periodic solution found at each speed.
     A ``[drive]`` motor is replaced by an ideal one (the speed is what is scanned).
+
+    All speeds are shot at once from the line's linear response (``dyade.machine.
+    periodic.shoot``: the steps doubled until the solution and its multipliers change by
+    less than ``tolerance``); then (``follow``) the branch is followed in speed by
+    pseudo-arclength continuation over the whole range, through its folds, and every
+    further solution it passes at a speed of the range is shot there too: the
+    coexisting solutions of a resonance that folds over, the jump speeds of a sweep up
+    and down (``folds``). A speed without a solution periodic to the tolerance is a row
+    with ``converged`` False and its ``reason``: no verdict.
 
     Parameters
     ----------
@@ -372,12 +427,17 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     speeds_rpm : array_like
         Crank speeds [rpm], all of one sign, none zero.
     steps : int, optional
-        RK4 steps per revolution (default as for ``steady_state``, at the lowest speed).
+        RK4 steps per revolution to start with (default as for ``steady_state``, at the
+        lowest speed); doubled by accuracy.
+    tolerance : float, optional
+        The change with twice the steps that counts as converged [-] (default
+        ``dyade.machine.periodic.ACCURACY``).
+    follow : bool
+        Follow the branches by continuation (False: each speed alone).
     shaft : CrankShaft, optional
         The mechanism's crank shaft (``crank_shaft``), when the caller has it.
     progress : callable, optional
-        ``progress(iteration)`` hears each Newton iteration of the shooting (all speeds
-        at once).
+        ``progress(count)`` hears each integration (all speeds at once).
 
     Returns
     -------
@@ -388,32 +448,178 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     >>> import dyade
     >>> m = dyade.read_mechanism("mechanisms/dyade-16.toml", {
     ...     "drive_line.stiffness": 1000.0, "drive_line.damping": 0.04})
-    >>> curve = resonance_curve(m, [3450.0, 3575.0])     # near 2·ω̄: J(φ)'s 1st harmonic
+    >>> curve = resonance_curve(m, [3450.0, 3575.0], follow=False)  # near 2·ω̄
     >>> curve.unstable.tolist(), [round(float(mu), 3) for mu in curve.stability]
     ([False, True], [0.988, 1.039])
     """
+    from dyade.machine import periodic
+
+    tol = periodic.ACCURACY if tolerance is None else float(tolerance)
     speeds = _speeds(speeds_rpm)
     shaft = shaft or crank_shaft(mechanism)
     line = shaft.ideal_line
     n, tables = (steps, shaft.tables_at(steps)) if steps else _steps(
         shaft, line, float(speeds.min()))
-    lanes = engine.Lanes.of(line, speeds)
-    solution = _solve(line, tables, lanes, progress)
-    orbit = engine.integrate(line, tables, lanes, solution.start)
-    ok = solution.converged
-    torque = orbit.torque[:, :, -1]
-    twist = orbit.state[:, :, 1]
-    speed = speeds[None, :] + orbit.state[:, :, 0]
-    nan = np.where(ok, 1.0, np.nan)
+    count = 0
+
+    def tick() -> None:
+        nonlocal count
+        count += 1
+        if progress is not None:
+            progress(count)
+
+    problem = engine.problem(line, lambda k: tables if k == n else shaft.tables_at(k), n)
+    p = engine.parameters(line, speeds)
+    guess = engine.linear_guess(line, tables, engine.Lanes.of(line, speeds))
+    first = periodic.shoot(problem, p, guess, tol=tol, progress=tick)
+    starts = [[first.start[j]] if first.converged[j] else [] for j in range(speeds.size)]
+    found = [[j] if first.converged[j] else [] for j in range(speeds.size)]
+    records = {"start": list(first.start), "steps": list(first.steps),
+               "accuracy": list(first.accuracy), "mult": list(first.multipliers),
+               "converged": list(first.converged), "reason": list(first.reason),
+               "speed": list(speeds)}
+    folds, branches, stopped = [], [], []
+    if follow and first.converged.any() and speeds.size > 1:
+        low, high = float(speeds.min()), float(speeds.max())
+        j0 = int(np.flatnonzero(first.converged)[np.argmin(speeds[first.converged])])
+        level = max(n, int(first.steps[j0]) // 2)
+        followed = []
+        most = max(40, 2 * speeds.size)  # the points of a branch, at most
+        for direction in (1.0, -1.0):
+            if direction < 0 and speeds[j0] <= low:
+                continue
+            followed.append(periodic.continuation(problem, first.start[j0], p[j0], (low, high),
+                                                  steps=level, direction=direction, most=most,
+                                                  finest=n * 2 ** periodic.MOST_DOUBLINGS,
+                                                  integrations=min(CONTINUATION_INTEGRATIONS,
+                                                                   max(100, 4 * speeds.size)),
+                                                  progress=tick))
+        scale = problem.scale(p)
+        extra_p, extra_x, extra_j, extra_n = [], [], [], []
+        for branch in followed:
+            folds += [(fold.parameter, fold.upper) for fold in branch.folds]
+            for j in range(speeds.size):
+                for i, frac in branch.crossings(float(speeds[j])):
+                    x = branch.start[i] + frac * (branch.start[i + 1] - branch.start[i])
+                    known = starts[j] + [extra_x[k] for k in range(len(extra_x))
+                                         if extra_j[k] == j]
+                    if all(np.max(np.abs(x - y) / scale[j]) > 1e-3 for y in known):
+                        extra_p.append(p[j])
+                        extra_x.append(x)
+                        extra_j.append(j)
+                        extra_n.append(int(max(branch.steps[i], branch.steps[i + 1])))
+        if extra_x:  # shot from the branch's own steps (finer where the crank nearly stops)
+            extra_n = np.array(extra_n)
+            more = periodic.Solutions(np.array(extra_p), np.array(extra_x),
+                                      np.zeros(len(extra_x), dtype=bool), extra_n,
+                                      np.full(len(extra_x), np.nan), np.full(len(extra_x), np.inf),
+                                      np.zeros((len(extra_x), 2, 2)),
+                                      np.zeros((len(extra_x), line.dimension), complex),
+                                      [""] * len(extra_x))
+            for level in np.unique(extra_n):
+                idx = np.flatnonzero(extra_n == level)
+                part = periodic.shoot(problem, np.array(extra_p)[idx], np.array(extra_x)[idx],
+                                      tol=tol, steps=int(level), progress=tick,
+                                      doublings=max(1, periodic.MOST_DOUBLINGS
+                                                    - int(round(math.log2(level / n)))))
+                more.start[idx], more.converged[idx] = part.start, part.converged
+                more.steps[idx], more.accuracy[idx] = part.steps, part.accuracy
+                more.multipliers[idx] = part.multipliers
+            for i, j in enumerate(extra_j):
+                if not more.converged[i]:
+                    continue
+                if any(np.max(np.abs(more.start[i] - y) / scale[j]) <= SAME for y in starts[j]):
+                    continue
+                starts[j].append(more.start[i])
+                found[j].append(len(records["start"]))
+                for key, value in (("start", more.start[i]), ("steps", more.steps[i]),
+                                   ("accuracy", more.accuracy[i]),
+                                   ("mult", more.multipliers[i]), ("converged", True),
+                                   ("reason", ""), ("speed", speeds[j])):
+                    records[key].append(value)
+        branches = [_branch_curve(line, shaft, branch) for branch in followed]
+        stopped = [f"{branch.stopped}, at {branch.parameter[-1, 0] * RAD_PER_S_TO_RPM:.6g} rpm"
+                   for branch in followed if branch.stopped and branch.parameter.size]
+    rows = []  # (record, speed index)
+    for j in range(speeds.size):
+        rows += [(r, j) for r in found[j]] or [(j, j)]
+    record = np.array([r for r, _ in rows])
+    where = np.array([j for _, j in rows])
+    start = np.array(records["start"])[record]
+    used = np.array(records["steps"])[record]
+    converged = np.array(records["converged"], dtype=bool)[record]
+    mult = np.array(records["mult"])[record]
+    values = _orbit_values(line, shaft, speeds[where], start, used, converged)
+    twist_amplitude, twist_max, peak, fluctuation, balance = values
+    bad = converged & ~(balance <= BALANCE_TOL)
+    reason = [records["reason"][r] for r in record]
+    for k in np.flatnonzero(bad):
+        reason[k] = (f"the energy balance over the period is off by {balance[k]:.2g} of the "
+                     f"largest work (tolerance {BALANCE_TOL:g})")
+    converged &= ~bad
+    nan = np.where(converged, 1.0, np.nan)
+    stability = np.abs(mult[:, 0]) * nan
+    # number the solutions at each speed by twist amplitude
+    solution = np.zeros(where.size, dtype=int)
+    for j in np.unique(where):
+        rows_j = np.flatnonzero(where == j)
+        order = np.argsort(np.nan_to_num(twist_amplitude[rows_j], nan=-1.0), kind="stable")
+        solution[rows_j[order]] = np.arange(1, rows_j.size + 1)
     rigid = 0.5 * tables.slope[0::2, None] * speeds[None, :] ** 2 - tables.load[0::2, None]
     omega_bar = shaft.frequency.omega_bar
-    return ResonanceCurve(speeds, speeds / omega_bar, np.max(np.abs(torque), axis=0) * nan,
-                          np.max(np.abs(rigid), axis=0),
-                          0.5 * (twist.max(axis=0) - twist.min(axis=0)) * nan,
-                          (speed.max(axis=0) - speed.min(axis=0)) / speeds * nan,
-                          solution.stability, ok, omega_bar,
+    kinds = [periodic.kind_of(mu) if ok else "" for mu, ok in zip(mult, converged)]
+    return ResonanceCurve(speeds[where], speeds[where] / omega_bar, solution, peak * nan,
+                          np.max(np.abs(rigid), axis=0)[where], twist_amplitude * nan,
+                          twist_max * nan, fluctuation * nan, stability, converged, kinds,
+                          used, np.array(records["accuracy"], dtype=float)[record], balance,
+                          reason, omega_bar,
                           resonances(mechanism, omega_bar, speeds.min(), speeds.max(),
-                                     shaft=shaft), n)
+                                     shaft=shaft), n, sorted(folds), branches, tol, stopped)
+
+
+def _orbit_values(line, shaft, speed, start, steps, converged):
+    """Twist amplitude and largest |twist| [rad], peak shaft torque [N·m], speed
+    fluctuation [-] and the energy balance [-] of each row's orbit (NaN where not
+    converged), one integration per step count (the scans' line: an ideal motor, one
+    shaft)."""
+    from dyade.machine import periodic
+
+    rows = speed.size
+    out = [np.full(rows, np.nan) for _ in range(5)]
+    for n in np.unique(steps[converged]):
+        idx = np.flatnonzero(converged & (steps == n))
+        problem = engine.problem(line, shaft.tables_at, int(n), works=True)
+        p = engine.parameters(line, speed[idx])
+        x0 = np.pad(start[idx], ((0, 0), (0, 3)))
+        path = periodic.trajectory(problem, int(n), x0, p)
+        twist = path[:, :, 1]
+        crank = speed[idx][None, :] + path[:, :, 0]
+        torque = p[:, 1] * path[:, :, 1] - p[:, 2] * path[:, :, 0]
+        out[0][idx] = 0.5 * (twist.max(axis=0) - twist.min(axis=0))
+        out[1][idx] = np.max(np.abs(twist), axis=0)
+        out[2][idx] = np.max(np.abs(torque), axis=0)
+        out[3][idx] = (crank.max(axis=0) - crank.min(axis=0)) / speed[idx]
+        work = path[-1, :, 2:]  # motor, damping, loads (∫ s·M_L du: what they give) [J]
+        out[4][idx] = (np.abs(work[:, 0] + work[:, 2] - work[:, 1])
+                       / np.maximum(np.max(np.abs(work), axis=1), 1e-300))
+    return out
+
+
+def _branch_curve(line, shaft, branch) -> tuple:
+    """(speed, largest |twist|, unstable, kind, largest |μ|) along a branch of the
+    continuation."""
+    from dyade.machine import periodic
+
+    if not branch.parameter.shape[0]:
+        return (np.empty(0), np.empty(0), np.empty(0, dtype=bool), [], np.empty(0))
+    speed = branch.parameter[:, 0]
+    twist = np.empty(speed.size)
+    for n in np.unique(branch.steps):
+        idx = np.flatnonzero(branch.steps == n)
+        problem = engine.problem(line, shaft.tables_at, int(n))
+        path = periodic.trajectory(problem, int(n), branch.start[idx], branch.parameter[idx])
+        twist[idx] = np.max(np.abs(path[:, :, 1]), axis=0)
+    return speed, twist, branch.unstable, branch.kind, np.abs(branch.multipliers[:, 0])
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==

@@ -710,3 +710,81 @@ def _crossing(u0: float, u1: float, d0: float, d1: float, target: float) -> floa
 
 
 FRICTION_SPEED = 1e-3  # [rad/s] the friction torque's sign is smoothed below this crank speed
+
+
+# -- the line as a problem of the periodic-orbit engine (``dyade.machine.periodic``) -----
+def lanes_of(line: Line, p: FloatArray) -> Lanes:
+    """The lanes of parameter rows ``p`` (L, 1 + 2m): Ω_ref [rad/s], the m stiffnesses
+    [N·m/rad], the m dampings [N·m·s/rad]."""
+    m = line.elements
+    return Lanes(p[:, 0], p[:, 1:1 + m], p[:, 1 + m:1 + 2 * m])
+
+
+def parameters(line: Line, speed: FloatArray, stiffness: FloatArray | None = None,
+               damping: FloatArray | None = None) -> FloatArray:
+    """The parameter rows (B, 1 + 2m) of ``problem`` for speeds Ω [rad/s] (and per lane
+    stiffnesses and dampings, default the line's)."""
+    lanes = Lanes.of(line, speed, stiffness, damping)
+    return np.column_stack((lanes.speed, lanes.stiffness, lanes.damping))
+
+
+def problem(line: Line, tables_at: Callable[[int], Tables], steps: int, works: bool = False):
+    """The line with its crank shaft as a ``periodic.Problem`` in the crank's path u
+    (period 2π), the parameters per lane ``parameters(...)`` (p[0] = Ω is continued);
+    ``tables_at(n)`` gives the crank shaft on n steps per revolution; ``steps`` is the
+    first step count. With ``works`` (an ideal motor and one shaft only) the state
+    carries three quadratures more: the work of the motor, of damping and of the loads
+    (∫ s·M_L du) since u = 0 [J] (for ``periodic.trajectory``, not for shooting)."""
+    if works and not (line.ideal and line.elements == 1):
+        raise ValueError("the works ride along only on an ideal motor's single shaft")
+    from dyade.machine.periodic import Problem
+
+    coarse = tables_at(steps)
+    m = line.elements
+
+    def field(n: int):
+        tables = coarse if n == steps else tables_at(n)
+        period = 2 * n
+        inertia = np.append(tables.inertia, tables.inertia[0])
+        slope = np.append(tables.slope, tables.slope[0])
+        drive = np.append(tables.load - tables.friction, tables.load[0] - tables.friction[0])
+        if line.ideal and m == 1:  # the scans' line: δv and the twist, a lean field
+            def f(k: int, x: FloatArray, p: FloatArray) -> FloatArray:
+                dv = x[:, 0]
+                v = p[:, 0] + dv
+                slow = 1.0 / np.where(v > 0.0, v, np.nan)
+                out = np.empty_like(x)
+                torque = p[:, 1] * x[:, 1] - p[:, 2] * dv
+                out[:, 0] = (torque + drive[k] - 0.5 * slope[k] * v * v) * slow / inertia[k]
+                out[:, 1] = -dv * slow
+                if works:
+                    out[:, 2] = torque * p[:, 0] * slow
+                    out[:, 3] = p[:, 2] * dv * dv * slow
+                    out[:, 4] = drive[k]
+                return out
+            return f
+        rub = np.append(tables.friction, tables.friction[0])
+        load = np.append(tables.load, tables.load[0])
+
+        def f(k: int, x: FloatArray, p: FloatArray) -> FloatArray:
+            return _rates(line, lanes_of(line, p), x, inertia[k], slope[k], load[k], rub[k],
+                          False)[0]
+        return f
+
+    def scale(p: FloatArray) -> FloatArray:
+        return scales(line, coarse, lanes_of(line, p))
+
+    def span(p: FloatArray) -> FloatArray:  # speeds: Ω; twists and node speeds: a radian
+        out = np.ones((p.shape[0], line.dimension))
+        out[:, 0] = p[:, 0]
+        out[:, 1 + m:] = p[:, :1]
+        return np.maximum(out * SPAN, scale(p))
+
+    if works:
+        def wide(p: FloatArray) -> FloatArray:
+            return np.pad(scale(p), ((0, 0), (0, 3)), constant_values=1.0)
+        return Problem(line.dimension + 3, field, wide, 2.0 * math.pi, steps)
+    return Problem(line.dimension, field, scale, 2.0 * math.pi, steps, span)
+
+
+SPAN = 0.1  # [-] a branch's step is measured against this share of Ω and of a radian

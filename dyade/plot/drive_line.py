@@ -56,21 +56,22 @@ def resonance(curve, fig: Figure | None = None) -> Figure:
         ``dyade.linkage.drive_line.resonance_curve(...)``.
     fig : Figure, optional
     """
-    speed = curve.speed * RAD_PER_S_TO_RPM
+    first = curve.solution == 1  # the first solution at each speed: one line
+    speed = curve.speed[first] * RAD_PER_S_TO_RPM
     with canvas.style():
         fig = canvas.new(7.0, 6.4, fig)
         axes = fig.subplots(3, 1, sharex=True)
         ax = axes[0]
-        ax.plot(speed, curve.peak_torque, label="drive line", **canvas.line(0))
-        ax.plot(speed, curve.rigid_peak_torque, label="rigid drive", **canvas.line(1))
+        ax.plot(speed, curve.peak_torque[first], label="drive line", **canvas.line(0))
+        ax.plot(speed, curve.rigid_peak_torque[first], label="rigid drive", **canvas.line(1))
         ax.set_ylabel("peak shaft torque [N·m]")
-        axes[1].plot(speed, np.degrees(curve.twist_amplitude), **canvas.line(0))
+        axes[1].plot(speed, np.degrees(curve.twist_amplitude[first]), **canvas.line(0))
         axes[1].set_ylabel("twist amplitude [°]")
-        axes[2].plot(speed, curve.fluctuation, **canvas.line(0))
+        axes[2].plot(speed, curve.fluctuation[first], **canvas.line(0))
         axes[2].set_ylabel("speed fluctuation δ [-]")
         axes[2].set_xlabel("crank speed Ω [rpm]")
         for k, axis in enumerate(axes):
-            _shade_unstable(axis, speed, curve.unstable, label=k == 0)
+            _shade_unstable(axis, speed, curve.unstable[first], label=k == 0)
             _resonance_marks(axis, curve) if k == 0 else None
             axis.set_xlim(speed[0], speed[-1])
         top = axes[0].secondary_xaxis("top", functions=(
@@ -83,9 +84,53 @@ def resonance(curve, fig: Figure | None = None) -> Figure:
     return fig
 
 
+def branches(ax, curve) -> None:
+    """The largest twist over the period against speed along the followed branches,
+    stable solid, unstable dashed, the folds (jump speeds) marked; the solutions at the
+    scan's speeds as dots (a cross where not converged: no verdict)."""
+    labelled = set()
+    styles = {False: ("stable branch", dict(linestyle="-", color="C0", linewidth=1.4)),
+              True: ("unstable branch", dict(linestyle="--", color="C3", linewidth=1.2))}
+
+    def draw(xs, ys, bad):
+        label, style = styles[bool(bad)]
+        ax.plot(xs, ys, label=None if label in labelled else label, **style)
+        labelled.add(label)
+
+    for speed, twist, unstable, _, modulus in curve.branches:
+        rpm = speed * RAD_PER_S_TO_RPM
+        deg = np.degrees(twist)
+        for i in range(rpm.size - 1):  # a segment changing stability: split where |μ| = 1
+            if unstable[i] == unstable[i + 1]:
+                draw(rpm[i:i + 2], deg[i:i + 2], unstable[i])
+                continue
+            edge = 1.0 + UNSTABLE_MARGIN
+            f = (edge - modulus[i]) / (modulus[i + 1] - modulus[i])
+            x = rpm[i] + f * (rpm[i + 1] - rpm[i])
+            y = deg[i] + f * (deg[i + 1] - deg[i])
+            draw([rpm[i], x], [deg[i], y], unstable[i])
+            draw([x, rpm[i + 1]], [y, deg[i + 1]], unstable[i + 1])
+    ok = curve.converged
+    speed = curve.speed * RAD_PER_S_TO_RPM
+    ax.plot(speed[ok], np.degrees(curve.twist_max[ok]), "o", color="k", markersize=2.0,
+            label="solutions at the speeds asked")
+    if (~ok).any():  # on the axis's foot: they have no value
+        ax.plot(speed[~ok], np.full(int((~ok).sum()), 0.02), "x", color="C1", markersize=5,
+                transform=ax.get_xaxis_transform(), clip_on=False,
+                label="not converged (no verdict)")
+    for fold, upper in curve.folds:
+        ax.axvline(fold * RAD_PER_S_TO_RPM, color="0.4", linewidth=0.8, linestyle=":")
+        ax.annotate("jump ↑ sweep" if upper else "jump ↓ sweep", (fold * RAD_PER_S_TO_RPM,
+                                                                   0.02),
+                    xycoords=("data", "axes fraction"), rotation=90, fontsize=7,
+                    ha="right", va="bottom", color="0.3")
+    ax.set_ylabel("largest twist [°]")
+
+
 def stability(curve, fig: Figure | None = None) -> Figure:
-    """The largest \\|Floquet multiplier\\| against the crank speed, 1 marked, unstable
-    speeds shaded.
+    """The largest twist over the period along the followed branches (stable solid,
+    unstable dashed, folds marked) and the largest \\|Floquet multiplier\\| of every
+    solution against the crank speed, 1 marked, unstable speeds shaded.
 
     Parameters
     ----------
@@ -101,23 +146,33 @@ def stability(curve, fig: Figure | None = None) -> Figure:
     >>> from dyade.plot import drive_line as figures
     >>> line = dyade.read_mechanism("mechanisms/dyade-16.toml", {
     ...     "drive_line.stiffness": 1000.0, "drive_line.damping": 0.04})
-    >>> curve = drive_line.resonance_curve(line, [3450.0, 3575.0, 3700.0])
-    >>> figures.stability(curve).axes[0].get_xlabel()
+    >>> curve = drive_line.resonance_curve(line, [3450.0, 3575.0, 3700.0], follow=False)
+    >>> figures.stability(curve).axes[-1].get_xlabel()
     'crank speed Ω [rpm]'
     """
     speed = curve.speed * RAD_PER_S_TO_RPM
+    first = curve.solution == 1
     with canvas.style():
-        fig = canvas.new(7.0, 3.8, fig)
-        ax = fig.subplots()
-        ax.plot(speed, curve.stability, label="largest |μ|", **canvas.line(0, marker=True))
+        fig = canvas.new(7.0, 6.0, fig)
+        axes = fig.subplots(2, 1, sharex=True)
+        branches(axes[0], curve)
+        ax = axes[1]
+        ok = curve.converged
+        ax.plot(speed[first & ok], curve.stability[first & ok], label="largest |μ|",
+                **canvas.line(0, marker=True))
+        more = ~first & ok
+        if more.any():
+            ax.plot(speed[more], curve.stability[more], "s", color="C2", markersize=3,
+                    label="largest |μ|, further solutions")
         ax.axhline(1.0, color="0.3", linewidth=0.8)
-        _shade_unstable(ax, speed, curve.unstable)
+        _shade_unstable(ax, speed[first], curve.unstable[first])
         _resonance_marks(ax, curve)
-        ax.set_xlim(speed[0], speed[-1])
+        ax.set_xlim(speed.min(), speed.max())
         ax.set_xlabel("crank speed Ω [rpm]")
         ax.set_ylabel("largest |Floquet multiplier| [-]")
-        canvas.legend_above(ax, fontsize=8)
-        fig.suptitle("Stability of the periodic motion (linearised about it)")
+        canvas.legend_above(axes[0], fontsize=7)
+        ax.legend(loc="best", fontsize=7)
+        fig.suptitle("Periodic solutions and their stability (linearised about each)")
     return fig
 
 

@@ -33,7 +33,7 @@ PARAMETRIC = ("drive_line.stiffness=1000", "drive_line.damping=0.04")
 CASES = {
     "driveline-frequency": (SLIDER, {"set": LINE}),
     "driveline-steady": (SLIDER, {"set": LINE}),
-    "driveline-resonance": (SLIDER, {"set": LINE, "speed_range_rpm": "1000:1500:250"}),
+    "driveline-resonance": (SLIDER, {"set": LINE, "speed_range_rpm": "2000:2200:100"}),
     "driveline-stability": (DYADE_16, {"set": PARAMETRIC, "speed_range_rpm": "3450:3575:125"}),
     "driveline-map": (SLIDER, {"set": LINE, "speed_range_rpm": "1000:1500:500",
                                "map": "damping=0:0.1:0.1"}),
@@ -111,8 +111,8 @@ def test_the_issues_unstable_speeds_read_as_text():
     assert not REPR.search(out), REPR.search(out)
     assert re.search(r"unstable_rpm\s+3600–3600 rpm", out)
     assert re.search(r"vdi_2149\s+no", out) and re.search(r"omega_bar\s+186\.978\s+rad/s", out)
-    assert re.search(r"fluctuation \[-\]\s+floquet \[-\]\s+unstable\s", out)  # a flag: yes/no
-    assert re.search(r"3600 .* 1\.03396\s+yes", out)
+    assert re.search(r"floquet\s", out) and re.search(r"unstable\s", out)  # a flag: yes/no
+    assert re.search(r"3600 .* 1\.03396\s+yes\s+period", out)  # … and how: period doubling
     assert "exceeds 0.1 (VDI 2149 Part 1)" in result.stderr
 
 

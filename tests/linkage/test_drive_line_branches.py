@@ -1,0 +1,177 @@
+"""The drive line on the periodic-orbit engine (issue 37): steps by accuracy, no verdict
+from an orbit that is not periodic, every solution at a speed, speeds as η. The
+slider-crank of the issue: r = 0.1 m, l = 0.4 m, a 5 kg slider, crank and rod massless,
+J_c on the crank, an ideal motor through k = 1e4 N·m/rad and damping d
+(``slider-crank-line.toml`` beside this file)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import dyade
+from dyade.registry import REGISTRY
+from dyade.linkage.drive import crank_shaft
+from dyade.machine import drive_line as engine
+from dyade.machine import periodic
+from tests.helpers import shipped
+
+HERE = Path(__file__).parent
+SLIDER = str(HERE / "slider-crank-line.toml")
+LINE = {"drive_line.stiffness": 1000.0, "drive_line.damping": 0.04}
+
+
+def slider(inertia: float, damping: float):
+    mechanism = dyade.read_mechanism(SLIDER, {"links.2.inertia": inertia,
+                                              "drive_line.damping": damping})
+    return crank_shaft(mechanism)
+
+
+def independent(shaft, speed: float, start, revolutions: int = 1):
+    """x(2π·revolutions) of the line by scipy's DOP853 at rtol 1e-11 over u, the crank
+    shaft's tables as Fourier series in u (``engine.Periodic1D``): an integrator that
+    shares nothing with the engine's RK4 on the grid."""
+    integrate = pytest.importorskip("scipy.integrate")
+    tables = shaft.tables_at(720)
+    inertia = engine.Periodic1D(tables.inertia[0::2])
+    slope = engine.Periodic1D(tables.slope[0::2])
+    load = engine.Periodic1D(tables.load[0::2])
+    k, b = shaft.line.stiffness[0], shaft.line.damping[0]
+
+    def rates(u, x):
+        v = speed + x[0]
+        torque = k * x[1] - b * x[0]
+        return [(torque + load(u) - 0.5 * slope(u) * v * v) / (inertia(u) * v), -x[0] / v]
+
+    out = integrate.solve_ivp(rates, (0.0, 2 * math.pi * revolutions), start, method="DOP853",
+                              rtol=1e-11, atol=1e-13)
+    return out.y[:, -1]
+
+
+@pytest.mark.slow
+def test_no_verdict_without_a_periodic_orbit_and_multipliers_converge_with_the_steps():
+    """J_c = 0.01 kg·m², d = 0.7526 N·m·s/rad. At η = 0.58 the shooting from the linear
+    response does not converge (the crank turns back in the iterations): no verdict (not
+    converged, no |μ|, not unstable, a reason). At η = 0.6 (the crank falls to 37 % of
+    Ω in the cycle) the multipliers converge like RK4's h⁴ as the steps grow (360, 720,
+    1440: the change falls by more than 8 per doubling) and agree with an independent
+    integration of the same orbit (scipy's DOP853): periodic there too, the same |μ|."""
+    shaft = slider(0.01, 0.7526)
+    line = shaft.ideal_line
+    problem = engine.problem(line, shaft.tables_at, 720)
+
+    def shot(eta, doublings):
+        speed = eta * shaft.frequency.omega_bar
+        p = engine.parameters(line, [speed])
+        guess = engine.linear_guess(line, shaft.tables_at(720), engine.Lanes.of(line, [speed]))
+        return speed, p, periodic.shoot(problem, p, guess, doublings=doublings)
+
+    _, _, lost = shot(0.58, 1)
+    assert not lost.converged[0] and "did not converge" in lost.reason[0]
+    assert np.isnan(lost.stability[0]) and not lost.unstable[0]
+    speed, p, found = shot(0.6, 2)
+    assert found.converged[0], found.reason
+    assert found.accuracy[0] <= periodic.ACCURACY
+    mu = []
+    for n in (360, 720, 1440):
+        _, ok, _, jac, _ = periodic.newton(problem, n, p, found.start, problem.scale(p))
+        assert ok[0]
+        mu.append(np.max(np.abs(np.linalg.eigvals(jac[0]))))
+    assert abs(mu[2] - mu[1]) < abs(mu[1] - mu[0]) / 8.0  # RK4: 1/16 per doubling
+    start = found.start[0]
+    scale = problem.scale(p)[0]
+    assert np.all(np.abs(independent(shaft, speed, start) - start) <= 1e-6 * scale)
+    delta = scale * 1e-4
+    columns = [(independent(shaft, speed, start + delta[i] * np.eye(2)[i])
+                - independent(shaft, speed, start - delta[i] * np.eye(2)[i])) / (2 * delta[i])
+               for i in range(2)]
+    seen = np.max(np.abs(np.linalg.eigvals(np.column_stack(columns))))
+    assert seen == pytest.approx(found.stability[0], abs=1e-5)
+
+
+def test_eta_range_gives_the_rows_of_the_equivalent_speed_range():
+    omega_bar = crank_shaft(dyade.read_mechanism(shipped("dyade-16.toml"), LINE)).frequency.omega_bar
+    settings = [f"{key}={value}" for key, value in LINE.items()]
+    by_eta = REGISTRY["driveline-stability"](shipped("dyade-16.toml"), set=settings,
+                                             eta_range="1.95:1.95:0.05")
+    speeds = [eta * omega_bar * 30.0 / math.pi for eta in (1.95,)]
+    by_speed = REGISTRY["driveline-stability"](shipped("dyade-16.toml"), set=settings,
+                                               speed_range_rpm=speeds)
+    assert list(by_eta.columns) == list(by_speed.columns)
+    for name, values in by_eta.columns.items():
+        other = by_speed.columns[name]
+        if np.asarray(values).dtype.kind == "f":
+            assert np.allclose(values, other, rtol=1e-9, equal_nan=True), name
+        else:
+            assert list(values) == list(other), name
+    assert np.allclose(by_eta.columns["eta"], [1.95])
+    # the energy balance over the period closes (motor = damping − loads' work) and the
+    # solution did not change with twice the steps
+    assert by_eta.columns["converged"].all() and np.max(by_eta.columns["balance"]) < 1e-7
+    assert np.max(by_eta.columns["accuracy"]) <= periodic.ACCURACY
+    assert by_eta.options["eta_range"] == "1.95:1.95:0.05"
+
+
+class Ran(Exception):
+    pass
+
+
+@pytest.mark.parametrize("entry, options, work", [
+    ("driveline-steady", {"set": ["drive_line.stiffness=1e7"]}, "steady_state"),
+    ("driveline-stability", {"set": ["drive_line.stiffness=1e7"],
+                             "speed_range_rpm": "300:400:50"}, "resonance_curve"),
+])
+def test_a_stiff_line_says_its_estimate_before_the_work(monkeypatch, entry, options, work):
+    """Issue 42: a line of 1e7 N·m/rad (41 354 steps per revolution) is estimated from
+    its steps and a measured rate before anything is integrated: refused above
+    --max-time, said above 5 s. A slow rate (monkeypatched) keeps the test cheap."""
+    from dyade.analyses import drive_line as entries
+    from dyade.errors import InputError
+    from dyade.linkage import drive_line as api
+
+    monkeypatch.setattr(entries, "SECONDS_PER_STEP", 1e-2)
+
+    def ran(*args, **kwargs):
+        raise Ran
+
+    monkeypatch.setattr(api, work, ran)
+    with pytest.raises(InputError, match="max_time_s.*about"):
+        REGISTRY[entry](shipped("dyade-16.toml"), **options, max_time_s=1.0)
+    told = []
+    with pytest.raises(Ran):
+        REGISTRY[entry](shipped("dyade-16.toml"), **options, told=told.append)
+    assert told and "about" in told[0] and "steps per revolution" in told[0]
+
+
+@pytest.mark.slow
+def test_the_speed_reaches_the_natural_frequency_block():
+    """--speed is the run's speed everywhere: Ω and η = Ω/ω̄ of the natural-frequency
+    block are at it, not at the file's 300 rpm."""
+    outcome = REGISTRY["driveline-frequency"](shipped("dyade-16.toml"), set=["drive_line.stiffness=1000"])
+    assert outcome.value("speed_rpm") == pytest.approx(300.0)
+    steady = REGISTRY["driveline-steady"](shipped("dyade-16.toml"), set=[
+        "drive_line.stiffness=1000", "drive_line.damping=0.04", "drive_line.steps=360"],
+        speed_rpm=150.0)
+    assert steady.value("speed_rpm") == pytest.approx(150.0)
+    assert steady.value("speed_ratio") == pytest.approx(
+        150.0 * math.pi / 30.0 / steady.value("omega_bar"), rel=1e-12)
+    assert steady.value("eta") == pytest.approx(steady.value("speed_ratio"), rel=1e-3)
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--eta-range", "1:2:0.1", "--speed-range", "100:200:10"], "give one of the two"),
+    (["--eta-range", "0:2:0.1"], "must lie in (0, 100]"),
+])
+def test_a_bad_eta_range_exits_2_naming_the_flag(args, words):
+    from click.testing import CliRunner
+
+    from dyade.cli import main
+
+    out = CliRunner().invoke(main, ["driveline", str(shipped("dyade-16.toml")), "--set",
+                                    "drive_line.stiffness=1000", "--analysis", "stability",
+                                    *args])
+    assert out.exit_code == 2 and "--eta-range" in out.output and words in out.output
+    assert "Traceback" not in out.output
