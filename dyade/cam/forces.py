@@ -111,3 +111,20 @@ def hertz_line_stress(force, radius_1, radius_2, width: float, modulus: float) -
         valid = (force >= 0.0) & (curvature > 0.0)
         stress = np.sqrt(np.where(valid, force * modulus * curvature / (np.pi * width), np.nan))
     return stress
+
+
+def drive_torque(contact, normal_fixed, force) -> FloatArray:
+    """The torque M [N·m] that turns the cam against the contact force (no cam inertia):
+    the follower pushes the cam with −N·n at the contact K, so M = N·(K × n) about O
+    (counter-clockwise positive, the cam's sense of rotation).
+
+    Parameters
+    ----------
+    contact : ndarray, shape (n, 2)
+        The contact point K [m], fixed frame (``CamGeometry.contact``).
+    normal_fixed : ndarray, shape (n, 2)
+        The cam's outward unit normal at K, fixed frame.
+    force : ndarray, shape (n,)
+        N [N] (``contact_force``).
+    """
+    return np.asarray(force) * (contact[:, 0] * normal_fixed[:, 1] - contact[:, 1] * normal_fixed[:, 0])

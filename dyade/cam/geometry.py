@@ -54,6 +54,9 @@ class CamGeometry:
     (n, 2), fixed frame"""
     contact: FloatArray
     """the contact point [m], shape (n, 2), fixed frame"""
+    contact_normal: FloatArray
+    """the cam's outward unit normal at the contact (the line of the force on the
+    follower), shape (n, 2), fixed frame"""
     direction: FloatArray
     """the follower's direction of motion at ``centre`` (unit), shape (n, 2), fixed
     frame"""
@@ -119,7 +122,9 @@ def _roller(follower: str, theta: FloatArray, centre: FloatArray, d_centre: Floa
     if clockwise:
         pitch, working, normal_cam = _mirror(pitch), _mirror(working), _mirror(normal_cam)
         centre, contact, direction = _mirror(centre), _mirror(contact), _mirror(direction)
-    return CamGeometry(follower, theta, pitch, working, normal_cam, centre, contact, direction,
+        normal = _mirror(normal)
+    return CamGeometry(follower, theta, pitch, working, normal_cam, centre, contact, normal,
+                       direction,
                        alpha, rho, rho - roller_radius, undercut, base_radius, roller_radius,
                        arm, clockwise)
 
@@ -249,7 +254,7 @@ def translating_flat(theta, s, ds, dds, *, base_radius: float, offset: float = 0
         working, normal = _mirror(working), _mirror(normal)
         centre, contact, direction = _mirror(centre), _mirror(contact), _mirror(direction)
     return CamGeometry("translating-flat", theta, None, working, normal, centre, contact,
-                       direction, zero, np.full_like(s, np.nan), rho, ~(rho > 0.0),
+                       direction, direction, zero, np.full_like(s, np.nan), rho, ~(rho > 0.0),
                        base_radius, 0.0, 1.0, clockwise)
 
 
