@@ -1,0 +1,143 @@
+"""A disc cam and its follower (a cam file, ``[cam]``), SI: the data, checked on their
+own. The cam's curves, checks and forces are computed by ``dyade.cam``; the follower's
+motion is a motion profile (``dyade.model.profile``) over the cam angle.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from dyade.errors import InputError
+
+FOLLOWERS = ("translating-roller", "oscillating-roller", "translating-flat")
+"""the follower kinds (``dyade.cam.geometry.FOLLOWERS``)"""
+CLOSURES = ("spring", "groove")
+"""force closure by a spring; form closure by a grooved cam (or a conjugate pair)"""
+PRESSURE_ANGLE_MAX = {"translating-roller": math.radians(30.0),
+                      "oscillating-roller": math.radians(45.0),
+                      "translating-flat": math.radians(30.0)}
+"""the designers' limits of |α| [rad] by follower kind (VDI 2142: 30° for a translating
+follower, 45° for an oscillating one), used where the file gives none"""
+STEEL = (210e9, 0.3)  # [Pa], [-] Young's modulus and Poisson's ratio of steel
+
+
+@dataclass(frozen=True)
+class Cam:
+    """A disc cam on a shaft turning at a constant speed, with its follower (SI).
+
+    Frame and senses: ``dyade.cam.geometry``; the follower's coordinate is its lift [m]
+    (translating) or its swing [rad] (oscillating), given by ``profile`` over the cam
+    angle (one period: a whole turn).
+    """
+
+    follower: str
+    """one of ``FOLLOWERS``"""
+    base_radius: float
+    """base circle radius r_b [m] (of the working curve)"""
+    profile: Any
+    """the follower's motion: a ``dyade.model.profile.Profile`` over the cam angle
+    [rad] (its output [m] or [rad])"""
+    speed: float
+    """cam speed ω [rad/s], constant (magnitude; ``clockwise`` gives the sense)"""
+    roller_radius: float = 0.0
+    """r_r [m] (0 for a flat face)"""
+    offset: float = 0.0
+    """e [m]: the translating follower's line of motion x = e"""
+    pivot_distance: float = 0.0
+    """a = |OA| [m] (oscillating)"""
+    arm_length: float = 0.0
+    """l = |AC| [m] (oscillating)"""
+    clockwise: bool = False
+    """the cam turns clockwise (the mirror image of the counter-clockwise cam)"""
+    closure: str = "spring"
+    """one of ``CLOSURES``"""
+    mass: float = 0.0
+    """the follower's mass [kg] (oscillating: moment of inertia about the pivot [kg·m²])"""
+    stiffness: float = 0.0
+    """spring stiffness [N/m] (oscillating: [N·m/rad])"""
+    preload: float = 0.0
+    """the spring's compression at zero lift [m] (oscillating: [rad]); its force
+    k·(s + s0)"""
+    load: float = 0.0
+    """a constant force pressing the follower onto the cam [N] (oscillating: moment
+    [N·m]); gravity belongs here"""
+    pressure_angle_max: float | None = None
+    """the limit of |α| [rad]; None: ``PRESSURE_ANGLE_MAX`` of the kind"""
+    width: float | None = None
+    """contact length [m] for the Hertz stress (None: not computed)"""
+    cam_material: tuple[float, float] = STEEL
+    """(E [Pa], ν [-]) of the cam"""
+    follower_material: tuple[float, float] = STEEL
+    """(E [Pa], ν [-]) of the roller or face"""
+    chord_tolerance: float = 1e-5
+    """chord tolerance of the exported profile [m]"""
+    cutter_radius: float | None = None
+    """radius of the cutter [m] whose path is exported too (None: none)"""
+    name: str = "cam"
+    length_unit: str = "mm"
+    """the file's length unit (tables and the exported profile)"""
+    angle_unit: str = "deg"
+    source: str | None = None
+    """the file it was read from"""
+    keys: dict[str, str] = field(default_factory=dict)
+    """parameter -> the file's key, for messages"""
+
+    def __post_init__(self) -> None:
+        def fail(name: str, reason: str, value: Any = None) -> InputError:
+            err = InputError.parameter(name, reason, value=value)
+            return err.naming(self.keys) if self.keys else err
+
+        if self.follower not in FOLLOWERS:
+            raise fail("follower", f"must be one of {', '.join(FOLLOWERS)}, got "
+                                   f"{self.follower!r}.", self.follower)
+        if self.closure not in CLOSURES:
+            raise fail("closure", f"must be one of {', '.join(CLOSURES)}, got "
+                                  f"{self.closure!r}.", self.closure)
+        if not self.base_radius > 0.0:
+            raise fail("base_radius", f"must be positive [m], got {self.base_radius:g}.")
+        if self.follower == "translating-flat":
+            if self.roller_radius:
+                raise fail("roller_radius", "is not a key of a flat-faced follower: a flat "
+                                            "face has no roller (leave it out).")
+        elif not self.roller_radius > 0.0:
+            raise fail("roller_radius", f"must be positive [m] for a {self.follower} "
+                                        f"follower, got {self.roller_radius:g}.")
+        pitch = self.base_radius + self.roller_radius
+        if self.follower == "translating-roller" and not abs(self.offset) < pitch:
+            raise fail("offset", f"must be less than the pitch radius r_b + r_r = {pitch:g} m "
+                                 f"in size, got {self.offset:g} m.")
+        if self.follower == "oscillating-roller":
+            a, length = self.pivot_distance, self.arm_length
+            if not (a > 0.0 and length > 0.0):
+                raise fail("pivot_distance", "and the arm length must be given and positive "
+                                             "for an oscillating follower.")
+            if not abs(a - length) < pitch < a + length:
+                raise fail("arm_length", f"cannot put the roller on the pitch circle r_b + r_r "
+                                         f"= {pitch:g} m from the pivot {a:g} m away: |a − l| "
+                                         f"< r_b + r_r < a + l is needed (l = {length:g} m).")
+        if self.mass < 0.0 or self.stiffness < 0.0:
+            raise fail("mass", "and the spring stiffness must not be negative.")
+        if not self.speed >= 0.0:
+            raise fail("speed", f"must not be negative [rad/s], got {self.speed:g}.")
+        if not self.chord_tolerance > 0.0:
+            raise fail("chord_tolerance", f"must be positive [m], got {self.chord_tolerance:g}.")
+        if self.width is not None and not self.width > 0.0:
+            raise fail("width", f"must be positive [m], got {self.width:g}.")
+
+    @property
+    def pitch_radius(self) -> float:
+        """r_p = r_b + r_r [m]"""
+        return self.base_radius + self.roller_radius
+
+    @property
+    def limit(self) -> float:
+        """The pressure-angle limit [rad] in force."""
+        return (PRESSURE_ANGLE_MAX[self.follower] if self.pressure_angle_max is None
+                else self.pressure_angle_max)
+
+    @property
+    def lever(self) -> float:
+        """The follower's lever h [m]: 1 translating, the arm length oscillating."""
+        return self.arm_length if self.follower == "oscillating-roller" else 1.0
