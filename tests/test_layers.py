@@ -253,7 +253,8 @@ MODEL = ("dyade.model",)
 units, errors, arrays and itself"""
 READERS = ("dyade.files",)
 """the readers: import only the base and the model (no engine)"""
-ENGINE = ("dyade.linkage", "dyade.machine", "dyade.vibration", "dyade.clearance", "dyade.cam")
+ENGINE = ("dyade.linkage", "dyade.machine", "dyade.vibration", "dyade.clearance",
+          "dyade.motion", "dyade.cam")
 ANALYSES = ("dyade.analyses",)
 """the contract and its entries: above the engine and the readers, below cli, report, plot
 and study"""
