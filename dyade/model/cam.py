@@ -125,6 +125,39 @@ class Cam:
             raise fail("chord_tolerance", f"must be positive [m], got {self.chord_tolerance:g}.")
         if self.width is not None and not self.width > 0.0:
             raise fail("width", f"must be positive [m], got {self.width:g}.")
+        self.check_profile(fail)
+
+    def check_profile(self, fail) -> None:
+        """A cam's profile runs over the cam angle, one whole turn, and comes back to where
+        it started (a cam cannot advance per turn); its output is a length for a
+        translating follower, an angle for an oscillating one."""
+        profile = self.profile
+        if profile is None:
+            raise fail("profile", "is missing: a cam needs its follower's motion (a "
+                                  "[profile] table).")
+        if profile.master != "angle":
+            raise fail("profile.master", f"must be \"angle\" for a cam (the cam angle), got "
+                                         f"{profile.master!r}.", profile.master)
+        if abs(profile.period - 2.0 * math.pi) > 1e-9:
+            raise fail("profile.period", f"must be one turn (360°) for a disc cam, got "
+                                         f"{math.degrees(profile.period):g}°.",
+                       math.degrees(profile.period))
+        wanted = "angle" if self.follower == "oscillating-roller" else "length"
+        if profile.output != wanted:
+            raise fail("profile.unit", f"must be {'an angle (deg, rad)' if wanted == 'angle' else 'a length (m, cm, mm, um)'} "
+                                       f"for a {self.follower} follower, got "
+                                       f"{profile.unit!r}.", profile.unit)
+        scale = max(max(abs(s.lift_from), abs(s.lift_to)) for s in profile.segments) or 1.0
+        if abs(profile.advance) > 1e-9 * scale:
+            last = len(profile.segments)
+            raise fail(f"profile.segment.{last}.to",
+                       f"= {profile.segments[-1].lift_to:g} (SI) does not come back to where "
+                       f"the cycle starts ({profile.segments[0].lift_from:g}): the motion "
+                       f"does not close over the turn, and a disc cam repeats every turn. "
+                       f"End the last segment where the first starts.")
+        if min(s.lift_from for s in profile.segments) < -1e-12 * scale:
+            raise fail("profile", "goes below 0: a cam's lift is measured from the base "
+                                  "circle (s ≥ 0); shift the profile up.")
 
     @property
     def pitch_radius(self) -> float:
