@@ -17,7 +17,7 @@ from dyade.files.schema import fmt, show
 from dyade.model.mechanism import CRANK, FRAME, Link, Mechanism, Sweep, sweep_problem
 
 TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
-            "gravity", "load", "spring", "friction", "drive", "drive_line"}
+            "gravity", "load", "spring", "friction", "drive", "drive_line", "profile"}
 SWEEP_KEYS = {"start", "stop", "step", "dead_centre", "transmission_warning"}
 
 
