@@ -101,8 +101,8 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                             "rotation": "cw" if cam.clockwise else "ccw",
                             "closure": cam.closure},
                       result=result)
-    outcome.columns = {name: np.asarray(values) + (0.0 if np.asarray(values).dtype.kind == "f"
-                                                   else 0) for name, values in columns.items()}
+    outcome.columns = {name: np.asarray(values) + 0.0 if np.asarray(values).dtype.kind == "f"
+                       else np.asarray(values) for name, values in columns.items()}  # no -0
     outcome.units = {name: described[name][0] for name in columns}
     outcome.descriptions = {name: described[name][1] for name in columns}
 
@@ -113,7 +113,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     alpha = np.abs(geo.pressure_angle)
     k = int(np.nanargmax(alpha))
     add("pressure_angle_max_deg", float(np.degrees(alpha[k])), "°", at(k),
-        "largest |pressure angle| α", limit=math.degrees(cam.limit))
+        "largest |pressure angle| α", limit=round(math.degrees(cam.limit), 9))
     notes: list[str] = list(result.profile_notes)
     spans = geometry.spans(theta, alpha > cam.limit)
     if spans:
@@ -179,7 +179,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         lift_rpm = highest / RPM if math.isfinite(highest) else None
         where_high = result.contact_speed_angles[1]
         add("lift_off_speed_rpm", lift_rpm, "rpm",
-            None if where_high is None else {"angle_deg": math.degrees(where_high)},
+            None if where_high is None else {"angle_deg": round(math.degrees(where_high), 9)},
             "speed at which the follower lifts off (spring too weak)")
         if lowest > 0.0:
             add("contact_speed_min_rpm", lowest / RPM, "rpm", None,
@@ -194,10 +194,10 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                          f"given there. A stiffer spring, more preload or a lighter follower "
                          f"raise that speed.")
         else:
+            times = (f", {lift_rpm / speed_rpm:.3g} times the running speed of "
+                     f"{speed_rpm:g} rpm" if speed_rpm else "")
             notes.append(f"note: the spring keeps the follower on the cam up to {lift_rpm:.4g} "
-                         f"rpm (the running speed is {speed_rpm:g} rpm, "
-                         f"{lift_rpm / speed_rpm if speed_rpm else float('inf'):.3g} times "
-                         f"less).")
+                         f"rpm{times}.")
     if given.any():
         kmin = int(np.nanargmin(force))
         kmax = int(np.nanargmax(np.abs(force)))
