@@ -197,7 +197,9 @@ def read_cam(path: str | os.PathLike, text: str | None = None):
                                  positive=True),
             name=name if isinstance(name, str) else label,
             length_unit=reader.length_unit, angle_unit=reader.angle_unit, source=path,
-            keys={k: f"{label}: `{v}`" for k, v in KEYS.items()})
+            keys={k: f"{label}: `{v}`" for k, v in KEYS.items()} | {
+                f"profile.segment.{len(profile.segments)}.to":
+                    f"{label}: `profile.segment.{len(profile.segments)}.to`"})
     except InputError as err:
         if str(err).startswith(label):
             raise

@@ -149,12 +149,15 @@ class Cam:
                                        f"{profile.unit!r}.", profile.unit)
         scale = max(max(abs(s.lift_from), abs(s.lift_to)) for s in profile.segments) or 1.0
         if abs(profile.advance) > 1e-9 * scale:
+            from dyade.units import ANGLE_FACTORS, LENGTH_FACTORS
+
+            size = LENGTH_FACTORS.get(profile.unit) or ANGLE_FACTORS[profile.unit]
             last = len(profile.segments)
             raise fail(f"profile.segment.{last}.to",
-                       f"= {profile.segments[-1].lift_to:g} (SI) does not come back to where "
-                       f"the cycle starts ({profile.segments[0].lift_from:g}): the motion "
-                       f"does not close over the turn, and a disc cam repeats every turn. "
-                       f"End the last segment where the first starts.")
+                       f"= {profile.segments[-1].lift_to / size:g} {profile.unit} does not come "
+                       f"back to where the turn starts ({profile.segments[0].lift_from / size:g} "
+                       f"{profile.unit}): the law does not close over the cycle, and a disc "
+                       f"cam repeats every turn. End the last segment where the first starts.")
         if min(s.lift_from for s in profile.segments) < -1e-12 * scale:
             raise fail("profile", "goes below 0: a cam's lift is measured from the base "
                                   "circle (s ≥ 0); shift the profile up.")
