@@ -135,9 +135,13 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
             "m", at(kc), "smallest convex radius of the pitch curve",
             limit=cam.roller_radius)
     rho_w = geo.working_curvature_radius
-    kw = int(np.nanargmin(rho_w))
-    add("rho_working_min", float(rho_w[kw]), "m", at(kw),
-        "smallest radius of curvature of the working curve (negative: a hollow or a fold)")
+    convex_part = (geo.pitch_curvature_radius > 0 if cam.follower != "translating-flat"
+                   else np.isfinite(rho_w))  # where the cam bulges (a fold: ρ < 0 there)
+    if convex_part.any():
+        kw = int(np.nanargmin(np.where(convex_part, rho_w, np.inf)))
+        add("rho_working_min", float(rho_w[kw]), "m", at(kw),
+            "smallest radius of curvature of the working curve where it bulges (negative: "
+            "it folds, undercut)")
     add("undercut", bool(geo.undercut.any()), "flag", None, "the working curve undercuts")
     if result.smallest_base_radius is not None:
         what = ("smallest base circle for the pressure-angle limit"

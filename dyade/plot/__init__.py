@@ -33,7 +33,7 @@ INSTALL = 'pip install "dyade[plot]"'
 MINIMUM = (3, 7)  # matplotlib version the figures are written for
 
 
-MODULES = ("animate", "campbell", "canvas", "clearance", "coupling", "curves", "mechanism",
+MODULES = ("animate", "cam", "campbell", "canvas", "clearance", "coupling", "curves", "mechanism",
            "modes", "polar")
 """the figure modules, loaded on first attribute access (``dyade.plot.curves``)"""
 
