@@ -75,6 +75,11 @@ class Cam:
     """chord tolerance of the exported profile [m]"""
     cutter_radius: float | None = None
     """radius of the cutter [m] whose path is exported too (None: none)"""
+    chain: Any = None
+    """a ``dyade.model.mechanism.Mechanism`` whose crank (link 2) is the follower's lever
+    (oscillating follower): the linkage the cam drives (None: the follower alone)"""
+    chain_centre: tuple[float, float] | None = None
+    """the cam centre O [m] in the chain's frame"""
     name: str = "cam"
     length_unit: str = "mm"
     """the file's length unit (tables and the exported profile)"""
@@ -126,6 +131,12 @@ class Cam:
         if self.width is not None and not self.width > 0.0:
             raise fail("width", f"must be positive [m], got {self.width:g}.")
         self.check_profile(fail)
+        if self.chain is not None:
+            if self.follower != "oscillating-roller":
+                raise fail("chain", f"needs an oscillating roller follower (its lever is the "
+                                    f"chain's crank), got a {self.follower} follower.")
+            if self.chain_centre is None:
+                raise fail("chain_centre", "is missing: the cam centre in the chain's frame.")
 
     def check_profile(self, fail) -> None:
         """A cam's profile runs over the cam angle, one whole turn, and comes back to where
