@@ -166,6 +166,14 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                          f"radius there (down to {_length(float(convex[kc]), cam)}), so the "
                          f"working curve folds over itself and the follower will not run "
                          f"the motion. Take a smaller roller or a bigger base circle.")
+    if result.chain is not None:
+        outcome.meta["chain"] = getattr(cam.chain, "name", None)
+        bad = ~np.asarray(result.chain.valid, dtype=bool)
+        if bad.any():
+            notes.append(f"warning: the linkage the lever drives does not close, or sits at a "
+                         f"dead centre, at cam angles {_ranges(geometry.spans(theta, bad))}: "
+                         f"its forces, the contact force and the drive torque are not given "
+                         f"there.")
     # forces
     force = result.contact_force
     given = np.isfinite(force)

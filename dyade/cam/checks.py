@@ -67,6 +67,8 @@ class CamResult:
     manufacture: tuple[Manufacture, ...]
     profile_notes: tuple[str, ...]
     """the motion profile's own notes (allowed acceleration jumps)"""
+    chain: object = None
+    """``dyade.cam.chain.ChainResult`` of the linkage the follower drives (None: none)"""
 
 
 def motion(cam, theta: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
@@ -144,12 +146,27 @@ def check(cam, step: float = math.radians(1.0), make: bool = True) -> CamResult:
     geo, (s, v, a, j) = curves(cam, theta)
     omega = cam.speed
     along = dict(inertia=cam.mass, stiffness=cam.stiffness, preload=cam.preload, load=cam.load)
-    force = forces.contact_force(s, a, geo.pressure_angle, omega, lever=cam.lever, **along)
+    driven = None
+    if cam.chain is None:
+        force = forces.contact_force(s, a, geo.pressure_angle, omega, lever=cam.lever, **along)
+        lowest, highest, k_low, k_high = forces.contact_speeds(s, a, **along)
+    else:
+        from dyade.cam import chain
+
+        driven = chain.solve(cam, cam.chain, geo, s, v, a, omega)
+        force = np.where(driven.valid, driven.contact_force, np.nan)
+        # N = N0 + ω²·N2: the chain at rest gives N0 (gravity, loads, springs), the rest
+        # grows with the square of the speed
+        at_rest = chain.solve(cam, cam.chain, geo, s, v, a, 0.0).contact_force
+        growth = (driven.contact_force - at_rest) / omega ** 2 if omega > 0 else 0.0 * s
+        lowest, highest, k_low, k_high = forces.contact_speeds(
+            np.zeros_like(s), np.where(driven.valid, growth, 0.0), inertia=1.0, stiffness=0.0,
+            preload=0.0, load=np.where(driven.valid, at_rest, 1.0))
     lifted = (force < 0.0) if cam.closure == "spring" else np.zeros(theta.size, dtype=bool)
     force = np.where(lifted, np.nan, force)
-    lowest, highest, k_low, k_high = forces.contact_speeds(s, a, **along)
-    torque = forces.drive_torque(geo.contact, geo.contact_normal, force)
-    if cam.clockwise:  # the mirror image: the torque in the cam's own sense
+    torque = (forces.drive_torque(geo.contact, geo.contact_normal, force) if driven is None
+              else np.where(np.isfinite(force), driven.drive_torque, np.nan))
+    if cam.clockwise and driven is None:  # the mirror image: the torque in the cam's own sense
         torque = -torque
     stress = np.full(theta.size, np.nan)
     if cam.width is not None:
@@ -167,4 +184,4 @@ def check(cam, step: float = math.radians(1.0), make: bool = True) -> CamResult:
     return CamResult(cam, geo, s, v, a, j, force, lifted, stress, torque, (lowest, highest),
                      (float(theta[k_low]) if k_low >= 0 else None,
                       float(theta[k_high]) if k_high >= 0 else None),
-                     smallest, made, tuple(notes))
+                     smallest, made, tuple(notes), driven)

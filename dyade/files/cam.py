@@ -40,7 +40,9 @@ from typing import Any
 
 from dyade.files.schema import UnitReader, read_toml, show
 
-TOP_KEYS = {"name", "description", "units", "cam", "follower", "manufacture", "profile"}
+TOP_KEYS = {"name", "description", "units", "cam", "follower", "manufacture", "profile",
+            "chain"}
+CHAIN_KEYS = {"mechanism", "centre"}
 CAM_KEYS = {"follower", "base_radius", "speed_rpm", "rotation", "closure",
             "pressure_angle_max", "width", "material"}
 FOLLOWER_KEYS = {"roller_radius", "offset", "pivot_distance", "arm_length", "mass",
@@ -57,7 +59,7 @@ KEYS = {"follower": "cam.follower", "base_radius": "cam.base_radius", "speed": "
         "load": "follower.load", "chord_tolerance": "manufacture.chord_tolerance",
         "cutter_radius": "manufacture.cutter_radius", "profile": "profile",
         "profile.master": "profile.master", "profile.period": "profile.period",
-        "profile.unit": "profile.unit"}
+        "profile.unit": "profile.unit", "chain": "chain", "chain_centre": "chain.centre"}
 """the Cam's parameter -> the file's key"""
 
 
@@ -163,6 +165,22 @@ def read_cam(path: str | os.PathLike, text: str | None = None):
         raise reader.fail("profile", "is missing: the follower's motion over the cam angle "
                                      "(a [profile] table; dyade init cam writes one).")
     profile = ProfileReader(label, path).profile(data["profile"], data.get("name", label))
+    chain, centre = None, None
+    if "chain" in data:
+        table = reader.keys(data["chain"], "chain", CHAIN_KEYS)
+        file = reader.required(table, "mechanism", "chain")
+        if not isinstance(file, str):
+            raise reader.fail("chain.mechanism", f"must be the path of a mechanism file (from "
+                                                 f"this file's folder), got {show(file)}.", file)
+        where = reader.required(table, "centre", "chain")
+        if not (isinstance(where, list) and len(where) == 2):
+            raise reader.fail("chain.centre", f"must be the cam centre [x, y] in the "
+                                              f"mechanism's frame [{reader.length_unit}], got "
+                                              f"{show(where)}.", where)
+        centre = tuple(reader.length_of(value, "chain.centre") for value in where)
+        from dyade.files.mechanism import read_mechanism
+
+        chain = read_mechanism(os.path.join(os.path.dirname(path), file))
     limit = cam.get("pressure_angle_max")
     name = data.get("name", os.path.splitext(label)[0])
     try:
@@ -195,6 +213,7 @@ def read_cam(path: str | os.PathLike, text: str | None = None):
                                    positive=True) or CHORD_TOLERANCE,
             cutter_radius=length(made, "cutter_radius", "manufacture.cutter_radius",
                                  positive=True),
+            chain=chain, chain_centre=centre,
             name=name if isinstance(name, str) else label,
             length_unit=reader.length_unit, angle_unit=reader.angle_unit, source=path,
             keys={k: f"{label}: `{v}`" for k, v in KEYS.items()} | {

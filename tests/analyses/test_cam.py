@@ -133,3 +133,19 @@ def test_the_dxf_reads_back_to_the_same_points(outcome, tmp_path):
     assert set(lines) == {"CAM-WORKING", "CAM-CUTTER"} and lines["CAM-WORKING"].closed
     back = np.array([p[:2] for p in lines["CAM-WORKING"].get_points("xy")])
     assert np.allclose(back * 1e-3, made.points, rtol=0, atol=1e-12)
+
+
+def test_a_cam_linkage_chain_from_its_file():
+    outcome = dyade.run("cam", "mechanisms/cams/cam-linkage.toml")
+    result = outcome.result
+    assert outcome.meta["chain"] == "Lever and slider of a cam drive"
+    assert result.chain is not None and result.chain.valid.all()
+    # the cam's power is the chain's: drive torque · ω = lever torque · φ̇
+    assert np.allclose(result.drive_torque * result.cam.speed,
+                       result.chain.lever_torque * result.chain.lever_speed, rtol=0,
+                       atol=1e-9 * np.max(np.abs(result.chain.lever_torque * result.chain.lever_speed)))
+    # at the lift-off speed the least contact force is zero (N = N0 + ω²·N2)
+    lift = outcome.value("lift_off_speed_rpm")
+    at = dyade.run("cam", "mechanisms/cams/cam-linkage.toml", speed_rpm=lift, step_deg=1.0)
+    force = at.result.chain.contact_force  # as solved (a value a hair below 0 is lifted off)
+    assert force.min() == pytest.approx(0.0, abs=1e-9 * force.max())
