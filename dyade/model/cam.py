@@ -137,6 +137,18 @@ class Cam:
                                     f"chain's crank), got a {self.follower} follower.")
             if self.chain_centre is None:
                 raise fail("chain_centre", "is missing: the cam centre in the chain's frame.")
+            crank = self.chain.crank
+            distance = math.dist(crank.pivot, self.chain_centre)
+            if abs(distance - self.pivot_distance) > 1e-9 * self.pivot_distance:
+                raise fail("chain_centre", f"puts the cam centre {distance:.6g} m from the "
+                                           f"chain's crank pivot, which is the follower's "
+                                           f"pivot: `follower.pivot_distance` says "
+                                           f"{self.pivot_distance:.6g} m. Move one or the "
+                                           f"other.")
+            if abs(crank.length - self.arm_length) > 1e-9 * self.arm_length:
+                raise fail("arm_length", f"= {self.arm_length:.6g} m differs from the chain's "
+                                         f"crank length {crank.length:.6g} m (the crank is "
+                                         f"the lever).")
 
     def check_profile(self, fail) -> None:
         """A cam's profile runs over the cam angle, one whole turn, and comes back to where
