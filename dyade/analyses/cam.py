@@ -22,16 +22,11 @@ OPTIONS = (
            help="Cam-angle step of the checks"),
 )
 
-COLUMNS_ROLLER = ("angle_deg", "s", "v", "a", "j", "pressure_angle_deg", "rho_pitch",
-                  "rho_working", "undercut", "contact_force", "hertz_stress", "drive_torque")
-"""the columns of a roller follower's cam (a flat face has no pitch curve)"""
-
-
 def units(follower: str) -> dict[str, tuple[str, str]]:
     """column -> (unit, description) for a follower kind (an oscillating follower's
     coordinate is an angle)."""
     angle = follower == "oscillating-roller"
-    q, per = ("rad", "") if angle else ("m", "m")
+    q = "rad" if angle else "m"
     return {
         "angle_deg": ("°", "cam angle θ (counter-clockwise; clockwise cams: the mirror image)"),
         "s": (q, "follower swing ψ − ψ0" if angle else "follower lift s"),
@@ -48,7 +43,7 @@ def units(follower: str) -> dict[str, tuple[str, str]]:
                                "contact)"),
         "drive_torque": ("N·m", "torque turning the cam against the follower, in its sense "
                                 "of rotation"),
-    } | ({} if per else {})
+    }
 
 
 def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:

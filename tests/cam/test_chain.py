@@ -12,6 +12,7 @@ import pytest
 
 import dyade
 from dyade.cam import chain, checks
+from dyade.errors import InputError
 from dyade.model.cam import Cam
 from dyade.model.profile import Profile, Segment
 from tests.global_solve import global_forces
@@ -75,5 +76,9 @@ def test_equals_an_independent_global_solve(solved):
 
 def test_a_misplaced_chain_is_refused(solved):
     cam, mechanism, *_ = solved
-    with pytest.raises(ValueError, match="crank pivot lies"):
-        chain.placement(dataclasses.replace(cam, chain_centre=(0.01, 0.0)), mechanism)
+    with pytest.raises(InputError, match="chain_centre puts the cam centre 0.08 m from the "
+                                         "chain's crank pivot"):
+        dataclasses.replace(cam, chain_centre=(0.01, 0.0))
+    with pytest.raises(InputError, match="arm_length = 0.07 m differs from the chain's crank"):
+        dataclasses.replace(cam, chain=dataclasses.replace(
+            mechanism, crank=dataclasses.replace(mechanism.crank, length=0.08)))
