@@ -58,11 +58,14 @@ def cam(cam_file: Path, fmt, output, points_file, cutter_file, dxf_file, **optio
 
     Exit 1 where the follower can never keep contact; an undercut is a warning.
     """
+    from dyade.report import cam as report
+
+    if dxf_file is not None:
+        report.require_ezdxf()  # before anything is computed or written
     outcome = solve(cam_file, options)
     result = outcome.result
     unit = outcome.meta["length_unit"]
     from dyade.cli.output import atomic, console
-    from dyade.report import cam as report
 
     err = console(stderr=True)
     for target, name in ((points_file, "working"), (cutter_file, "cutter")):

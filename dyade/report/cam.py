@@ -52,6 +52,18 @@ def write_points(made, handle: TextIO, length_unit: str) -> None:
         handle.write(f"{cell(angle)},{cell(x)},{cell(y)}\n")
 
 
+def require_ezdxf():
+    """ezdxf, or ``MissingExtra`` naming the extra that installs it (exit 2)."""
+    try:
+        import ezdxf
+    except ImportError:
+        from dyade.errors import MissingExtra
+
+        raise MissingExtra('a DXF drawing needs ezdxf: pip install "dyade[cad]" (or write '
+                           'the points as CSV with --points).', key="ezdxf") from None
+    return ezdxf
+
+
 def write_dxf(result, path: str | os.PathLike, length_unit: str) -> None:
     """The curves to manufacture as closed polylines (layer CAM-WORKING, CAM-CUTTER) of
     a DXF drawing in ``length_unit`` ($INSUNITS set), the cam centre at the origin.
@@ -61,13 +73,7 @@ def write_dxf(result, path: str | os.PathLike, length_unit: str) -> None:
     MissingExtra
         ezdxf is not installed: ``pip install "dyade[cad]"``.
     """
-    try:
-        import ezdxf
-    except ImportError:
-        from dyade.errors import MissingExtra
-
-        raise MissingExtra('a DXF drawing needs ezdxf: pip install "dyade[cad]" (or write '
-                           'the points as CSV with --points).') from None
+    ezdxf = require_ezdxf()
     factor = LENGTH_FACTORS[length_unit]
     document = ezdxf.new("R2010")
     document.header["$INSUNITS"] = DXF_UNITS[length_unit]
