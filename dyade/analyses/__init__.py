@@ -23,6 +23,7 @@ ENTRIES = {
     "driveline-stability": "dyade.analyses.drive_line",
     "driveline-map": "dyade.analyses.drive_line",
     "driveline-run-up": "dyade.analyses.drive_line",
+    "profile": "dyade.analyses.profile",
     "cam": "dyade.analyses.cam",
 }
 """entry name -> the module that defines it (in its ``ENTRIES`` dict)"""

@@ -11,7 +11,8 @@ from dyade.cli.output import atomic, console
 
 
 TEMPLATES = {"fourbar": "RRR", "slider-crank": "RRP", "slotted-lever": "RPR",
-             "tangent-drive": "PRP", "scotch-yoke": "PPR", "study": "", "cam": ""}
+             "tangent-drive": "PRP", "scotch-yoke": "PPR", "study": "", "profile": "",
+             "cam": ""}
 KIND_ALIASES = {"rrr": "fourbar", "four-bar": "fourbar", "rrp": "slider-crank",
                 "rpr": "slotted-lever", "prp": "tangent-drive", "ppr": "scotch-yoke"}
 
@@ -25,8 +26,9 @@ def init(kind: str, file: str, force: bool) -> None:
     """Write a commented starting mechanism FILE for KIND: fourbar (RRR), slider-crank
     (RRP), slotted-lever (RPR), tangent-drive (PRP) or scotch-yoke (PPR). The file is
     valid and analysable as written: edit the numbers, then `dyade analyse FILE`.
-    KIND study writes a design study of fourbar.toml (`dyade study FILE`), KIND cam a
-    disc cam with its follower and motion profile (`dyade cam FILE`).
+    KIND study writes a design study of fourbar.toml (`dyade study FILE`); KIND profile
+    a motion profile of VDI 2143 laws over a machine cycle (`dyade profile FILE`); KIND
+    cam a disc cam with its follower and motion profile (`dyade cam FILE`).
     FILE "-" prints the template."""
     from importlib.resources import files
 
@@ -39,6 +41,10 @@ def init(kind: str, file: str, force: bool) -> None:
         raise click.UsageError(f"{file} exists; give --force to overwrite it.")
     with atomic(file) as handle:
         handle.write(text)
+    if name == "profile":
+        console(stderr=True).print(f"wrote {file} (a motion profile); next: dyade profile "
+                                   f"{file}")
+        return
     if name == "cam":
         console(stderr=True).print(f"wrote {file} (a disc cam); next: dyade cam {file}")
         return

@@ -42,6 +42,11 @@ MASTER_UNITS = {"angle": ("deg", ANGLE_FACTORS["deg"]), "time": ("s", 1.0)}
 MEET_RTOL = 1e-9  # [-] numbers as written that differ by less than this share meet
 
 
+def amount(value: float, unit: str) -> str:
+    """A number of the file with its unit, as messages write it: 190°, 0.3 s, 40 mm."""
+    return f"{fmt(value)}°" if unit == "deg" else f"{fmt(value)} {unit}"
+
+
 def output_factor(unit: str) -> float:
     """Size of the output's unit in SI [m or rad per unit]."""
     return LENGTH_FACTORS.get(unit) or ANGLE_FACTORS[unit]
@@ -92,20 +97,20 @@ class ProfileReader(TableReader):
                                 + ("" if kind is None else hint), kind)
             start = self.number(seg.get("start", end), f"{path}.start", x_unit)
             if number > 1 and abs(start - end) > MEET_RTOL * period:
-                raise self.fail(f"{path}.start", f"= {fmt(start)} {x_unit} does not meet the "
-                                f"end of segment {number - 1} ({fmt(end)} {x_unit}): segments "
+                raise self.fail(f"{path}.start", f"= {amount(start, x_unit)} does not meet the "
+                                f"end of segment {number - 1} ({amount(end, x_unit)}): segments "
                                 f"run end to end (leave `start` out to take it).", start, x_unit)
             first_start = start if first_start is None else first_start
             stop = self.number(self.required(seg, "end", path), f"{path}.end", x_unit)
             if not stop > start:
-                raise self.fail(f"{path}.end", f"= {fmt(stop)} {x_unit} is not after the "
-                                f"segment's start ({fmt(start)} {x_unit}): a segment needs a "
-                                f"positive duration, got {fmt(stop - start)} {x_unit}.",
+                raise self.fail(f"{path}.end", f"= {amount(stop, x_unit)} is not after the "
+                                f"segment's start ({amount(start, x_unit)}): a segment needs a "
+                                f"positive duration, got {amount(stop - start, x_unit)}.",
                                 stop, x_unit)
             lift_from = self.number(seg.get("from", lift), f"{path}.from", unit)
             if number > 1 and abs(lift_from - lift) > MEET_RTOL * max(abs(lift), 1.0):
-                raise self.fail(f"{path}.from", f"= {fmt(lift_from)} {unit} does not meet where "
-                                f"segment {number - 1} ends ({fmt(lift)} {unit}): a jump in "
+                raise self.fail(f"{path}.from", f"= {amount(lift_from, unit)} does not meet where "
+                                f"segment {number - 1} ends ({amount(lift, unit)}): a jump in "
                                 f"position (leave `from` out to take it).", lift_from, unit)
             lift_to = self.number(seg.get("to", lift_from), f"{path}.to", unit)
             self.direction(kind, lift_from, lift_to, f"{path}.to", unit, "to" in seg)
@@ -136,16 +141,16 @@ class ProfileReader(TableReader):
                         raise self.fail(f"{path}.{key}", "is an end condition of the law "
                                         "\"polynomial\" only; other laws have theirs.",
                                         seg[key])
-                    value = self.number(seg[key], f"{path}.{key}", f"{unit}/{x_unit}{power}")
+                    value = self.number(seg[key], f"{path}.{key}", f"{unit}/{'°' if x_unit == 'deg' else x_unit}{power}")
                     given[key] = value * s_size / x_size**order
             segments.append(Segment(kind, start * x_size, stop * x_size, lift_from * s_size,
                                     lift_to * s_size, law, params, boundary, **given))
             end, lift = stop, lift_to
         if abs(end - first_start - period) > MEET_RTOL * period:
             last = f"profile.segment.{len(tables)}.end"
-            raise self.fail(last, f"= {fmt(end)} {x_unit}: the segments cover "
-                            f"{fmt(end - first_start)} {x_unit}, the period is {fmt(period)} "
-                            f"{x_unit}; the last segment must end one period after the first "
+            raise self.fail(last, f"= {amount(end, x_unit)}: the segments cover "
+                            f"{amount(end - first_start, x_unit)}, the period is "
+                            f"{amount(period, x_unit)}; the last segment must end one period after the first "
                             f"starts (add a dwell).", end, x_unit)
         try:
             return Profile(tuple(segments), period * x_size, master, unit, name, x_unit)
@@ -161,21 +166,21 @@ class ProfileReader(TableReader):
         """Refuse a lift that contradicts the segment's kind."""
         moves = abs(lift_to - lift_from) > MEET_RTOL * max(abs(lift_from), abs(lift_to), 1.0)
         if kind == "dwell" and moves:
-            raise self.fail(key, f"= {fmt(lift_to)} {unit} differs from `from` = "
-                                 f"{fmt(lift_from)} {unit}: a dwell stands still (make it a "
+            raise self.fail(key, f"= {amount(lift_to, unit)} differs from `from` = "
+                                 f"{amount(lift_from, unit)}: a dwell stands still (make it a "
                                  f"rise or a return).", lift_to, unit)
         if kind != "dwell" and not moves:
             raise self.fail(key, ("is missing" if not written else
-                                  f"= {fmt(lift_to)} {unit} equals `from`") +
+                                  f"= {amount(lift_to, unit)} equals `from`") +
                             f": a {kind} must move (give `to`, or make it a dwell).",
                             lift_to, unit)
         if kind == "rise" and lift_to < lift_from:
-            raise self.fail(key, f"= {fmt(lift_to)} {unit} is below `from` = "
-                                 f"{fmt(lift_from)} {unit}: a rise goes up (make it a "
+            raise self.fail(key, f"= {amount(lift_to, unit)} is below `from` = "
+                                 f"{amount(lift_from, unit)}: a rise goes up (make it a "
                                  f"return).", lift_to, unit)
         if kind == "return" and lift_to > lift_from:
-            raise self.fail(key, f"= {fmt(lift_to)} {unit} is above `from` = "
-                                 f"{fmt(lift_from)} {unit}: a return goes down (make it a "
+            raise self.fail(key, f"= {amount(lift_to, unit)} is above `from` = "
+                                 f"{amount(lift_from, unit)}: a return goes down (make it a "
                                  f"rise).", lift_to, unit)
 
     def params(self, table: Any, path: str) -> dict[str, Any]:

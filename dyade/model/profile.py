@@ -38,6 +38,14 @@ class Segment:
     The end conditions ``start_velocity`` … ``end_acceleration`` are those of the law
     ``"polynomial"`` (the quintic of given end conditions), in SI per unit of the master
     (m/rad, m/rad², rad/s, …); ``None`` matches the neighbouring segment there.
+
+    Examples
+    --------
+    >>> import math
+    >>> from dyade.model.profile import Segment
+    >>> rise = Segment("rise", 0.0, math.pi / 2, 0.0, 0.04, law="modified-sine")
+    >>> round(rise.duration, 6), rise.lift, rise.law_name
+    (1.570796, 0.04, 'modified-sine')
     """
 
     kind: str
@@ -116,6 +124,16 @@ class Profile:
 
     An output that does not come back to where it started (an indexing table that
     advances each cycle) repeats with that advance per cycle.
+
+    Examples
+    --------
+    >>> import math
+    >>> from dyade.model.profile import Profile, Segment
+    >>> table = Profile((Segment("rise", 0.0, 1.5 * math.pi, 0.0, math.pi / 2, "cycloid"),
+    ...                  Segment("dwell", 1.5 * math.pi, 2 * math.pi, math.pi / 2,
+    ...                          math.pi / 2)), period=2 * math.pi, unit="deg")
+    >>> table.output, round(table.advance, 6)          # a quarter turn per cycle [rad]
+    ('angle', 1.570796)
     """
 
     segments: tuple[Segment, ...]
@@ -212,6 +230,11 @@ class Profile:
             raise segment_error(number, segment, "to", f"= {segment.lift_to:g} is above "
                                 f"`from` = {segment.lift_from:g}: a return goes down (make "
                                 f"it a rise).", segment.lift_to)
+        if segment.kind == "constant-velocity" and segment.law not in (None,
+                                                                        "constant-velocity"):
+            raise segment_error(number, segment, "law", f"= {segment.law!r} for a constant "
+                                f"velocity, which runs its own law: leave `law` out, or make "
+                                f"the segment a rise or a return.", segment.law)
         if segment.law_name is None:
             raise segment_error(number, segment, "law", f"is missing: a {segment.kind} "
                                 f"needs a motion law (for example \"modified-sine\").")

@@ -155,6 +155,14 @@ class Law:
 
     Call it with z (array) for ``(s, v, a, j)``: the position and its first three
     derivatives with respect to z [-]. Outside [0, 1] the end pieces are extrapolated.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dyade.motion.laws import LAWS
+    >>> s, v, a, j = LAWS["modified-sine"](np.array([0.0, 0.5, 1.0]))
+    >>> s.round(12).tolist(), round(LAWS["modified-sine"].C_v, 4)
+    ([0.0, 0.5, 1.0], 1.7596)
     """
 
     name: str
@@ -216,22 +224,23 @@ class Law:
 
     @cached_property
     def C_v(self) -> float:
-        """Characteristic velocity max|s′| [-]."""
+        """Characteristic velocity C_v, the largest magnitude of s′ [-]."""
         return self._peak(1)
 
     @cached_property
     def C_a(self) -> float:
-        """Characteristic acceleration max|s″| [-]."""
+        """Characteristic acceleration C_a, the largest magnitude of s″ [-]."""
         return self._peak(2)
 
     @cached_property
     def C_j(self) -> float:
-        """Characteristic jerk max|s‴| [-] (inside the law, one-sided at piece joins)."""
+        """Characteristic jerk C_j, the largest magnitude of s‴ [-] (inside the law,
+        one-sided at piece joins)."""
         return self._peak(3)
 
     @cached_property
     def C_M(self) -> float:
-        """Characteristic torque factor max|s′·s″| [-]."""
+        """Characteristic torque factor C_M, the largest magnitude of s′·s″ [-]."""
         return self._peak(4)
 
 
@@ -432,12 +441,37 @@ def canonical(name: str) -> str:
 
 
 def law(name: str, **params: Any) -> Law:
-    """The motion law ``name`` built with its parameters (``law("polynomial", v0=1)``).
+    """The motion law ``name`` built with its parameters.
+
+    Parameters
+    ----------
+    name : str
+        A law of ``LAWS`` (case, ``_`` or spaces for ``-`` and a few other names such as
+        ``"sinusoid"`` or ``"3-4-5"`` accepted).
+    **params
+        Its parameters: ``velocity`` (inclined-sine), ``ramp`` (acceleration-trapezoid),
+        ``v0, a0, v1, a1`` (polynomial: normalised end conditions), ``points``
+        (quintic-spline: interior [z, s] pairs).
+
+    Returns
+    -------
+    Law
+        Call it with z for (s, v, a, j); ``C_v``, ``C_a``, ``C_j``, ``C_M``,
+        ``boundary``.
 
     Raises
     ------
     InputError
         An unknown name (with a did-you-mean), an unknown or bad parameter.
+
+    Examples
+    --------
+    >>> from dyade.motion.laws import law
+    >>> trapezoid = law("acceleration-trapezoid", ramp=0.25)   # the triangle
+    >>> round(trapezoid.C_a, 6), trapezoid.boundary
+    (8.0, 'R-R')
+    >>> [round(float(x), 6) for x in law("3-4-5")([0.5])[1]]   # s′ at the middle
+    [1.875]
     """
     key = canonical(name)
     title, builder = BUILDERS[key]

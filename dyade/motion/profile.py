@@ -40,7 +40,17 @@ JUMP_RTOL = 1e-9  # [-] a jump smaller than this share of the profile's scale is
 
 @dataclass(frozen=True)
 class Motion:
-    """The output's motion at the master values ``x`` (one entry per value)."""
+    """The output's motion at the master values ``x`` (one entry per value).
+
+    Examples
+    --------
+    >>> from dyade.files.profile import read_profile
+    >>> from dyade.motion import profile as motion
+    >>> indexing = read_profile("mechanisms/profiles/indexing.toml")
+    >>> moved = motion.evaluate(indexing, [1.833])        # 105° [rad]: mid-rise
+    >>> round(float(moved.s[0]), 4), int(moved.segment[0])
+    (0.02, 1)
+    """
 
     x: FloatArray
     """master [rad or s], as asked"""
@@ -92,13 +102,13 @@ class SegmentPeaks:
     C_j: float
     """characteristic jerk [-]"""
     C_M: float
-    """characteristic torque factor max|S′·S″| [-]"""
+    """characteristic torque factor: the largest magnitude of S′·S″ [-]"""
     velocity: float
-    """peak |v| = |h|·C_v/T [m or rad per rad or s]"""
+    """peak velocity (magnitude) h·C_v/T [m or rad per rad or s]"""
     acceleration: float
-    """peak |a| = |h|·C_a/T² [per rad² or s²]"""
+    """peak acceleration (magnitude) h·C_a/T² [per rad² or s²]"""
     jerk: float
-    """peak |j| = |h|·C_j/T³ inside the segment [per rad³ or s³]"""
+    """peak jerk (magnitude) h·C_j/T³ inside the segment [per rad³ or s³]"""
 
 
 def normalised(value: float | None, segment: Segment, order: int) -> float | None:
@@ -149,10 +159,27 @@ def segment_laws(profile: Profile) -> tuple[Law | None, ...]:
     resolved: given ones, else its neighbour's at the shared boundary (the cycle wraps:
     the last segment is the first one's neighbour).
 
+    Parameters
+    ----------
+    profile : Profile
+
+    Returns
+    -------
+    tuple of Law or None
+        One per segment.
+
     Raises
     ------
     InputError
         A misspelt law (did-you-mean) or a bad parameter, naming the segment and key.
+
+    Examples
+    --------
+    >>> from dyade.files.profile import read_profile
+    >>> from dyade.motion import profile as motion
+    >>> indexing = read_profile("mechanisms/profiles/indexing.toml")
+    >>> [law.name if law else None for law in motion.segment_laws(indexing)]
+    [None, 'modified-sine', None, 'polynomial-4567', None]
     """
     segments = profile.segments
     count = len(segments)
@@ -193,6 +220,16 @@ def evaluate(profile: Profile, x: FloatArray, laws: tuple[Law | None, ...] | Non
     -------
     Motion
         s [m or rad] and its derivatives with respect to the master (per rad or per s).
+
+    Examples
+    --------
+    >>> from dyade.files.profile import read_profile
+    >>> from dyade.motion import profile as motion
+    >>> indexing = read_profile("mechanisms/profiles/indexing.toml")
+    >>> import numpy as np
+    >>> cycle = motion.evaluate(indexing, np.radians([105.0, 105.0 + 360.0]))
+    >>> cycle.s.round(12).tolist()                        # [m], periodic
+    [0.02, 0.02]
     """
     x = np.asarray(x, dtype=float)
     laws = segment_laws(profile) if laws is None else laws
@@ -232,7 +269,27 @@ def ends(profile: Profile, laws: tuple[Law | None, ...]
 def boundaries(profile: Profile, laws: tuple[Law | None, ...] | None = None
                ) -> tuple[Boundary, ...]:
     """Every boundary of the cycle (the first segment's start included: the cycle
-    wraps) with the jumps of s, v, a, j there."""
+    wraps) with the jumps of s, v, a, j there.
+
+    Parameters
+    ----------
+    profile : Profile
+    laws : tuple, optional
+        ``segment_laws(profile)`` when already built.
+
+    Returns
+    -------
+    tuple of Boundary
+
+    Examples
+    --------
+    >>> from dyade.files.profile import read_profile
+    >>> from dyade.motion import profile as motion
+    >>> indexing = read_profile("mechanisms/profiles/indexing.toml")
+    >>> [max(abs(jump) for jump in b.jumps[:3]) < 1e-12
+    ...  for b in motion.boundaries(indexing)]            # s, v, a continuous
+    [True, True, True, True, True]
+    """
     laws = segment_laws(profile) if laws is None else laws
     values = ends(profile, laws)
     out = []
@@ -291,6 +348,14 @@ def check(profile: Profile, laws: tuple[Law | None, ...] | None = None,
     -------
     tuple of str
         The notes (allowed jumps).
+
+    Examples
+    --------
+    >>> from dyade.files.profile import read_profile
+    >>> from dyade.motion import profile as motion
+    >>> indexing = read_profile("mechanisms/profiles/indexing.toml")
+    >>> motion.check(indexing)
+    ()
 
     Raises
     ------
@@ -372,8 +437,30 @@ def check(profile: Profile, laws: tuple[Law | None, ...] | None = None,
 
 def peaks(profile: Profile, laws: tuple[Law | None, ...] | None = None
           ) -> tuple[SegmentPeaks, ...]:
-    """Each segment's characteristic values and its peak |v|, |a|, |j| (SI, exact: the
-    law's characteristic values scaled by the lift and the duration)."""
+    """Each segment's characteristic values and its peak velocity, acceleration and jerk
+    (magnitudes; SI, exact: the law's characteristic values scaled by the lift and the
+    duration).
+
+    Parameters
+    ----------
+    profile : Profile
+    laws : tuple, optional
+        ``segment_laws(profile)`` when already built.
+
+    Returns
+    -------
+    tuple of SegmentPeaks
+        One per segment.
+
+    Examples
+    --------
+    >>> from dyade.files.profile import read_profile
+    >>> from dyade.motion import profile as motion
+    >>> indexing = read_profile("mechanisms/profiles/indexing.toml")
+    >>> rise = motion.peaks(indexing)[1]
+    >>> rise.law, round(rise.C_a, 4), round(rise.acceleration, 6)   # [m/rad²]
+    ('modified-sine', 5.528, 0.089616)
+    """
     laws = segment_laws(profile) if laws is None else laws
     runs = classes(profile, laws)
     out = []
@@ -390,9 +477,32 @@ def peaks(profile: Profile, laws: tuple[Law | None, ...] | None = None
 
 
 def at_speed(motion: Motion, speed: float, start: float = 0.0) -> Motion:
-    """The motion in time at a constant master speed ``speed`` [rad/s]: x becomes the
-    time from ``start`` [s], and v, a, j derivatives with respect to time
-    (v·ω, a·ω², j·ω³)."""
+    """The motion in time at a constant master speed: x becomes the time from
+    ``start`` [s], and v, a, j derivatives with respect to time (v·ω, a·ω², j·ω³).
+
+    Parameters
+    ----------
+    motion : Motion
+        Of an angle master (``evaluate``).
+    speed : float
+        The master's speed ω [rad/s].
+    start : float
+        The master angle at time 0 [rad].
+
+    Returns
+    -------
+    Motion
+
+    Examples
+    --------
+    >>> from dyade.files.profile import read_profile
+    >>> from dyade.motion import profile as motion
+    >>> indexing = read_profile("mechanisms/profiles/indexing.toml")
+    >>> import math
+    >>> timed = motion.at_speed(motion.evaluate(indexing, [1.833]), 2 * math.pi)  # 60 rpm
+    >>> round(float(timed.v[0]), 4)                       # [m/s]
+    0.2815
+    """
     if not (math.isfinite(speed) and speed > 0.0):
         raise InputError.parameter("speed", f"must be positive [rad/s], got {speed:g}.",
                                    value=speed, unit="rad/s")

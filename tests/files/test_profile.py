@@ -54,19 +54,19 @@ def test_profile_table_in_a_mechanism_file():
 @pytest.mark.parametrize("body, key, words", [
     (segment(kind="rise", law="cycloid", end=180, to=10)
      + segment(kind="return", law="cycloid", start=190, end=360, to=0),
-     "profile.segment.2.start", "= 190 deg does not meet the end of segment 1 (180 deg)"),
+     "profile.segment.2.start", "= 190° does not meet the end of segment 1 (180°)"),
     (segment(kind="rise", law="cycloid", end=180, to=10)
      + segment(kind="return", law="cycloid", end=360, frm=12, to=0),
      "profile.segment.2.from", "a jump in position"),
     (segment(kind="rise", law="cycloid", end=180, to=10) + segment(kind="dwell", end=180)
      + segment(kind="return", law="cycloid", end=360, to=0),
-     "profile.segment.2.end", "positive duration, got 0 deg"),
+     "profile.segment.2.end", "positive duration, got 0°"),
     (segment(kind="rise", law="cycloid", end=180, to=10) + segment(kind="dwell", end=150)
      + segment(kind="return", law="cycloid", end=360, to=0),
-     "profile.segment.2.end", "positive duration, got -30 deg"),
+     "profile.segment.2.end", "positive duration, got -30°"),
     (segment(kind="rise", law="cycloid", end=180, to=10)
      + segment(kind="return", law="cycloid", end=300, to=0),
-     "profile.segment.2.end", "the period is 360 deg"),
+     "profile.segment.2.end", "the period is 360°"),
     (segment(kind="rise", law="cycloid", end=360, to=10, lenght=3),
      "profile.segment.1.lenght", "unknown key"),
     (segment(kind="rise", end=360, to=10), "profile.segment.1.law", "is missing"),
@@ -85,3 +85,13 @@ def test_bad_files_name_file_and_key(tmp_path, body, key, words):
 def test_no_profile_table(tmp_path):
     with pytest.raises(InputError, match="has no \\[profile\\] table"):
         read_profile(write(tmp_path, "", head='name = "x"\n'))
+
+
+def test_constant_velocity_runs_its_own_law(tmp_path):
+    body = (segment(kind="rise", law="cycloid", end=180, to=10)
+            + segment(kind="constant-velocity", law="cycloid", end=200, to=11)
+            + segment(kind="return", law="cycloid", end=360, to=0))
+    with pytest.raises(InputError, match=r"p.toml: segment 2 \(constant-velocity, cycloid\): "
+                                         r"`law` = 'cycloid' for a constant velocity") as err:
+        read_profile(write(tmp_path, body))
+    assert err.value.key == "profile.segment.2.law"

@@ -168,3 +168,18 @@ def test_misspelt_law_named_with_its_segment():
 
 
 import re  # noqa: E402  (used by the parametrised test above)
+
+
+def test_polynomial_takes_a_neighbours_acceleration():
+    # the simple harmonic ends in a reversal (U: a ≠ 0); the quintic return takes its
+    # velocity and acceleration there, so only the start at the dwell keeps a jump of a
+    profile = Profile((seg("dwell", 0, 30, 0, 0),
+                       seg("rise", 30, 150, 0, 10, "simple-harmonic"),
+                       seg("return", 150, 270, 10, 0, "polynomial"),
+                       seg("dwell", 270, 360, 0, 0)), period=2 * math.pi)
+    hand_over = boundaries(profile)[2]
+    assert abs(hand_over.left[2]) > 1e-3                   # the reversal's acceleration
+    assert max(abs(jump) for jump in hand_over.jumps[:3]) < 1e-12
+    notes = check(profile)
+    assert len(notes) == 1 and "start of segment 2" in notes[0]
+    assert segment_laws(profile)[2].boundary == "U-R"
