@@ -20,6 +20,7 @@ PRESSURE_ANGLE_MAX = {"translating-roller": math.radians(30.0),
                       "translating-flat": math.radians(30.0)}
 """the designers' limits of |α| [rad] by follower kind (VDI 2142: 30° for a translating
 follower, 45° for an oscillating one), used where the file gives none"""
+CHORD_TOLERANCE_MIN = 1e-7  # [m] a finer exported profile is not made (and would be huge)
 STEEL = (210e9, 0.3)  # [Pa], [-] Young's modulus and Poisson's ratio of steel
 
 
@@ -126,8 +127,10 @@ class Cam:
             raise fail("mass", "and the spring stiffness must not be negative.")
         if not self.speed >= 0.0:
             raise fail("speed", f"must not be negative [rad/s], got {self.speed:g}.")
-        if not self.chord_tolerance > 0.0:
-            raise fail("chord_tolerance", f"must be positive [m], got {self.chord_tolerance:g}.")
+        if not self.chord_tolerance >= CHORD_TOLERANCE_MIN:
+            raise fail("chord_tolerance", f"must be at least {CHORD_TOLERANCE_MIN:g} m (0.1 µm, "
+                                          f"finer than any machine tool cuts), got "
+                                          f"{self.chord_tolerance:g} m.")
         if self.width is not None and not self.width > 0.0:
             raise fail("width", f"must be positive [m], got {self.width:g}.")
         self.check_profile(fail)

@@ -34,6 +34,8 @@ def test_the_examples_read_in_si():
     ('unit = "mm"\nperiod = 360', 'unit = "deg"\nperiod = 360',
      "`profile.unit` must be a length (m, cm, mm, um) for a translating-roller follower"),
     ('rotation = "ccw"', 'rotation = "clockwise"', '`cam.rotation` must be "ccw" or "cw"'),
+    ("chord_tolerance = 0.005", "chord_tolerance = 0.00001",
+     "`manufacture.chord_tolerance` must be at least 1e-07 m"),
 ])
 def test_errors_name_the_key(tmp_path, old, new, message):
     text = (CAMS / "translating-roller.toml").read_text(encoding="utf-8")
