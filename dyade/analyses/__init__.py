@@ -24,6 +24,7 @@ ENTRIES = {
     "driveline-map": "dyade.analyses.drive_line",
     "driveline-run-up": "dyade.analyses.drive_line",
     "profile": "dyade.analyses.profile",
+    "servo": "dyade.analyses.servo",
     "cam": "dyade.analyses.cam",
 }
 """entry name -> the module that defines it (in its ``ENTRIES`` dict)"""

@@ -12,7 +12,7 @@ from dyade.cli.output import atomic, console
 
 TEMPLATES = {"fourbar": "RRR", "slider-crank": "RRP", "slotted-lever": "RPR",
              "tangent-drive": "PRP", "scotch-yoke": "PPR", "study": "", "profile": "",
-             "cam": ""}
+             "servo": "RRP", "cam": ""}
 KIND_ALIASES = {"rrr": "fourbar", "four-bar": "fourbar", "rrp": "slider-crank",
                 "rpr": "slotted-lever", "prp": "tangent-drive", "ppr": "scotch-yoke"}
 
@@ -28,7 +28,9 @@ def init(kind: str, file: str, force: bool) -> None:
     valid and analysable as written: edit the numbers, then `dyade analyse FILE`.
     KIND study writes a design study of fourbar.toml (`dyade study FILE`); KIND profile
     a motion profile of VDI 2143 laws over a machine cycle (`dyade profile FILE`); KIND
-    cam a disc cam with its follower and motion profile (`dyade cam FILE`).
+    servo a servo press, a slider-crank whose ram follows a motion profile (`dyade servo
+    FILE`); KIND cam a disc cam with its follower and motion profile (`dyade cam
+    FILE`).
     FILE "-" prints the template."""
     from importlib.resources import files
 
@@ -45,11 +47,21 @@ def init(kind: str, file: str, force: bool) -> None:
         console(stderr=True).print(f"wrote {file} (a motion profile); next: dyade profile "
                                    f"{file}")
         return
+    if name == "study":  # and the mechanism it names, beside it, where it is not there yet
+        mechanism = os.path.join(os.path.dirname(file), "fourbar.toml")
+        wrote = "" if os.path.exists(mechanism) else f" and {mechanism} (its mechanism)"
+        if wrote:
+            with atomic(mechanism) as handle:
+                handle.write(files("dyade").joinpath("templates", "fourbar.toml").read_text(
+                    encoding="utf-8"))
+        console(stderr=True).print(f"wrote {file} (a design study){wrote}; next: dyade study "
+                                   f"{file}")
+        return
+    if name == "servo":
+        console(stderr=True).print(f"wrote {file} (a servo press); next: dyade servo {file}")
+        return
     if name == "cam":
         console(stderr=True).print(f"wrote {file} (a disc cam); next: dyade cam {file}")
-        return
-    if name == "study":
-        console(stderr=True).print(f"wrote {file} (a design study); next: dyade study {file}")
         return
     console(stderr=True).print(f"wrote {file} ({name}, dyad kind {TEMPLATES[name]}); next: "
                                f"dyade describe {file}")

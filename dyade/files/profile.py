@@ -239,7 +239,7 @@ def read_profile(path: str | os.PathLike, text: str | None = None):
         raise InputError(f"{label}: has no [profile] table: a motion profile is a "
                          f"[profile] table with [[profile.segment]] tables (dyade init "
                          f"profile writes one).", source=path, key="profile")
-    from dyade.files.mechanism.reader import TOP_KEYS
+    from dyade.files.mechanism.keys import TOP_KEYS
     reader.keys(data, "", FILE_KEYS | TOP_KEYS)
     default = data.get("name", os.path.splitext(label)[0])
     return reader.profile(data["profile"], default if isinstance(default, str) else label)

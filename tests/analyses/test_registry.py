@@ -62,6 +62,8 @@ RUNS = {
             ["cam", str(shipped("cams/cam-linkage.toml")), "--step", "2"]),
 }
 """an invocation of each entry, from Python and from the command line"""
+RUNS["servo"] = (shipped("servo/press.toml"), {"ratio_count": 3},
+                 ["servo", str(shipped("servo/press.toml")), "--ratio-count", "3"])
 
 
 def _drive_line_runs() -> None:
@@ -129,6 +131,7 @@ WRITERS = {"fmt", "output", "columns", "patterns", "show_all", "units", "save_as
 """a command's parameters that choose how its Outcome is written or where it runs (its
 input files, --format, -o, --columns, --all, --units, --save-as, -j, --resume; driveline's
 --analysis chooses the entry): the command's own"""
+WRITERS |= {"controller"}  # dyade servo --controller: where the cam table is written
 OWN = {("study", "journal"): "-o"}
 """an entry's option that its command gives by another of its flags: a study's journal
 is the CSV it writes (-o)"""
