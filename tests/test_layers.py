@@ -254,7 +254,7 @@ units, errors, arrays and itself"""
 READERS = ("dyade.files",)
 """the readers: import only the base and the model (no engine)"""
 ENGINE = ("dyade.linkage", "dyade.machine", "dyade.vibration", "dyade.clearance",
-          "dyade.motion")
+          "dyade.motion", "dyade.cam")
 SYNTHESIS = ("dyade.synthesis",)
 """dimensional synthesis: above the engine and the readers (it builds its candidates'
 mechanisms from file data), below the analyses (the ``synthesis`` entry)"""

@@ -26,5 +26,6 @@ ENTRIES = {
     "profile": "dyade.analyses.profile",
     "servo": "dyade.analyses.servo",
     "synthesis": "dyade.analyses.synthesis",
+    "cam": "dyade.analyses.cam",
 }
 """entry name -> the module that defines it (in its ``ENTRIES`` dict)"""

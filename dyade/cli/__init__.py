@@ -21,7 +21,7 @@ SUBCOMMANDS = {"describe": "describe", "analyse": "analyse", "init": "init",
                "flywheel": "machine", "balance": "machine",
                "plot": "plot", "gears": "gears", "driveline": "driveline",
                "study": "study", "report": "report", "profile": "profile",
-               "servo": "servo", "synthesise": "synthesise"}
+               "servo": "servo", "synthesise": "synthesise", "cam": "cam"}
 """command -> module of dyade.cli that defines it, imported when the command is used
 (or listed by --help), so that a run pays only for its own command"""
 

@@ -12,11 +12,12 @@ from dyade.cli.output import atomic, console
 
 TEMPLATES = {"fourbar": "RRR", "slider-crank": "RRP", "slotted-lever": "RPR",
              "tangent-drive": "PRP", "scotch-yoke": "PPR", "study": "", "profile": "",
-             "servo": "RRP", "synthesis": ""}
+             "servo": "RRP", "synthesis": "", "cam": ""}
 NEXT = {"study": ("a design study", "dyade study"),
         "profile": ("a motion profile", "dyade profile"),
         "servo": ("a servo press", "dyade servo"),
-        "synthesis": ("a synthesis file", "dyade synthesise")}
+        "synthesis": ("a synthesis file", "dyade synthesise"),
+        "cam": ("a disc cam", "dyade cam")}
 """a template that is not a plain mechanism -> (what it is, the command that runs it)"""
 KIND_ALIASES = {"rrr": "fourbar", "four-bar": "fourbar", "rrp": "slider-crank",
                 "rpr": "slotted-lever", "prp": "tangent-drive", "ppr": "scotch-yoke"}
@@ -34,7 +35,8 @@ def init(kind: str, file: str, force: bool) -> None:
     KIND study writes a design study of fourbar.toml (`dyade study FILE`); KIND profile
     a motion profile of VDI 2143 laws over a machine cycle (`dyade profile FILE`); KIND
     servo a servo press, a slider-crank whose ram follows a motion profile (`dyade servo
-    FILE`); KIND synthesis a synthesis file (`dyade synthesise FILE`).
+    FILE`); KIND synthesis a synthesis file (`dyade synthesise FILE`); KIND cam a disc
+    cam with its follower and motion profile (`dyade cam FILE`).
     FILE "-" prints the template."""
     from importlib.resources import files
 

@@ -33,8 +33,8 @@ INSTALL = 'pip install "dyade[plot]"'
 MINIMUM = (3, 7)  # matplotlib version the figures are written for
 
 
-MODULES = ("animate", "campbell", "canvas", "clearance", "coupling", "curves", "mechanism",
-           "modes", "polar", "profile")
+MODULES = ("animate", "cam", "campbell", "canvas", "clearance", "coupling", "curves",
+           "mechanism", "modes", "polar", "profile")
 """the figure modules, loaded on first attribute access (``dyade.plot.curves``)"""
 
 

@@ -52,8 +52,8 @@ def flag(value: Any) -> str:
 
 def display(unit: str, length_unit: str = "m") -> tuple[float, str]:
     """Factor and unit to show a value of SI ``unit`` with lengths in ``length_unit``
-    (m, m/s, m/s² become mm, mm/s, mm/s² for "mm")."""
-    if length_unit == "m" or unit not in ("m", "m/s", "m/s²"):
+    (m, m/s, m/s², m/rad … become mm, mm/s, mm/s², mm/rad … for "mm")."""
+    if length_unit == "m" or unit not in ("m", "m/s", "m/s²", "m/rad", "m/rad²", "m/rad³"):
         return 1.0, unit
     return 1.0 / LENGTH_FACTORS[length_unit], length_unit + unit[1:]
 

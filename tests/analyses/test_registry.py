@@ -60,6 +60,8 @@ RUNS = {
     "describe": (shipped("dyade-16.toml"), {}, ["describe", str(shipped("dyade-16.toml"))]),
     "profile": (shipped("profiles/conveyor.toml"), {"points": 121},
                 ["profile", str(shipped("profiles/conveyor.toml")), "--points", "121"]),
+    "cam": (shipped("cams/cam-linkage.toml"), {"step_deg": 2.0},
+            ["cam", str(shipped("cams/cam-linkage.toml")), "--step", "2"]),
 }
 """an invocation of each entry, from Python and from the command line"""
 RUNS["servo"] = (shipped("servo/press.toml"), {"ratio_count": 3},
@@ -127,7 +129,7 @@ def test_the_registry_lists_every_entry_and_each_loads():
 WRITERS = {"fmt", "output", "columns", "patterns", "show_all", "units", "save_as", "jobs", "resume",
            "mechanism_files", "mechanism_file", "file", "coupling_file", "gear_file",
            "study_file", "source", "save_path", "what", "plot_file", "synthesis_file", "folder",
-           "figure"}
+           "figure", "cam_file", "points_file", "cutter_file", "dxf_file"}
 """a command's parameters that choose how its Outcome is written or where it runs (its
 input files, --format, -o, --columns, --all, --units, --save-as, -j, --resume; driveline's
 --analysis chooses the entry; synthesise's --write and --plot): the command's own"""
