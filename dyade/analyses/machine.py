@@ -198,7 +198,8 @@ def mechanism_curve(source: Any, options: dict[str, Any], budget: Budget):
             else math.radians(step_deg))
     count = int(math.ceil(2.0 * math.pi / step - 1e-9))
     try:
-        check_size(mechanism, count, budget.max_memory)
+        check_size(mechanism, count, budget.max_memory,  # one revolution: no range to shorten
+                   advice="Use a coarser step (the torque curve covers one revolution)")
         budget.time(sweep_seconds(mechanism, count), f"the torque curve at {count:,} positions")
         return torque_curve(mechanism, step_deg=step_deg, max_memory=budget.max_memory)
     except InputError as err:
