@@ -29,6 +29,8 @@ PRISMATIC_KEYS = {"link", "point", "angle", "offset", "guide", "slider_point", "
 class LinkReader(FrictionReader):
     """Reads links, points, the crank and the joints that attach a dyad to placed links."""
 
+    unbounded = frozenset({"crank.speed_rpm"})  # above 1e6 rpm: analysed, its rows withheld
+
     points: dict[int, dict[str, Vec]]
     """link -> its named points (ξ, η) [m], the frame's included"""
     placed: list[int]
@@ -43,6 +45,8 @@ class LinkReader(FrictionReader):
             raise self.fail(key, f"must be a pair of finite numbers [ξ, η] "
                                  f"[{self.length_unit}], got {show(value)}.", value,
                             self.length_unit)
+        for v in value:
+            self.below_top(_real(v), key, "length", self.length_unit, self.length)
         return (_real(value[0]) * self.length, _real(value[1]) * self.length)
 
     def named_points(self, table: Any, key: str) -> dict[str, Vec]:
