@@ -5,6 +5,7 @@ are refused."""
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -41,7 +42,11 @@ class LinkReader(FrictionReader):
                 or not all(is_number(v) for v in value)):
             raise self.fail(key, f"must be a pair of numbers [ξ, η] [{self.length_unit}], "
                                  f"got {show(value)}.", value, self.length_unit)
-        if not all(np.isfinite(v).all() for v in value):
+        if isinstance(value[0], Variants) or isinstance(value[1], Variants):
+            finite = all(np.isfinite(v).all() for v in value)
+        else:  # the common case, a file's point: plain floats (a file may have 100 000)
+            finite = math.isfinite(value[0]) and math.isfinite(value[1])
+        if not finite:
             raise self.fail(key, f"must be a pair of finite numbers [ξ, η] "
                                  f"[{self.length_unit}], got {show(value)}.", value,
                             self.length_unit)
