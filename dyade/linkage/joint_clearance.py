@@ -189,7 +189,7 @@ def needs_forces(result, what: str) -> None:
     springs), for ``what`` needs them."""
     if result.forces_valid is None:
         raise InputError(f"{what} needs joint forces: the file has no masses, loads or "
-                         f"springs (add mass data, see docs/reference/mechanism-file.md).")
+                         f"springs (add mass data, see `dyade help mechanism-file`).")
 
 
 def _revolute(mechanism, name: tuple[int, int]) -> Revolute:

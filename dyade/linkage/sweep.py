@@ -78,7 +78,7 @@ class Result(Outcome):
 
             close = difflib.get_close_matches(str(name), list(self.table), n=3)
             hint = (f" Did you mean {', '.join(close)}?" if close
-                    else " Its columns: result.columns().keys() (docs/reference/columns.md).")
+                    else " Its columns: result.columns().keys() (`dyade help columns`).")
             raise KeyError(f"the sweep has no column {name!r}.{hint}") from None
 
     def __contains__(self, name: object) -> bool:

@@ -94,7 +94,7 @@ def figure(result, joints=None, *, max_wander_deg: float = MAX_WANDER_DEG,
     InputError.refuse_renamed("polar.figure", renamed, {"max_wander": "max_wander_deg"})
     if result.forces is None:
         raise InputError("joint-force polar diagrams need joint forces: the mechanism has no "
-                         "masses, loads or springs (add mass data, see docs/reference/mechanism-file.md).")
+                         "masses, loads or springs (add mass data, see `dyade help mechanism-file`).")
     lines = force_lines(result, joints, max_wander=radians(max_wander_deg, "max_wander_deg"))
     cols = result.columns()
     rows, columns = canvas.grid(len(lines))
