@@ -245,6 +245,9 @@ def balance(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     if not given.any():
         none_given(mechanism.name, "no crank position of the sweep has its shaking force given",
                    result.before.notes)
+    if not (result.before.columns()["forces_valid"] == 1.0).any():  # beyond what a machine has
+        none_given(mechanism.name, "no crank position of the sweep has its forces given, so "
+                                   "no balance can be judged", result.before.notes)
     weights = result.counterweights
     columns = {"link": np.array([w.link for w in weights], dtype=np.int64),
                "first_moment": np.array([w.first_moment for w in weights]),

@@ -74,3 +74,35 @@ def test_the_old_and_the_new_name_together_give_every_value():
     both = expect(["coupling", COUPLING, "--speed-rpm", "500", "--speed", "700", "--format",
                    "json"], 0)
     assert "500" in both.output and "700" in both.output
+
+
+# -- no confident wrong number: every position withheld exits 1 --------------------------
+FOURBAR = shipped("fourbar.toml")
+RACING = ["--set", "crank.speed_rpm=1e9"]  # every row beyond what a machine has
+HEAVY = ["--set", "crank.speed_rpm=1e6", "--set", "links.3.mass=1e7"]  # forces only
+
+
+@pytest.mark.parametrize("command", [["accuracy"], ["clearance"], ["balance"],
+                                     ["flywheel", "--fluctuation", "0.02"]])
+def test_every_position_withheld_exits_1_saying_so(command):
+    result = expect([command[0], FOURBAR, *command[1:], *RACING], 1, "nothing to report")
+    assert "carr" not in result.output  # never "the joints carry no force"
+
+
+def test_a_balance_whose_forces_are_all_withheld_exits_1():
+    expect(["balance", FOURBAR, *HEAVY], 1, "no crank position of the sweep has its forces given")
+
+
+@pytest.mark.parametrize("kind", ["polar", "curves", "mechanism"])
+def test_a_figure_of_a_sweep_with_nothing_given_draws_nothing(kind, tmp_path):
+    pytest.importorskip("matplotlib")
+    out = tmp_path / f"{kind}.png"
+    expect(["plot", kind, FOURBAR, *RACING, "-o", out], 1,
+           "no position of the sweep has its kinematics given", "nothing to draw")
+    assert not out.exists()
+
+
+def test_a_polar_diagram_of_withheld_forces_draws_nothing(tmp_path):
+    pytest.importorskip("matplotlib")
+    expect(["plot", "polar", FOURBAR, *HEAVY, "-o", tmp_path / "p.png"], 1,
+           "no position of the sweep has its joint forces given")
