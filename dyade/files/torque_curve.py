@@ -13,6 +13,8 @@ import os
 import numpy as np
 
 from dyade.errors import InputError
+from dyade.limits import PLAUSIBLE
+from dyade.units import rpm_to_rad_per_s
 from dyade.model.torque_table import TorqueTable
 
 REQUIRED = ("angle_deg", "M_drive")
@@ -24,6 +26,10 @@ CHECKED = ("angle_deg", "M_drive", "M_load")
 CSV are empty where a sweep gives no value)"""
 RADIANS_SPAN = 2.0 * np.pi + 5e-3  # [-] a span up to 2π written with few digits (6.28319, 6.283)
 TORQUE_LIMIT = 1e9  # [N·m] no machine's crank shaft carries more (dyade.limits "torque")
+BOUNDED = {"J_red": (PLAUSIBLE["inertia"][1], "kg·m²"),
+           "omega_2": (rpm_to_rad_per_s(PLAUSIBLE["speed_rpm"][1]), "rad/s")}
+"""the optional columns of dyade's CSV -> the largest magnitude a machine has, and its unit
+(they may be empty where a sweep gives no value)"""
 
 
 def load_columns(path: str | os.PathLike, text: str | None = None) -> dict[str, np.ndarray]:
@@ -89,6 +95,11 @@ def load_columns(path: str | os.PathLike, text: str | None = None) -> dict[str, 
             if name in ("M_drive", "M_load") and abs(value) > TORQUE_LIMIT:
                 raise InputError(f"{label}: line {number}, column {column}: {cell} N·m is "
                                  f"beyond what a machine has (|M| ≤ {TORQUE_LIMIT:g} N·m).",
+                                 source=path, key=name)
+            if name in BOUNDED and abs(value) > BOUNDED[name][0]:  # NaN (empty) passes
+                top, unit = BOUNDED[name]
+                raise InputError(f"{label}: line {number}, column {column}: {cell} {unit} is "
+                                 f"beyond what a machine has (at most {top:g} {unit}).",
                                  source=path, key=name)
             row.append(value)
         rows.append(row)

@@ -65,3 +65,23 @@ def test_an_absurd_number_in_a_coupling_file_is_refused(tmp_path, key, value):
     path.write_text("\n".join([f"{key} = {value}"] + lines) + "\n")
     with pytest.raises(dyade.InputError, match=f"c.toml: `{key}` must lie in"):
         dyade.read_coupling(path)
+
+
+@pytest.mark.parametrize("column, value", [("J_red", "1e300"), ("omega_2", "-1e300")])
+def test_an_absurd_number_in_a_torque_csv_of_dyade_is_refused(tmp_path, column, value):
+    from dyade.files.torque_curve import load_columns
+
+    written = dyade.run("sweep", shipped("fourbar.toml"), step_deg=10)
+    cols = written.columns
+    names = ["angle_deg", "M_drive", "J_red", "dJ_red", "omega_2"]
+    lines = [",".join(names)] + [",".join(repr(float(cols[n][k])) for n in names)
+                                 for k in range(len(cols["angle_deg"]))]
+    k = names.index(column)
+    fields = lines[3].split(",")
+    fields[k] = value
+    lines[3] = ",".join(fields)
+    path = tmp_path / "curve.csv"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(dyade.InputError, match=f"curve.csv: line 4, column {column}: .* beyond "
+                                               f"what a machine has"):
+        load_columns(path)
