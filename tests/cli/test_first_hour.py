@@ -70,6 +70,12 @@ def test_a_message_about_a_renamed_option_says_it_was_renamed(args, old, new):
     assert "renamed" not in current.output
 
 
+def test_an_option_for_another_analysis_under_its_old_name_says_it_was_renamed():
+    expect(["driveline", shipped("dyade-16.toml"), "--set", "drive_line.stiffness=1000",
+            "--analysis", "steady", "--speeds-rpm", "100:200:100"], 2,
+           "--speed-range (renamed from --speeds-rpm) is for --analysis")
+
+
 def test_the_old_and_the_new_name_together_give_every_value():
     both = expect(["coupling", COUPLING, "--speed-rpm", "500", "--speed", "700", "--format",
                    "json"], 0)
