@@ -27,6 +27,7 @@ import dyade  # noqa: E402
 from dyade import clearance  # noqa: E402
 from dyade.plot import animate, canvas, clearance as clearance_plot  # noqa: E402
 from dyade.plot import campbell, coupling, curves, drive_line, mechanism, modes, polar  # noqa: E402
+from dyade.plot import profile  # noqa: E402
 
 DOCS = ROOT / "docs"
 MECHANISMS = ROOT / "mechanisms"
@@ -99,6 +100,23 @@ def self_locking_curves():
     return curves.figure(result)
 
 
+def indexing_profile():
+    return profile.figure(dyade.run("profile", MECHANISMS / "profiles" / "indexing.toml"))
+
+
+LAW_PARAMETERS = {"inclined-sine": {"velocity": 0.5},
+                  "quintic-spline": {"points": [[0.3, 0.2], [0.6, 0.7]]},
+                  "polynomial": {"v0": 0.5, "a0": 0.0, "v1": 0.0, "a1": -2.0}}
+"""the parameters of a law's figure on docs/guide/motion-laws.md (others: its defaults)"""
+
+
+def law_figure(name: str):
+    """One motion law over its normalised time (docs/motion-laws/NAME.png)."""
+    from dyade.motion.laws import law
+
+    return profile.law_figure(law(name, **LAW_PARAMETERS.get(name, {})))
+
+
 def fourbar_report(path: Path) -> None:
     """The top of `dyade report mechanisms/fourbar.toml` as headless Chromium shows it
     (skipped without a Chromium)."""
@@ -136,6 +154,7 @@ FIGURES = {
     "dyade-16-driveline.png": dyade16_drive_line,
     "dyade-16-mechanism.png": dyade16_mechanism,
     "self-locking-curves.png": self_locking_curves,
+    "indexing-profile.png": indexing_profile,
 }
 """file in docs/ -> the function that makes it"""
 
@@ -165,6 +184,13 @@ def main() -> None:
         save(name, path)
         elapsed = time.perf_counter() - started
         print(f"{name:28s} {path.stat().st_size / 1024:7.1f} KiB  {elapsed:6.2f} s")
+    from dyade.motion.laws import LAWS
+
+    (DOCS / "motion-laws").mkdir(exist_ok=True)
+    for name in LAWS:
+        path = DOCS / "motion-laws" / f"{name}.png"
+        canvas.save(law_figure(name), str(path), dpi=DPI)
+        print(f"motion-laws/{name + '.png':17s} {path.stat().st_size / 1024:7.1f} KiB")
     for name, make in SCREENSHOTS.items():
         make(DOCS / name)
 

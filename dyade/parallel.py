@@ -220,3 +220,49 @@ def _call(index: int):
     function, items, started = _task
     started[index] = os.getpid()
     return function(items[index])
+
+
+def connect(address: str):
+    """A Dask client of the scheduler at ``address``; an InputError on ``scheduler``
+    when it does not answer within 5 s."""
+    import importlib.util
+    import logging
+
+    from dyade.errors import InputError, MissingExtra
+
+    if importlib.util.find_spec("distributed") is None:
+        raise MissingExtra("scheduler needs distributed, which is not installed: "
+                           "pip install \"dyade[dask]\".")
+
+    from distributed import Client
+
+    logging.getLogger("distributed").setLevel(logging.CRITICAL)
+    reachable(address)
+    try:
+        return Client(address, timeout="5s")
+    except (OSError, TimeoutError, ValueError) as err:
+        raise InputError.parameter("scheduler", f"{address}: no Dask scheduler answers there "
+                                                f"({err}).", value=address) from None
+
+
+def reachable(address: str, timeout: float = 3.0) -> None:
+    """Refuse at once a tcp:// address where nothing listens (Dask's client would try
+    again until its timeout)."""
+    import socket
+
+    from dyade.errors import InputError
+
+    if not address.startswith("tcp://"):
+        return
+    host, _, port = address[len("tcp://"):].rpartition(":")
+    try:
+        number = int(port.strip("/"))
+    except ValueError:
+        raise InputError.parameter("scheduler", f"{address}: give tcp://HOST:PORT.",
+                                   value=address) from None
+    try:
+        socket.create_connection((host.strip("[]"), number), timeout=timeout).close()
+    except OSError as err:
+        raise InputError.parameter("scheduler", f"{address}: no Dask scheduler answers there "
+                                                f"({err.strerror or err}).",
+                                   value=address) from None

@@ -253,7 +253,11 @@ MODEL = ("dyade.model",)
 units, errors, arrays and itself"""
 READERS = ("dyade.files",)
 """the readers: import only the base and the model (no engine)"""
-ENGINE = ("dyade.linkage", "dyade.machine", "dyade.vibration", "dyade.clearance")
+ENGINE = ("dyade.linkage", "dyade.machine", "dyade.vibration", "dyade.clearance",
+          "dyade.motion")
+SYNTHESIS = ("dyade.synthesis",)
+"""dimensional synthesis: above the engine and the readers (it builds its candidates'
+mechanisms from file data), below the analyses (the ``synthesis`` entry)"""
 ANALYSES = ("dyade.analyses",)
 """the contract and its entries: above the engine and the readers, below cli, report, plot
 and study"""
@@ -323,9 +327,14 @@ RULES = {
         "the model's objects and computes nothing"),
     "the engine reads no file and runs no analysis": (
         lambda name: within(name, *ENGINE),
-        lambda name, imp: within(imp.target, *READERS, *ANALYSES, *STUDY),
+        lambda name, imp: within(imp.target, *READERS, *SYNTHESIS, *ANALYSES, *STUDY),
         "is the engine and imports a reader, an analysis entry or the study: the caller "
         "reads the file (dyade.files) and hands the engine the model"),
+    "the synthesis sits above the engine and the readers, below the analyses": (
+        lambda name: within(name, *SYNTHESIS),
+        lambda name, imp: within(imp.target, *ANALYSES, *CLI, *REPORT, *PLOT, *STUDY),
+        "is the synthesis and imports an analysis entry, the command line, a writer, a "
+        "figure or the study, which are above it"),
     "analyses sit below cli, report, plot and study": (
         lambda name: within(name, *ANALYSES),
         lambda name, imp: within(imp.target, *CLI, *REPORT, *PLOT, *STUDY),

@@ -23,5 +23,8 @@ ENTRIES = {
     "driveline-stability": "dyade.analyses.drive_line",
     "driveline-map": "dyade.analyses.drive_line",
     "driveline-run-up": "dyade.analyses.drive_line",
+    "profile": "dyade.analyses.profile",
+    "servo": "dyade.analyses.servo",
+    "synthesis": "dyade.analyses.synthesis",
 }
 """entry name -> the module that defines it (in its ``ENTRIES`` dict)"""

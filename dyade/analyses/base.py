@@ -297,14 +297,15 @@ class Budget:
     """The bounds of one run and its progress, as every analysis gets them.
 
     ``max_memory`` [B] and ``max_time`` [s] (None: no time bound); ``progress(done,
-    total)`` is called as the work goes on (the command line draws a bar on a
+    total)`` is called as the work goes on (``progress(done, total, note)`` with words on
+    how it goes, where the analysis has them: a synthesis's rate and best error) (the command line draws a bar on a
     terminal); ``told(text)`` hears the estimate of a run above ``SAY_ABOVE`` seconds
     before it starts (the command line prints it on stderr).
     """
 
     max_memory: float | None = None
     max_time: float | None = None
-    progress: Callable[[float, float | None], None] = lambda done, total=None: None
+    progress: Callable[..., None] = lambda done, total=None, note=None: None
     told: Callable[[str], None] = lambda text: None
 
     SAY_ABOVE = 5.0  # [s] a run estimated above this is announced with its estimate

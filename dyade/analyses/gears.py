@@ -133,7 +133,8 @@ def meta(loaded: Drive, modes) -> dict[str, Any]:
     system = modes.system
     return {"name": loaded.drive.name, "source": loaded.source, "model": loaded.drive.model,
             "coordinates": system.size, "bodies": len(system.bodies),
-            "meshes": len(loaded.drive.meshes), "ideal_meshes": len(system.ideal)}
+            "meshes": len(loaded.drive.meshes), "ideal_meshes": len(system.ideal),
+            "rigid_directions": len(system.supports)}
 
 
 # -- modes -------------------------------------------------------------------------------
@@ -267,7 +268,8 @@ def run_modes(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         add("largest_rel_diff", float(elimination.difference), "-",
             description="largest relative frequency difference")
         add("extra_zeros", int(elimination.extra_zeros), "-",
-            description="extra zero eigenvalues (eigenvectors violate gᵀq = 0; one per mesh)")
+            description="extra zero eigenvalues (eigenvectors violate gᵀq = 0; one per "
+                        "ideal mesh or rigid direction)")
         add("ideal_meshes", int(elimination.meshes), "-", description="ideal meshes")
         add("rigid_zeros", int(elimination.rigid_zeros), "-",
             description="rigid-body zero eigenvalues (satisfy the constraints)")
@@ -333,9 +335,11 @@ def mode_notes(modes) -> list[str]:
 
 def check_notes(result) -> list[str]:
     """A count of extra zero eigenvalues other than one per ideal mesh, worded."""
-    if result.extra_zeros != result.meshes:
+    if result.extra_zeros != result.constraints:
+        rigid = result.constraints - result.meshes
+        also = f" and {rigid} rigid directions" if rigid else ""
         return [f"warning: the eliminated form has {result.extra_zeros} extra zero eigenvalues "
-                f"for {result.meshes} ideal meshes (expected one per mesh)."]
+                f"for {result.meshes} ideal meshes{also} (expected one per constraint)."]
     return []
 
 
@@ -524,7 +528,7 @@ def run_response(source: Any, options: dict[str, Any], budget: Budget) -> Outcom
     frequencies = values(text, FREQUENCY_RANGE.api, "Hz", "frequency")
     modes = solve_modes(loaded, budget)
     system = modes.system
-    size = system.size - len(system.ideal)
+    size = system.size - system.constraints.shape[1]
     budget.time(SOLVE_TIME * len(frequencies) * size ** 3,
                 f"the response at {len(frequencies):,} frequencies")
     try:

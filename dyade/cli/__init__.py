@@ -20,7 +20,8 @@ SUBCOMMANDS = {"describe": "describe", "analyse": "analyse", "init": "init",
                "clearance": "clearance", "coupling": "coupling", "accuracy": "accuracy",
                "flywheel": "machine", "balance": "machine",
                "plot": "plot", "gears": "gears", "driveline": "driveline",
-               "study": "study", "report": "report", "help": "help"}
+               "study": "study", "report": "report", "profile": "profile",
+               "servo": "servo", "synthesise": "synthesise", "help": "help"}
 """command -> module of dyade.cli that defines it, imported when the command is used
 (or listed by --help), so that a run pays only for its own command"""
 

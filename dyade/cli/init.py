@@ -11,7 +11,13 @@ from dyade.cli.output import atomic, console
 
 
 TEMPLATES = {"fourbar": "RRR", "slider-crank": "RRP", "slotted-lever": "RPR",
-             "tangent-drive": "PRP", "scotch-yoke": "PPR", "study": ""}
+             "tangent-drive": "PRP", "scotch-yoke": "PPR", "study": "", "profile": "",
+             "servo": "RRP", "synthesis": ""}
+NEXT = {"study": ("a design study", "dyade study"),
+        "profile": ("a motion profile", "dyade profile"),
+        "servo": ("a servo press", "dyade servo"),
+        "synthesis": ("a synthesis file", "dyade synthesise")}
+"""a template that is not a plain mechanism -> (what it is, the command that runs it)"""
 KIND_ALIASES = {"rrr": "fourbar", "four-bar": "fourbar", "rrp": "slider-crank",
                 "rpr": "slotted-lever", "prp": "tangent-drive", "ppr": "scotch-yoke"}
 
@@ -25,7 +31,10 @@ def init(kind: str, file: str, force: bool) -> None:
     """Write a commented starting mechanism FILE for KIND: fourbar (RRR), slider-crank
     (RRP), slotted-lever (RPR), tangent-drive (PRP) or scotch-yoke (PPR). The file is
     valid and analysable as written: edit the numbers, then `dyade analyse FILE`.
-    KIND study writes a design study of fourbar.toml (`dyade study FILE`).
+    KIND study writes a design study of fourbar.toml (`dyade study FILE`); KIND profile
+    a motion profile of VDI 2143 laws over a machine cycle (`dyade profile FILE`); KIND
+    servo a servo press, a slider-crank whose ram follows a motion profile (`dyade servo
+    FILE`); KIND synthesis a synthesis file (`dyade synthesise FILE`).
     FILE "-" prints the template."""
     from importlib.resources import files
 
@@ -38,8 +47,17 @@ def init(kind: str, file: str, force: bool) -> None:
         raise click.UsageError(f"{file} exists; give --force to overwrite it.")
     with atomic(file) as handle:
         handle.write(text)
-    if name == "study":
-        console(stderr=True).print(f"wrote {file} (a design study); next: dyade study {file}")
+    also = ""
+    if name == "study":  # and the mechanism it names, beside it, where it is not there yet
+        mechanism = os.path.join(os.path.dirname(file), "fourbar.toml")
+        if not os.path.exists(mechanism):
+            with atomic(mechanism) as handle:
+                handle.write(files("dyade").joinpath("templates", "fourbar.toml").read_text(
+                    encoding="utf-8"))
+            also = f" and {mechanism} (its mechanism)"
+    if name in NEXT:
+        what, command = NEXT[name]
+        console(stderr=True).print(f"wrote {file} ({what}){also}; next: {command} {file}")
         return
     console(stderr=True).print(f"wrote {file} ({name}, dyad kind {TEMPLATES[name]}); next: "
                                f"dyade describe {file}")

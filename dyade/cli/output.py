@@ -196,12 +196,13 @@ def flags(names: dict[str, str]) -> Iterator[None]:
 def progress(description: str, total: float | None = None, show: bool = True
              ) -> Iterator[Any]:
     """A transient progress bar on stderr while a long run goes on, only when stderr is
-    a terminal (and ``show``); yields ``tick(done, total=None)``, which does nothing
+    a terminal (and ``show``); yields ``tick(done, total=None, note=None)`` (``note``:
+    words after the description, how it goes), which does nothing
     otherwise. The commands show it for runs expected to take more than about a second.
     The bar (and its refresh thread) starts at the first tick: the worker processes of
     ``-j`` are forked before, from a process without threads."""
     if not show or not sys.stderr.isatty():
-        yield lambda done, total=None: None
+        yield lambda done, total=None, note=None: None
         return
     from rich.progress import Progress
 
@@ -209,12 +210,15 @@ def progress(description: str, total: float | None = None, show: bool = True
     task = bar.add_task(description, total=total)
     started = False
 
-    def tick(done: float, new_total: float | None = None) -> None:
+    def tick(done: float, new_total: float | None = None, note: str | None = None) -> None:
         nonlocal started
         if not started:  # the bar's refresh thread starts here, after any fork of -j
             bar.start()
             started = True
-        bar.update(task, completed=done, **({} if new_total is None else {"total": new_total}))
+        extra = {} if new_total is None else {"total": new_total}
+        if note:  # how it goes (a synthesis: its rate and best error so far)
+            extra["description"] = f"{description}: {note}"
+        bar.update(task, completed=done, **extra)
 
     try:
         yield tick

@@ -39,8 +39,8 @@ def study(study_file: str, output: str | None, fmt: str | None, resume: bool,
           **options) -> None:
     """Run the design study of STUDY_FILE: one row per variant of its mechanism file,
     the parameters first (by their --set key paths, in the file's units), then status
-    and reason (ok, locks, does not close, refused), then every key result of
-    `dyade analyse`'s summary (SI; angles in degrees).
+    and reason (ok, locks, does not close, refused, failed, withheld), then every key
+    result of `dyade analyse`'s summary (SI; angles in degrees).
 
     The study file names the parameters (lists, ranges, distributions), the plan (grid,
     latin-hypercube, monte-carlo, sensitivity, optimise) and the question (tolerance
@@ -50,6 +50,7 @@ def study(study_file: str, output: str | None, fmt: str | None, resume: bool,
     \b
         dyade study tolerance.toml -j 0 -o tolerance.csv
         dyade study tolerance.toml -j 0 -o tolerance.csv --resume
+        dyade study tolerance.toml --samples 20 --seed 2 --set crank.speed_rpm=600
 
     Exit status 2 for a bad study file or an unreachable --scheduler; a variant that
     fails is a row with its reason, not an error.
@@ -71,15 +72,31 @@ def study(study_file: str, output: str | None, fmt: str | None, resume: bool,
     write(outcome, output, fmt)
     if journal and journal != output and os.path.exists(journal):
         os.unlink(journal)
+    if output and fmt != "table":  # the table went to the file: the answers on the terminal
+        from dyade.cli.output import show
+        from dyade.report.study import tables as report_tables
+
+        show(report_tables(outcome), None)
     contract.notes(outcome, prefix="note: ")
     if output:
         from dyade.cli.output import console
 
-        total = outcome.summary["variants"].value
-        computed = outcome.meta["evaluations"]
-        console(stderr=True).print(f"wrote {output}: {total} variants"
-                                   + (f" ({computed} computed, {total - computed} kept from "
-                                      f"the interrupted run)" if resume else ""))
+        console(stderr=True).print(wrote(output, outcome.summary["variants"].value,
+                                         outcome.meta["evaluations"], resume))
+
+
+def wrote(output: str, total: int, computed: int, resume: bool) -> str:
+    """What ``dyade study -o`` says it wrote: with --resume, how many variants it computed
+    and how many it kept (all of them: the study was already complete)."""
+    text = f"wrote {output}: {total} variant{'s' * (total != 1)}"
+    if not resume:
+        return text
+    kept = total - computed
+    if computed == 0:
+        return f"{text} (all kept from {output}: the study was already complete, none computed)"
+    if kept == 0:
+        return f"{text} ({computed} computed; none was there to keep)"
+    return f"{text} ({computed} computed, {kept} kept from the interrupted run)"
 
 
 def journal_of(output: str | None, fmt: str) -> str | None:

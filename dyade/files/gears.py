@@ -24,8 +24,10 @@ from dyade.limits import PLAUSIBLE
 from dyade.files.schema import fmt as _fmt
 from dyade.files.schema import show as _show
 from dyade.model.gears import (
+    DOFS,
     FRAME,
     PARALLEL_TOL,
+    RIGID,
     Body,
     Element,
     Excitation,
@@ -156,9 +158,22 @@ class Reader(UnitReader):
         if quantity and number != 0.0 and not PLAUSIBLE[quantity][0] <= number <= PLAUSIBLE[
                 quantity][1]:
             low, high, _ = PLAUSIBLE[quantity]
+            rigid = (" A support or joint that does not give is written \"rigid\" (an exact "
+                     "constraint, the limit of ever stiffer springs) instead of a huge number, "
+                     "which would only spoil the eigenproblem's conditioning."
+                     if quantity == "stiffness" and number > high else "")
             raise self.fail(key, f"must lie in {_fmt(low)}…{_fmt(high)} {unit} (what a machine "
-                                 f"has), got {_fmt(number)}.", number, unit)
+                                 f"has), got {_fmt(number)}.{rigid}", number, unit)
         return number
+
+    def stiffness(self, value: Any, key: str, unit: str) -> float:
+        """A stiffness coefficient [unit], or "rigid" (``RIGID``: an exact constraint)."""
+        if isinstance(value, str) and value.strip().lower() == "rigid":
+            return RIGID
+        if isinstance(value, str):
+            raise self.fail(key, f"must be a stiffness [{unit}] or \"rigid\", got {_show(value)}.",
+                            value, unit)
+        return self.number(value, key, unit, non_negative=True)
 
     def length_of(self, value: Any, key: str, positive: bool = False,
                   non_negative: bool = False) -> float:
@@ -193,12 +208,25 @@ class Reader(UnitReader):
         return unit(vec)
 
     def coefficients(self, value: Any, key: str, what: str) -> tuple[float, ...]:
+        rigid = what == "stiffness"
+        hint = '; "rigid" where a direction does not give' if rigid else ""
         if (not isinstance(value, list) or len(value) != 6
-                or not all(is_number(v) for v in value)):
+                or not all(is_number(v) or rigid and isinstance(v, str) for v in value)):
             raise self.fail(key, f"must be six {what} coefficients [x, y, z, rx, ry, rz] "
-                                 f"(N/m for x, y, z; N·m/rad for rx, ry, rz; ·s for damping), "
-                                 f"got {_show(value)}.", value)
+                                 f"(N/m for x, y, z; N·m/rad for rx, ry, rz; ·s for damping"
+                                 f"{hint}), got {_show(value)}.", value)
+        if rigid:
+            return tuple(self.stiffness(v, key, "N/m or N·m/rad") for v in value)
         return tuple(self.number(v, key, "N/m or N·m/rad", non_negative=True) for v in value)
+
+    def rigid_damping(self, stiffness: tuple[float, ...], damping: tuple[float, ...], key: str
+                      ) -> None:
+        """A rigid direction takes no damping (it does not move)."""
+        for name, k, c in zip(DOFS, stiffness, damping):
+            if k == RIGID and c != 0.0:
+                raise self.fail(key, f"gives damping in {name}, where the stiffness is "
+                                     f"\"rigid\": a direction that does not move dissipates "
+                                     f"nothing. Remove that damping, or give a stiffness.")
 
     def name_of(self, table: dict[str, Any], key: str, default: str, taken: dict[str, str]
                 ) -> str:
@@ -598,9 +626,14 @@ class Reader(UnitReader):
         stiffness, damping = [0.0] * 6, [0.0] * 6
         for word, where in BEARING_STIFFNESS.items():
             unit_name = "N/m" if word in ("axial", "radial") else "N·m/rad"
-            k = self.number(table.get(word, 0.0), f"{key}.{word}", unit_name, non_negative=True)
+            k = self.stiffness(table.get(word, 0.0), f"{key}.{word}", unit_name)
             c = self.number(table.get(f"{word}_damping", 0.0), f"{key}.{word}_damping",
                             f"{unit_name}·s", non_negative=True)
+            if k == RIGID and c != 0.0:
+                raise self.fail(f"{key}.{word}_damping", f"is given, but `{word}` is \"rigid\": "
+                                                         f"a direction that does not move "
+                                                         f"dissipates nothing. Remove it, or "
+                                                         f"give `{word}` a stiffness.")
             for index in (where if isinstance(where, tuple) else (where,)):
                 stiffness[index], damping[index] = k, c
         if not any(stiffness) and not any(damping):
@@ -624,6 +657,7 @@ class Reader(UnitReader):
         if not any(stiffness) and not any(damping):
             raise self.fail(f"{key}.stiffness", "is all zero and so is the damping: the element "
                                                 "would do nothing.")
+        self.rigid_damping(stiffness, damping, f"{key}.damping")
         if "at" in table:
             point = self.vector(table["at"], f"{key}.at", self.length_unit, self.length)
         elif b == FRAME:

@@ -234,9 +234,10 @@ def is_number(value: Any) -> bool:
 CEILINGS = {"kg": "mass", "kg·m²": "inertia", "N/m": "stiffness", "N·m/rad": "stiffness",
             "N·s/m": "damping", "N·m·s/rad": "damping", "rpm": "speed_rpm", "Hz": "frequency",
             "N·m": "torque", "N": "force", "m/s²": "acceleration", "Pa": "modulus",
-            "kg/m³": "density", "s": "time_constant"}
+            "kg/m³": "density"}
 """unit of a number read -> its quantity in ``dyade.limits.PLAUSIBLE``: a magnitude above
-that range's top is refused wherever a file gives it (the floors are each key's own)"""
+that range's top is refused wherever a file gives it (the floors are each key's own).
+Seconds are not among them: a time constant and a machine's cycle time differ."""
 
 
 class TableReader:

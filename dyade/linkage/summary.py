@@ -149,6 +149,7 @@ FIXED = {
     "M_drive_max": ("N·m", "drive torque max"),
     "M_drive_min": ("N·m", "drive torque min"),
     "M_drive_rms": ("N·m", "drive torque RMS"),
+    "M_drive_abs_max": ("N·m", "drive torque max |M_drive|"),
     "P_drive_mean": ("W", "mean drive power"),
     "F_shake_max": ("N", "shaking force max |F_S|"),
     "F_shake_rms": ("N", "shaking force RMS"),
@@ -297,6 +298,7 @@ def key_figures(mechanism, angle_deg: np.ndarray, cols: Mapping[str, np.ndarray]
     (rms,), (shake_rms,) = each([torque, force], lambda rows: cycle.rmss(radians, rows))
     out.update(M_drive_max=np.fmax.reduce(torque, axis=1),
                M_drive_min=np.fmin.reduce(torque, axis=1), M_drive_rms=rms,
+               M_drive_abs_max=np.fmax.reduce(np.abs(torque), axis=1),  # peak |M_drive|
                P_drive_mean=cycle.means(radians, cols["P_drive"]))
     names = joint_force_names(mechanism)
     for name, (peak, where) in zip(names, each([cols[name] for name in names], peaks)):
@@ -306,6 +308,7 @@ def key_figures(mechanism, angle_deg: np.ndarray, cols: Mapping[str, np.ndarray]
     if at is not None:
         low = np.where(np.isnan(torque), np.inf, torque)
         at.update(M_drive_max=_largest(torque), M_drive_min=np.argmin(low, axis=1),
+                  M_drive_abs_max=_largest(np.abs(torque)),
                   F_shake_max=_largest(force), M_shake_abs_max=_largest(moment))
     return out
 

@@ -30,6 +30,9 @@ DOFS = ("ux", "uy", "uz", "rx", "ry", "rz")
 """the six coordinates of a body, along and about its local axes (e1, e2, e3)"""
 FRAME = "frame"
 """the name that stands for the fixed frame (housing) in a shaft's or element's ends"""
+RIGID = math.inf
+"""a stiffness coefficient of an element or bearing that does not give: the direction is
+an exact constraint (the limit that stiffer and stiffer springs converge to)"""
 PARALLEL_TOL = 1e-9  # [-] 1 - |cos| below this: two axes are parallel
 
 
@@ -162,7 +165,9 @@ class Element:
     """where it acts [m]"""
     axis: Vector
     stiffness: tuple[float, ...]
-    """(k_x, k_y, k_z, k_rx, k_ry, k_rz) [N/m, N/m, N/m, N·m/rad, N·m/rad, N·m/rad]"""
+    """(k_x, k_y, k_z, k_rx, k_ry, k_rz) [N/m, N/m, N/m, N·m/rad, N·m/rad, N·m/rad];
+    ``RIGID`` (math.inf) in a direction that does not give: an exact constraint there,
+    eliminated like an ideal mesh (no penalty stiffness)"""
     damping: tuple[float, ...] = (0.0,) * 6
     """(c_x, …, c_rz) [N·s/m, …, N·m·s/rad]"""
     kind: str = "element"

@@ -23,6 +23,7 @@ from dyade.model.dyad_kinds import DyadKind
 if TYPE_CHECKING:
     from dyade.model.drive import Drive
     from dyade.model.drive_line import DriveLineData
+    from dyade.model.servo import Servo
 
 FRAME = 1  # link number of the frame
 CRANK = 2  # link number of the crank
@@ -301,6 +302,10 @@ class Mechanism:
     max_memory: float | None = None
     """The bound [B] on what one run may take (``dyade.limits``; None: its default), set
     by ``analyse``'s ``max_memory``: the [drive]'s equation of motion checks it too."""
+    servo: Servo | None = None
+    """The servo of a ``[servo]`` table: the crank follows a motion profile over the cycle
+    time (``dyade.model.servo``; ``dyade servo`` sizes it); None: no servo. ``analyse``
+    sweeps such a mechanism at its constant ``crank.speed_rpm``."""
 
     @property
     def joints(self) -> list[Joint]:

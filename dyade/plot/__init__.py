@@ -34,7 +34,7 @@ MINIMUM = (3, 7)  # matplotlib version the figures are written for
 
 
 MODULES = ("animate", "campbell", "canvas", "clearance", "coupling", "curves", "mechanism",
-           "modes", "polar")
+           "modes", "polar", "profile")
 """the figure modules, loaded on first attribute access (``dyade.plot.curves``)"""
 
 

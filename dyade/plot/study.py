@@ -36,7 +36,7 @@ def versus(result, output: str, x: str, y: str | None = None, fig: Figure | None
         fig = canvas.new(7.0, 5.0, fig)
         ax = fig.add_subplot()
         if y is None:
-            others = [p for p in result.parameters if p != x]
+            others = [p.key for p in result.spec.free if p.key != x]  # linked ones follow
             keys = [tuple(cols[p][i] for p in others) for i in range(len(ok))]
             for k, key in enumerate(dict.fromkeys(keys)):
                 rows = np.array([i for i, other in enumerate(keys) if other == key])
@@ -89,27 +89,24 @@ def limit_at(limits: dict, name: str, values: np.ndarray) -> float | None:
 
 def histograms(result, outputs: list[str], fig: Figure | None = None) -> Figure:
     """A histogram of each output over the variants, with its mean, the 5 % and 95 %
-    percentiles and the study's limit where one applies."""
+    percentiles and the study's limit where one applies; the outputs constant over the
+    variants (``questions.constant``: one value to rounding) are not drawn as
+    histograms of round-off but named with their one value under the title."""
+    from dyade.study.entry import failure
+    from dyade.study.questions import constant
+
     cols, ok = result.columns(), given(result)
     limits = result.spec.tolerance
-    rows, columns = canvas.grid(len(outputs))
+    same = [name for name in outputs if constant(cols[name][ok])]
+    drawn_outputs = [name for name in outputs if name not in same]
+    rows, columns = canvas.grid(max(len(drawn_outputs), 1))
     with canvas.style():
-        fig = canvas.new(3.6 * columns, 2.8 * rows, fig)
-        for k, name in enumerate(outputs):
+        fig = canvas.new(3.6 * columns, 2.8 * rows + 0.3 * bool(same), fig)
+        for k, name in enumerate(drawn_outputs):
             ax = fig.add_subplot(rows, columns, k + 1)
             values = cols[name][ok & np.isfinite(cols[name])]
-            bins: int | np.ndarray = max(5, min(40, int(np.sqrt(values.size))))
-            drawn = [limit_at(limits, name, values)]
-            constant = bool(values.size) and np.ptp(values) <= 1e-9 * max(
-                1.0, float(np.abs(values).max()))
-            if constant:
-                # one value in every variant (to rounding): one bar, not bins of zero width,
-                # wide enough to see beside a limit far off
-                middle = float(np.median(values))
-                half = max(1e-3 * abs(middle), 1e-9,
-                           *(0.02 * abs(v - middle) for v in drawn if v is not None))
-                bins = np.array([middle - half, middle + half])
-                values = np.clip(values, bins[0], bins[1])
+            bins = max(5, min(40, int(np.sqrt(values.size))))
+            drawn = limit_at(limits, name, values)
             ax.hist(values, bins=bins, color=canvas.COLOURS[2], alpha=0.7)
             if values.size:
                 for q, style in ((5, ":"), (95, ":")):
@@ -118,19 +115,29 @@ def histograms(result, outputs: list[str], fig: Figure | None = None) -> Figure:
                 ax.axvline(values.mean(), color="black", linewidth=0.8)
             for key, (suffix, words) in LIMITS.items():
                 if key in limits and name.endswith(suffix):
-                    ax.axvline(drawn[0], color=canvas.COLOURS[1], linewidth=1.5, label=words)
+                    ax.axvline(drawn, color=canvas.COLOURS[1], linewidth=1.5, label=words)
                     canvas.legend_above(ax, fontsize="x-small")
             ax.set_xlabel(label(result, name), fontsize="small")
             ax.set_ylabel("variants", fontsize="small")
             # few ticks, no offset: 0.99925 beside 0.99950 crowds, '+3.999e2' puzzles
             ax.xaxis.set_major_locator(MaxNLocator(4))
             ax.ticklabel_format(axis="x", useOffset=False)
-            if constant:
-                ax.set_xticks(sorted({middle, *(v for v in drawn if v is not None)}))
         share = result.tolerance["probability"] if result.tolerance else {}
-        words = ", ".join(f"P({k.replace('_', ' ')}) = {v:.3g}" for k, v in share.items())
-        fig.suptitle(f"{result.spec.label}: {int(ok.sum())} of {ok.size} variants give "
-                     f"results (mean solid, 5 %/95 % dotted)\n{words}", fontsize="small")
+        words = ", ".join(f"P({failure(k, limits)}) = {v:.3g}" for k, v in share.items())
+        title = (f"{result.spec.label}: {int(ok.sum())} of {ok.size} variants give "
+                 f"results (mean solid, 5 %/95 % dotted)\n{words}")
+        if same:
+            values = ", ".join(
+                f"{name} = {float(np.median(cols[name][ok & np.isfinite(cols[name])])):.6g}"
+                f"{' ' + result.units.get(name, '') if result.units.get(name, '') not in ('', '-') else ''}"
+                for name in same)
+            title += f"\nconstant over the variants: {values}"
+        if not drawn_outputs:
+            ax = fig.add_subplot()
+            ax.set_axis_off()
+            ax.text(0.5, 0.5, "every output asked is constant over the variants",
+                    ha="center", va="center", transform=ax.transAxes)
+        fig.suptitle(title, fontsize="small")
     return fig
 
 
@@ -151,6 +158,10 @@ def sensitivity_bars(result, outputs: list[str], fig: Figure | None = None) -> F
             ax.axvline(0.0, color="black", linewidth=0.8)
             ax.set_title(name, fontsize="small")
             ax.set_xlabel("% per %", fontsize="small")
+            if not np.isfinite(values).any():  # an output numerically zero: no % per %
+                ax.text(0.5, 0.5, "numerically zero at the nominal:\nno % per %",
+                        ha="center", va="center", fontsize="small", transform=ax.transAxes,
+                        bbox={"facecolor": "white", "edgecolor": "none"})
         fig.suptitle(f"{result.spec.label}: normalised sensitivity (central differences)",
                      fontsize="small")
     return fig
@@ -223,9 +234,9 @@ def question_figure(result, outputs=None, x: str | None = None, y: str | None = 
     >>> import dyade.study
     >>> from dyade.plot import study as figures
     >>> result = dyade.study.study("mechanisms/studies/press-slide-tolerance.toml")
-    >>> fig = figures.question_figure(result, ["mu_2_min_deg", "FN_1_4_peak"])
-    >>> [ax.get_xlabel() for ax in fig.axes]
-    ['mu_2_min_deg [°]', 'FN_1_4_peak [N]']
+    >>> fig = figures.question_figure(result, ["M_drive_rms", "FN_1_4_peak", "stroke_1_4"])
+    >>> [ax.get_xlabel() for ax in fig.axes]  # the stroke is constant: named, not drawn
+    ['M_drive_rms [N·m]', 'FN_1_4_peak [N]']
     """
     chosen = list(outputs or []) or None
     if result.tolerance is not None:

@@ -87,6 +87,13 @@ def describe(outcome) -> Tree:
                     f"{mechanism.friction_max_iter} steps")
     for line in skipped:
         simulated.add(f"[dim]not simulated — {line}[/dim]")
+    if mechanism.servo is not None:  # [servo]: dyade servo's, not the sweep's
+        servo = mechanism.servo
+        tree.add(f"servo: the crank driven by a servo along its profile "
+                 f"({len(servo.profile.segments)} segments, on {servo.output}), gear "
+                 f"i = {servo.gear.ratio:g}, η = {servo.gear.efficiency:g}: "
+                 f"`dyade servo` sizes its motor; `dyade analyse` sweeps at the constant "
+                 f"crank speed")
     sweep = mechanism.sweep
     tree.add(f"sweep: crank angle {np.rad2deg(sweep.start):g}° to {np.rad2deg(sweep.stop):g}° "
              f"in steps of {np.rad2deg(sweep.step):g}° ({sweep.angles().size} positions); "

@@ -183,5 +183,7 @@ def title(outcome) -> str:
     meshes, ideal = meta["meshes"], meta["ideal_meshes"]
     mesh_text = f"{meshes} mesh{'es' if meshes != 1 else ''}" + (
         f" ({ideal} ideal)" if 0 < ideal < meshes else " (ideal)" if ideal else "")
+    rigid = meta.get("rigid_directions", 0)
+    rigid_text = f", {rigid} rigid support direction{'s' if rigid != 1 else ''}" if rigid else ""
     return (f"{meta['name']}: {MODEL[meta['model']]}; {meta['coordinates']} coordinates, "
-            f"{mesh_text}, {meta['bodies']} bodies")
+            f"{mesh_text}{rigid_text}, {meta['bodies']} bodies")

@@ -9,8 +9,23 @@ from collections import Counter
 import numpy as np
 from rich.table import Table
 
-from dyade.study.entry import STATISTICS, identifier
+from dyade.study.entry import STATISTICS, failure, identifier
 from dyade.report.format import number
+from dyade.study.questions import constant
+
+
+def constants(outputs: list[tuple[str, float]], units: dict[str, str]) -> Table | None:
+    """The outputs constant over the variants (``questions.constant``: one value to
+    rounding), each with its one value, instead of a spread of round-off."""
+    if not outputs:
+        return None
+    table = Table(title="Constant over the variants", min_width=34,
+                  title_justify="left")
+    for name in ("output", "unit", "value"):
+        table.add_column(name, justify="right" if name == "value" else "left")
+    for name, value in outputs:
+        table.add_row(name, units.get(name, ""), number(value))
+    return table
 
 
 def tables(outcome) -> list:
@@ -22,7 +37,8 @@ def tables(outcome) -> list:
     result, cols, figures = outcome.result, outcome.columns, outcome.summary
     units, out = outcome.units, []
     counts = Counter(np.asarray(cols["status"]).tolist())
-    title = (f"Study {outcome.meta['study']}: {len(cols['variant'])} variants of "
+    count = len(cols["variant"])
+    title = (f"Study {outcome.meta['study']}: {count} variant{'s' * (count != 1)} of "
              f"{outcome.meta['mechanism'].rsplit('/', 1)[-1]} ({outcome.meta['plan']})")
     summary = Table(title=title, title_justify="left", min_width=len(title))
     summary.add_column("status")
@@ -54,18 +70,24 @@ def tables(outcome) -> list:
         shown = ("mean", "sd", "p1", "p5", "p50", "p95", "p99")
         for name in ("output", "unit", *shown):
             table.add_column(name, justify="left" if name in ("output", "unit") else "right")
-        for name in result.tolerance["outputs"]:
+        stats = result.tolerance["outputs"]
+        for name in stats:
+            if stats[name].get("constant"):
+                continue
             scale = max(abs(figures[f"min_{name}"].value), abs(figures[f"max_{name}"].value))
             table.add_row(name, units.get(name, ""),  # round-off of the output's scale: 0
                           *(number(figures[f"{stat}_{name}"].value, scale) for stat in STATISTICS
                             if stat in shown))
         out.append(table)
+        out.append(constants([(name, stats[name]["mean"]) for name in stats
+                              if stats[name].get("constant")], units))
         failures = Table(title="Probability of failure (share of all variants)",
                          title_justify="left", min_width=48)
         failures.add_column("failure")
         failures.add_column("probability [-]", justify="right")
+        limits = result.tolerance.get("limits", {})
         for name in result.tolerance["probability"]:
-            failures.add_row(name.replace("_", " "), number(figures[f"probability_{name}"].value))
+            failures.add_row(failure(name, limits), number(figures[f"probability_{name}"].value))
         out.append(failures)
     elif result.optimum is not None:
         best = result.optimum
@@ -84,10 +106,15 @@ def tables(outcome) -> list:
         table = Table(title="Outputs over the variants that give them", title_justify="left")
         for name in ("output", "unit", "min", "max"):
             table.add_column(name, justify="left" if name in ("output", "unit") else "right")
+        same = []
         for name in result.outputs:
-            table.add_row(name, units.get(name, ""), number(figures[f"min_{name}"].value),
-                          number(figures[f"max_{name}"].value))
+            low, high = figures[f"min_{name}"].value, figures[f"max_{name}"].value
+            if low is not None and len(cols["variant"]) > 1 and constant(cols[name]):
+                same.append((name, low))
+                continue
+            table.add_row(name, units.get(name, ""), number(low), number(high))
         out.append(table)
+        out.append(constants(same, units))
     if result.pareto is not None:
         table = Table(title="Pareto front (non-dominated variants)", title_justify="left")
         names = ["variant", *result.parameters,
@@ -100,4 +127,4 @@ def tables(outcome) -> list:
             table.add_row(*(number(cols[n][i]) if n != "variant" else str(cols[n][i])
                             for n in names))
         out.append(table)
-    return out
+    return [table for table in out if table is not None]

@@ -79,6 +79,9 @@ class Study:
     """(n,) bool: the non-dominated variants, for two or more objectives"""
     optimum: dict[str, Any] | None = None
     units: dict[str, str] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+    """what the answers need said (a sensitivity of an extreme that crosses a grid point
+    of the sweep, ``questions.crossings``)"""
 
     def columns(self) -> dict[str, np.ndarray]:
         """The table as named columns, one entry per variant, in the plan's order."""
@@ -112,7 +115,8 @@ class Study:
 def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
           output: str | os.PathLike | None = None, resume: bool = False,
           block_size: int | None = None, progress=None, max_memory: float | None = None,
-          check_time=None) -> Study:
+          check_time=None, set=(), samples: int | None = None,
+          seed: int | None = None) -> Study:
     """Run a design study.
 
     Parameters
@@ -142,6 +146,12 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
         ``check_time(seconds, what)`` hears the estimate of the whole run [s], from the
         probe's time per variant, before the variants run; it may refuse it
         (``dyade.analyses.base.Budget.time``).
+    set : sequence of str or (key, value) pairs, optional
+        Overrides of the mechanism file for every variant, as the study file's ``set``
+        (``"crank.speed_rpm=600"``); not a key the study varies.
+    samples, seed : int, optional
+        Override ``plan.samples`` (a sampled plan only) and ``plan.seed``
+        (``dyade.study.spec.override``; ``dyade study --set/--samples/--seed``).
 
     Returns
     -------
@@ -165,7 +175,9 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
     """
     from dyade.study import plans, questions, run
 
-    spec = file if isinstance(file, Spec) else read(file)
+    from dyade.study.spec import override
+
+    spec = override(file if isinstance(file, Spec) else read(file), set, samples, seed)
     if block_size is not None and not (isinstance(block_size, int) and block_size >= 1):
         raise InputError.parameter("block_size", f"must be a whole number ≥ 1, got "
                                                  f"{block_size!r}.", value=block_size)
@@ -197,6 +209,9 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
     if spec.question == "sensitivity":
         result.sensitivity = questions.sensitivity(table, spec, outputs,
                                                    plans.differences(spec))
+        per_unit(result.sensitivity, units)
+        result.notes += questions.crossings(result.sensitivity, evaluator, matrix,
+                                            plans.differences(spec), spec, units)
     if spec.question == "tolerance":
         result.tolerance = questions.tolerance(table, outputs, spec.tolerance)
     if spec.question == "optimise":  # several objectives over a sampled plan
@@ -292,6 +307,31 @@ def bound(evaluator, nominal, variants: int, columns: int, processes: int,
     check_memory(need, f"this study of {variants:,} variants"
                        f"{f' ({processes} at a time)' if processes > 1 else ''}", max_memory,
                  "Use fewer variants or processes")
+
+
+def ratio_unit(top: str, bottom: str) -> str:
+    """The unit of a derivative: ``N·m`` per ``m`` -> ``N·m/m``; a quantity per its own
+    unit (``m`` per ``m``, ``°`` per ``°``) -> ``-``."""
+    top = "" if top == "-" else top
+    bottom = "" if bottom == "-" else bottom
+    if not bottom:
+        return top or "-"
+    if top == bottom:
+        return "-"
+    return f"{top or '1'}/{bottom}"
+
+
+def per_unit(rows: list[dict], units: dict[str, str]) -> None:
+    """The sensitivity's derivatives (``questions.sensitivity``, per the parameter's unit
+    in the mechanism file) in one consistent unit each: the output's unit per the
+    parameter's coherent unit (``coherent``: lengths in m, angles in °, as the outputs
+    are), never metres per millimetre; its unit as ``unit``."""
+    from dyade.study.questions import coherent
+
+    for row in rows:
+        bottom, factor = coherent(units.get(row["parameter"], ""))
+        row["derivative"] = row["derivative"] / factor
+        row["unit"] = ratio_unit(units.get(row["output"], ""), bottom)
 
 
 LENGTHS = {"length", "lengths", "centre", "points", "slider_length", "slider_height",

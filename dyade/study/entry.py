@@ -17,8 +17,24 @@ import re
 from typing import Any
 
 from dyade.analyses.base import Analysis, Budget, Option, Outcome
+from dyade.analyses.inputs import SET
 
-OPTIONS = (
+OVERRIDES = (
+    Option("set", str, multiple=True, metavar="KEY=VALUE", study=False,
+           help="Override a key of the mechanism file for every variant, as the study "
+                "file's `set` does (repeatable): --set crank.speed_rpm=600. Not a key the "
+                "study varies"),
+    Option("samples", int, positive=True, metavar="N", study=False,
+           help="Variants of a monte-carlo or latin-hypercube plan (overrides plan.samples): "
+                "--samples 20 for a quick look"),
+    Option("seed", int, metavar="N", study=False,
+           help="The plan's seed (overrides plan.seed): the same rows on any number of "
+                "workers"),
+)
+"""the study file's keys a run may override (``dyade.study.spec.override``)"""
+assert OVERRIDES[0].api == SET.api  # the one --set of every entry that reads a mechanism
+
+OPTIONS = (*OVERRIDES,
     Option("jobs", int, default=1, metavar="N", study=False,
            help="Run the variants on N processes (0: all cores); the same table as one "
                 "process gives"),
@@ -35,10 +51,11 @@ OPTIONS = (
 )
 
 STATUS_WORDS = {"ok": "ok", "locks": "self-lock", "does not close": "do not close",
-                "refused": "were refused", "failed": "failed"}
+                "refused": "were refused", "failed": "failed",
+                "withheld": "have every position withheld"}
 """a variant's status -> the words of a note on the variants with it"""
 STATUS_NAMES = {"ok": "ok", "locks": "locks", "does not close": "not_closing",
-                "refused": "refused", "failed": "failed"}
+                "refused": "refused", "failed": "failed", "withheld": "withheld"}
 """a variant's status -> its count's figure (``variants_NAME``)"""
 STATISTICS = ("mean", "sd", "p1", "p5", "p50", "p95", "p99", "min", "max")
 """the tolerance statistics of every output, each a figure ``STAT_OUTPUT``"""
@@ -49,19 +66,11 @@ def identifier(key: str) -> str:
     return re.sub(r"\W", "_", key)
 
 
-def ratio_unit(top: str, bottom: str) -> str:
-    """The unit of a derivative: ``N·m`` per ``mm`` -> ``N·m/mm``."""
-    top = "" if top == "-" else top
-    bottom = "" if bottom == "-" else bottom
-    if not bottom:
-        return top or "-"
-    return f"{top or '1'}/{bottom}"
-
-
 def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     from dyade.errors import InputError
+    from dyade.parallel import connect
     from dyade.study import study as run_study
-    from dyade.study.spec import Spec, read
+    from dyade.study.spec import Spec, override, read
 
     jobs = options["jobs"]
     if jobs < 0:
@@ -70,7 +79,8 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     if options.get("resume") and not options.get("journal"):
         raise InputError.parameter("resume", "needs the journal: the CSV of the interrupted "
                                              "run.")
-    spec = source if isinstance(source, Spec) else read(source)
+    spec = override(source if isinstance(source, Spec) else read(source),
+                    options.get("set") or (), options.get("samples"), options.get("seed"))
     client = connect(options["scheduler"]) if options.get("scheduler") else None
     try:
         result = run_study(spec, jobs=jobs if jobs > 0 else (os.cpu_count() or 1),
@@ -86,49 +96,6 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     return outcome_of(result)
 
 
-def connect(address: str):
-    """A Dask client of the scheduler at ``address``; an InputError on ``scheduler``
-    when it does not answer within 5 s."""
-    from dyade.errors import InputError
-    from dyade.study import needs
-
-    needs("distributed", "scheduler", extra="dask")
-    import logging
-
-    from distributed import Client
-
-    logging.getLogger("distributed").setLevel(logging.CRITICAL)
-    reachable(address)
-    try:
-        return Client(address, timeout="5s")
-    except (OSError, TimeoutError, ValueError) as err:
-        raise InputError.parameter("scheduler", f"{address}: no Dask scheduler answers there "
-                                                f"({err}).", value=address) from None
-
-
-def reachable(address: str, timeout: float = 3.0) -> None:
-    """Refuse at once a tcp:// address where nothing listens (Dask's client would try
-    again until its timeout)."""
-    import socket
-
-    from dyade.errors import InputError
-
-    if not address.startswith("tcp://"):
-        return
-    host, _, port = address[len("tcp://"):].rpartition(":")
-    try:
-        number = int(port.strip("/"))
-    except ValueError:
-        raise InputError.parameter("scheduler", f"{address}: give tcp://HOST:PORT.",
-                                   value=address) from None
-    try:
-        socket.create_connection((host.strip("[]"), number), timeout=timeout).close()
-    except OSError as err:
-        raise InputError.parameter("scheduler", f"{address}: no Dask scheduler answers there "
-                                                f"({err.strerror or err}).",
-                                   value=address) from None
-
-
 def outcome_of(result) -> Outcome:
     """A ``Study`` (``dyade.study``) as an Outcome: its table as the columns, its answers
     as the summary, the variants without outputs as notes."""
@@ -136,7 +103,7 @@ def outcome_of(result) -> Outcome:
 
     spec, cols, units = result.spec, result.columns(), result.units
     descriptions = {"variant": "the variant's number in the plan",
-                    "status": "ok, locks, does not close, refused or failed",
+                    "status": "ok, locks, does not close, refused, failed or withheld",
                     "reason": "why a variant gives no outputs, or which joint self-locks"}
     descriptions.update({key: f"the parameter {key}, as --set takes it"
                          for key in result.parameters})
@@ -161,6 +128,7 @@ def outcome_of(result) -> Outcome:
             because = f": {reason}" if reason else ""
             outcome.notes.append(f"{where.size} of {count} variants {words} (the first, variant "
                                  f"{int(cols['variant'][first])}{because}).")
+    outcome.notes += list(getattr(result, "notes", []))
     if result.sensitivity is not None:
         sensitivities(outcome, result)
     elif result.tolerance is not None:
@@ -185,15 +153,14 @@ def outcome_of(result) -> Outcome:
 
 def sensitivities(outcome: Outcome, result) -> None:
     """d output/d parameter and its normalised form, per output and parameter."""
-    units = result.units
     zero = False
     for row in result.sensitivity:
         output, key = row["output"], row["parameter"]
         place = {"parameter": key, "output": output, "nominal": row["nominal"],
                  "step": row["step"]}
-        outcome.add(f"d_{output}_d_{identifier(key)}", row["derivative"],
-                    ratio_unit(units.get(output, ""), units.get(key, "")), where=place,
-                    description=f"d {output}/d {key} (central differences)")
+        outcome.add(f"d_{output}_d_{identifier(key)}", row["derivative"], row["unit"],
+                    where=place, description=f"d {output}/d {key} (central differences; "
+                                             f"lengths in m, angles in °)")
         outcome.add(f"sensitivity_{output}_{identifier(key)}", row["normalised"], "-",
                     where=place, description=f"{output} per {key}, normalised (% per %)")
         zero = zero or math.isnan(row["normalised"])
@@ -211,14 +178,24 @@ def tolerance(outcome: Outcome, result) -> None:
                         description=f"{name}: {stat} over the {stats['count']} variants that "
                                     f"give it")
     limits = tol.get("limits", {})
-    words = {"no_closure": "does not close", "refused": "is refused",
-             "self_locks": "self-locks",
-             "joint_force_above": f"has a joint force above {limits.get('joint_force', 0):g} N",
-             "transmission_below": f"has a transmission angle below "
-                                   f"{limits.get('transmission_deg', 0):g}°"}
     for name, share in tol["probability"].items():
         outcome.add(f"probability_{name}", share, "-",
-                    description=f"share of the variants that {words.get(name, name)}")
+                    description=f"share of the variants: {failure(name, limits)}")
+
+
+FAILURES = {"no_closure": "does not close", "refused": "refused by the reader",
+            "withheld": "every position withheld", "self_locks": "self-locks"}
+"""a tolerance study's failures -> their words (the limits': ``failure``)"""
+
+
+def failure(name: str, limits: dict[str, float]) -> str:
+    """A failure of a tolerance study in words, a limit with its value and unit: "joint
+    force above 5000 N", "transmission angle below 40°"."""
+    if name == "joint_force_above":
+        return f"joint force above {limits.get('joint_force', math.nan):g} N"
+    if name == "transmission_below":
+        return f"transmission angle below {limits.get('transmission_deg', math.nan):g}°"
+    return FAILURES.get(name, name.replace("_", " "))
 
 
 def optimum(outcome: Outcome, result) -> None:
@@ -234,7 +211,7 @@ def optimum(outcome: Outcome, result) -> None:
     outcome.add("evaluations", best["evaluations"], "-", description="evaluations of the "
                                                                        "optimiser")
     if not best.get("success", True):
-        outcome.notes.append(f"the optimiser did not converge: {best['message']}.")
+        outcome.notes.append(f"the optimiser did not converge: {best['message'].rstrip('.')}.")
 
 
 ENTRIES = {"study": Analysis("study", "A design study: many variants of one mechanism file",

@@ -19,15 +19,21 @@ from typing import Any
 
 import numpy as np
 
+from dyade.analyses.servo import STUDY_OUTPUTS as SERVO_OUTPUTS
+from dyade.analyses.servo import study_outputs as servo_outputs
 from dyade.units import RAD_PER_S_TO_RPM
 
 EXTRA_UNITS = {"flywheel_inertia": "kg·m²", "omega_bar": "rad/s",
                "resonance_speed_rpm": "rpm", "speed_ratio": "-"}
 """units of the outputs ``[outputs] extra`` adds; the others are summary figures
 (``dyade.linkage.summary.unit``)"""
+EXTRA_UNITS.update(SERVO_OUTPUTS)  # [outputs] extra = ["servo"] (dyade.analyses.servo)
 
 OK, LOCKS, OPEN, REFUSED, FAILED = "ok", "locks", "does not close", "refused", "failed"
-STATUSES = (OK, LOCKS, OPEN, REFUSED, FAILED)
+WITHHELD = "withheld"
+"""a variant whose every position is withheld (values beyond what a machine has): no
+outputs, never a row of zeros"""
+STATUSES = (OK, LOCKS, OPEN, REFUSED, FAILED, WITHHELD)
 
 RENAMED = {"M_shake_max": "M_shake_abs_max"}
 """outputs of a study that were renamed when they became summary figures (issue 36):
@@ -43,7 +49,7 @@ def unit(name: str) -> str:
 
 
 STUDIED = re.compile(r"mu_\d+_min_deg|stroke_\d+_\d+|time_ratio_\d+(_\d+)?|swing_\d+_deg"
-                     r"|M_drive_(max|min|rms)|P_drive_mean|FN?_\d+_\d+_peak|F_shake_(max|rms)"
+                     r"|M_drive_(max|min|rms|abs_max)|P_drive_mean|FN?_\d+_\d+_peak|F_shake_(max|rms)"
                      r"|M_shake_abs_max|P_friction_mean|locks_\d+_\d+"
                      r"|lock_(start|stop)_\d+_\d+_deg|lock_margin_\d+_\d+_min"
                      r"|speed_mean_rpm|fluctuation")
@@ -92,6 +98,8 @@ def key_results(result, extras: tuple[str, ...] = (), fluctuation: float = 0.02
         line = natural_frequency(result.mechanism)
         out.update(omega_bar=line.omega_bar, resonance_speed_rpm=line.omega_bar * RAD_PER_S_TO_RPM,
                    speed_ratio=line.ratio)
+    if "servo" in extras:  # the servo motor's sizing over the cycle (``[servo]``)
+        out.update(servo_outputs(result.mechanism))
     return {name: math.nan if value is None else float(value) for name, value in out.items()}
 
 
@@ -163,6 +171,11 @@ class Evaluator:
             return OPEN, str(err), {}
         except DyadeError as err:
             return FAILED, str(err), {}
+        if not np.any(result.valid[result.rows]):  # (issue 42) never a row of blanks as "ok"
+            from dyade.analyses.machine import withholding
+
+            why = withholding(result.notes)
+            return WITHHELD, f"every position is withheld{f': {why}' if why else ''}", {}
         out = key_results(result, self.extras, self.fluctuation)
         status = status_of(out)
         reason = ""

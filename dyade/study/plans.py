@@ -14,9 +14,15 @@ from dyade.study.spec import Spec
 def variants(spec: Spec) -> np.ndarray:
     """(n, p) values of the parameters, one row per variant, in the study's order:
     a grid varies the last parameter fastest; ``sensitivity`` gives the nominal row,
-    then the rows −h and +h of each parameter in turn (``steps``)."""
-    params = spec.parameters
+    then the rows −h and +h of each parameter in turn (``steps``). The plan varies the
+    free parameters; each linked one is computed from them (``Spec.complete``)."""
     refuse_too_many(spec)
+    return spec.complete(free_variants(spec))
+
+
+def free_variants(spec: Spec) -> np.ndarray:
+    """(n, f) values of the free parameters (``Spec.free``), one row per variant."""
+    params = spec.free
     if spec.plan == "grid":
         return np.array(list(itertools.product(*(p.values for p in params))), dtype=float
                         ).reshape(-1, len(params))
@@ -51,9 +57,9 @@ def count(spec: Spec) -> int:
     """How many variants the plan makes, before any is made (an optimiser's are its
     evaluations, bounded by its own budget: 0 here)."""
     if spec.plan == "grid":
-        return math.prod(len(p.values) for p in spec.parameters)
+        return math.prod(len(p.values) for p in spec.free)
     if spec.plan == "sensitivity":
-        return 1 + 2 * len(spec.parameters)
+        return 1 + 2 * len(spec.free)
     if spec.plan == "optimise":
         return 0
     return spec.samples
@@ -82,20 +88,20 @@ RESULT_COLUMNS = 64
 
 
 def steps(spec: Spec) -> np.ndarray:
-    """The central differences' step h of each parameter: its own ``step``, else
+    """The central differences' step h of each free parameter: its own ``step``, else
     ``rel_step`` × |nominal| (``rel_step`` itself for a nominal of 0)."""
     return np.array([p.step if p.step is not None else
                      spec.rel_step * (abs(p.nominal) if p.nominal != 0 else 1.0)
-                     for p in spec.parameters])
+                     for p in spec.free])
 
 
 def differences(spec: Spec) -> tuple[int, list[tuple[int, int, float, float]]]:
     """Where the sensitivity's central differences read the table: (the row of the
     nominal variant, per parameter (the row at −h, the row at +h, h, the nominal
-    value)). A ``sensitivity`` plan: its nominal row, then −h and +h of each parameter
-    (``steps``); a grid: its middle point (each parameter's middle value) and its
-    neighbours along each parameter (h: half their distance)."""
-    params = spec.parameters
+    value)). A ``sensitivity`` plan: its nominal row, then −h and +h of each free
+    parameter (``steps``); a grid: its middle point (each parameter's middle value) and
+    its neighbours along each parameter (h: half their distance)."""
+    params = spec.free
     if spec.plan != "grid":
         h = steps(spec)
         return 0, [(1 + 2 * j, 2 + 2 * j, float(h[j]), p.nominal)

@@ -16,7 +16,7 @@ from dyade.errors import InputError
 
 PLANS = ("grid", "latin-hypercube", "monte-carlo", "sensitivity", "optimise")
 QUESTIONS = ("table", "sensitivity", "tolerance", "optimise")
-EXTRAS = ("flywheel", "clearance", "coupling")
+EXTRAS = ("flywheel", "clearance", "coupling", "servo")
 TOP = {"mechanism", "set", "parameters", "plan", "outputs", "sensitivity", "tolerance",
        "optimise"}
 POSITIVE = ("length", "lengths", "mass", "inertia", "slider_length", "slider_height",
@@ -43,6 +43,13 @@ class Parameter:
     sd: float = 0.0
     step: float | None = None
     """sensitivity: the step of the central differences (default: rel_step·|nominal|)"""
+    equals: str = ""
+    """linked: the expression of other parameters it equals (``dyade.study.expression``)"""
+
+    @property
+    def linked(self) -> bool:
+        """Whether the parameter follows others (``{ equals = "..." }``), not varied itself."""
+        return self.kind == "linked"
 
     def quantile(self, u):
         """Values at probabilities ``u`` (an array in [0, 1)) of this parameter's
@@ -88,6 +95,74 @@ class Spec:
     tolerance: dict[str, float] = field(default_factory=dict)
     """limits: joint_force [N], transmission_deg [°]"""
     optimise: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def free(self) -> tuple[Parameter, ...]:
+        """The parameters the plan varies (the linked ones follow them)."""
+        return tuple(p for p in self.parameters if not p.linked)
+
+    def complete(self, free):
+        """(n, p) values of every parameter, in the study's order, from (n, f) values of
+        the free ones (``free``'s order): each linked parameter computed from them."""
+        import numpy as np
+
+        from dyade.study import expression
+
+        free = np.asarray(free, dtype=float).reshape(-1, len(self.free))
+        given = {p.key: free[:, j] for j, p in enumerate(self.free)}
+        columns = []
+        for p in self.parameters:
+            if p.linked:
+                value = expression.evaluate(expression.parse(p.equals), given)
+                columns.append(np.broadcast_to(np.asarray(value, dtype=float),
+                                               (len(free),)))
+            else:
+                columns.append(given[p.key])
+        return np.column_stack(columns) if columns else free
+
+
+def override(spec: Spec, assignments=(), samples: int | None = None,
+             seed: int | None = None) -> Spec:
+    """The study with a run's overrides (``dyade study --set/--samples/--seed``, the
+    API's ``set``, ``samples``, ``seed``): ``set`` (``KEY=VALUE`` texts, or (key, value)
+    pairs) joins the study file's `set`; an ``InputError`` on ``set`` for a key the
+    study varies or the mechanism file does not have, on ``samples`` for a plan that
+    does not sample, on ``seed`` below 0."""
+    from dataclasses import replace
+
+    from dyade.errors import InputError
+    from dyade.files.schema import parse_assignment
+
+    if assignments:
+        pairs = [parse_assignment(a) if isinstance(a, str) else tuple(a) for a in assignments]
+        varied = {p.key for p in spec.parameters}
+        for key, _ in pairs:
+            if key in varied:
+                raise InputError.parameter("set", f"{key} is a parameter of {spec.label}: the "
+                                                  f"study varies it; --set fixes the others "
+                                                  f"(or change [parameters]).", value=key)
+        from dyade.files.mechanism import build, load_data
+
+        try:  # a key the file has not: named here, not as a parameter's
+            build(load_data(spec.mechanism, dict(pairs), "--set"), spec.mechanism)
+        except InputError as err:
+            if any(words in str(err) for words in ("unknown key", "are numbered",
+                                                   "is a value, not a table")):
+                raise InputError.parameter("set", str(err), value=dict(pairs)) from None
+        spec = replace(spec, fixed={**spec.fixed, **dict(pairs)})
+    if samples is not None:
+        if spec.plan not in SAMPLED:
+            raise InputError.parameter("samples", f"counts the variants of a monte-carlo or "
+                                                  f"latin-hypercube plan; {spec.label}'s "
+                                                  f"plan.kind is \"{spec.plan}\".",
+                                       value=samples)
+        spec = replace(spec, samples=int(samples))  # (sized by plans.variants before any)
+    if seed is not None:
+        if seed < 0:
+            raise InputError.parameter("seed", f"must be a whole number ≥ 0, got {seed}.",
+                                       value=seed)
+        spec = replace(spec, seed=int(seed))
+    return spec
 
 
 def needs(module: str, what: str, extra: str = "study") -> None:
@@ -136,6 +211,13 @@ def parameter(label: str, key: str, value: Any, rel_step: float) -> Parameter:
     """A parameter from its entry in ``[parameters]``."""
     where = f"parameters.{key}"
     step = None
+    if isinstance(value, dict) and "equals" in value:
+        _keys(label, value, where, {"equals"})
+        if not isinstance(value["equals"], str):
+            raise fail(label, f"{where}.equals", f"must be an expression in quotes, e.g. "
+                                                 f"\"dyad.2.lengths.1 / 2\", got "
+                                                 f"{value['equals']!r}.")
+        return Parameter(key, "linked", equals=value["equals"])
     if isinstance(value, dict) and "step" in value and "range" not in value:
         step = _number(label, f"{where}.step", value["step"])
         if step <= 0:
@@ -339,9 +421,11 @@ def parse(data: dict[str, Any], label: str = "study", directory: str = ".") -> S
     raw = data.get("parameters", {})
     if not isinstance(raw, dict) or not raw:
         raise fail(label, "parameters", "must be a table with at least one key path.")
-    params = tuple(parameter(label, key, value, rel_step) for key, value in _flatten(raw).items())
+    params = linked(label, tuple(parameter(label, key, value, rel_step)
+                                 for key, value in _flatten(raw).items()))
+    free = tuple(p for p in params if not p.linked)
     if kind == "grid":
-        for p in params:
+        for p in free:
             if p.kind not in ("values", "range"):
                 raise fail(label, f"parameters.{p.key}", f"is a distribution ({p.kind}); a grid "
                                                          f"needs a list or a range (or plan.kind = "
@@ -349,7 +433,7 @@ def parse(data: dict[str, Any], label: str = "study", directory: str = ".") -> S
             if not p.values:
                 raise fail(label, f"parameters.{p.key}", "is a range without count or step: a "
                                                          "grid needs its values.")
-        count = math.prod(len(p.values) for p in params)
+        count = math.prod(len(p.values) for p in free)
         if count > MAX_VARIANTS:
             raise fail(label, "parameters", f"make a grid of {count:,} variants; at most "
                                             f"{MAX_VARIANTS:,}.")
@@ -361,6 +445,7 @@ def parse(data: dict[str, Any], label: str = "study", directory: str = ".") -> S
     fluctuation = _number(label, "outputs.fluctuation", outputs.get("fluctuation", 0.02))
     if not 0 < fluctuation < 1:
         raise fail(label, "outputs.fluctuation", f"must lie in (0, 1), got {fluctuation:g}.")
+    belong(label, data, plan, kind)
     question = "table"
     tolerance: dict[str, float] = {}
     optimise: dict[str, Any] = {}
@@ -368,7 +453,7 @@ def parse(data: dict[str, Any], label: str = "study", directory: str = ".") -> S
         question = "sensitivity"
         _keys(label, data.get("sensitivity", {}), "sensitivity", set())
         if kind == "grid" and "kind" in plan:  # the differences of the grid's neighbours
-            for p in params:
+            for p in free:
                 if len(p.values) < 3 or len(p.values) % 2 == 0:
                     raise fail(label, f"parameters.{p.key}", f"has {len(p.values)} values: a "
                                                              f"grid's sensitivity takes the "
@@ -391,13 +476,64 @@ def parse(data: dict[str, Any], label: str = "study", directory: str = ".") -> S
                                            "objective; for a Pareto front give a "
                                            "latin-hypercube or monte-carlo plan.")
         if kind == "optimise":
-            for p in params:
+            for p in free:
                 if p.kind != "range":
                     raise fail(label, f"parameters.{p.key}", "needs { range = [low, high], "
                                                              "count = n } (its bounds) to be "
                                                              "optimised.")
     return Spec(path, label, fixed, params, kind, int(samples), seed, rel_step, tuple(extras),
                 fluctuation, question, tolerance, optimise)
+
+
+SAMPLED = ("latin-hypercube", "monte-carlo")
+QUESTION_PLANS = {"tolerance": SAMPLED, "sensitivity": ("sensitivity", "grid"),
+                  "optimise": ("optimise", "grid", *SAMPLED)}
+"""a question's table -> the plans that can answer it"""
+
+
+def belong(label: str, data: dict, plan: dict, kind: str) -> None:
+    """Refuse a plan and a table that do not belong together, naming both: a question's
+    table that the plan cannot answer (``[tolerance]``'s statistics need sampled
+    variants, not the ±h rows of a sensitivity plan), two questions at once, and the
+    plan keys another plan would use (``plan.samples`` of a grid or a sensitivity plan,
+    ``plan.rel_step`` without a sensitivity plan), instead of ignoring them."""
+    asked = [name for name in QUESTION_PLANS if name in data]
+    if len(asked) > 1:
+        raise fail(label, f"[{asked[0]}]", f"and `[{asked[1]}]` ask two questions of one "
+                                           f"study: give one table (one study per "
+                                           f"question).")
+    given = "kind" in plan
+    shown = f'plan.kind = "{kind}"' if given else 'plan.kind (not given: "grid")'
+    why = {"tolerance": "its statistics and failure probabilities need sampled variants "
+                        "(plan.samples of them)",
+           "sensitivity": "its central differences need the nominal and ±h of each "
+                          "parameter (or a grid's neighbours about its middle)",
+           "optimise": "its objectives need the variants of a search, a sample or a grid"}
+    for name in asked:
+        if name == "sensitivity" and not given:
+            continue  # [sensitivity] alone: the sensitivity plan
+        if kind not in QUESTION_PLANS[name]:
+            plans = " or ".join(f'"{k}"' for k in QUESTION_PLANS[name])
+            raise fail(label, f"[{name}]", f"does not belong with {shown}: {why[name]}. Give "
+                                           f"plan.kind = {plans}, or remove [{name}].")
+    effective = "sensitivity" if "sensitivity" in data and not given else kind
+    if effective != kind:
+        shown = 'plan.kind "sensitivity" (of the [sensitivity] table)'
+    if "samples" in plan and effective not in SAMPLED:
+        what = {"grid": "a grid's variants are every combination of its lists and ranges",
+                "sensitivity": "a sensitivity plan's variants are the nominal and ±h of each "
+                               "parameter",
+                "optimise": "the optimiser's evaluations are bounded by optimise.maxiter and "
+                            "optimise.popsize"}[effective]
+        raise fail(label, "plan.samples", f"= {plan['samples']!r} does not belong with "
+                                          f"{shown}: {what}. Remove plan.samples, or give "
+                                          f'plan.kind = "monte-carlo" or "latin-hypercube".')
+    if "rel_step" in plan and effective != "sensitivity":
+        grid = " (a grid's sensitivity takes its neighbours)" if "sensitivity" in data else ""
+        raise fail(label, "plan.rel_step", f"does not belong with {shown}: it sets the step "
+                                           f"of a sensitivity plan's central differences"
+                                           f"{grid}. Remove plan.rel_step, or give plan.kind "
+                                           f'= "sensitivity".')
 
 
 def _optimise(label: str, table: dict, params) -> dict[str, Any]:
@@ -445,6 +581,50 @@ def _current(label: str, key: str, name: str) -> None:
                                f"lists the old names and the new).")
 
 
+def linked(label: str, params: tuple[Parameter, ...]) -> tuple[Parameter, ...]:
+    """The parameters with each linked one's expression read and checked (it names
+    only free parameters of the study) and its nominal computed from theirs; an
+    ``InputError`` on ``parameters.KEY.equals`` naming what is wrong."""
+    from dataclasses import replace
+
+    from dyade.files.schema import suggest
+    from dyade.study import expression
+
+    free = {p.key: p for p in params if not p.linked}
+    if not free:
+        raise fail(label, "parameters", "has only linked parameters ({ equals = ... }): give "
+                                        "at least one that the plan varies.")
+    out = []
+    for p in params:
+        if not p.linked:
+            out.append(p)
+            continue
+        where = f"parameters.{p.key}.equals"
+        try:
+            tree = expression.parse(p.equals)
+        except expression.ExpressionError as err:
+            raise fail(label, where, f"= {p.equals!r}: {err} (an arithmetic expression of "
+                                     f"the study's parameters and numbers: + - * / ** and "
+                                     f"parentheses).") from None
+        for name in expression.names(tree):
+            if name in free:
+                continue
+            if name == p.key or name in {q.key for q in params}:
+                raise fail(label, where, f"= {p.equals!r} names {name}, itself linked: write "
+                                         f"it with the parameters the plan varies "
+                                         f"({', '.join(free)}).")
+            hint = suggest(name, set(free))
+            raise fail(label, where, f"= {p.equals!r} names {name}, which is not a parameter "
+                                     f"of this study (they are {', '.join(free)})."
+                                     f"{hint if 'Did you mean' in hint else ''}")
+        nominal = float(expression.evaluate(tree, {k: q.nominal for k, q in free.items()}))
+        if not math.isfinite(nominal):
+            raise fail(label, where, f"= {p.equals!r} is {nominal} at the nominal variant "
+                                     f"(a division by zero?).")
+        out.append(replace(p, nominal=nominal))
+    return tuple(out)
+
+
 def _flatten(table: dict, prefix: str = "") -> dict[str, Any]:
     """Nested TOML tables to dotted keys (``[parameters.dyad.2]`` as well as
     ``"dyad.2.length" = ...``); parameter entries (tables with value keys) stay."""
@@ -452,7 +632,7 @@ def _flatten(table: dict, prefix: str = "") -> dict[str, Any]:
     for key, value in table.items():
         name = f"{prefix}{key}"
         if isinstance(value, dict) and not (set(value) & {"range", "uniform", "tol", "sd",
-                                                          "nominal", "step"}):
+                                                          "nominal", "step", "equals"}):
             out.update(_flatten(value, f"{name}."))
         else:
             out[name] = value

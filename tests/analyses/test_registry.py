@@ -27,6 +27,7 @@ DYADE_16 = str(shipped("dyade-16.toml"))
 FOURBAR = str(shipped("fourbar.toml"))
 CLEARANCE = {"stiffness": 1e8, "clearance": 1e-4}
 STUDY = Path(__file__).with_name("small-study.toml")  # three variants of the four-bar
+SYNTHESIS = Path(__file__).with_name("small-synthesis.toml")  # three precision points
 RUNS = {
     # entry: (source for the API, its options, the command line)
     "coupling": (shipped("coupling/stiff-coupling.toml"), {"speed_rpm": (1450.0, 2900.0)},
@@ -53,11 +54,16 @@ RUNS = {
                                                    "0.02"]),
     "balance": (FOURBAR, {}, ["balance", FOURBAR]),
     "study": (str(STUDY), {}, ["study", str(STUDY)]),
+    "synthesis": (str(SYNTHESIS), {}, ["synthesise", str(SYNTHESIS)]),
     "sweep": (shipped("self-locking.toml"), {"step_deg": 2.0},
               ["analyse", str(shipped("self-locking.toml")), "--step", "2"]),
     "describe": (shipped("dyade-16.toml"), {}, ["describe", str(shipped("dyade-16.toml"))]),
+    "profile": (shipped("profiles/conveyor.toml"), {"points": 121},
+                ["profile", str(shipped("profiles/conveyor.toml")), "--points", "121"]),
 }
 """an invocation of each entry, from Python and from the command line"""
+RUNS["servo"] = (shipped("servo/press.toml"), {"ratio_count": 3},
+                 ["servo", str(shipped("servo/press.toml")), "--ratio-count", "3"])
 
 
 def _drive_line_runs() -> None:
@@ -120,10 +126,12 @@ def test_the_registry_lists_every_entry_and_each_loads():
 
 WRITERS = {"fmt", "output", "columns", "patterns", "show_all", "units", "save_as", "jobs", "resume",
            "mechanism_files", "mechanism_file", "file", "coupling_file", "gear_file",
-           "study_file", "source", "save_path", "what"}
+           "study_file", "source", "save_path", "what", "plot_file", "synthesis_file", "folder",
+           "figure"}
 """a command's parameters that choose how its Outcome is written or where it runs (its
 input files, --format, -o, --columns, --all, --units, --save-as, -j, --resume; driveline's
---analysis chooses the entry): the command's own"""
+--analysis chooses the entry; synthesise's --write and --plot): the command's own"""
+WRITERS |= {"controller"}  # dyade servo --controller: where the cam table is written
 OWN = {("study", "journal"): "-o"}
 """an entry's option that its command gives by another of its flags: a study's journal
 is the CSV it writes (-o)"""

@@ -72,14 +72,14 @@ def test_the_summary_is_the_studys_answers(tmp_path):
         tolerance.columns["mu_2_min_deg"] < 63)
     sensitivity = REGISTRY["study"](study_file(tmp_path, *SENSITIVITY))
     figure = sensitivity.summary["d_M_drive_rms_d_dyad_2_lengths_1"]
-    assert figure.unit == "N·m/mm" and figure.where["parameter"] == "dyad.2.lengths.1"
+    assert figure.unit == "N·m/m" and figure.where["parameter"] == "dyad.2.lengths.1"
     assert sensitivity.summary["d_M_drive_rms_d_links_4_mass"].unit == "N·m/kg"
     # central differences from the table's own rows: the plan's ±h rows of the parameter
     cols, h = sensitivity.columns, figure.where["step"]
     lengths = cols["dyad.2.lengths.1"]
     plus, minus = np.flatnonzero(lengths == 200 + h)[0], np.flatnonzero(lengths == 200 - h)[0]
     assert figure.value == pytest.approx((cols["M_drive_rms"][plus] - cols["M_drive_rms"][minus])
-                                         / (2 * h), rel=1e-12)
+                                         / (2 * h * 1e-3), rel=1e-12)  # h in mm, per m
 
 
 def test_the_csv_follows_the_one_cell_rule(tmp_path):
@@ -114,7 +114,7 @@ def test_a_journal_of_flags_and_gaps_resumes(tmp_path):
     assert {row[header.index("reason")] for row in rows if row[flags] == "1"} == {
         "self-locks at joint (1,4)"}
     again = cli("study", path, "-o", out, "--resume")
-    assert again.exit_code == 0 and "(0 computed, 3 kept" in again.output
+    assert again.exit_code == 0 and "already complete, none computed" in again.output
     assert out.read_text() == text
 
 

@@ -126,6 +126,7 @@ def fourbar_variants(r3: np.ndarray, r4: np.ndarray, phi: np.ndarray, omega: flo
     forward = np.rad2deg((top - bottom) * (phi[1] - phi[0])) % 360.0
     short = np.minimum(forward, 360.0 - forward)
     return {"M_drive_max": torque.max(axis=1), "M_drive_min": torque.min(axis=1),
+            "M_drive_abs_max": np.abs(torque).max(axis=1),
             "M_drive_rms": np.sqrt(mean(torque * torque)),
             "P_drive_mean": mean(torque * omega),
             "F_1_2_peak": np.hypot(out["F23x"], out["F23y"]).max(axis=1),

@@ -21,7 +21,7 @@ from dyade.cli import main  # noqa: E402
 from dyade.linkage.notes import NoteKind  # noqa: E402
 from dyade.plot import canvas  # noqa: E402
 from tests.conftest import SHIPPED  # noqa: E402
-from tests.helpers import shipped  # noqa: E402
+from tests.helpers import TEMPLATES, shipped  # noqa: E402
 from tests.readable import clashes, covered_lines, drawn_labels  # noqa: E402
 
 GEARS = [shipped("gears/two-stage.toml"), shipped("gears/friswell-geared.toml")]
@@ -33,6 +33,8 @@ OTHERS = {
                    "360000", "--speed-rpm", "300", "--speed-range", "100:600:100",
                    "--simulate"],
                   [shipped("dyade-16.toml"), "--speed-range", "100:600:50", "--simulate"]],
+    "profile": [[shipped("profiles/indexing.toml")], [shipped("profiles/conveyor.toml")],
+                [TEMPLATES / "profile.toml"]],
 }
 
 

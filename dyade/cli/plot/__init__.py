@@ -11,7 +11,7 @@ written to NAME-KIND.png in the current directory. One module per analysis: ``li
 from __future__ import annotations
 
 from dyade.cli import main
-from dyade.cli.plot import clearance, coupling, driveline, gears, linkage, study
+from dyade.cli.plot import clearance, coupling, driveline, gears, linkage, profile, servo, study
 
 
 @main.group()
@@ -32,5 +32,6 @@ def plot() -> None:
 
 for command in (linkage.polar, linkage.curves, linkage.mechanism, linkage.animate,
                 coupling.coupling_figure, clearance.clearance_figure, gears.campbell_figure,
-                gears.modes_figure, driveline.driveline_figure, study.study_figure):
+                gears.modes_figure, driveline.driveline_figure, study.study_figure,
+                profile.profile_figure, servo.servo_figure):
     plot.add_command(command)

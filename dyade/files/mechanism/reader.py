@@ -11,17 +11,17 @@ from typing import Any
 from dyade.files.mechanism.drive import DriveReader
 from dyade.files.mechanism.drive_line import DriveLineReader
 from dyade.files.mechanism.dyads import DyadReader
+from dyade.files.mechanism.keys import TOP_KEYS
 from dyade.files.mechanism.links import FRAME_KEYS
 from dyade.files.mechanism.loads import LoadReader
+from dyade.files.mechanism.servo import ServoReader
 from dyade.files.schema import fmt, show
 from dyade.model.mechanism import CRANK, FRAME, Link, Mechanism, Sweep, sweep_problem
 
-TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
-            "gravity", "load", "spring", "friction", "drive", "drive_line"}
 SWEEP_KEYS = {"start", "stop", "step", "dead_centre", "transmission_warning"}
 
 
-class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader):
+class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader):
     """Walks the parsed TOML of a mechanism file with key paths for the error messages."""
 
     top_keys = TOP_KEYS
@@ -80,9 +80,28 @@ class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader):
             raise self.fail("drive_line.rotor_inertia", "is missing: with a [drive] motor the "
                                                         "drive line needs the rotor's moment of "
                                                         "inertia [kg·m²] on the motor shaft.")
+        servo = None
+        if "servo" in data:
+            if drive is not None:
+                raise self.fail("servo", "and [drive] both drive the crank: a servo follows "
+                                         "its motion profile, a [drive] motor turns it by its "
+                                         "characteristic. Keep one of the two tables.")
+            if line is not None:  # the shaft between the servo's gear and the crank
+                for key, bad in (("coupling", line.coupling is not None),
+                                 ("ratio", line.ratio != 1.0),
+                                 ("rotor_inertia", line.rotor_inertia is not None)):
+                    if bad:
+                        raise self.fail(f"drive_line.{key}", "is not taken with a [servo]: "
+                                        "under a servo the drive line is a shaft (stiffness, "
+                                        "damping) between the gear and the crank; the gear "
+                                        "ratio and the rotor are the servo's "
+                                        "(`servo.ratio`, `servo.rotor_inertia`).")
+            sliders = {joint.name for joint in (j for dyad in dyads for j in dyad.joints)
+                       if joint.kind == "P"}
+            servo = self.servo(data["servo"], data, sliders, [n for n in self.placed if n > 1])
         return Mechanism(name, self.source, crank, dyads, links, sweep, gravity, loads, springs,
                          dead_centre, friction_tol, friction_max_iter, warning,
-                         (self.length_unit, self.angle_unit), drive, line)
+                         (self.length_unit, self.angle_unit), drive, line, servo=servo)
 
     def sweep(self, table: Any) -> tuple[Sweep, float, float]:
         self.keys(table, "sweep", SWEEP_KEYS)

@@ -40,6 +40,7 @@ from dyade.errors import InputError
 from dyade.model.gears import (
     DOFS,
     FRAME,
+    RIGID,
     Body,
     Element,
     GearDrive,
@@ -97,6 +98,12 @@ class System:
     """(elements, 6) the coefficients that act (torsional model: rx only)"""
     element_damping: FloatArray
     """(elements, 6)"""
+    element_rigid: np.ndarray = None
+    """(elements, 6) bool: the directions that are ``RIGID`` (exact constraints: the
+    columns ``supports`` of g; their ``element_stiffness`` is 0)"""
+    supports: tuple[tuple[int, int], ...] = ()
+    """(element, direction) of every rigid direction, in the order of g's columns after
+    the ideal meshes'"""
 
     @property
     def size(self) -> int:
@@ -150,6 +157,7 @@ def assemble(drive: GearDrive) -> System:
                     np.zeros((0, 6)))
     _elements(system)
     _meshes(system)
+    _supports(system)
     return system
 
 
@@ -204,7 +212,7 @@ def transfer(point, origin) -> FloatArray:
 def _elements(system: System) -> None:
     index = {b.name: k for k, b in enumerate(system.bodies)}
     per = system.per_body
-    dofs, maps, stiffness, damping = [], [], [], []
+    dofs, maps, stiffness, damping, rigid = [], [], [], [], []
     for element in system.elements:
         rotate = np.zeros((6, 6))
         rotate[:3, :3] = rotate[3:, 3:] = np.array(frame(element.axis))  # rows e1, e2, e3
@@ -219,8 +227,11 @@ def _elements(system: System) -> None:
             where.append(np.arange(k * per, (k + 1) * per))
         s = np.hstack(blocks)
         k_e, c_e = np.array(element.stiffness), np.array(element.damping)
+        acting = np.ones(6, dtype=bool) if per == 6 else np.arange(6) == 3
+        rigid.append((k_e == RIGID) & acting)
+        k_e = np.where(k_e == RIGID, 0.0, k_e)  # a rigid direction is a constraint, not a spring
         if per == 1:  # torsional model: the rotation about the element's axis only
-            k_e, c_e = k_e * (np.arange(6) == 3), c_e * (np.arange(6) == 3)
+            k_e, c_e = k_e * acting, c_e * acting
         idx = np.concatenate(where)
         system.stiffness[np.ix_(idx, idx)] += s.T @ (k_e[:, None] * s)
         system.damping[np.ix_(idx, idx)] += s.T @ (c_e[:, None] * s)
@@ -231,6 +242,7 @@ def _elements(system: System) -> None:
     system.element_dofs, system.element_maps = tuple(dofs), tuple(maps)
     system.element_stiffness = np.array(stiffness).reshape(-1, 6)
     system.element_damping = np.array(damping).reshape(-1, 6)
+    system.element_rigid = np.array(rigid, dtype=bool).reshape(-1, 6)
 
 
 def _meshes(system: System) -> None:
@@ -265,15 +277,44 @@ def _meshes(system: System) -> None:
     system.ideal = tuple(ideal)
     system.senses = np.array([float(m.rotation or 1) for m in drive.meshes])
     system.constraints = system.mesh_rows[:, ideal]
-    # gᵀM⁻¹g must be invertible: each mesh must constrain a motion the earlier ones do not
+
+
+def _supports(system: System) -> None:
+    """The rigid directions of elements and bearings as columns of g after the ideal
+    meshes' (the row of the element's map S in that direction: its deformation there is
+    0), then the check that gᵀM⁻¹g is invertible: each constraint must fix a motion the
+    ones before it do not."""
+    drive = system.drive
+    label = os.path.basename(drive.source) if drive.source else "gear drive"
+    n = system.size
+    supports, columns = [], []
+    for e, directions in enumerate(system.element_rigid):
+        for d in np.flatnonzero(directions):
+            column = np.zeros(n)
+            column[system.element_dofs[e]] = system.element_maps[e][d]
+            supports.append((e, int(d)))
+            columns.append(column)
+    system.supports = tuple(supports)
+    if columns:
+        system.constraints = np.hstack([system.constraints, np.array(columns).T])
     scaled = system.constraints / np.sqrt(system.mass)[:, None]
-    if scaled.shape[1]:
-        _, triangle = np.linalg.qr(scaled)
-        left = np.abs(np.diag(triangle)) / np.linalg.norm(scaled, axis=0)
-        for column, share in enumerate(left):
-            if share < RANK_RTOL:
-                k = ideal[column]
-                raise InputError.in_file(label, f"mesh.{k + 1}", f"constrains a motion that the "
-                                         f"meshes before it already fix (gᵀM⁻¹g is singular): "
-                                         f"remove it, or make it elastic with `stiffness`.",
-                                         source=drive.source)
+    if not scaled.shape[1]:
+        return
+    _, triangle = np.linalg.qr(scaled)
+    left = np.abs(np.diag(triangle)) / np.linalg.norm(scaled, axis=0)
+    for column, share in enumerate(left):
+        if share >= RANK_RTOL:
+            continue
+        if column < len(system.ideal):
+            k = system.ideal[column]
+            raise InputError.in_file(label, f"mesh.{k + 1}", "constrains a motion that the "
+                                     "meshes before it already fix (gᵀM⁻¹g is singular): "
+                                     "remove it, or make it elastic with `stiffness`.",
+                                     source=drive.source)
+        e, d = system.supports[column - len(system.ideal)]
+        element = system.elements[e]
+        raise InputError.in_file(label, element.owner or element.name,
+                                 f"is \"rigid\" in {DOFS[d]}, a motion that the meshes and rigid "
+                                 f"directions before it already fix (the constraints are "
+                                 f"dependent): give that direction a stiffness, or leave it "
+                                 f"free (0).", source=drive.source)

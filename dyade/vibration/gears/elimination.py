@@ -51,7 +51,8 @@ class Elimination:
     difference: float
     """largest relative difference between the two"""
     extra_zeros: int
-    """zero eigenvalues whose eigenvectors violate the constraints (one per mesh)"""
+    """zero eigenvalues whose eigenvectors violate the constraints (one per constraint:
+    ideal mesh or rigid direction)"""
     rigid_zeros: int
     """zero eigenvalues of rigid-body modes (they satisfy the constraints)"""
     zeros: FloatArray
@@ -59,7 +60,9 @@ class Elimination:
     largest_imaginary: float
     """largest |Im ω²| / |ω²| among the elastic eigenvalues (0 in exact arithmetic)"""
     meshes: int
-    """ideal meshes: the extra zeros there should be"""
+    """ideal meshes"""
+    constraints: int
+    """constraints (ideal meshes and rigid directions): the extra zeros there should be"""
 
 
 def check(drive: GearDrive | System, modes: Modes | None = None) -> Elimination:
@@ -98,7 +101,7 @@ def check(drive: GearDrive | System, modes: Modes | None = None) -> Elimination:
     a = scale[:, None] * (system.stiffness + k_f) * scale[None, :]
     values = np.linalg.eigvals(a)
     values = values[np.argsort(np.abs(values))]
-    zero_count = len(system.ideal) + modes.rigid.shape[1]
+    zero_count = system.constraints.shape[1] + modes.rigid.shape[1]
     elastic = values[zero_count:]
     zeros = values[:zero_count]
     biggest_zero = float(np.max(np.abs(zeros), initial=0.0))
@@ -129,4 +132,5 @@ def check(drive: GearDrive | System, modes: Modes | None = None) -> Elimination:
     difference = float(np.max(np.abs(frequencies - reference) / reference, initial=0.0))
     imaginary = float(np.max(np.abs(elastic.imag) / np.abs(elastic), initial=0.0))
     return Elimination(frequencies, reference, difference, extra, zero_count - extra,
-                       zeros.real.copy(), imaginary, len(system.ideal))
+                       zeros.real.copy(), imaginary, len(system.ideal),
+                       system.constraints.shape[1])

@@ -165,8 +165,8 @@ def rigid_modes(system: System) -> FloatArray:
         a, b = element.ends
         if b == FRAME:
             continue
-        k = system.element_stiffness[e]
-        stiff = bool(np.all(k > 0.0)) if per == 6 else (k[3] > 0.0 and _parallel(system, a, b))
+        k = (system.element_stiffness[e] > 0.0) | system.element_rigid[e]
+        stiff = bool(np.all(k)) if per == 6 else (bool(k[3]) and _parallel(system, a, b))
         if stiff:
             merged[e] = True
             parent[root(index[a])] = root(index[b])
@@ -381,7 +381,8 @@ def energy_shares(system: System, shapes: FloatArray
 
 def multipliers(system: System, residual: np.ndarray) -> np.ndarray:
     """λ = (gᵀM⁻¹g)⁻¹·gᵀM⁻¹·residual (the paper's eq. (27)), for a residual (n,) or
-    (n, k) — K·φ for a mode, L·q' + K·q − P in general."""
+    (n, k) — K·φ for a mode, L·q' + K·q − P in general: one row per column of g (the
+    ideal meshes', then the rigid supports' ``System.supports``)."""
     g = system.constraints
     inverse_mass = 1.0 / system.mass
     gram = g.T @ (inverse_mass[:, None] * g)
@@ -396,7 +397,7 @@ def modal_mesh_forces(system: System, shapes: FloatArray) -> FloatArray:
     out = np.zeros((len(system.drive.meshes), shapes.shape[1]))
     if system.ideal:
         # (gᵀM⁻¹g)⁻¹·gᵀM⁻¹·K first: l rows, so that no n×n×k product is formed
-        rows = multipliers(system, system.stiffness)
+        rows = multipliers(system, system.stiffness)[:len(system.ideal)]
         out[list(system.ideal)] = -(rows @ shapes)
     for k, mesh in enumerate(system.drive.meshes):
         if mesh.stiffness is not None:

@@ -155,7 +155,7 @@ def gear_response(drive: GearDrive | System, frequencies, *, coordinates=None,
     g, ideal = system.constraints, list(system.ideal)
     elastic = [k for k in range(len(system.drive.meshes)) if k not in system.ideal]
     null = NullSpace.of(g)
-    e_ideal = e[ideal]
+    e_ideal = np.concatenate([e[ideal], np.zeros(len(system.supports))])  # supports: gᵀq = 0
     fixed = g @ np.linalg.solve(g.T @ g, e_ideal) if ideal else np.zeros(system.size)
     k, c, m = system.stiffness, system.damping, np.diag(system.mass)
     k_r, c_r, m_r = null.reduce(k), null.reduce(c), null.reduce(m)
@@ -190,35 +190,44 @@ def gear_response(drive: GearDrive | System, frequencies, *, coordinates=None,
     q[unbounded] = np.nan
     # dynamic mesh forces: F = −λ (ideal), (k + iωc)(w·q − e) (elastic)
     forces = np.zeros((freq.size, len(system.drive.meshes)), dtype=complex)
-    if ideal:
+    reactions = np.zeros((freq.size, g.shape[1]), dtype=complex)
+    if g.shape[1]:
         z_q = (q @ k.T) + 1j * omega[:, None] * (q @ c.T) - (omega[:, None] ** 2) * (q * system.mass)
-        forces[:, ideal] = -multipliers(system, (z_q - p[None, :]).T).T
+        reactions = multipliers(system, (z_q - p[None, :]).T).T
+        forces[:, ideal] = -reactions[:, :len(ideal)]
     for j in elastic:
         mesh = system.drive.meshes[j]
         forces[:, j] = (mesh.stiffness + 1j * omega * mesh.damping) * (q @ system.mesh_rows[:, j]
                                                                       - e[j])
     forces *= system.senses[None, :]
     forces[:, sizeless(system)] = np.nan  # per unit module: not in newtons
-    supports, support_forces = _support_forces(system, q, omega)
+    supports, support_forces = _support_forces(system, q, omega, reactions)
     columns = [system.coordinate(body, dof) for body, dof in picked]
     return Response(freq, picked, q[:, columns], forces,
                     tuple(m.name for m in system.drive.meshes), supports, support_forces,
                     unbounded, q)
 
 
-def _support_forces(system: System, q: np.ndarray, omega: FloatArray
+def _support_forces(system: System, q: np.ndarray, omega: FloatArray, reactions: np.ndarray
                     ) -> tuple[tuple[str, ...], np.ndarray]:
     """The force and moment each frame-connected element transmits to the frame, in its
-    own axes: (k + iωc)·(the body's displacement at it)."""
+    own axes: (k + iωc)·(the body's displacement at it), and in a rigid direction the
+    constraint's multiplier λ (``reactions``: (positions, columns of g)), which takes the
+    place of −k·Δ in the equations."""
     names, out = [], []
+    offset = len(system.ideal)
     for e, element in enumerate(system.elements):
         if element.ends[1] != FRAME:
             continue
         deform = q[:, system.element_dofs[e]] @ system.element_maps[e].T  # Δ = −(body at point)
         coefficient = system.element_stiffness[e][None, :] + 1j * omega[:, None] * (
             system.element_damping[e][None, :])
+        force = -coefficient * deform
+        for column, (owner, d) in enumerate(system.supports, offset):
+            if owner == e:
+                force[:, d] = reactions[:, column]
         names.append(element.name)
-        out.append(-coefficient * deform)
+        out.append(force)
     return tuple(names), np.stack(out, axis=1) if out else np.zeros((q.shape[0], 0, 6), complex)
 
 
@@ -284,14 +293,16 @@ def gear_statics(drive: GearDrive | System, torques: dict[str, float], *,
     shapes = modes.shapes
     q = shapes @ ((shapes.T @ load) / modes.eigenvalues)
     forces = np.zeros(len(system.drive.meshes))
-    if system.ideal:
-        forces[list(system.ideal)] = -multipliers(system, system.stiffness @ q - load)
+    reactions = np.zeros((1, system.constraints.shape[1]))
+    if system.constraints.shape[1]:
+        reactions[0] = multipliers(system, system.stiffness @ q - load)
+        forces[list(system.ideal)] = -reactions[0, :len(system.ideal)]
     for j, mesh in enumerate(system.drive.meshes):
         if mesh.stiffness is not None:
             forces[j] = mesh.stiffness * system.mesh_rows[:, j] @ q
     forces *= system.senses
     forces[sizeless(system)] = np.nan
-    names, on_frame = _support_forces(system, q[None, :], np.zeros(1))
+    names, on_frame = _support_forces(system, q[None, :], np.zeros(1), reactions)
     supports = [e for e in system.elements if e.ends[1] == FRAME]
     axes = [np.array(frame(e.axis)).T for e in supports]  # element axes -> global
     reactions = -on_frame[0].real  # the frame on the drive, in each element's axes

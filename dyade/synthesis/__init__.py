@@ -1,0 +1,353 @@
+"""Dimensional synthesis (``dyade synthesise``): which mechanism moves like this.
+
+A synthesis problem (``dyade.model.synthesis``, read from a synthesis file by
+``dyade.files.synthesis``) names a topology (four-bar, slider-crank), a target and the
+bounds of the dimensions; ``synthesise`` answers with the best mechanisms, each as the
+data of a mechanism file ready for ``dyade analyse``:
+
+- function generation: Freudenstein's closed form through three precision points
+  (given, or Chebyshev-spaced over the table), or the least squares of the whole table
+  (``dyade.synthesis.function``);
+- motion generation: three poses in closed form, four by the Burmester curves
+  (``dyade.synthesis.closed``, ``dyade.synthesis.motion``);
+- path generation: many candidates (Latin hypercube or random, seeded per block) traced
+  in blocks of variants × positions through dyade's positions-only stage
+  (``dyade.linkage.positions``), filtered (the crank turns fully, the least
+  transmission angle), matched by a start-point-free Fourier shape distance
+  (``dyade.synthesis.shape``) or by a straight-line / circular-arc stretch's deviation
+  (``dyade.synthesis.stretch``), the best refined by least squares (scipy);
+- with masses (links as bars), each result's sweep figures (drive torque, joint forces,
+  transmission angle, shaking force) from ``dyade.linkage.sweep.analyse`` and the
+  Pareto set of the match error against one of them.
+
+The package sits above the engine (``dyade.linkage``) and the readers (it builds the
+candidates' mechanisms from file data, ``dyade.files.mechanism.build``) and below the
+analyses (the ``synthesis`` entry, ``dyade.analyses.synthesis``).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+
+from dyade.errors import DyadeError, InputError
+from dyade.model.synthesis import Synthesis
+
+from dyade.synthesis.designs import (ERROR_UNITS, ERROR_WORDS, FIGURES, HOPELESS, REACH,
+                                     Design, Result, pareto, speed_rpm)
+
+__all__ = ["ERROR_UNITS", "ERROR_WORDS", "FIGURES", "Design", "Result", "pareto",
+           "score", "synthesise", "trace"]
+
+
+def synthesise(problem: Synthesis, jobs: int = 1, executor=None, progress=None) -> Result:
+    """Solve a synthesis problem.
+
+    Parameters
+    ----------
+    problem : Synthesis
+        From ``dyade.files.synthesis.read_synthesis`` or ``parse``.
+    jobs : int
+        Processes for the search's blocks (``dyade.parallel``); the same candidates
+        and result on any number.
+    executor : concurrent.futures.Executor, optional
+        Runs the blocks instead (a Dask cluster's ``Client.get_executor()``).
+    progress : callable, optional
+        ``progress(evaluated, total, best_error)`` as the blocks come.
+
+    Returns
+    -------
+    Result
+
+    Raises
+    ------
+    InputError
+        The bounds let no candidate assemble; too few points for the method.
+    DyadeError
+        The topology cannot reach the target (the message gives the best error found).
+    """
+    started = time.perf_counter()
+    kind = problem.target.kind
+    if kind == "function":
+        result = _function(problem)
+    elif kind == "poses":
+        from dyade.synthesis.motion import poses
+
+        result = poses(problem)
+    elif kind in ("line", "arc"):
+        result = _stretch(problem, jobs, executor, progress)
+    else:
+        result = _path(problem, jobs, executor, progress)
+    result.seconds = time.perf_counter() - started
+    if problem.masses:
+        score(result)
+    return result
+
+
+def topology_of(problem: Synthesis):
+    from dyade.synthesis.topology import TOPOLOGIES
+
+    return TOPOLOGIES[problem.topology]
+
+
+def _function(problem: Synthesis) -> Result:
+    from dyade.synthesis import function
+
+    target = problem.target
+    made = function.generate(target.crank, target.output, target.method, problem.frame)
+    sweep = (float(np.rad2deg(target.crank[0])), float(np.rad2deg(target.crank[-1])),
+             _step(target.crank))
+    data = function.data(made.linkage, speed_rpm(problem), sweep, problem.name,
+                         problem.masses)
+    error = float(np.rad2deg(np.nanmax(np.abs(made.error)))) if np.isfinite(
+        made.error).any() else math.inf
+    notes = []
+    if not np.isfinite(made.error).all():
+        notes.append(f"the four-bar does not close at {np.count_nonzero(~np.isfinite(made.error))}"
+                     f" of the table's {made.error.size} crank angles")
+    design = Design(problem.name, data, error, True, made.crank, made.traced, notes=notes)
+    result = Result(problem, [design])
+    result.function = made  # the structural error at every row, for the table
+    return result
+
+
+def _step(crank: np.ndarray) -> float:
+    """A sweep step [°] that covers a table's range in about a degree."""
+    span = float(np.rad2deg(crank[-1] - crank[0]))
+    return span / max(1, round(span)) if span > 0 else 1.0
+
+
+def settings_of(problem: Synthesis, scale: bool | None = None):
+    """The search's settings of a problem, the bounds completed from the topology's
+    defaults (scaled to the target's size where the match is not free in scale)."""
+    from dyade.synthesis.search import Settings
+
+    topology = topology_of(problem)
+    bounds = dict(topology.defaults)
+    size = 1.0
+    points = problem.target.points
+    if points is not None and not problem.scale:
+        size = float(np.sqrt(np.mean(np.abs(points - points.mean()) ** 2))) or 1.0
+        bounds = {k: (lo * size, hi * size) for k, (lo, hi) in bounds.items()}
+    bounds.update(problem.bounds)
+    if problem.scale and "d" in bounds and "d" not in problem.bounds:
+        bounds["d"] = (1.0, 1.0)
+    return Settings(bounds=bounds, candidates=problem.candidates, block=problem.block,
+                    method=problem.method, seed=problem.seed, positions=problem.positions,
+                    min_transmission=problem.min_transmission, scale=problem.scale,
+                    rounds=problem.rounds, keep=max(40, 4 * problem.keep),
+                    regions=tuple((0 if name == "A0" else 1, *box)
+                                  for name, box in problem.regions.items()))
+
+
+def _no_candidate(problem: Synthesis, evaluated: int) -> InputError:
+    return InputError(
+        f"{problem.name}: none of the {evaluated:,} candidates assembles over the whole crank "
+        f"turn with a transmission angle of at least "
+        f"{np.rad2deg(problem.min_transmission):.3g}° within the [bounds]: widen the bounds "
+        f"(a crank that turns fully needs Grashof's s + l ≤ p + q with the crank or the frame "
+        f"the shortest) or lower search.min_transmission.", source=problem.source,
+        key="bounds")
+
+
+def _path(problem: Synthesis, jobs, executor, progress) -> Result:
+    from dyade.synthesis.search import fit, placement_of, search, traced
+    from dyade.synthesis.shape import SAMPLES, closed_match, resample, timed_match
+    from dyade.synthesis.topology import Placement
+    topology = topology_of(problem)
+    target = problem.target
+    settings = settings_of(problem)
+    found = search(topology, target.points, settings, jobs, executor, progress, target.crank)
+    if not len(found.error):
+        if settings.regions:
+            raise DyadeError(
+                f"{problem.name}: of {found.evaluated:,} candidates ({found.assembled:,} "
+                f"assembled), none matched to the path puts its frame pivots within the "
+                f"[regions]: widen them, or the bounds.")
+        raise _no_candidate(problem, found.evaluated)
+    crank = np.linspace(0.0, 2.0 * np.pi, settings.positions, endpoint=False)
+    resampled = resample(target.points[None, :], SAMPLES)[0]
+    fits: list = []
+    tried = 0
+    best_error = math.inf
+    if found.error[0] > HOPELESS:  # no local fit closes such a gap: say so at once
+        raise _unreached(problem, topology, found, float(found.error[0]), "the search")
+    for values, variant in zip(found.values, found.variant):
+        if len(fits) >= problem.keep or tried >= 2 * problem.keep + 4:
+            break
+        tried += 1
+        curve, _, _ = traced(topology, values[None, :], int(variant), crank)
+        if target.crank is not None:
+            match = timed_match(target.points, target.crank, curve, settings.scale)
+            centre = complex(np.mean(target.points))
+            start = Placement(centre - match.factor[0] * match.centre[0],
+                              float(abs(match.factor[0])), float(np.angle(match.factor[0])))
+        else:
+            match = closed_match(resampled, resample(curve, SAMPLES), scale=settings.scale)
+            start = placement_of(match.factor[0], match.centre[0], target.points)
+        fitted = fit(topology, values, int(variant), target.points, target.crank,
+                     start=start)
+        best_error = min(best_error, fitted.error)
+        if settings.regions and not _placed_within(fitted, settings.regions):
+            continue  # the fit moved a pivot out of its region
+        if np.isfinite(fitted.error) and not any(_same(fitted, other) for other in fits):
+            fits.append(fitted)
+    fits.sort(key=lambda f: f.error)
+    designs = [_design(problem, topology, fitted, rank)
+               for rank, fitted in enumerate(fits, start=1)]
+    if not designs or designs[0].error > REACH:
+        raise _unreached(problem, topology, found, min(best_error, float(found.error[0])),
+                         "the local fit")
+    return Result(problem, designs, found.evaluated, found.assembled)
+
+
+def _unreached(problem: Synthesis, topology, found, error: float, after: str) -> DyadeError:
+    return DyadeError(
+        f"{problem.name}: no {topology.name} within the bounds traces this path: the best of "
+        f"{found.evaluated:,} candidates ({found.assembled:,} assembled) deviates by "
+        f"{100 * error:.3g} % RMS of the path's size after {after} (at most {100 * REACH:g} % "
+        f"counts as reached). A {topology.name}'s coupler curve cannot follow every shape "
+        f"(a four-bar's is of degree six, without sharp corners): widen the bounds, draw more "
+        f"candidates, or try another topology.")
+
+
+def _placed_within(fitted, regions: tuple) -> bool:
+    """A fit's frame pivots lie in their regions."""
+    from dyade.synthesis.search import within
+
+    a0 = fitted.placement.origin
+    b0 = a0 + fitted.values[3] * np.exp(1j * fitted.placement.angle) \
+        if fitted.values.size == 6 else a0
+    return bool(within(np.array([[a0, b0]]), regions)[0])
+
+
+def _same(fitted, other) -> bool:
+    """Two fits found the same mechanism (within 1e-6 relative)."""
+    return (other.variant == fitted.variant
+            and np.allclose(other.values, fitted.values, rtol=1e-6, atol=1e-9)
+            and abs(other.placement.origin - fitted.placement.origin) < 1e-6)
+
+
+def _design(problem: Synthesis, topology, fitted, rank: int) -> Design:
+    """A fitted candidate as a design: its mechanism data and its path through dyade."""
+    from dyade.synthesis.topology import Placement
+
+    placement = Placement(fitted.placement.origin, 1.0, fitted.placement.angle)
+    data = topology.data(fitted.values, fitted.variant, placement, speed_rpm(problem),
+                         problem.masses, name=f"{problem.name}: design {rank}")
+    crank, path = trace(data, placement.angle)
+    notes = [] if fitted.converged else [
+        f"the local fit stopped {fitted.error:.3g} from the target (RMS over its size)"]
+    design = Design(f"design {rank}", data, fitted.error, fitted.converged, crank, path,
+                    notes=notes)
+    design.fitted = fitted  # the target points' crank angles, for checks and figures
+    return design
+
+
+def trace(data: dict, offset: float = 0.0, count: int = 361) -> tuple[np.ndarray, np.ndarray]:
+    """(crank angles [rad], coupler point P (complex [m])) of a mechanism's data over a
+    turn, through dyade's positions-only stage."""
+    from dyade.files.mechanism import build
+    from dyade.linkage.positions import positions
+    from dyade.synthesis.topology import COUPLER
+
+    mechanism = build(data)
+    crank = offset + np.linspace(0.0, 2.0 * np.pi, count)
+    found = positions(mechanism, crank, [(COUPLER, mechanism.links[COUPLER].points["P"])])
+    return crank, found.points[:, 0, 0] + 1j * found.points[:, 0, 1]
+
+
+def _stretch(problem: Synthesis, jobs, executor, progress) -> Result:
+    from dyade.synthesis.search import merge, run_blocks
+    from dyade.synthesis.stretch import StretchBlock, refine
+    from dyade.synthesis.topology import Placement
+
+    topology = topology_of(problem)
+    target = problem.target
+    settings = settings_of(problem)
+    blocks = max(1, math.ceil(settings.candidates / settings.block))
+    total = blocks * settings.block * settings.rounds
+    state = {"done": 0, "best": math.inf}
+
+    def heard(part):
+        state["done"] += part.evaluated
+        if len(part.error):
+            state["best"] = min(state["best"], float(part.error[0]))
+        if progress is not None:
+            progress(state["done"], total, state["best"])
+
+    best, parts_all = None, []
+    for round_ in range(settings.rounds):
+        spread = 0.15 / (3.0 ** (round_ - 1)) if round_ else 0.0
+        function = StretchBlock(topology, settings, target.stretch, target.kind, round_, best,
+                                spread)
+        parts_all += run_blocks(function, list(range(blocks)), jobs, executor, heard)
+        best = merge(parts_all, settings.keep)
+    if not len(best.error):
+        raise _no_candidate(problem, best.evaluated)
+    designs = []
+    for values, variant in zip(best.values[:problem.keep + 1], best.variant):
+        refined = refine(topology, values, int(variant), target.stretch, settings.bounds,
+                         target.kind, problem.min_transmission)
+        if any(np.allclose(refined.values, d.values, rtol=1e-4) for d in designs):
+            continue
+        designs.append(refined)
+    designs.sort(key=lambda r: r.error)
+    out = []
+    for rank, refined in enumerate(designs[:problem.keep], start=1):
+        data = topology.data(refined.values, refined.variant, Placement(), speed_rpm(problem),
+                             problem.masses, name=f"{problem.name}: design {rank}")
+        crank, path = trace(data)
+        design = Design(f"design {rank}", data, refined.error, True, crank, path)
+        design.stretch = (refined.start, refined.start + target.stretch)
+        design.notes.append(f"the stretch runs from crank angle {np.rad2deg(refined.start) % 360:.2f}° "
+                            f"to {np.rad2deg(refined.start + target.stretch) % 360:.2f}°")
+        out.append(design)
+    return Result(problem, out, best.evaluated, best.assembled)
+
+
+def score(result: Result) -> None:
+    """Each design's sweep figures (``FIGURES``) with its masses, by dyade's sweep of its
+    mechanism data (as ``dyade analyse`` of its written file gives them), and the Pareto
+    set of (error, the problem's figure)."""
+    from dyade.files.mechanism import build
+    from dyade.linkage.summary import summary
+    from dyade.linkage.sweep import analyse
+
+    for design in result.designs:
+        try:
+            swept = analyse(build(design.data))
+        except DyadeError as err:
+            design.notes.append(f"no sweep figures: {err}")
+            continue
+        figures = summary(swept, swept.columns(), extremes=False)
+        joints = [v for k, v in figures.items() if k.startswith("F_") and k.endswith("_peak")
+                  and not k.startswith("F_shake") and v is not None]
+        mus = [v for k, v in figures.items() if k.startswith("mu_") and v is not None]
+        locks = [v for k, v in figures.items() if k.startswith("locks_") and v is not None]
+        design.figures.update({
+            "M_drive_max": _abs_max(figures.get("M_drive_max"), figures.get("M_drive_min")),
+            "M_drive_rms": figures.get("M_drive_rms"),
+            "F_joint_peak": max(joints) if joints else None,
+            "mu_min_deg": min(mus) if mus else None,
+            "F_shake_max": figures.get("F_shake_max"),
+            "locks": float(any(locks)) if locks else 0.0})
+        design.all_figures = figures
+    name = result.problem.figure
+    values = np.array([_number(d.figures.get(name, d.all_figures.get(name) if hasattr(
+        d, "all_figures") else None)) for d in result.designs])
+    errors = np.array([d.error for d in result.designs])
+    result.pareto = pareto(np.column_stack([errors, values]))
+
+
+def _abs_max(top, bottom):
+    if top is None or bottom is None:
+        return None
+    return max(abs(top), abs(bottom))
+
+
+def _number(value: Any) -> float:
+    return math.nan if value is None else float(value)

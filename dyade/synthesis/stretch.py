@@ -1,0 +1,173 @@
+"""A straight-line or circular-arc stretch of a coupler curve over a given crank range:
+the largest deviation from the best line (circle) over the stretch's length, for every
+window of the crank turn at once, vectorised over the candidates.
+
+Line: the principal axis of the window's points (the direction ½·arg Σ(z − z̄)²), the
+deviation the distance from it, the length the extent along it. Arc: Kåsa's algebraic
+circle, the deviation | |z − c| − R |, the length the arc R·Δ(angle about c).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from dyade.arrays import FloatArray
+from dyade.synthesis.search import Found, Settings, draw, traced
+from dyade.synthesis.topology import Topology
+
+PART = 256
+"""candidates scored at once (their windows' points in memory together)"""
+
+
+def deviation(points: np.ndarray, kind: str = "line") -> FloatArray:
+    """(...,) the largest deviation over the length of each row of ``points`` (...,
+    w) complex [-]; inf where a point is NaN or the stretch has no length."""
+    z = np.asarray(points)
+    u = z - z.mean(axis=-1, keepdims=True)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        if kind == "line":
+            turn = np.exp(-0.5j * np.angle((u * u).sum(axis=-1)))
+            v = u * turn[..., None]
+            length = v.real.max(axis=-1) - v.real.min(axis=-1)
+            out = np.abs(v.imag).max(axis=-1) / length
+        else:
+            x, y = u.real, u.imag
+            a = np.stack([x, y, np.ones_like(x)], axis=-1)
+            b = -(x * x + y * y)
+            normal = np.einsum("...ki,...kj->...ij", a, a)
+            right = np.einsum("...ki,...k->...i", a, b)
+            solved = np.linalg.solve(normal + 1e-300, right[..., None])[..., 0]
+            centre = -0.5 * (solved[..., 0] + 1j * solved[..., 1])
+            radius = np.sqrt(np.abs(centre) ** 2 - solved[..., 2])
+            rel = u - centre[..., None]
+            swept = np.unwrap(np.angle(rel), axis=-1)
+            length = radius * np.abs(swept[..., -1] - swept[..., 0])
+            out = np.abs(np.abs(rel) - radius[..., None]).max(axis=-1) / length
+    return np.where(np.isfinite(out), out, np.inf)
+
+
+def best_window(curves: np.ndarray, window: int, kind: str = "line"
+                ) -> tuple[FloatArray, np.ndarray]:
+    """(score (C,), start (C,)): the best window of ``window`` consecutive samples of
+    each closed curve (C, M) (wrapping around the turn)."""
+    count, m = curves.shape
+    index = (np.arange(m)[:, None] + np.arange(window)[None, :]) % m
+    score = np.empty(count)
+    start = np.empty(count, dtype=int)
+    for lo in range(0, count, PART):
+        part = curves[lo:lo + PART][:, index]  # (part, M, window)
+        values = deviation(part, kind)
+        start[lo:lo + PART] = np.argmin(values, axis=1)
+        score[lo:lo + PART] = values[np.arange(len(values)), start[lo:lo + PART]]
+    return score, start
+
+
+@dataclass(eq=False)
+class StretchBlock:
+    """One block of a stretch search (a callable for any executor)."""
+
+    topology: Topology
+    settings: Settings
+    stretch: float
+    """the crank range [rad]"""
+    kind: str = "line"
+    round_: int = 0
+    around: Found | None = None
+    spread: float = 0.15
+
+    def __call__(self, block: int) -> Found:
+        s = self.settings
+        drawn = draw(s, self.topology.names, block, self.round_, self.around, self.spread)
+        values, variant = drawn[:, :-1], drawn[:, -1].astype(int)
+        error = np.full(len(values), np.inf)
+        crank = np.linspace(0.0, 2.0 * np.pi, s.positions, endpoint=False)
+        window = int(math.ceil(self.stretch / (2.0 * np.pi / s.positions))) + 1
+        turns = self.topology.turns(values)
+        kept = 0
+        for sign in s.variants:
+            rows = np.flatnonzero(turns & (variant == sign))
+            if not rows.size:
+                continue
+            curves, closes, least = traced(self.topology, values[rows], sign, crank)
+            ok = closes & (least >= s.min_transmission)
+            kept += int(ok.sum())
+            if ok.any():
+                error[rows[ok]] = best_window(curves[ok], window, self.kind)[0]
+        order = np.argsort(error, kind="stable")[:s.keep]
+        order = order[np.isfinite(error[order])]
+        number = self.round_ * 10 ** 9 + block * s.block + order
+        return Found(values[order], variant[order], error[order], number,
+                     evaluated=len(values), assembled=kept)
+
+
+@dataclass(slots=True, eq=False)
+class Refined:
+    values: FloatArray
+    variant: int
+    start: float
+    """the stretch's first crank angle [rad]"""
+    error: float
+    """largest deviation over the length [-]"""
+
+
+def refine(topology: Topology, values: FloatArray, variant: int, stretch: float,
+           bounds: dict[str, tuple[float, float]], kind: str = "line", least: float = 0.0,
+           samples: int = 61) -> Refined:
+    """Nelder–Mead on the dimensions (within ``bounds``) and the stretch's start, the
+    stretch traced in closed form at ``samples`` crank angles; the linkage must close
+    over the whole turn with a transmission angle of at least ``least`` [rad]."""
+    from dyade.synthesis.search import scipy_least_squares
+
+    scipy_least_squares()  # (scipy there, or a clear error)
+    from scipy.optimize import minimize
+
+    full = np.linspace(0.0, 2.0 * np.pi, 360, endpoint=False)
+    along = np.linspace(0.0, stretch, samples)
+    free = [k for k, name in enumerate(topology.names) if name != "d"]
+    lows = np.array([bounds[topology.names[k]][0] for k in free])
+    highs = np.array([bounds[topology.names[k]][1] for k in free])
+    base = np.asarray(values, dtype=float).copy()
+    curve = topology.path(base, variant, full)[0]
+    window = int(round(stretch / (2 * np.pi / 360))) + 1
+    _, first = best_window(curve[None, :], window, kind)
+
+    def unpack(x):
+        dims = base.copy()
+        dims[free] = x[:-1]
+        return dims, x[-1]
+
+    def cost(x):
+        dims, start = unpack(x)
+        if np.any(x[:-1] < lows) or np.any(x[:-1] > highs):
+            return 1e3
+        if not topology.turns(dims[None, :])[0]:
+            return 1e3
+        if least > 0.0 and transmission(topology, dims, variant, full) < least:
+            return 1e3
+        return float(deviation(topology.path(dims, variant, start + along)[0], kind))
+
+    x0 = np.concatenate([base[free], [full[first[0]]]])
+    result = minimize(cost, x0, method="Nelder-Mead",
+                      options={"xatol": 1e-10, "fatol": 1e-14, "maxiter": 2000,
+                               "maxfev": 2500, "adaptive": True})
+    dims, start = unpack(result.x)
+    return Refined(dims, variant, float(start), float(result.fun))
+
+
+def transmission(topology: Topology, dims: FloatArray, variant: int, crank: FloatArray
+                 ) -> float:
+    """The least transmission angle over ``crank`` [rad] (four-bar: at B between the
+    coupler and the rocker; slider-crank: between the conrod and the guide's normal)."""
+    from dyade.synthesis.closed import rrr
+
+    if topology.name != "fourbar":
+        a, b, e = dims[0], dims[1], dims[2]
+        return float(np.nanmin(np.arccos(np.clip(np.abs(e - a * np.sin(crank)) / b, 0, 1))))
+    a, b, c, d = dims[:4]
+    ax, ay = a * np.cos(crank), a * np.sin(crank)
+    bx, by = rrr(ax, ay, d, 0.0, b, c, variant)
+    sin = np.abs((bx - ax) * by - (by - ay) * (bx - d)) / (b * c)
+    return float(np.nanmin(np.arcsin(np.clip(sin, 0.0, 1.0))))

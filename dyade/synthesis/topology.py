@@ -1,0 +1,196 @@
+"""The topologies a synthesis sizes, each in a canonical frame (the crank's pivot at the
+origin, the frame line along x): its dimensions by name, its mechanism file as data (for
+the reader: numbers, or ``Variants`` for a block of candidates read at once), the
+coupler point the path is traced by, and its coupler curve in closed form (for the local
+least-squares fit; the search traces it through dyade's engine).
+
+A result is placed in the world by a similarity: x_world = x0 + s·e^{iθ}·x, the crank
+angle φ_world = φ + θ (``Placement``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from dyade.arrays import FloatArray
+from dyade.synthesis.closed import rrr
+
+COUPLER = 3
+"""the coupler's link number (links: 1 frame, 2 crank, 3 coupler, 4 rocker or slider)"""
+
+
+@dataclass(frozen=True, slots=True)
+class Placement:
+    """Where a canonical linkage stands: x_world = origin + scale·e^{iθ}·x."""
+
+    origin: complex = 0j
+    """the crank's pivot [m]"""
+    scale: float = 1.0
+    """[-]"""
+    angle: float = 0.0
+    """θ, the frame line's direction [rad]"""
+
+    def apply(self, z):
+        return self.origin + self.scale * np.exp(1j * self.angle) * z
+
+
+class Topology:
+    """What a topology gives a synthesis (subclasses: ``FourBar``, ``SliderCrank``)."""
+
+    name: str
+    names: tuple[str, ...]
+    """the canonical dimensions [m]"""
+    defaults: dict[str, tuple[float, float]]
+    """default bounds of each dimension [m], for a frame of about 1"""
+
+    def data(self, values: dict[str, Any], variant: int, placement: Placement = Placement(),
+             speed_rpm: float = 60.0, masses: dict | None = None,
+             sweep: tuple[float, float, float] = (0.0, 360.0, 1.0), name: str = "") -> dict:
+        raise NotImplementedError
+
+    def path(self, values: FloatArray, variant: int, crank: FloatArray) -> np.ndarray:
+        """(candidates, positions) complex: the coupler point in the canonical frame at
+        the crank angles ``crank`` [rad], in closed form; NaN where it does not close."""
+        raise NotImplementedError
+
+    def named(self, values) -> dict[str, Any]:
+        """Dimensions by name: a dict as it is, a sequence in ``names``' order as floats."""
+        if isinstance(values, dict):
+            return values
+        return dict(zip(self.names, (float(v) for v in values)))
+
+    def turns(self, values: FloatArray) -> FloatArray:
+        """(candidates,) bool: the crank can turn fully (Grashof), for each row of values."""
+        raise NotImplementedError
+
+
+def bar(length, per_length: float | None, each: float | None) -> dict:
+    """Mass data of a bar of ``length`` [m] from its end at the link's origin along ξ:
+    mass per length [kg/m] or a mass each [kg], centre mid-way, J = m·l²/12."""
+    mass = each if each is not None else per_length * abs(length)
+    return {"mass": mass, "centre": [0.5 * length, 0.0], "inertia": mass * length * length / 12.0}
+
+
+class FourBar(Topology):
+    """The four-bar A0–A–B–B0: crank a, coupler b (A→B), rocker c (B0→B), frame d (A0→B0
+    along x), the coupler point (p, q) in the coupler's frame (origin A, ξ towards B)."""
+
+    name = "fourbar"
+    names = ("a", "b", "c", "d", "p", "q")
+    defaults = {"a": (0.1, 1.0), "b": (0.3, 3.0), "c": (0.3, 3.0), "d": (1.0, 1.0),
+                "p": (-2.0, 2.0), "q": (-2.0, 2.0)}
+
+    def data(self, values, variant, placement=Placement(), speed_rpm=60.0, masses=None,
+             sweep=(0.0, 360.0, 1.0), name="") -> dict:
+        values = self.named(values)
+        s, turn = placement.scale, np.exp(1j * placement.angle)
+        a, b, c, d, p, q = (values[k] for k in self.names)
+        b0 = placement.origin + s * d * turn
+        if isinstance(d, np.ndarray):
+            b0x, b0y = b0.real, b0.imag
+        else:
+            b0x, b0y = float(b0.real), float(b0.imag)
+        data = {"name": name or "Four-bar (synthesised)", "units": {"length": "m", "angle": "deg"},
+                "sweep": {"start": sweep[0], "stop": sweep[1], "step": sweep[2]},
+                "frame": {"points": {"A0": [placement.origin.real, placement.origin.imag],
+                                     "B0": [b0x, b0y]}},
+                "crank": {"pivot": "A0", "length": s * a, "speed_rpm": speed_rpm},
+                "dyad": [{"kind": "RRR", "links": [3, 4], "A": {"link": 2, "point": "tip"},
+                          "C": {"link": 1, "point": "B0"}, "lengths": [s * b, s * c],
+                          "variant": int(variant)}],
+                "links": {"3": {"points": {"P": [s * p, s * q]}}}}
+        if masses:
+            per, each = masses.get("per_length"), masses.get("each")
+            data["links"]["2"] = bar(s * a, per, each)
+            data["links"]["3"].update(bar(s * b, per, each))
+            data["links"]["4"] = bar(s * c, per, each)
+        return data
+
+    def path(self, values, variant, crank):
+        """(candidates, positions) complex: the coupler point in the canonical frame."""
+        values = np.atleast_2d(values)
+        a, b, c, d, p, q = (values[:, k, None] for k in range(6))
+        ax, ay = a * np.cos(crank), a * np.sin(crank)
+        bx, by = rrr(ax, ay, d, 0.0 * d, b, c, variant)
+        ex, ey = (bx - ax) / b, (by - ay) / b
+        return (ax + ex * p - ey * q) + 1j * (ay + ey * p + ex * q)
+
+    def turns(self, values):
+        a, b, c, d = (np.abs(values[:, k]) for k in range(4))
+        lengths = np.sort(np.column_stack([a, b, c, d]), axis=1)
+        grashof = lengths[:, 0] + lengths[:, 3] <= lengths[:, 1] + lengths[:, 2]
+        return grashof & (lengths[:, 0] == np.minimum(a, d))  # crank or frame the shortest
+
+
+class SliderCrank(Topology):
+    """The slider-crank: crank a, conrod b (A→B), the guide along x at offset e (through
+    (0, e)), the coupler point (p, q) in the conrod's frame (origin A, ξ towards B)."""
+
+    name = "slider-crank"
+    names = ("a", "b", "e", "p", "q")
+    defaults = {"a": (0.1, 1.0), "b": (0.3, 3.0), "e": (-1.0, 1.0), "p": (-2.0, 2.0),
+                "q": (-2.0, 2.0)}
+
+    def data(self, values, variant, placement=Placement(), speed_rpm=60.0, masses=None,
+             sweep=(0.0, 360.0, 1.0), name="") -> dict:
+        values = self.named(values)
+        s = placement.scale
+        a, b, e, p, q = (values[k] for k in self.names)
+        turn = np.exp(1j * placement.angle)
+        through = placement.origin + s * 1j * turn * e
+        if isinstance(e, np.ndarray):
+            gx, gy = through.real, through.imag
+        else:
+            gx, gy = float(through.real), float(through.imag)
+        data = {"name": name or "Slider-crank (synthesised)",
+                "units": {"length": "m", "angle": "deg"},
+                "sweep": {"start": sweep[0], "stop": sweep[1], "step": sweep[2]},
+                "frame": {"points": {"A0": [placement.origin.real, placement.origin.imag]}},
+                "crank": {"pivot": "A0", "length": s * a, "speed_rpm": speed_rpm},
+                "dyad": [{"kind": "RRP", "links": [3, 4], "A": {"link": 2, "point": "tip"},
+                          "C": {"link": 1, "point": [gx, gy],
+                                "angle": float(np.rad2deg(placement.angle))},
+                          "length": s * b, "variant": int(variant)}],
+                "links": {"3": {"points": {"P": [s * p, s * q]}}}}
+        if masses:
+            per, each = masses.get("per_length"), masses.get("each")
+            data["links"]["2"] = bar(s * a, per, each)
+            data["links"]["3"].update(bar(s * b, per, each))
+            data["links"]["4"] = {"mass": each if each is not None else per * s * b * 0.25}
+        return data
+
+    def path(self, values, variant, crank):
+        values = np.atleast_2d(values)
+        a, b, e, p, q = (values[:, k, None] for k in range(5))
+        ax, ay = a * np.cos(crank), a * np.sin(crank)
+        with np.errstate(invalid="ignore"):
+            run = np.sqrt(b * b - (e - ay) ** 2)
+        bx, by = ax + (run if variant > 0 else -run), e + 0.0 * ay
+        ex, ey = (bx - ax) / b, (by - ay) / b
+        return (ax + ex * p - ey * q) + 1j * (ay + ey * p + ex * q)
+
+    def turns(self, values):
+        a, b, e = np.abs(values[:, 0]), np.abs(values[:, 1]), values[:, 2]
+        return b > a + np.abs(e)
+
+
+TOPOLOGIES = {"fourbar": FourBar(), "slider-crank": SliderCrank()}
+"""name -> topology"""
+
+
+def fourbar_from_points(a0: complex, a: complex, b: complex, b0: complex, p: complex
+                        ) -> tuple[FloatArray, int, Placement, float]:
+    """A four-bar given by its pivots and coupler point at one position (complex [m]):
+    (canonical dimensions (a, b, c, d, p, q) [m], assembly variant, placement, the crank
+    angle of that position in the canonical frame [rad])."""
+    theta = float(np.angle(b0 - a0))
+    turn = np.exp(-1j * theta)
+    ca, cb, cb0 = (a - a0) * turn, (b - a0) * turn, (b0 - a0) * turn
+    unit = (cb - ca) / abs(cb - ca)
+    local = ((p - a0) * turn - ca) / unit
+    values = np.array([abs(ca), abs(cb - ca), abs(cb - cb0), abs(cb0), local.real, local.imag])
+    side = ((cb0 - ca).conjugate() * (cb - ca)).imag  # (B0 − A) × (B − A)
+    return values, 1 if side > 0 else -1, Placement(complex(a0), 1.0, theta), float(np.angle(ca))
