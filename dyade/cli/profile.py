@@ -54,7 +54,7 @@ def profile(file: Path, fmt, output, plot_file, **options) -> None:
     Laws: simple-harmonic, cycloid, inclined-sine, modified-sine, modified-trapezoid,
     polynomial-345, polynomial-4567, polynomial, harmonic-combination,
     acceleration-trapezoid, quintic-spline, constant-velocity
-    (docs/guide/motion-laws.md).
+    (`dyade help motion-laws`).
     """
     outcome = solve(file, options)
     tables = None

@@ -217,7 +217,7 @@ def report(path: str, overrides: dict[str, Any] | None = None, **options: Any) -
                      f"(no [[shaft]], [[gear]] or [[body]] tables), a study file ([plan] "
                      f"and [parameters]) nor a coupling file (J, c1, c2), the last two "
                      f"without --set: a report is made of one of these (see "
-                     f"docs/reference/mechanism-file.md).{other_kind(data, set())}")
+                     f"`dyade help mechanism-file`).{other_kind(data, set())}")
 
 
 # -- a mechanism -------------------------------------------------------------------------
