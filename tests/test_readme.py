@@ -111,7 +111,8 @@ def test_ci_runs_the_readmes_two_commands_verbatim():
 IMPORTED_BY_TESTS = {  # a module the default tests import or skip without -> its distribution
     "pandas": "pandas", "matplotlib": "matplotlib", "scipy": "scipy", "numpydoc": "numpydoc",
     "docutils.core": "numpydoc", "pyarrow.parquet": "pyarrow", "distributed": "distributed",
-    "hypothesis": "hypothesis", "pytest_benchmark": "pytest-benchmark",
+    "hypothesis": "hypothesis", "pytest_benchmark": "pytest-benchmark", "ezdxf": "ezdxf",
+    "scipy.integrate": "scipy", "scipy.special": "scipy",
 }
 SITE_ONLY = {"sphinx", "myst_nb"}  # the site's build: tests/test_docs.py, slow, docs extra
 
