@@ -128,6 +128,53 @@ class Continuous:
         self.state = self.pending
 
 
+class EachVariant:
+    """The link angle's unwrapping (``Continuous``) of a run of variants whose blocks
+    hold whole variants of ``count`` positions each: every variant unwrapped on its own
+    from its first value, as a sweep of it alone unwraps it (the same arithmetic, row by
+    row; a variant with a position without a value through ``Continuous`` itself)."""
+
+    def __init__(self, count: int) -> None:
+        self.count = count
+
+    def __call__(self, angle: FloatArray) -> FloatArray:
+        if angle.size == 0:
+            return angle
+        rows = angle.reshape(-1, self.count)
+        out = np.empty(rows.shape)
+        finite = np.isfinite(rows).all(axis=1)
+        for k in np.flatnonzero(~finite):
+            out[k] = Continuous()(rows[k])
+        if finite.all():
+            out = unwrapped(rows)
+        elif finite.any():
+            out[finite] = unwrapped(rows[finite])
+        return out.reshape(-1)
+
+    def commit(self) -> None:
+        """(nothing carries over from one block to the next)"""
+
+
+def unwrapped(rows: FloatArray) -> FloatArray:
+    """Each row of finite angles [rad] unwrapped across ±π from its first value, which
+    is brought into (−π, π]: ``Continuous`` of a first block, row by row."""
+    values = rows.copy()
+    if rows.shape[1] > 1:
+        dd = np.diff(rows, axis=1)
+        if (abs(dd) >= np.pi).any():
+            ddmod = np.mod(dd + np.pi, 2 * np.pi) - np.pi  # np.unwrap with period 2π
+            np.copyto(ddmod, np.pi, where=(ddmod == -np.pi) & (dd > 0))
+            correction = ddmod - dd
+            np.copyto(correction, 0, where=abs(dd) < np.pi)
+            values[:, 1:] = rows[:, 1:] + correction.cumsum(axis=1)
+        else:
+            values[:, 1:] = rows[:, 1:] + 0.0
+    turns = np.ceil((values[:, 0] - np.pi) / (2.0 * np.pi))
+    if turns.any():
+        values -= 2.0 * np.pi * turns[:, None]
+    return values
+
+
 def force_columns(mech: Mechanism, block: Block, machine: bool = True, own: bool = True
                   ) -> Columns:
     """Joint forces, drive torque and power, shaking force; empty where invalid; with

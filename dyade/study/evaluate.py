@@ -205,15 +205,15 @@ class Evaluator:
 
     def stages_stack(self, values: np.ndarray) -> bool:
         """Whether the file's stages let variants be swept together (decided on the
-        first variant that reads; ``variants.stackable``)."""
+        first variant that reads; ``pipeline.stackable``)."""
         from dyade.errors import InputError
-        from dyade.linkage import variants
+        from dyade.linkage.pipeline import stackable
         from dyade.linkage.plan import plan
 
         if self.stages is None:
             for row in values:
                 try:
-                    self.stages = variants.stackable(plan(self.mechanism(row)))
+                    self.stages = stackable(plan(self.mechanism(row)))
                 except InputError:
                     continue
                 self.stacks = self.stacks and self.stages
@@ -243,11 +243,16 @@ class Evaluator:
             return [], None
 
     def swept_together(self, values: np.ndarray) -> dict[int, tuple[str, str, dict]]:
-        """Variant (row of ``values``) -> its row, for the clean variants of one sweep of
-        them all (``dyade.linkage.variants``); empty where the block is not stacked.
-        The variants are read at once (``read_together``), else one by one."""
-        from dyade.linkage import variants
+        """Variant (row of ``values``) -> its row, for every variant of one run of them
+        all through the sweep pipeline (``pipeline.prepare_variants``: its validity
+        policy, bands and plausibility decide per variant, as in a sweep of each alone);
+        empty where the block is not stacked. The variants are read at once
+        (``read_together``), else one by one; a variant that does not close has the
+        status "does not close" and the pipeline's reason."""
+        from dyade.errors import DyadeError
+        from dyade.linkage.pipeline import Run, prepare_variants
         from dyade.linkage.stack import spread
+        from dyade.linkage.summary import key_figures
 
         if not self.stacks or len(values) < 2 or not self.stages_stack(values):
             return {}
@@ -259,25 +264,37 @@ class Evaluator:
             if stacked is None:
                 return {}
         try:
-            swept = variants.sweep(stacked, len(read))
+            setup = prepare_variants(stacked, len(read))
+            run = Run(setup, setup.positions)
+            blocks = list(run)
         except (ValueError, TypeError):  # NotStackable, or a number the engine takes
             self.stacks = False          # as one: every block variant by variant
             return {}
-        from dyade.linkage.summary import key_figures
-
-        presence: dict[str, str] = {}
-        out = key_figures(stacked, swept.angle_deg, swept.columns, swept.forces, presence)
-        clean = np.flatnonzero(swept.clean)
-        self.calls += clean.size
-        self.together += clean.size
-        names = list(out)
-        table = np.column_stack([out[name][clean] for name in names]).tolist()
-        rows = {}
-        for i, numbers in zip(clean.tolist(), table):
-            row = dict(zip(names, numbers))  # the figures this variant has, as alone
-            row = {name: value for name, value in row.items()
-                   if name not in presence or not math.isnan(row[presence[name]])}
-            rows[read[i]] = (status_of(row), "", row)
+        except DyadeError:  # (each variant alone says what)
+            return {}
+        count = setup.each
+        rows: dict[int, tuple[str, str, dict]] = {
+            read[variant]: (OPEN, str(err), {}) for variant, err in run.failed.items()}
+        given = [variant for variant in range(len(read)) if variant not in run.failed]
+        if given:
+            cols = blocks[0].columns if len(blocks) == 1 else {
+                name: np.concatenate([block.columns[name] for block in blocks])
+                for name in blocks[0].columns}
+            shaped = {name: values.reshape(len(given), count) for name, values in cols.items()
+                      if name != "angle_deg"}
+            presence: dict[str, str] = {}
+            out = key_figures(stacked, np.rad2deg(setup.crank_angle[:count]), shaped,
+                              setup.plan.kinetostatics, presence)
+            names = list(out)
+            table = np.column_stack([out[name] for name in names]).tolist() if names else \
+                [[] for _ in given]
+            for variant, numbers in zip(given, table):
+                row = dict(zip(names, numbers))  # the figures this variant has, as alone
+                row = {name: value for name, value in row.items()
+                       if name not in presence or not math.isnan(row[presence[name]])}
+                rows[read[variant]] = (status_of(row), "", row)
+        self.calls += len(read)
+        self.together += len(read)
         return rows
 
     def __call__(self, block: tuple[int, np.ndarray]) -> list[tuple[int, str, str, dict]]:
