@@ -6,6 +6,8 @@ documented in ``docs/reference/columns.md`` and are stable: scripts rely on them
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from dyade.arrays import FloatArray
@@ -13,7 +15,7 @@ from dyade.linkage.block import Block, Columns
 from dyade.linkage.kinematics import joint_anchor
 from dyade.linkage.motion import travel
 from dyade.linkage.reduced import reduced
-from dyade.model.mechanism import CRANK, Mechanism, Prismatic, Revolute
+from dyade.model.mechanism import CRANK, FRAME, Mechanism, Prismatic, Revolute
 
 
 UNITS = {"kinematics": "1/0", "angle_deg": "°", "phi": "°", "omega": "rad/s",
@@ -26,6 +28,8 @@ UNITS = {"kinematics": "1/0", "angle_deg": "°", "phi": "°", "omega": "rad/s",
 
 POINT = ("x", "y", "vx", "vy", "ax", "ay")
 """the columns of a point, in contract order (``Motion.point_motion``)"""
+MACHINE = ("J_red", "dJ_red", "M_load")
+"""the columns of the linkage reduced to the crank (``force_columns`` with ``machine``)"""
 
 
 def _tag(name: tuple[int, int]) -> str:
@@ -255,6 +259,64 @@ FORCE_PREFIXES = ("Fx_", "Fy_", "F_", "FN_", "M_", "P_", "MR_", "FR_", "lock_mar
                   "friction_iterations", "forces_valid", "friction_det_")
 """names of the force block; the rest (and ``KINEMATIC_EXEMPT``) are kinematic"""
 KINEMATIC_EXEMPT = ("kinematics_valid",)
+
+
+def bound(mech: Mechanism, block: Block, machine: bool) -> float:
+    """A bound [SI] on the magnitude of every value of the columns ``columns`` gives
+    only with ``points`` (x, y, vx, vy, ax, ay of the joints and named points) and,
+    with ``machine``, only with ``machine`` (J_red, dJ_red; not M_load: a caller
+    computes those where the mechanism has gravity, loads or springs), at the block's
+    positions. For a point at distance r ≤ R from its link's origin O,
+    |x| ≤ |O| + R, |v| ≤ |v_O| + |ω|·R, |a| ≤ |a_O| + (|α| + ω²)·R, each
+    magnitude the largest of any component of any link (NaN left aside: a NaN is no
+    value beyond the limit); J ≤ Σ m·v_S² + J_S·ω² and |J′| ≤ 2·Σ m·|v_S|·|a_S| +
+    J_S·|ω|·|α| over the least crank speed Ω² and Ω³. Infinite where a value is."""
+    motion = block.kinematics.motion
+
+    def largest(values: FloatArray) -> float:  # whole arrays: one fast reduction each
+        if values.size == 0:
+            return 0.0
+        flat = values.reshape(-1)
+        top = max(float(np.fmax.reduce(flat)), -float(np.fmin.reduce(flat)))
+        return 0.0 if math.isnan(top) else top  # (none given)
+
+    origin, velocity, acceleration = (largest(motion.origin), largest(motion.velocity),
+                                      largest(motion.acceleration))
+    w, a = largest(motion.omega), largest(motion.alpha)
+    radius = max((_radius(mech, link) for link in mech.links), default=0.0)
+    out = max(origin + radius, velocity + w * radius, acceleration + (a + w * w) * radius)
+    if machine and motion.omega.shape[0]:
+        energy = rate = 0.0
+        for link, body in mech.links.items():
+            if link == FRAME or not body.has_mass:
+                continue
+            mass, inertia = _largest(body.mass), _largest(body.inertia)
+            centre = _largest(np.hypot(*body.centre))
+            speed = velocity + w * centre
+            energy += mass * speed * speed + inertia * w * w
+            rate += mass * speed * (acceleration + (a + w * w) * centre) + inertia * w * a
+        crank = float(np.fmin.reduce(np.abs(motion.omega[:, CRANK])))
+        if crank == 0.0:
+            return math.inf
+        if not math.isnan(crank):  # (NaN: no position given)
+            out = max(out, energy / crank ** 2, 2.0 * rate / crank ** 3)
+    return math.inf if math.isnan(out) else float(out)
+
+
+def _largest(value) -> float:
+    """The largest magnitude of a number of a mechanism (one, or one per position)."""
+    return float(np.max(np.abs(value)))
+
+
+def _radius(mech: Mechanism, link: int) -> float:
+    """The largest distance of a point of ``link`` (a joint's or a named one) from its
+    origin [m] (of every variant, where they differ)."""
+    points = [local for joint in mech.joints
+              for number, local in zip(joint.links, joint.points if isinstance(joint, Revolute)
+                                       else (joint.guide_point, joint.slider_point))
+              if number == link]
+    points += [local for _, number, local in mech.named_points if number == link]
+    return max((_largest(np.hypot(x, y)) for x, y in points), default=0.0)
 
 
 def implausible(cols: Columns, names) -> FloatArray:

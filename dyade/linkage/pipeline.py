@@ -186,12 +186,29 @@ def stages(setup: Setup, kin: kinematics.Kinematics, first: int, last: int,
 
 
 def tabulate(mechanism: Mechanism, block: Block, phases: dict[int, Continuous],
-             count: int = 0) -> None:
+             count: int = 0, points: bool = True, machine: bool = True) -> None:
     """The block's columns, with the rows that hold a value beyond ``PLAUSIBLE`` taken
     out (``block.valid``, ``forces.valid`` updated, ``block.implausible`` set; of a
     block of whole variants of ``count`` positions each, a run of variants,
-    ``block.implausible_variants`` names the columns of each variant that held one)."""
-    cols = columns_.columns(mechanism, block, phases)
+    ``block.implausible_variants`` names the columns of each variant that held one).
+
+    Without ``points`` (``machine``) the block's columns leave out the motion of the
+    joints and named points (the linkage reduced to the crank); whether they would hold
+    such a value is decided all the same: they are computed, for the check only, unless
+    ``columns.bound`` shows that none can."""
+    wanted = None
+    if not (points and machine):
+        loaded = bool(np.any(mechanism.gravity) or mechanism.loads or mechanism.springs)
+        if block.forces is None:
+            machine = True  # (no force columns: no machine columns)
+        elif loaded:
+            machine = True  # (M_load is not bounded: computed)
+        if not (points and machine) and columns_.bound(  # (the machine's too if left out)
+                mechanism, block, not machine) > columns_.PLAUSIBLE:
+            wanted = (points, machine)
+            points = machine = True
+    cols = columns_.columns(mechanism, block, phases, points=points, machine=machine,
+                            own=count == 0)
     kinematic = {name for name in cols if name in columns_.KINEMATIC_EXEMPT
                  or not name.startswith(columns_.FORCE_PREFIXES)}
     for part, names in (("kinematics", [n for n in cols if n in kinematic
@@ -218,9 +235,14 @@ def tabulate(mechanism: Mechanism, block: Block, phases: dict[int, Continuous],
                 taken = (index >= where.start) & (index < where.stop)
                 per[block.first // count + variant] = tuple(
                     n for n in names if np.any(np.abs(cols[n][taken]) > columns_.PLAUSIBLE))
-        cols = columns_.columns(mechanism, block, phases)
+        cols = columns_.columns(mechanism, block, phases, points=points, machine=machine,
+                                own=count == 0)
     for phase in phases.values():
         phase.commit()
+    if wanted is not None:  # computed for the check only
+        cols = {name: values for name, values in cols.items()
+                if (wanted[0] or name.split("_", 1)[0] not in columns_.POINT)
+                and (wanted[1] or name not in columns_.MACHINE)}
     block.columns = cols
 
 
@@ -250,6 +272,11 @@ class Run:
     notes: list[list[Note]] = field(default_factory=list)
     """the notes of each variant, once the blocks are exhausted (a sweep's are
     ``outcome.notes``)"""
+    points: bool = True
+    """the blocks' columns hold the motion of the joints and named points (without:
+    their plausibility is decided all the same, ``tabulate``)"""
+    machine: bool = True
+    """the blocks' columns hold the linkage reduced to the crank (J_red, dJ_red, M_load)"""
     _shown: float = field(default=0.0, repr=False)
 
     def _tick(self, done: float, total: float) -> None:
@@ -289,7 +316,8 @@ class Run:
         for first, last in spans(n, size):
             block = stages(setup, kept if kept is not None else setup.kinematics(first, last),
                            first, last, self.coupling, rows[first:last], well[first:last])
-            tabulate(mechanism, block, phases, setup.each if variants > 1 else 0)
+            tabulate(mechanism, block, phases, setup.each if variants > 1 else 0,
+                     self.points, self.machine)
             keep.block(block)
             self.positions += int(block.columns["angle_deg"].size)
             yield block

@@ -265,7 +265,7 @@ class Evaluator:
                 return {}
         try:
             setup = prepare_variants(stacked, len(read))
-            run = Run(setup, setup.positions)
+            run = Run(setup, setup.positions, points=False, machine=False)
             blocks = list(run)
         except (ValueError, TypeError):  # NotStackable, or a number the engine takes
             self.stacks = False          # as one: every block variant by variant
