@@ -276,8 +276,8 @@ def bound(mech: Mechanism, block: Block, machine: bool) -> float:
     def largest(values: FloatArray) -> float:  # whole arrays: one fast reduction each
         if values.size == 0:
             return 0.0
-        flat = values.reshape(-1)
-        top = max(float(np.fmax.reduce(flat)), -float(np.fmin.reduce(flat)))
+        top = max(float(np.fmax.reduce(values, axis=None)),
+                  -float(np.fmin.reduce(values, axis=None)))
         return 0.0 if math.isnan(top) else top  # (none given)
 
     origin, velocity, acceleration = (largest(motion.origin), largest(motion.velocity),

@@ -9,7 +9,8 @@ the names) must be the same in every variant, else ``NotStackable``.
 
 A block of variants read at once (``dyade.arrays.Variants`` where the file has a
 number, one per variant) becomes such a mechanism by ``spread``; ``pick`` takes one
-variant out of it again, and ``same`` compares two mechanisms number by number.
+variant out of it again, ``part`` a run of them, and ``same`` compares two mechanisms
+number by number.
 """
 
 from __future__ import annotations
@@ -82,6 +83,11 @@ def spread(mechanism: Mechanism, positions: int) -> Mechanism:
     that differ) as ``stack`` gives it: each ``Variants`` an array of one value per
     (variant, position), variant-major."""
     return _map(mechanism, lambda v: np.repeat(np.asarray(v), positions))
+
+
+def part(mechanism: Mechanism, first: int, last: int) -> Mechanism:
+    """Variants first..last−1 of a block read at once (each ``Variants`` sliced)."""
+    return _map(mechanism, lambda v: Variants(np.asarray(v)[first:last]))
 
 
 def pick(mechanism: Mechanism, index: int) -> Mechanism:

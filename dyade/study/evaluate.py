@@ -242,13 +242,15 @@ class Evaluator:
         except NotStackable:
             return [], None
 
-    def swept_together(self, values: np.ndarray) -> dict[int, tuple[str, str, dict]]:
+    def swept_together(self, values: np.ndarray, together=None
+                       ) -> dict[int, tuple[str, str, dict]]:
         """Variant (row of ``values``) -> its row, for every variant of one run of them
         all through the sweep pipeline (``pipeline.prepare_variants``: its validity
         policy, bands and plausibility decide per variant, as in a sweep of each alone);
         empty where the block is not stacked. The variants are read at once
-        (``read_together``), else one by one; a variant that does not close has the
-        status "does not close" and the pipeline's reason."""
+        (``read_together``; ``together``: so read already), else one by one; a variant
+        that does not close has the status "does not close" and the pipeline's
+        reason."""
         from dyade.errors import DyadeError
         from dyade.linkage.pipeline import Run, prepare_variants
         from dyade.linkage.stack import spread
@@ -256,7 +258,8 @@ class Evaluator:
 
         if not self.stacks or len(values) < 2 or not self.stages_stack(values):
             return {}
-        together = self.read_together(values)
+        if together is None:
+            together = self.read_together(values)
         if together is not None:
             read, stacked = list(range(len(values))), spread(together, together.sweep.count)
         else:
@@ -298,12 +301,18 @@ class Evaluator:
         return rows
 
     def __call__(self, block: tuple[int, np.ndarray]) -> list[tuple[int, str, str, dict]]:
+        from dyade.linkage.stack import part as variants
+
         first, values = block
         rows = []
         parts = -(-len(values) // STACK)  # as many sweeps as needed, of equal size
+        together = None  # the whole block read at once (checked once)
+        if parts > 1 and self.stacks and self.stages_stack(values):
+            together = self.read_together(values)
         for indices in np.array_split(np.arange(len(values)), max(parts, 1)):
             start, part = int(indices[0]) if indices.size else 0, values[indices]
-            done = self.swept_together(part)
+            done = self.swept_together(part, None if together is None or not indices.size
+                                       else variants(together, start, start + indices.size))
             rows += [(first + start + i, *(done[i] if i in done else self.one(row)))
                      for i, row in enumerate(part)]
         return rows

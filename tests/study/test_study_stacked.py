@@ -165,9 +165,9 @@ def test_a_study_sweeps_its_variants_in_blocks(tmp_path):
     calls = []
     original = run.Evaluator.swept_together
 
-    def counting(self, values):
+    def counting(self, values, *args):
         calls.append(len(values))
-        return original(self, values)
+        return original(self, values, *args)
 
     import unittest.mock
 
