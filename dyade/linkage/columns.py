@@ -261,7 +261,7 @@ FORCE_PREFIXES = ("Fx_", "Fy_", "F_", "FN_", "M_", "P_", "MR_", "FR_", "lock_mar
 KINEMATIC_EXEMPT = ("kinematics_valid",)
 
 
-def bound(mech: Mechanism, block: Block, machine: bool) -> float:
+def bound(mech: Mechanism, block: Block, machine: bool, count: int = 1) -> float:
     """A bound [SI] on the magnitude of every value of the columns ``columns`` gives
     only with ``points`` (x, y, vx, vy, ax, ay of the joints and named points) and,
     with ``machine``, only with ``machine`` (J_red, dJ_red; not M_load: a caller
@@ -270,7 +270,9 @@ def bound(mech: Mechanism, block: Block, machine: bool) -> float:
     |x| ≤ |O| + R, |v| ≤ |v_O| + |ω|·R, |a| ≤ |a_O| + (|α| + ω²)·R, each
     magnitude the largest of any component of any link (NaN left aside: a NaN is no
     value beyond the limit); J ≤ Σ m·v_S² + J_S·ω² and |J′| ≤ 2·Σ m·|v_S|·|a_S| +
-    J_S·|ω|·|α| over the least crank speed Ω² and Ω³. Infinite where a value is."""
+    J_S·|ω|·|α| over the least crank speed Ω² and Ω³. Infinite where a value is.
+    ``count``: the positions per variant of a run of variants (a number that differs
+    between them is read once per variant)."""
     motion = block.kinematics.motion
 
     def largest(values: FloatArray) -> float:  # whole arrays: one fast reduction each
@@ -283,15 +285,15 @@ def bound(mech: Mechanism, block: Block, machine: bool) -> float:
     origin, velocity, acceleration = (largest(motion.origin), largest(motion.velocity),
                                       largest(motion.acceleration))
     w, a = largest(motion.omega), largest(motion.alpha)
-    radius = max((_radius(mech, link) for link in mech.links), default=0.0)
+    radius = max((_radius(mech, link, count) for link in mech.links), default=0.0)
     out = max(origin + radius, velocity + w * radius, acceleration + (a + w * w) * radius)
     if machine and motion.omega.shape[0]:
         energy = rate = 0.0
         for link, body in mech.links.items():
             if link == FRAME or not body.has_mass:
                 continue
-            mass, inertia = _largest(body.mass), _largest(body.inertia)
-            centre = _largest(np.hypot(*body.centre))
+            mass, inertia = _largest(body.mass, count), _largest(body.inertia, count)
+            centre = _largest(np.hypot(*(_each(x, count) for x in body.centre)))
             speed = velocity + w * centre
             energy += mass * speed * speed + inertia * w * w
             rate += mass * speed * (acceleration + (a + w * w) * centre) + inertia * w * a
@@ -303,12 +305,18 @@ def bound(mech: Mechanism, block: Block, machine: bool) -> float:
     return math.inf if math.isnan(out) else float(out)
 
 
-def _largest(value) -> float:
+def _each(value, count: int = 1):
+    """A number of a mechanism: as it is, or (one per position, the same at the
+    ``count`` positions of a variant) one per variant."""
+    return value if np.ndim(value) == 0 else np.asarray(value)[::count]
+
+
+def _largest(value, count: int = 1) -> float:
     """The largest magnitude of a number of a mechanism (one, or one per position)."""
-    return float(np.max(np.abs(value)))
+    return float(np.max(np.abs(_each(value, count))))
 
 
-def _radius(mech: Mechanism, link: int) -> float:
+def _radius(mech: Mechanism, link: int, count: int = 1) -> float:
     """The largest distance of a point of ``link`` (a joint's or a named one) from its
     origin [m] (of every variant, where they differ)."""
     points = [local for joint in mech.joints
@@ -316,7 +324,8 @@ def _radius(mech: Mechanism, link: int) -> float:
                                        else (joint.guide_point, joint.slider_point))
               if number == link]
     points += [local for _, number, local in mech.named_points if number == link]
-    return max((_largest(np.hypot(x, y)) for x, y in points), default=0.0)
+    return max((_largest(np.hypot(_each(x, count), _each(y, count))) for x, y in points),
+               default=0.0)
 
 
 def implausible(cols: Columns, names) -> FloatArray:

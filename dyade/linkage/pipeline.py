@@ -204,7 +204,7 @@ def tabulate(mechanism: Mechanism, block: Block, phases: dict[int, Continuous],
         elif loaded:
             machine = True  # (M_load is not bounded: computed)
         if not (points and machine) and columns_.bound(  # (the machine's too if left out)
-                mechanism, block, not machine) > columns_.PLAUSIBLE:
+                mechanism, block, not machine, count or 1) > columns_.PLAUSIBLE:
             wanted = (points, machine)
             points = machine = True
     cols = columns_.columns(mechanism, block, phases, points=points, machine=machine,

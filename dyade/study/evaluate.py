@@ -134,6 +134,8 @@ class Evaluator:
         """whether blocks are worth stacking (cleared on the first that cannot be)"""
         self.stages: bool | None = None
         """whether the file's stages can be stacked (None: not known yet)"""
+        self.verified = False
+        """a block read at once has been each of its variants' own reading"""
 
     def mechanism(self, values) -> Any:
         """The variant's mechanism: the file's data (with the study's fixed overrides)
@@ -177,12 +179,13 @@ class Evaluator:
         ``Variants`` where they differ; None where the reader cannot take them so (a
         value it checks in a way an array does not pass, a refused variant) or the
         result is not each variant's own mechanism (the first and the last compared
-        with their own reading), or the variants' plans differ."""
+        with their own reading; once a block has passed, the last only), or the
+        variants' plans differ."""
         from dyade.arrays import Variants
         from dyade.errors import InputError
         from dyade.files.mechanism import NUMBERING, build, set_dotted
         from dyade.linkage.plan import plan
-        from dyade.linkage.stack import pick, same
+        from dyade.linkage.stack import same
 
         data = copy.deepcopy(self.data)
         try:
@@ -195,12 +198,13 @@ class Evaluator:
             if dynamics.any() and not dynamics.all() and not (together.loads
                                                               or together.springs):
                 return None
-            for index in (0, len(values) - 1):
+            for index in (len(values) - 1,) if self.verified else (0, len(values) - 1):
                 alone = self.mechanism(values[index])
-                if same(pick(together, index), alone) or plan(alone) != plan(together):
+                if same(together, alone, index=index) or plan(alone) != plan(together):
                     return None
         except (InputError, ValueError, TypeError):  # read variant by variant instead
             return None
+        self.verified = True
         return together
 
     def stages_stack(self, values: np.ndarray) -> bool:
