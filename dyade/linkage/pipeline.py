@@ -94,7 +94,8 @@ class Setup:
         """The kinematics of positions first..last−1."""
         return kinematics.sweep(self.mechanism, self.crank_angle[first:last],
                                 _part(self.speed, first, last),
-                                _part(self.acceleration, first, last))
+                                _part(self.acceleration, first, last),
+                                (last - first) // self.each if self.variants > 1 else 1)
 
 
 def _part(value, first: int, last: int):

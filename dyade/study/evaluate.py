@@ -295,11 +295,18 @@ class Evaluator:
             names = list(out)
             table = np.column_stack([out[name] for name in names]).tolist() if names else \
                 [[] for _ in given]
-            for variant, numbers in zip(given, table):
-                row = dict(zip(names, numbers))  # the figures this variant has, as alone
-                row = {name: value for name, value in row.items()
-                       if name not in presence or not math.isnan(row[presence[name]])}
-                rows[read[variant]] = (status_of(row), "", row)
+            # the figures a variant has only where it has a value (as alone): those rows
+            # that lack one are filtered, the others taken whole
+            lacks = np.zeros(len(given), dtype=bool)
+            for name in presence:
+                lacks |= np.isnan(out[presence[name]])
+            locking = any(name.startswith("locks_") for name in names)
+            for variant, numbers, filtered in zip(given, table, lacks.tolist()):
+                row = dict(zip(names, numbers))
+                if filtered:
+                    row = {name: value for name, value in row.items()
+                           if name not in presence or not math.isnan(row[presence[name]])}
+                rows[read[variant]] = (status_of(row) if locking else OK, "", row)
         self.calls += len(read)
         self.together += len(read)
         return rows
