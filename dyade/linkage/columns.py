@@ -37,17 +37,20 @@ def _tag(name: tuple[int, int]) -> str:
 
 
 def kinematic_columns(mech: Mechanism, block: Block, phases: dict[int, Continuous],
-                      points: bool = True) -> Columns:
+                      points: bool = True, own: bool = True) -> Columns:
     """Every kinematic column of a block, in contract order; ``phases``: link ->
     its angle's unwrapping, carried on from the blocks before; without ``points``, not
-    the motion of the revolute joints and named points (x_, y_, vx_, vy_, ax_, ay_)."""
+    the motion of the revolute joints and named points (x_, y_, vx_, vy_, ax_, ay_);
+    without ``own``, a link's ω and α may be views of the block's motion."""
     kin, rows = block.kinematics, block.rows
     motion = kin.motion
+    every = bool(rows.all())  # (every position reported: no copies by a mask)
     out: Columns = {"angle_deg": np.rad2deg(kin.crank_angle)}
     for link in mech.moving_links:
-        out[f"phi_{link}_deg"] = np.rad2deg(phases[link](motion.angle[rows, link]))
-        out[f"omega_{link}"] = motion.omega[:, link].copy()  # the columns' own
-        out[f"alpha_{link}"] = motion.alpha[:, link].copy()
+        angle = motion.angle[:, link] if every else motion.angle[rows, link]
+        out[f"phi_{link}_deg"] = np.rad2deg(phases[link](angle))
+        out[f"omega_{link}"] = motion.omega[:, link].copy() if own else motion.omega[:, link]
+        out[f"alpha_{link}"] = motion.alpha[:, link].copy() if own else motion.alpha[:, link]
     for joint in mech.joints:
         tag = _tag(joint.name)
         if isinstance(joint, Revolute):
@@ -63,10 +66,10 @@ def kinematic_columns(mech: Mechanism, block: Block, phases: dict[int, Continuou
             out[f"{prefix}_{name}"] = value
     for col, dyad in enumerate(mech.dyads):
         out[f"mu_{dyad.number}_deg"] = np.rad2deg(kin.transmission[:, col])
-    if not rows.all():  # (the link angles are of the reported rows already)
+    if not every:  # (the link angles are of the reported rows already)
         out = {key: value if key.startswith("phi_") else value[rows]
                for key, value in out.items()}
-    valid = block.valid[rows]
+    valid = block.valid if every else block.valid[rows]
     if not valid.all():  # nothing of an invalid row but its crank and transmission angles
         out = {key: value if key == "angle_deg" or key.startswith("mu_")
                else np.where(valid, value, np.nan) for key, value in out.items()}
@@ -250,7 +253,7 @@ def columns(mech: Mechanism, block: Block, phases: dict[int, Continuous],
     """All columns of a block, in contract order (without ``points``, not the motion of
     the revolute joints and named points: ``kinematic_columns``; without ``machine``
     and ``own``: ``force_columns``)."""
-    return (kinematic_columns(mech, block, phases, points)
+    return (kinematic_columns(mech, block, phases, points, own)
             | force_columns(mech, block, machine, own))
 
 
