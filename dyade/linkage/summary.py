@@ -239,7 +239,8 @@ def key_figures(mechanism, angle_deg: np.ndarray, cols: Mapping[str, np.ndarray]
     per slider, swing and time ratio per rocker; with ``forces`` the drive torque's
     peak, trough and RMS, the mean drive power, each joint's peak force, the shaking
     force's peak and RMS and the shaking moment's largest magnitude. One sweep is one
-    variant (``figures``); a study's variants are many (``dyade.linkage.variants``).
+    variant (``figures``); a study's variants are many (a run of variants of the pipeline,
+    ``dyade.linkage.pipeline.prepare_variants``).
 
     A figure no variant has (a slider that never moves) is left out; NaN for a variant
     without it. ``presence`` (filled if given): the figures a variant has only where it

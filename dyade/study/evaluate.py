@@ -1,7 +1,8 @@
 """The study's variants: each one's mechanism file with the study's overrides, swept by
 ``dyade.analyse`` and its summary flattened to named key results (``key_results``), or
-a block of them read at once and swept together (``Evaluator``,
-``dyade.linkage.variants``), their key results by the same functions
+a block of them read at once and run together through the same sweep pipeline as
+variants × positions (``Evaluator``, ``dyade.linkage.pipeline.prepare_variants``), their
+key results by the same functions
 (``dyade.linkage.summary.key_figures``): a study's outputs are the summary's figures,
 of the same names and values.
 
@@ -101,8 +102,8 @@ def status_of(values: dict[str, float]) -> str:
 
 
 STACK = 120
-"""variants swept together (``dyade.linkage.variants``): 43 320 positions of a four-bar,
-its arrays in the cache"""
+"""variants run together through the pipeline (``pipeline.prepare_variants``): 43 320
+positions of a four-bar"""
 
 
 class Evaluator:
@@ -110,15 +111,17 @@ class Evaluator:
     values) gives one row per variant (a class, not a closure: it pickles for the
     processes of any executor).
 
-    A block is read and swept together, ``STACK`` variants at a time, where the plan
-    allows (``dyade.linkage.variants``: no friction, [drive] or clearance data, no
-    extra outputs, parameters that are numbers of the file): the file read once with
-    ``Variants`` at the parameters' key paths (checked against the first and the last
-    variant read alone), the variants × positions swept in one run, the key results
-    by the summary's own functions over (variants, positions)
-    (``dyade.linkage.summary.key_figures``). Every variant that is
-    not clean there (it does not close, comes near a dead centre, is refused, ...) and
-    every block that cannot be stacked is evaluated alone (``one``)."""
+    A block is read at once and run through the sweep pipeline ``STACK`` variants at a
+    time, where the plan allows (``pipeline.stackable``: no friction, [drive] or
+    [drive_line]; no extra outputs; parameters that are numbers of the file): the file
+    read once with ``Variants`` at the parameters' key paths (checked against its own
+    reading of the first and the last variant, of the last once a block has passed),
+    the variants × positions one run of the pipeline, whose validity policy, bands and
+    plausibility check decide per variant as in a sweep of each alone (a variant that
+    does not close: its row says why), the key results by the summary's own functions
+    over (variants, positions) (``dyade.linkage.summary.key_figures``). A variant the
+    reader refuses, and every block that cannot be stacked, is evaluated alone
+    (``one``: ``dyade.analyse``, the same pipeline for one variant)."""
 
     def __init__(self, path: str, data: dict[str, Any], keys: tuple[str, ...],
                  extras: tuple[str, ...] = (), fluctuation: float = 0.02) -> None:
