@@ -279,6 +279,7 @@ def bound(mech: Mechanism, block: Block, machine: bool, count: int = 1) -> float
     motion = block.kinematics.motion
 
     def largest(values: FloatArray) -> float:  # whole arrays: one fast reduction each
+        values = values[:, FRAME:]  # (index 0 is no link)
         if values.size == 0:
             return 0.0
         top = max(float(np.fmax.reduce(values, axis=None)),

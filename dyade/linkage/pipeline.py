@@ -23,7 +23,8 @@ of its first pass.
 Variants are an axis of the same pipeline: a run of ``variants`` sweeps of one topology
 stacked into one mechanism (``stack``: a number that differs is one value per variant
 and position, variant-major) goes through the same passes in blocks of whole variants
-(``prepare_variants``). The validity policy, the dead-centre bands, the plausibility
+(``prepare_variants``; one block: the caller sizes the run, its numbers are one per
+variant and position). The validity policy, the dead-centre bands, the plausibility
 check and the notes are decided per variant by the same functions (a variant that does
 not close reports no position and has its ``AssemblyError`` in ``Run.failed``; its
 notes are ``Run.notes[v]``). The stages that couple a variant's positions (friction's
@@ -291,8 +292,8 @@ class Run:
         setup, size = self.setup, self.block_size
         mechanism, the_plan, n = setup.mechanism, setup.plan, setup.positions
         angle, variants = setup.crank_angle, setup.variants
-        if variants > 1:  # blocks of whole variants
-            size = max(1, size // setup.each) * setup.each
+        if variants > 1:  # one block: its numbers are one per (variant, position)
+            size = max(n, 1)
         policy = Policy.empty(angle, len(mechanism.dyads), variants)
         started = time.perf_counter()
         kin = None
