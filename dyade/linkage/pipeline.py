@@ -22,9 +22,9 @@ of its first pass.
 
 Variants are an axis of the same pipeline: a run of ``variants`` sweeps of one topology
 stacked into one mechanism (``stack``: a number that differs is one value per variant
-and position, variant-major) goes through the same passes in blocks of whole variants
-(``prepare_variants``; one block: the caller sizes the run, its numbers are one per
-variant and position). The validity policy, the dead-centre bands, the plausibility
+and position, variant-major) goes through the same passes as one block
+(``prepare_variants``: the caller sizes the run; its columns may be views of the
+block's arrays). The validity policy, the dead-centre bands, the plausibility
 check and the notes are decided per variant by the same functions (a variant that does
 not close reports no position and has its ``AssemblyError`` in ``Run.failed``; its
 notes are ``Run.notes[v]``). The stages that couple a variant's positions (friction's
@@ -278,7 +278,8 @@ class Run:
     """the blocks' columns hold the motion of the joints and named points (without:
     their plausibility is decided all the same, ``tabulate``)"""
     machine: bool = True
-    """the blocks' columns hold the linkage reduced to the crank (J_red, dJ_red, M_load)"""
+    """the blocks' columns hold the linkage reduced to the crank (J_red, dJ_red, M_load)
+    (a run of variants that reads a few columns leaves both out: a study)"""
     _shown: float = field(default=0.0, repr=False)
 
     def _tick(self, done: float, total: float) -> None:
