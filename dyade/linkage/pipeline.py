@@ -147,15 +147,17 @@ def stackable(the_plan: Plan) -> bool:
     return not (the_plan.friction or the_plan.equation_of_motion or the_plan.drive_line)
 
 
-def prepare_variants(stacked: Mechanism, count: int) -> Setup:
+def prepare_variants(stacked: Mechanism, count: int, the_plan: Plan | None = None) -> Setup:
     """The run of ``count`` variants stacked into ``stacked`` (``stack.stack`` or
     ``stack.spread``), each over the sweep of its file, at the file's constant crank
     speed; ``NotStackable`` where the plan calls for a stage that couples a variant's
-    positions (``stackable``: those run one variant at a time, ``prepare``)."""
+    positions (``stackable``: those run one variant at a time, ``prepare``).
+    ``the_plan``: the stages to run (default: the mechanism's; ``Plan()``: the
+    kinematics only, the first pass of a search)."""
     from dyade.linkage.plan import plan
     from dyade.linkage.stack import NotStackable
 
-    the_plan = plan(stacked)
+    the_plan = plan(stacked) if the_plan is None else the_plan
     if not stackable(the_plan):
         raise NotStackable(COUPLED)
     angle = np.tile(stacked.sweep.angles(), count)
