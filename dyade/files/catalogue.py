@@ -41,11 +41,14 @@ def read_catalogue(path: str | os.PathLike, label: str | None = None):
     """
     label = label or os.fspath(path)
     try:
-        with open(path, encoding="utf-8", newline="") as handle:
+        with open(path, encoding="utf-8-sig", newline="") as handle:  # -sig: Excel's BOM
             text = handle.read()
     except OSError as err:
         raise InputError(f"{label}: cannot read the motor catalogue ({err.strerror}).",
                          source=label) from None
+    except UnicodeDecodeError:
+        raise InputError(f"{label}: the motor catalogue is not a text file in UTF-8: save "
+                         f"it as CSV (UTF-8).", source=label) from None
     return parse_catalogue(text, label)
 
 
@@ -56,6 +59,7 @@ def parse_catalogue(text: str, label: str = "catalogue"):
     from dyade.model.servo import Catalogue, ServoMotor
     from dyade.units import RPM
 
+    text = text.removeprefix("\ufeff")  # a byte-order mark (Excel's "CSV UTF-8")
     lines = [line for line in text.splitlines()
              if line.strip() and not line.lstrip().startswith("#")]
     reader = csv.DictReader(io.StringIO("\n".join(lines)))
@@ -68,6 +72,11 @@ def parse_catalogue(text: str, label: str = "catalogue"):
                                  source=label)
     motors = []
     for row_number, raw in enumerate(reader, start=1):
+        if None in raw:  # csv.DictReader's key of the fields beyond the header's
+            raise InputError(f"{label}: row {row_number} ({raw.get('name') or 'no name'}) "
+                             f"has {len(header) + len(raw[None])} fields, the header "
+                             f"{len(header)}: a comma inside a value? Quote the value, or "
+                             f"name the extra column in the header.", source=label)
         row = {(k or "").strip(): (v or "").strip() for k, v in raw.items()}
         name = row["name"] or f"row {row_number}"
         where = f"row {row_number} ({name})"
