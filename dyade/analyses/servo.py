@@ -261,11 +261,11 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         + (f" of {chosen.motor.name}" if chosen is not None else ""))
     peak_t = float(figures.peak_at[0])
     add("crank_torque_peak", float(np.max(np.abs(motion.torque))), "N·m",
-        where={"t": float(motion.time[np.argmax(np.abs(motion.torque))])},
+        where={"time_s": float(motion.time[np.argmax(np.abs(motion.torque))])},
         description="peak torque the crank shaft needs")
     add("crank_speed_max_rpm", float(np.max(np.abs(motion.speed))) * RAD_PER_S_TO_RPM, "rpm",
         description="top crank speed")
-    add("motor_torque_peak", float(figures.peak_torque[0]), "N·m", where={"t": peak_t},
+    add("motor_torque_peak", float(figures.peak_torque[0]), "N·m", where={"time_s": peak_t},
         description="peak motor torque")
     add("motor_torque_rms", float(figures.rms_torque[0]), "N·m",
         description="RMS motor torque √(1/T·∫M²dt) (heating)")
@@ -306,7 +306,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         add("crank_lag_max_deg", float(np.max(np.abs(columns["lag_deg"]))), "°",
             description="largest lag of the crank behind its profile (elastic line)")
         add("line_torque_peak", float(np.max(np.abs(cycle.torque))), "N·m",
-            where={"t": float(motion.time[np.argmax(np.abs(cycle.torque))])},
+            where={"time_s": float(motion.time[np.argmax(np.abs(cycle.torque))])},
             description="peak torque of the drive line's shaft")
     if motion.branch is not None:
         add("dead_centre_first_deg", math.degrees(motion.branch[0]), "°",

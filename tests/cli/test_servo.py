@@ -193,3 +193,10 @@ def test_the_profile_may_be_a_file_of_its_own(tmp_path):
     expect(["servo", both], 2, "`servo.profile`", "keep one")
     none = servo_file(tmp_path, text[:cut], "none.toml")
     expect(["servo", none], 2, "`servo`", "needs a motion profile")
+
+
+def test_where_a_peak_occurs_is_a_time_with_its_unit(press):
+    from dyade.report.format import where
+
+    shown = where(press.summary["motor_torque_peak"].where)
+    assert shown.startswith("time ") and shown.endswith(" s"), shown
