@@ -70,6 +70,9 @@ def servo(mechanism_file: str, controller: str | None, fmt: str | None, output: 
     torque-speed points over the motor's envelope and the profile's s, v, a, j.
     """
     fmt = fmt or infer_format(output)
+    if fmt not in ("table", "csv", "json"):  # .parquet: not written by this command
+        raise click.BadParameter(f"{output}: dyade servo writes .csv, .json or .txt (the "
+                                 f"table); or give --format table|csv|json.", param_hint="-o")
     outcome = solve(mechanism_file, options)
     if controller:
         write_controller(outcome, controller)

@@ -200,3 +200,13 @@ def test_where_a_peak_occurs_is_a_time_with_its_unit(press):
 
     shown = where(press.summary["motor_torque_peak"].where)
     assert shown.startswith("time ") and shown.endswith(" s"), shown
+
+
+def test_parquet_is_refused_not_written_as_a_table(tmp_path):
+    from click.testing import CliRunner
+
+    from dyade.cli import main
+
+    out = CliRunner().invoke(main, ["servo", str(PRESS), "-o", str(tmp_path / "s.parquet")])
+    assert out.exit_code == 2 and "writes .csv, .json or .txt" in out.output
+    assert not (tmp_path / "s.parquet").exists()
