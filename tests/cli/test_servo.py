@@ -92,6 +92,10 @@ BAD = {
                        ("`servo.output`", "s_i_j")),
     "odd samples": (PRESS_TEXT.replace("samples = 720", "samples = 721"), 2,
                     ("`servo.samples`", "even")),
+    "a crank that does not come round": (FOURBAR.read_text().replace("to = 360", "to = 180"),
+                                         2, ("`profile.segment.2.to`", "180°", "whole")),
+    "an output that does not come back": (PRESS_TEXT.replace("to = 0\n", "to = 5\n"), 2,
+                                          ("`profile.segment.5.to`", "5 mm", "s_1_4 back")),
     "beyond a dead centre": (PRESS_TEXT.replace("to = 60", "to = 90").replace(
         "to = 0\n", "to = 0\n", 1), 1, ("beyond a dead centre", "2.86599°", "184.78°")),
 }
