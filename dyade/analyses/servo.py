@@ -85,6 +85,10 @@ class ServoRun:
     """``dyade.machine.servo.MotorLoad`` at ``ratio``"""
 
 
+RATIO_RANGE = (1e-6, 1e6)  # [-] gear ratios a servo sizing takes
+INERTIA_RANGE = (1e-12, 1e6)  # [kg·m²] rotor and gear inertias a servo sizing takes
+
+
 def ratio_bounds(text: str) -> tuple[float, float]:
     """``"LOW:HIGH"`` -> (low, high), 0 < low < high."""
     from dyade.errors import InputError
@@ -146,6 +150,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
 
     from dyade.errors import DyadeError, InputError
     from dyade.files.catalogue import read_catalogue
+    from dyade.files.mechanism.servo import MAX_SAMPLES
     from dyade.linkage import servo as linkage
     from dyade.machine import servo as engine
     from dyade.model.servo import Gear
@@ -170,6 +175,18 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
               else servo.ratio_range)
     rotor = options.get("rotor_inertia") or servo.rotor_inertia
     limit = options.get("max_inertia_ratio") or servo.max_inertia_ratio
+    for value, flag, key, unit, (low, high) in (
+            (samples, "--samples", "servo.samples", "", (36, MAX_SAMPLES)),
+            (gear.ratio, "--ratio", "servo.ratio", " [-]", RATIO_RANGE),
+            *((end, "--ratio-range", "servo.ratio_range", " [-]", RATIO_RANGE)
+              for end in bounds or ()),
+            (rotor or 1.0, "--rotor-inertia", "servo.rotor_inertia", " [kg·m²]", INERTIA_RANGE),
+            (gear.inertia or 1.0, "", "servo.gear_inertia",
+             " [kg·m²]", INERTIA_RANGE)):
+        if not low <= value <= high:  # beyond any machine, and beyond floating point's squares
+            name = f"{flag} ({key})" if flag else f"`{key}`"
+            raise InputError(f"{os.path.basename(label)}: {name} must lie in {low:g}…{high:g}"
+                             f"{unit}, got {value:g}.", source=label, key=key, value=value)
     catalogue = servo.catalogue
     if options.get("catalogue"):
         catalogue = read_catalogue(options["catalogue"])

@@ -214,3 +214,13 @@ def test_parquet_is_refused_not_written_as_a_table(tmp_path):
     out = CliRunner().invoke(main, ["servo", str(PRESS), "-o", str(tmp_path / "s.parquet")])
     assert out.exit_code == 2 and "writes .csv, .json or .txt" in out.output
     assert not (tmp_path / "s.parquet").exists()
+
+
+@pytest.mark.parametrize("flags, words", [
+    (["--rotor-inertia", "1e300"], ("--rotor-inertia", "servo.rotor_inertia", "1e+300")),
+    (["--ratio-range", "1e-300:40"], ("--ratio-range", "1e-300")),
+    (["--set", "servo.gear_inertia=1e300"], ("`servo.gear_inertia`",)),
+    (["--samples", "1000000"], ("--samples", "200000")),
+])
+def test_numbers_beyond_any_machine_are_refused_before_they_overflow(flags, words):
+    expect(["servo", PRESS, *flags], 2, "press.toml", *words)
