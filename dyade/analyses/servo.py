@@ -144,6 +144,22 @@ def checked_profile(profile, label: str) -> tuple[str, ...]:
 
 
 def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    import numpy as np
+
+    from dyade.errors import InputError
+
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        outcome = size(source, options, budget)  # a profile beyond any machine overflows:
+    if not all(np.isfinite(np.asarray(v, dtype=float)).all()  # its forces withheld, or here
+               for v in outcome.columns.values()):
+        raise InputError("the servo's torques or speeds over the cycle exceed the range of "
+                         "numbers: check the profile's lifts and durations ([profile]) for "
+                         "values far beyond a machine's.", key="profile")
+    return outcome
+
+
+def size(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``run`` without its range check: the Outcome as computed."""
     import math
 
     import numpy as np

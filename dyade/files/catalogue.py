@@ -28,6 +28,7 @@ COLUMNS = {"name": "", "rated_torque": "N·m", "peak_torque": "N·m", "rated_spe
            "top_speed_rpm": "rpm", "rotor_inertia": "kg·m²"}
 """required column -> its unit"""
 OPTIONAL = ("envelope",)
+LARGEST = 1e9  # [N·m, rpm, kg·m²] beyond any motor: refused before its squares overflow
 
 
 def read_catalogue(path: str | os.PathLike, label: str | None = None):
@@ -111,10 +112,10 @@ def _positive(text: str, label: str, where: str, column: str, unit: str) -> floa
         value = float(text)
     except ValueError:
         value = math.nan
-    if not (math.isfinite(value) and value > 0.0):
+    if not (math.isfinite(value) and 0.0 < value <= LARGEST):
         raise InputError.in_file(label, column, f"of {where} must be a positive number "
-                                 f"[{unit}], got {text!r}.", source=label, value=text,
-                                 unit=unit)
+                                 f"[{unit}]{' up to %g' % LARGEST if value > 0.0 else ''}, "
+                                 f"got {text!r}.", source=label, value=text, unit=unit)
     return value
 
 

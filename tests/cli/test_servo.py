@@ -224,3 +224,13 @@ def test_parquet_is_refused_not_written_as_a_table(tmp_path):
 ])
 def test_numbers_beyond_any_machine_are_refused_before_they_overflow(flags, words):
     expect(["servo", PRESS, *flags], 2, "press.toml", *words)
+
+
+def test_a_profile_beyond_any_machine_ends_without_a_warning(tmp_path):
+    import warnings
+
+    text = FOURBAR.read_text().replace("to = 360", "to = 3.6e300")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        result = expect(["servo", servo_file(tmp_path, text)], 1, "not given")
+    assert "Traceback" not in result.output

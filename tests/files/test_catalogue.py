@@ -27,3 +27,8 @@ def test_a_file_not_in_utf8_is_refused_naming_it(tmp_path):
 def test_a_row_with_more_fields_than_the_header_is_refused_naming_the_row():
     with pytest.raises(InputError, match="row 2 \\(M2\\) has 7 fields, the header 6"):
         parse_catalogue(HEADER + "M1,1,3,3000,6000,1e-4\nM2,1,3,3000,6000,1e-4,x\n", "m.csv")
+
+
+def test_a_value_beyond_any_motor_is_refused_before_it_overflows():
+    with pytest.raises(InputError, match="rotor_inertia.*row 1 \\(M1\\).*up to 1e\\+09"):
+        parse_catalogue(HEADER + "M1,1,3,3000,6000,1e300\n", "m.csv")
