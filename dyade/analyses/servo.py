@@ -209,7 +209,13 @@ def size(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     budget.time(samples * 2e-5 * max(1, len(mechanism.dyads)), f"the cycle at {samples} instants")
 
     notes = [f"note: {text}" for text in checked_profile(servo.profile, label)]
-    motion = linkage.crank_motion(mechanism, servo.output, servo.start, target(servo, samples))
+    try:
+        motion = linkage.crank_motion(mechanism, servo.output, servo.start,
+                                      target(servo, samples))
+    except DyadeError as err:  # beyond a dead centre: said with the file's name
+        if type(err) is not DyadeError:
+            raise
+        raise DyadeError(f"{os.path.basename(label)}: {err}") from None
     motion = linkage.inverse_dynamics(mechanism, motion)
     cycle = motion.cycle()
     line = None

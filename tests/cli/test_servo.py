@@ -97,7 +97,7 @@ BAD = {
     "an output that does not come back": (PRESS_TEXT.replace("to = 0\n", "to = 5\n"), 2,
                                           ("`profile.segment.5.to`", "5 mm", "s_1_4 back")),
     "beyond a dead centre": (PRESS_TEXT.replace("to = 60", "to = 90").replace(
-        "to = 0\n", "to = 0\n", 1), 1, ("beyond a dead centre", "2.86599°", "184.78°")),
+        "to = 0\n", "to = 0\n", 1), 1, ("m.toml: the profile moves", "beyond a dead centre", "2.86599°", "184.78°")),
 }
 
 
