@@ -234,3 +234,21 @@ def test_a_profile_beyond_any_machine_ends_without_a_warning(tmp_path):
         warnings.simplefilter("error")
         result = expect(["servo", servo_file(tmp_path, text)], 1, "not given")
     assert "Traceback" not in result.output
+
+
+def test_the_help_examples_name_files_that_exist():
+    from pathlib import Path
+
+    from click.testing import CliRunner
+
+    from dyade.cli import main
+
+    root = Path(__file__).resolve().parents[2]
+    text = CliRunner().invoke(main, ["servo", "--help"]).output
+    examples = [line.split() for line in text.splitlines()
+                if line.strip().startswith("dyade servo ")]
+    assert examples
+    for words in examples:
+        given = [words[2]] + [b for a, b in zip(words, words[1:]) if a == "--catalogue"]
+        for name in given:
+            assert (root / name).is_file(), (name, words)
