@@ -18,10 +18,11 @@ LAYERS = {"working": "CAM-WORKING", "cutter": "CAM-CUTTER"}
 
 
 COLUMNS = ("angle_deg", "s", "v", "a", "pressure_angle_deg", "rho_pitch", "rho_working",
-           "undercut", "contact_force", "hertz_stress", "drive_torque")
+           "undercut", "contact_force", "hertz_stress", "drive_torque", "guide_margin",
+           "jammed")
 """the columns of the table over the turn that ``dyade cam`` prints"""
 REPORT_COLUMNS = ("angle_deg", "s", "v", "pressure_angle_deg", "rho_pitch", "undercut",
-                  "contact_force", "hertz_stress", "drive_torque")
+                  "contact_force", "hertz_stress", "drive_torque", "guide_margin")
 """the narrower table of the design report (``dyade report``), a page's width"""
 
 
