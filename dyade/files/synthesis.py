@@ -20,7 +20,7 @@ TOPOLOGIES = {"fourbar": ("a", "b", "c", "d", "p", "q"),
               "slider-crank": ("a", "b", "e", "p", "q")}
 """topology -> its canonical dimensions (``dyade.synthesis.topology``)"""
 TARGET_KEYS = {"kind", "points", "closed", "crank", "output", "method", "poses", "stretch",
-               "moving"}
+               "moving", "profile", "range", "rows", "crank_zero", "output_zero"}
 SEARCH_KEYS = {"candidates", "block", "method", "seed", "positions", "rounds",
                "min_transmission", "scale"}
 SCORE_KEYS = {"speed_rpm", "mass_per_length", "mass_each", "figure", "frame"}
@@ -138,11 +138,13 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
         if topology != "fourbar":
             raise reader.fail("topology", "function generation sizes a four-bar: give "
                                           "topology = \"fourbar\".")
+        if "profile" in table:
+            return _profile_target(reader, table, crank)
         output = angles("output")
         if crank is None or output is None:
             raise reader.fail("target.crank" if crank is None else "target.output",
                               "is missing: a function target is a table of crank angles and "
-                              "output angles.")
+                              "output angles (or a motion profile: target.profile).")
         if crank.size != output.size:
             raise reader.fail("target.output", f"has {output.size} angles for {crank.size} "
                                                "crank angles.")
@@ -195,3 +197,62 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
         raise reader.fail("target.crank", f"has {crank.size} angles for {points.size} points.")
     return Target(kind, crank=crank, points=points, closed=closed)
 
+
+
+def _profile_target(reader: UnitReader, table: dict, crank) -> Target:
+    """A function target given as a motion profile: a profile file's path (from the
+    synthesis file's folder) or an inline ``[target.profile]`` table."""
+    from dyade.files.profile import ProfileReader, read_profile
+
+    for key in ("crank", "output"):
+        if key in table:
+            raise reader.fail(f"target.{key}", "is given beside target.profile: a function "
+                                               "target is a table or a profile, not both.")
+    given = table["profile"]
+    if isinstance(given, str):
+        folder = os.path.dirname(reader.source) if reader.source else ""
+        path = os.path.join(folder, given)
+        if not os.path.isfile(path):
+            raise reader.fail("target.profile", f"names {given!r}, which is not a file "
+                                                f"(looked for {path}).", given)
+        profile = read_profile(path)
+    elif isinstance(given, dict):
+        profile = ProfileReader(reader.label, reader.source).profile(given, "target profile")
+    else:
+        raise reader.fail("target.profile", "must be a profile file's path or a "
+                                            "[target.profile] table.", given)
+    if profile.master != "angle":
+        raise reader.fail("target.profile", "must run over a master angle (the crank "
+                                            "angle), got a profile over time.")
+    if profile.output != "angle":
+        raise reader.fail("target.profile", f"gives a length ({profile.unit}): function "
+                                            "generation sizes a four-bar's output angle; "
+                                            "give the profile's unit in deg or rad.")
+    span = (profile.start, profile.start + profile.period)
+    if "range" in table:
+        value = table["range"]
+        if not (isinstance(value, list) and len(value) == 2):
+            raise reader.fail("target.range", f"must be [start, stop] of the profile's master "
+                                              f"[{reader.angle_unit}], got {value!r}.", value)
+        span = tuple(reader.angle_of(v, "target.range") for v in value)
+        if not span[1] > span[0]:
+            raise reader.fail("target.range", "must be [start, stop] with stop after start.")
+        if span[1] - span[0] > 2.0 * np.pi + 1e-12:
+            raise reader.fail("target.range", "must span at most one turn of the crank.")
+    elif abs(profile.advance) > 0.0:
+        raise reader.fail("target.range", "is missing: the profile does not come back to "
+                                          "where it started, which a rocker over a whole "
+                                          "turn must; give the range of the crank to follow.")
+    rows = 61
+    if "rows" in table:
+        rows = reader.integer(table["rows"], "target.rows")
+        if rows < 3:
+            raise reader.fail("target.rows", f"must be at least 3, got {rows}.", rows)
+    method = table.get("method", "fit")
+    if method not in METHODS:
+        raise reader.fail("target.method", f"must be one of {', '.join(METHODS)}, got "
+                                           f"{method!r}.")
+    zeros = tuple(reader.angle_of(table[k], f"target.{k}") if k in table else None
+                  for k in ("crank_zero", "output_zero"))
+    return Target("function", crank=np.array(span), method=method, profile=profile,
+                  rows=rows, zeros=zeros)

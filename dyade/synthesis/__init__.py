@@ -97,7 +97,17 @@ def _function(problem: Synthesis) -> Result:
     from dyade.synthesis import function
 
     target = problem.target
-    made = function.generate(target.crank, target.output, target.method, problem.frame)
+    offsets = None
+    if target.profile is not None:
+        from dyade.motion.profile import evaluate
+
+        master = np.linspace(target.crank[0], target.crank[-1], target.rows)
+        lift = evaluate(target.profile, master).s
+        made, offsets = function.from_profile(
+            master, lift, target.method, problem.frame, *target.zeros,
+            lift_at=lambda x: evaluate(target.profile, x).s)
+    else:
+        made = function.generate(target.crank, target.output, target.method, problem.frame)
     sweep = (float(np.rad2deg(target.crank[0])), float(np.rad2deg(target.crank[-1])),
              _step(target.crank))
     data = function.data(made.linkage, speed_rpm(problem), sweep, problem.name,
@@ -108,8 +118,16 @@ def _function(problem: Synthesis) -> Result:
     if not np.isfinite(made.error).all():
         notes.append(f"the four-bar does not close at {np.count_nonzero(~np.isfinite(made.error))}"
                      f" of the table's {made.error.size} crank angles")
+    if offsets is not None:
+        notes.append(f"the profile's master {np.rad2deg(target.crank[0]):.6g}° … "
+                     f"{np.rad2deg(target.crank[-1]):.6g}° is the crank angle "
+                     f"{np.rad2deg(made.crank[0]):.6g}° … {np.rad2deg(made.crank[-1]):.6g}° "
+                     f"from the frame line; its output s = 0 is the output angle "
+                     f"{np.rad2deg(offsets.output):.6g}°"
+                     + (" (both found by the synthesis)" if offsets.fitted else ""))
     design = Design(problem.name, data, error, True, made.crank, made.traced, notes=notes)
     result = Result(problem, [design])
+    result.offsets = offsets
     result.function = made  # the structural error at every row, for the table
     return result
 
