@@ -105,11 +105,12 @@ def _function(problem: Synthesis) -> Result:
         lift = evaluate(target.profile, master).s
         made, offsets = function.from_profile(
             master, lift, target.method, problem.frame, *target.zeros,
-            lift_at=lambda x: evaluate(target.profile, x).s)
+            lift_at=lambda x: evaluate(target.profile, x).s,
+            min_transmission=problem.min_transmission or function.MIN_TRANSMISSION)
     else:
         made = function.generate(target.crank, target.output, target.method, problem.frame)
-    sweep = (float(np.rad2deg(target.crank[0])), float(np.rad2deg(target.crank[-1])),
-             _step(target.crank))
+    sweep = (float(np.rad2deg(made.crank[0])), float(np.rad2deg(made.crank[-1])),
+             _step(made.crank))
     data = function.data(made.linkage, speed_rpm(problem), sweep, problem.name,
                          problem.masses)
     error = float(np.rad2deg(np.nanmax(np.abs(made.error)))) if np.isfinite(

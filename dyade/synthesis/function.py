@@ -157,6 +157,9 @@ def _fit(start: closed.FourBar, phi: FloatArray, psi: FloatArray) -> closed.Four
 # -- a motion profile as the target ------------------------------------------------------
 RATIO = (0.2, 5.0)
 """a profile's four-bar: each of a, b, c between these multiples of the frame d"""
+MIN_TRANSMISSION = np.radians(20.0)
+"""a profile's four-bar: the least transmission angle over the range when the problem
+states none [rad] (a fit would otherwise use a near-dead-centre's sharp turn)"""
 OFFSET_GRID = 36
 """the starting offsets tried per axis (every 10°): the crank angle of the profile's
 master zero and the output angle of its zero"""
@@ -193,6 +196,16 @@ def _batched(phi: FloatArray, psi: FloatArray, frame: float):
     return a, b, c, variant
 
 
+def transmission(a, b, c, d, phi):
+    """The transmission angle μ between coupler and rocker folded to [0, π/2] [rad]
+    at crank angles φ (broadcast; NaN where the four-bar does not close)."""
+    with np.errstate(invalid="ignore"):
+        cosine = (b * b + c * c - (a * a + d * d - 2.0 * a * d * np.cos(phi))) / (
+            2.0 * b * np.abs(c))
+        mu = np.arccos(np.where(np.abs(cosine) <= 1.0, cosine, np.nan))
+    return np.minimum(mu, np.pi - mu)
+
+
 def _batched_output(a, b, c, d, variant, phi):
     """ψ (G, N) [rad] of the four-bars (G,) at crank angles (G, N) (NaN: open)."""
     ax, ay = a[:, None] * np.cos(phi), a[:, None] * np.sin(phi)
@@ -205,8 +218,8 @@ def _batched_output(a, b, c, d, variant, phi):
 
 def from_profile(master: FloatArray, lift: FloatArray, method: str = "fit",
                  frame: float = 1.0, crank_zero: float | None = None,
-                 output_zero: float | None = None, lift_at=None
-                 ) -> tuple[Generated, Offsets]:
+                 output_zero: float | None = None, lift_at=None,
+                 min_transmission: float = MIN_TRANSMISSION) -> tuple[Generated, Offsets]:
     """Synthesise a four-bar whose output angle follows a motion profile s(x) over
     the crank angle: ψ(φ0 + x) = ψ0 + s(x).
 
@@ -225,6 +238,9 @@ def from_profile(master: FloatArray, lift: FloatArray, method: str = "fit",
     lift_at : callable, optional
         s at any master angles [rad] (the profile itself): the precision points' values;
         None: interpolated in the rows.
+    min_transmission : float
+        The least transmission angle over the range [rad]: starts below it are not
+        tried, the fit is held above it.
 
     Returns
     -------
@@ -246,6 +262,8 @@ def from_profile(master: FloatArray, lift: FloatArray, method: str = "fit",
     worst = np.max(np.abs(wrap(psi - psi0[:, None] - s)), axis=1)
     lengths = np.stack([np.abs(a), b, np.abs(c)]) / frame
     usable = np.all((lengths >= RATIO[0]) & (lengths <= RATIO[1]), axis=0)  # NaN: False
+    mu = transmission(a[:, None], b[:, None], c[:, None], frame, phi0[:, None] + x)
+    usable &= np.min(mu, axis=1) >= min_transmission  # NaN: False
     worst = np.where(np.isfinite(worst) & usable, worst, np.inf)
     if not np.isfinite(worst).any():
         from dyade.errors import DyadeError
@@ -253,7 +271,8 @@ def from_profile(master: FloatArray, lift: FloatArray, method: str = "fit",
         raise DyadeError("no four-bar through three Chebyshev points of the profile moves "
                          "over its whole range on one assembly branch, for any placement "
                          "tried (every 10° of crank and output angle, links between "
-                         f"{RATIO[0]:g} and {RATIO[1]:g} times the frame): a range this long "
+                         f"{RATIO[0]:g} and {RATIO[1]:g} times the frame, a transmission angle "
+                         f"of at least {np.degrees(min_transmission):.4g}°): a range this long "
                          "or a motion this large is beyond a four-bar; shorten target.range "
                          "(or leave target.crank_zero and output_zero to the synthesis).")
     starts = np.argsort(worst)[:3 if method == "fit" else 1]
@@ -264,11 +283,18 @@ def from_profile(master: FloatArray, lift: FloatArray, method: str = "fit",
         zero = (float(phi0[k]), float(psi0[k]))
         if method == "fit":
             linkage, zero = _fit_offsets(linkage, zero, x, s, crank_zero is None,
-                                         output_zero is None)
+                                         output_zero is None, min_transmission)
         miss = np.abs(wrap(closed.output_angle(linkage, zero[0] + x) - zero[1] - s))
+        least = np.min(transmission(linkage.a, linkage.b, linkage.c, frame, zero[0] + x))
         score = float(np.max(miss)) if np.isfinite(miss).all() else np.inf
+        score = score if least >= min_transmission * (1 - 1e-6) else np.inf
         if best is None or score < best[0]:
             best = (score, linkage, zero)
+    if not np.isfinite(best[0]):  # every fit left the transmission bound: the best start
+        k = starts[0]
+        linkage = closed.FourBar(float(a[k]), float(b[k]), float(c[k]), frame,
+                                 variant=int(variant[k]))
+        best = (None, linkage, (float(phi0[k]), float(psi0[k])))
     _, linkage, zero = best
     crank, target = x + zero[0], s + zero[1]
     precision = chosen + zero[0] if method != "fit" else np.zeros(0)
@@ -277,9 +303,10 @@ def from_profile(master: FloatArray, lift: FloatArray, method: str = "fit",
 
 
 def _fit_offsets(start: closed.FourBar, zero: tuple[float, float], x: FloatArray,
-                 s: FloatArray, free_crank: bool, free_output: bool):
+                 s: FloatArray, free_crank: bool, free_output: bool,
+                 min_transmission: float = 0.0):
     """The least squares of the structural error over (a, b, c) and the free offsets,
-    d fixed."""
+    d fixed, the transmission angle held above ``min_transmission`` by a penalty."""
     from dyade.synthesis.search import scipy_least_squares
 
     least_squares = scipy_least_squares()
@@ -295,7 +322,9 @@ def _fit_offsets(start: closed.FourBar, zero: tuple[float, float], x: FloatArray
     def residual(v):
         trial, phi0, psi0 = unpack(v)
         miss = wrap(closed.output_angle(trial, phi0 + x) - psi0 - s)
-        return np.where(np.isfinite(miss), miss, 1.0)
+        mu = transmission(trial.a, trial.b, trial.c, trial.d, phi0 + x)
+        below = np.where(np.isfinite(mu), np.maximum(min_transmission - mu, 0.0), 1.0)
+        return np.concatenate([np.where(np.isfinite(miss), miss, 1.0), 10.0 * below])
 
     low, high = np.log(RATIO)
     v0 = list(np.clip(np.log(np.abs([start.a, start.b, start.c]) / start.d), low, high))

@@ -61,10 +61,13 @@ def test_a_four_bars_own_function_as_a_profile_gives_it_back():
     made, offsets = function.from_profile(np.linspace(0.0, SPAN, 31), psi - psi[0], "fit",
                                           frame=1.0)
     assert np.abs(made.error).max() < 1e-9
-    # the same linkage (a negative c: the rocker's pin on the other side, ψ0 by 180°)
-    assert (made.linkage.a, made.linkage.b, abs(made.linkage.c)) == pytest.approx(
+    # the same linkage, up to the pins' sides: a negative a puts the crank pin at
+    # φ0 + 180°, a negative c the rocker's at ψ0 + 180°
+    linkage = made.linkage
+    assert (abs(linkage.a), linkage.b, abs(linkage.c)) == pytest.approx(
         (KNOWN.a, KNOWN.b, KNOWN.c), rel=1e-6)
-    assert math.degrees(offsets.crank) == pytest.approx(40.0, abs=1e-6)
+    pin = math.degrees(offsets.crank) + (180.0 if linkage.a < 0 else 0.0)
+    assert (pin - 40.0 + 180.0) % 360.0 - 180.0 == pytest.approx(0.0, abs=1e-6)
 
 
 def test_the_synthesis_file_takes_a_profile_and_reports_every_row(tmp_path):
