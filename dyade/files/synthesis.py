@@ -16,8 +16,10 @@ from dyade.units import RPM
 
 TOP = {"name", "topology", "units", "target", "bounds", "regions", "search", "scores",
        "output"}
+SIXBAR = ("a", "b", "c", "d", "ex", "ey", "gx", "gy", "f", "g", "p", "q")
 TOPOLOGIES = {"fourbar": ("a", "b", "c", "d", "p", "q"),
-              "slider-crank": ("a", "b", "e", "p", "q")}
+              "slider-crank": ("a", "b", "e", "p", "q"),
+              "watt-sixbar": SIXBAR, "stephenson-sixbar": SIXBAR}
 """topology -> its canonical dimensions (``dyade.synthesis.topology``)"""
 TARGET_KEYS = {"kind", "points", "closed", "crank", "output", "method", "poses", "stretch",
                "moving", "profile", "range", "rows", "crank_zero", "output_zero"}
@@ -52,6 +54,10 @@ def parse(data: dict[str, Any], label: str = "synthesis", source: str | None = N
         raise reader.fail("topology", f"must be one of {', '.join(TOPOLOGIES)}, got "
                                       f"{topology!r}.{suggest(str(topology), TOPOLOGIES)}")
     target = _target(reader, reader.required(data, "target", ""), topology)
+    if topology.endswith("sixbar") and target.kind != "path":
+        raise reader.fail("topology", f"a six-bar is sized for path generation (kind = "
+                                      f"\"path\"), not for a {target.kind} target: use "
+                                      f"topology = \"fourbar\".")
     names = TOPOLOGIES[topology]
     bounds = {}
     for key, value in reader.keys(data.get("bounds", {}), "bounds", set(names)).items():

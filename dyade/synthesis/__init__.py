@@ -158,6 +158,7 @@ def settings_of(problem: Synthesis, scale: bool | None = None):
                     method=problem.method, seed=problem.seed, positions=problem.positions,
                     min_transmission=problem.min_transmission, scale=problem.scale,
                     rounds=problem.rounds, keep=max(40, 4 * problem.keep),
+                    variants=topology.variants,
                     regions=tuple((0 if name == "A0" else 1, *box)
                                   for name, box in problem.regions.items()))
 
@@ -271,11 +272,10 @@ def trace(data: dict, offset: float = 0.0, count: int = 361) -> tuple[np.ndarray
     turn, through dyade's positions-only stage."""
     from dyade.files.mechanism import build
     from dyade.linkage.positions import positions
-    from dyade.synthesis.topology import COUPLER
-
     mechanism = build(data)
     crank = offset + np.linspace(0.0, 2.0 * np.pi, count)
-    found = positions(mechanism, crank, [(COUPLER, mechanism.links[COUPLER].points["P"])])
+    link = next(k for k, body in sorted(mechanism.links.items()) if "P" in body.points)
+    found = positions(mechanism, crank, [(link, mechanism.links[link].points["P"])])
     return crank, found.points[:, 0, 0] + 1j * found.points[:, 0, 1]
 
 
