@@ -384,8 +384,14 @@ def fit(topology: Topology, values: FloatArray, variant: int, target: np.ndarray
             columns[count + np.arange(count), dims + 3 + np.arange(count)] = change[count:]
         return columns
 
-    solution = least_squares(residual, x0, jac=jacobian, method="lm", xtol=1e-15, ftol=1e-15,
-                             gtol=1e-15, max_nfev=MAX_STEPS * max(1, dims // 6) ** 2)
+    size_ = max(size, 1e-300)
+    for _ in range(max(1, dims // 6) ** 2):  # more dimensions, more steps: in stages of
+        solution = least_squares(residual, x0, jac=jacobian, method="lm", xtol=1e-15,
+                                 ftol=1e-15, gtol=1e-15, max_nfev=MAX_STEPS)  # MAX_STEPS,
+        x0 = solution.x  # stopped once the fit meets the target
+        reached = np.sqrt(np.mean(np.abs(placed(x0) - target) ** 2)) / size_
+        if solution.success or reached <= tolerance:
+            break
     x = solution.x
     miss = np.abs(placed(x) - target)
     rms = float(np.sqrt(np.mean(miss ** 2))) if np.all(np.isfinite(miss)) else math.inf

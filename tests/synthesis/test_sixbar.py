@@ -57,14 +57,14 @@ def test_a_search_recovers_a_stephenson_sixbar_from_its_own_coupler_curve():
     from dyade.synthesis import synthesise
 
     topology = TOPOLOGIES["stephenson-sixbar"]
-    crank = np.linspace(0.0, 2.0 * np.pi, 30, endpoint=False)
+    crank = np.linspace(0.0, 2.0 * np.pi, 20, endpoint=False)
     points = topology.path(STEPHENSON, 1, crank + 0.7)[0] * 0.1 + (0.3 + 0.2j)  # moved
     bounds = {k: sorted([0.85 * x, 1.15 * x]) for k, x in zip(topology.names, STEPHENSON)}
     bounds["d"] = [1.0, 1.0]
     problem = parse({"topology": "stephenson-sixbar",
                      "target": {"kind": "path", "points": [[z.real, z.imag] for z in points]},
                      "bounds": bounds, "output": {"keep": 1},
-                     "search": {"candidates": 500, "block": 500, "rounds": 1, "seed": 1}})
+                     "search": {"candidates": 300, "block": 300, "rounds": 1, "seed": 1}})
     result = synthesise(problem)
     best = result.designs[0]
     assert best.error < 1e-9 and best.converged
