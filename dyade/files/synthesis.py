@@ -22,7 +22,7 @@ TOPOLOGIES = {"fourbar": ("a", "b", "c", "d", "p", "q"),
               "watt-sixbar": SIXBAR, "stephenson-sixbar": SIXBAR}
 """topology -> its canonical dimensions (``dyade.synthesis.topology``)"""
 TARGET_KEYS = {"kind", "points", "closed", "crank", "output", "method", "poses", "stretch",
-               "moving", "profile", "range", "rows", "crank_zero", "output_zero"}
+               "moving", "profile", "range", "rows", "crank_zero", "output_zero", "radius"}
 SEARCH_KEYS = {"candidates", "block", "method", "seed", "positions", "rounds",
                "min_transmission", "scale"}
 SCORE_KEYS = {"speed_rpm", "mass_per_length", "mass_each", "figure", "frame"}
@@ -103,6 +103,10 @@ def parse(data: dict[str, Any], label: str = "synthesis", source: str | None = N
               for k, u in (("mass_per_length", "kg/m"), ("mass_each", "kg")) if k in scores}
     if len(masses) == 2:
         raise reader.fail("scores.mass_each", "give mass_per_length or mass_each, not both.")
+    if target.radius is not None and not bool(search.get("scale", True)):
+        raise reader.fail("target.radius", "scales the design to the arc's radius, which "
+                                           "search.scale = false forbids (the bounds then "
+                                           "fix the size): remove one of the two.")
     least = search.get("min_transmission", 0.0)
     return Synthesis(
         name=str(data.get("name", label)), source=source, topology=topology, target=target,
@@ -184,7 +188,13 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
         stretch = reader.angle_of(reader.required(table, "stretch", "target"), "target.stretch")
         if not 0.0 < stretch < 2.0 * np.pi:
             raise reader.fail("target.stretch", "must lie between 0° and 360° of crank.")
-        return Target(kind, stretch=stretch, closed=False)
+        radius = None
+        if "radius" in table:
+            if kind != "arc":
+                raise reader.fail("target.radius", "applies to an arc (kind = \"arc\"); a "
+                                                   "straight line has none.")
+            radius = reader.length_of(table["radius"], "target.radius", positive=True)
+        return Target(kind, stretch=stretch, closed=False, radius=radius)
     raw = reader.required(table, "points", "target")
     if not isinstance(raw, list) or not all(isinstance(p, list) and len(p) == 2 for p in raw):
         raise reader.fail("target.points", f"must be a list of [x, y] [{reader.length_unit}].")

@@ -37,6 +37,8 @@ class Target:
     """function generation: "precision" (three rows), "chebyshev", "fit" """
     stretch: float = 0.0
     """a straight-line or arc stretch's crank range [rad]"""
+    radius: float | None = None
+    """an arc stretch's prescribed radius [m] (the design scaled to it); None: any"""
     moving: tuple[complex, complex] | None = None
     """three poses: the moving pivots in pose 1 (complex [m]); None: chosen"""
     profile: Any = None

@@ -317,6 +317,14 @@ def _stretch(problem: Synthesis, jobs, executor, progress) -> Result:
     designs.sort(key=lambda r: r.error)
     out = []
     for rank, refined in enumerate(designs[:problem.keep], start=1):
+        scaled = None
+        if target.kind == "arc" and target.radius is not None:  # a similarity: the same
+            from dyade.synthesis.stretch import circle  # deviation over length, to R
+
+            along = refined.start + np.linspace(0.0, target.stretch, 121)
+            _, radius = circle(topology.path(refined.values, refined.variant, along)[0])
+            refined.values = refined.values * (target.radius / radius)
+            scaled = target.radius / radius
         data = topology.data(refined.values, refined.variant, Placement(), speed_rpm(problem),
                              problem.masses, name=f"{problem.name}: design {rank}")
         crank, path = trace(data)
@@ -324,6 +332,9 @@ def _stretch(problem: Synthesis, jobs, executor, progress) -> Result:
         design.stretch = (refined.start, refined.start + target.stretch)
         design.notes.append(f"the stretch runs from crank angle {np.rad2deg(refined.start) % 360:.2f}° "
                             f"to {np.rad2deg(refined.start + target.stretch) % 360:.2f}°")
+        if scaled is not None:
+            design.notes.append(f"scaled by {scaled:.6g} so that the arc's circle has the "
+                                f"radius asked, {target.radius:.6g} m")
         out.append(design)
     return Result(problem, out, best.evaluated, best.assembled)
 
