@@ -172,10 +172,11 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
         poses = np.array([[reader.length_of(p[0], "target.poses"),
                            reader.length_of(p[1], "target.poses"),
                            reader.angle_of(p[2], "target.poses")] for p in raw])
-        if len(poses) not in (3, 4):
+        if len(poses) not in (3, 4, 5):
             raise reader.fail("target.poses", f"motion generation takes three poses (the "
-                                              f"fixed pivots in closed form) or four (the "
-                                              f"Burmester curves), got {len(poses)}.")
+                                              f"fixed pivots in closed form), four (the "
+                                              f"Burmester curves) or five (the "
+                                              f"Ball–Burmester points), got {len(poses)}.")
         moving = None
         if "moving" in table:
             pair = table["moving"]
