@@ -19,7 +19,7 @@ from dyade.synthesis.stretch import circle, deviation
 def test_an_arc_of_a_prescribed_radius():
     data = {"units": {"length": "mm", "angle": "deg"},
             "target": {"kind": "arc", "stretch": 90, "radius": 250},
-            "search": {"candidates": 200, "block": 200, "rounds": 1, "seed": 2},
+            "search": {"candidates": 60, "block": 60, "rounds": 1, "seed": 2},
             "output": {"keep": 1}}
     sized = synthesise(parse(data))
     design = sized.designs[0]
