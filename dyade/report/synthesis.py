@@ -19,7 +19,9 @@ def tables(outcome) -> list:
     if getattr(result, "function", None) is not None:
         parts.append(columns_table(outcome, "Structural error at every row of the table"))
     dims = Table(title="Designs (mechanism files: design-N.toml)", title_justify="left")
-    for head in ("design", f"error [{outcome.units.get('error', '-')}]", "frame pivots [m]",
+    error = outcome.summary.get("error")  # the function table's columns hold no "error"
+    unit = error.unit if error is not None else outcome.units.get("error", "-")
+    for head in ("design", f"error [{unit}]", "frame pivots [m]",
                  "lengths [m]", "coupler point P [m]", "variant"):
         dims.add_column(head, justify="right")
     for k, design in enumerate(result.designs, start=1):
