@@ -121,6 +121,16 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                         "output_deg": "the target's output angle ψ",
                         "traced_deg": "the output angle the four-bar gives (through dyade)",
                         "error_deg": "the structural error ψ_traced − ψ_target"}
+        offsets = getattr(result, "offsets", None)
+        if offsets is not None:  # a motion profile: its own master beside the crank angle
+            columns = {"master_deg": np.rad2deg(made.crank - offsets.crank), **columns}
+            units["master_deg"] = "°"
+            descriptions["master_deg"] = "the profile's master angle"
+            descriptions["output_deg"] = "the target's output angle ψ (the profile's s + ψ0)"
+            outcome.add("crank_zero", float(np.rad2deg(offsets.crank)), "°",
+                        description="the crank angle at the profile's master zero")
+            outcome.add("output_zero", float(np.rad2deg(offsets.output)), "°",
+                        description="the output angle where the profile's s = 0")
         for k, at in enumerate(np.rad2deg(made.precision), start=1):
             outcome.add(f"precision_{k}_deg", float(at), "°",
                         description=f"precision point {k}: crank angle")

@@ -47,10 +47,11 @@ def synthesise(synthesis_file: Path, folder: Path | None, figure: Path | None, f
                **options) -> None:
     """Find the mechanisms that do what SYNTHESIS_FILE asks: function generation (output
     angle over crank angle: three precision points by Freudenstein's equation, Chebyshev
-    spacing or a least-squares fit of a table), motion generation (three poses in closed
-    form, four by the Burmester curves) or path generation (a closed coupler curve, or a
-    straight-line or circular-arc stretch over a crank range) with a four-bar or a
-    slider-crank.
+    spacing or a least-squares fit of a table or of a motion profile), motion generation
+    (three poses in closed form, four by the Burmester curves) or path generation (a
+    closed coupler curve, or a straight-line or circular-arc stretch over a crank range)
+    with a four-bar or a slider-crank; a closed coupler curve also with a Watt or
+    Stephenson six-bar.
 
     A path search traces many candidates in blocks through dyade's positions-only stage
     (seeded: the same result on any -j or cluster), matches them by a start-point-free

@@ -16,11 +16,13 @@ from dyade.units import RPM
 
 TOP = {"name", "topology", "units", "target", "bounds", "regions", "search", "scores",
        "output"}
+SIXBAR = ("a", "b", "c", "d", "ex", "ey", "gx", "gy", "f", "g", "p", "q")
 TOPOLOGIES = {"fourbar": ("a", "b", "c", "d", "p", "q"),
-              "slider-crank": ("a", "b", "e", "p", "q")}
+              "slider-crank": ("a", "b", "e", "p", "q"),
+              "watt-sixbar": SIXBAR, "stephenson-sixbar": SIXBAR}
 """topology -> its canonical dimensions (``dyade.synthesis.topology``)"""
 TARGET_KEYS = {"kind", "points", "closed", "crank", "output", "method", "poses", "stretch",
-               "moving"}
+               "moving", "profile", "range", "rows", "crank_zero", "output_zero", "radius"}
 SEARCH_KEYS = {"candidates", "block", "method", "seed", "positions", "rounds",
                "min_transmission", "scale"}
 SCORE_KEYS = {"speed_rpm", "mass_per_length", "mass_each", "figure", "frame"}
@@ -52,6 +54,10 @@ def parse(data: dict[str, Any], label: str = "synthesis", source: str | None = N
         raise reader.fail("topology", f"must be one of {', '.join(TOPOLOGIES)}, got "
                                       f"{topology!r}.{suggest(str(topology), TOPOLOGIES)}")
     target = _target(reader, reader.required(data, "target", ""), topology)
+    if topology.endswith("sixbar") and target.kind != "path":
+        raise reader.fail("topology", f"a six-bar is sized for path generation (kind = "
+                                      f"\"path\"), not for a {target.kind} target: use "
+                                      f"topology = \"fourbar\".")
     names = TOPOLOGIES[topology]
     bounds = {}
     for key, value in reader.keys(data.get("bounds", {}), "bounds", set(names)).items():
@@ -97,6 +103,10 @@ def parse(data: dict[str, Any], label: str = "synthesis", source: str | None = N
               for k, u in (("mass_per_length", "kg/m"), ("mass_each", "kg")) if k in scores}
     if len(masses) == 2:
         raise reader.fail("scores.mass_each", "give mass_per_length or mass_each, not both.")
+    if target.radius is not None and not bool(search.get("scale", True)):
+        raise reader.fail("target.radius", "scales the design to the arc's radius, which "
+                                           "search.scale = false forbids (the bounds then "
+                                           "fix the size): remove one of the two.")
     least = search.get("min_transmission", 0.0)
     return Synthesis(
         name=str(data.get("name", label)), source=source, topology=topology, target=target,
@@ -138,11 +148,13 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
         if topology != "fourbar":
             raise reader.fail("topology", "function generation sizes a four-bar: give "
                                           "topology = \"fourbar\".")
+        if "profile" in table:
+            return _profile_target(reader, table, crank)
         output = angles("output")
         if crank is None or output is None:
             raise reader.fail("target.crank" if crank is None else "target.output",
                               "is missing: a function target is a table of crank angles and "
-                              "output angles.")
+                              "output angles (or a motion profile: target.profile).")
         if crank.size != output.size:
             raise reader.fail("target.output", f"has {output.size} angles for {crank.size} "
                                                "crank angles.")
@@ -160,10 +172,11 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
         poses = np.array([[reader.length_of(p[0], "target.poses"),
                            reader.length_of(p[1], "target.poses"),
                            reader.angle_of(p[2], "target.poses")] for p in raw])
-        if len(poses) not in (3, 4):
+        if len(poses) not in (3, 4, 5):
             raise reader.fail("target.poses", f"motion generation takes three poses (the "
-                                              f"fixed pivots in closed form) or four (the "
-                                              f"Burmester curves), got {len(poses)}.")
+                                              f"fixed pivots in closed form), four (the "
+                                              f"Burmester curves) or five (the "
+                                              f"Ball–Burmester points), got {len(poses)}.")
         moving = None
         if "moving" in table:
             pair = table["moving"]
@@ -176,7 +189,13 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
         stretch = reader.angle_of(reader.required(table, "stretch", "target"), "target.stretch")
         if not 0.0 < stretch < 2.0 * np.pi:
             raise reader.fail("target.stretch", "must lie between 0° and 360° of crank.")
-        return Target(kind, stretch=stretch, closed=False)
+        radius = None
+        if "radius" in table:
+            if kind != "arc":
+                raise reader.fail("target.radius", "applies to an arc (kind = \"arc\"); a "
+                                                   "straight line has none.")
+            radius = reader.length_of(table["radius"], "target.radius", positive=True)
+        return Target(kind, stretch=stretch, closed=False, radius=radius)
     raw = reader.required(table, "points", "target")
     if not isinstance(raw, list) or not all(isinstance(p, list) and len(p) == 2 for p in raw):
         raise reader.fail("target.points", f"must be a list of [x, y] [{reader.length_unit}].")
@@ -195,3 +214,62 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
         raise reader.fail("target.crank", f"has {crank.size} angles for {points.size} points.")
     return Target(kind, crank=crank, points=points, closed=closed)
 
+
+
+def _profile_target(reader: UnitReader, table: dict, crank) -> Target:
+    """A function target given as a motion profile: a profile file's path (from the
+    synthesis file's folder) or an inline ``[target.profile]`` table."""
+    from dyade.files.profile import ProfileReader, read_profile
+
+    for key in ("crank", "output"):
+        if key in table:
+            raise reader.fail(f"target.{key}", "is given beside target.profile: a function "
+                                               "target is a table or a profile, not both.")
+    given = table["profile"]
+    if isinstance(given, str):
+        folder = os.path.dirname(reader.source) if reader.source else ""
+        path = os.path.join(folder, given)
+        if not os.path.isfile(path):
+            raise reader.fail("target.profile", f"names {given!r}, which is not a file "
+                                                f"(looked for {path}).", given)
+        profile = read_profile(path)
+    elif isinstance(given, dict):
+        profile = ProfileReader(reader.label, reader.source).profile(given, "target profile")
+    else:
+        raise reader.fail("target.profile", "must be a profile file's path or a "
+                                            "[target.profile] table.", given)
+    if profile.master != "angle":
+        raise reader.fail("target.profile", "must run over a master angle (the crank "
+                                            "angle), got a profile over time.")
+    if profile.output != "angle":
+        raise reader.fail("target.profile", f"gives a length ({profile.unit}): function "
+                                            "generation sizes a four-bar's output angle; "
+                                            "give the profile's unit in deg or rad.")
+    span = (profile.start, profile.start + profile.period)
+    if "range" in table:
+        value = table["range"]
+        if not (isinstance(value, list) and len(value) == 2):
+            raise reader.fail("target.range", f"must be [start, stop] of the profile's master "
+                                              f"[{reader.angle_unit}], got {value!r}.", value)
+        span = tuple(reader.angle_of(v, "target.range") for v in value)
+        if not span[1] > span[0]:
+            raise reader.fail("target.range", "must be [start, stop] with stop after start.")
+        if span[1] - span[0] > 2.0 * np.pi + 1e-12:
+            raise reader.fail("target.range", "must span at most one turn of the crank.")
+    elif abs(profile.advance) > 0.0:
+        raise reader.fail("target.range", "is missing: the profile does not come back to "
+                                          "where it started, which a rocker over a whole "
+                                          "turn must; give the range of the crank to follow.")
+    rows = 61
+    if "rows" in table:
+        rows = reader.integer(table["rows"], "target.rows")
+        if rows < 3:
+            raise reader.fail("target.rows", f"must be at least 3, got {rows}.", rows)
+    method = table.get("method", "fit")
+    if method not in METHODS:
+        raise reader.fail("target.method", f"must be one of {', '.join(METHODS)}, got "
+                                           f"{method!r}.")
+    zeros = tuple(reader.angle_of(table[k], f"target.{k}") if k in table else None
+                  for k in ("crank_zero", "output_zero"))
+    return Target("function", crank=np.array(span), method=method, profile=profile,
+                  rows=rows, zeros=zeros)

@@ -5,6 +5,7 @@ search and how to score (``dyade.synthesis`` solves it)."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -36,8 +37,18 @@ class Target:
     """function generation: "precision" (three rows), "chebyshev", "fit" """
     stretch: float = 0.0
     """a straight-line or arc stretch's crank range [rad]"""
+    radius: float | None = None
+    """an arc stretch's prescribed radius [m] (the design scaled to it); None: any"""
     moving: tuple[complex, complex] | None = None
     """three poses: the moving pivots in pose 1 (complex [m]); None: chosen"""
+    profile: Any = None
+    """function generation: a motion profile (``dyade.model.profile.Profile``, master
+    and output angles) instead of the table; ``crank`` is then its master range"""
+    rows: int = 61
+    """a profile's rows over its range"""
+    zeros: tuple[float | None, float | None] = (None, None)
+    """a profile: the crank angle at its master zero and the output angle where s = 0
+    [rad]; None: found by the synthesis"""
 
 
 @dataclass(frozen=True, slots=True, eq=False)

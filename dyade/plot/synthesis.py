@@ -38,10 +38,11 @@ def joints(data: dict, crank: float) -> tuple[dict[int, np.ndarray], list[comple
         owners.append(joint.links)
         if FRAME in joint.links:
             frame.append(len(asked) - 1)
-    points = mechanism.links[3].points
-    if "P" in points:
-        asked.append((3, points["P"]))
-        owners.append((3,))
+    carrier = next((k for k, body in sorted(mechanism.links.items()) if "P" in body.points),
+                   None)  # the coupler point's link (3; a six-bar's 5)
+    if carrier is not None:
+        asked.append((carrier, mechanism.links[carrier].points["P"]))
+        owners.append((carrier,))
     found = positions(mechanism, np.array([crank]), asked)
     z = found.points[0, :, 0] + 1j * found.points[0, :, 1]
     links: dict[int, list] = {}
@@ -49,7 +50,7 @@ def joints(data: dict, crank: float) -> tuple[dict[int, np.ndarray], list[comple
         for link in owner:
             if link != FRAME:
                 links.setdefault(link, []).append(where)
-    p = z[-1] if "P" in points else complex(np.nan, np.nan)
+    p = z[-1] if carrier is not None else complex(np.nan, np.nan)
     return {k: np.array(v) for k, v in links.items()}, [z[k] for k in frame], p
 
 

@@ -216,12 +216,15 @@ def report(path: str, overrides: dict[str, Any] | None = None, **options: Any) -
         return study_report(path, source=source)
     if any(key in data for key in ("J", "c1", "c2")) and not overrides:
         return coupling_report(path, source=source)
+    if isinstance(data.get("target"), dict) and "kind" in data["target"] and not overrides:
+        return synthesis_report(path, source=source)
     from dyade.files.schema import other_kind
 
     raise InputError(f"{path}: neither a mechanism file (no [crank] table), a gear file "
                      f"(no [[shaft]], [[gear]] or [[body]] tables), a study file ([plan] "
-                     f"and [parameters]) nor a coupling file (J, c1, c2), the last two "
-                     f"without --set: a report is made of one of these (see "
+                     f"and [parameters]), a coupling file (J, c1, c2), a cam file ([cam] and "
+                     f"[follower]) nor a synthesis file ([target] with its kind), the last three without --set: a report is "
+                     f"made of one of these (see "
                      f"`dyade help mechanism-file`).{other_kind(data, set())}")
 
 
@@ -480,6 +483,40 @@ def coupling_report(path, *, source: str = "") -> str:
         "The transfer functions V against the tuning ratio η = Ω/ω_t and their phases "
         "(lead over the exciting moment), the resonance and the operating points marked."))
     page.section("Tables", table_html_many(tables[first:]))
+    return page.html()
+
+
+# -- a synthesis -------------------------------------------------------------------------
+def synthesis_report(path, *, source: str = "") -> str:
+    """The report of a synthesis file (see ``report``): the search's summary, the
+    designs (their dimensions, errors and, with masses, sweep figures; for function
+    generation the structural error at every row), the notes, the figure of the target
+    against the designs (as ``dyade plot synthesis`` draws it) and each design's
+    mechanism file (as ``dyade synthesise --write`` writes it)."""
+    from dyade.plot import synthesis as plot
+    from dyade.registry import REGISTRY
+    from dyade.report import synthesis as report_
+
+    outcome = REGISTRY["synthesis"](path)
+    outcome.summary.pop("rate", None)  # a timing: the same file gives the same page
+    result = outcome.result
+    tables = report_.tables(outcome)
+    page = Page(f"{outcome.meta.get('name') or 'Synthesis'}: synthesis report", source)
+    page.section("Synthesis", table_html_many(tables[:1]))
+    page.section("Designs", table_html_many(tables[1:]))
+    notes = outcome.notes
+    page.section("Notes", notes_html(notes) if notes else
+                 '<p class="none">None: every design was checked through dyade\'s engine '
+                 'without remark.</p>')
+    page.section("Target and designs", figure(
+        plot.figure(result), "synthesis",
+        "The target against what each design does, traced through dyade's engine (left), "
+        "and the designs drawn at one position: frame pivots as triangles, the coupler "
+        "point as a star (right)."))
+    files = "".join(
+        f"<h3>design-{k}.toml</h3>{pre(report_.mechanism_text(design, source))}"
+        for k, design in enumerate(result.designs, start=1))
+    page.section("Mechanism files", files)
     return page.html()
 
 

@@ -19,22 +19,26 @@ def tables(outcome) -> list:
     if getattr(result, "function", None) is not None:
         parts.append(columns_table(outcome, "Structural error at every row of the table"))
     dims = Table(title="Designs (mechanism files: design-N.toml)", title_justify="left")
-    for head in ("design", f"error [{outcome.units.get('error', '-')}]", "frame pivots [m]",
+    error = outcome.summary.get("error")  # the function table's columns hold no "error"
+    unit = error.unit if error is not None else outcome.units.get("error", "-")
+    for head in ("design", f"error [{unit}]", "frame pivots [m]",
                  "lengths [m]", "coupler point P [m]", "variant"):
         dims.add_column(head, justify="right")
     for k, design in enumerate(result.designs, start=1):
         data = design.data
         frame = data["frame"]["points"]
-        dyad = data["dyad"][0]
-        lengths = [data["crank"]["length"], *(dyad.get("lengths") or [dyad.get("length")])]
-        point = data.get("links", {}).get("3", {}).get("points", {}).get("P")
+        dyads = data["dyad"]
+        lengths = [data["crank"]["length"], *(v for dyad in dyads
+                                              for v in dyad.get("lengths") or [dyad.get("length")])]
+        point = next((body["points"]["P"] for body in data.get("links", {}).values()
+                      if "P" in body.get("points", {})), None)
         dims.add_row(str(k), number(design.error, spec=".4g"),
                      "; ".join(f"{n} ({number(v[0], spec='.6g')}, {number(v[1], spec='.6g')})"
                                for n, v in frame.items()),
                      ", ".join(number(v, spec=".6g") for v in lengths),
                      "—" if point is None else f"({number(point[0], spec='.6g')}, "
                                                f"{number(point[1], spec='.6g')})",
-                     f"{dyad['variant']:+d}")
+                     " ".join(f"{dyad['variant']:+d}" for dyad in dyads))
     parts.append(dims)
     if getattr(result, "function", None) is None and len(outcome.columns) > 2:
         parts.append(columns_table(outcome, "Designs: match error and sweep figures"))

@@ -97,9 +97,20 @@ def _function(problem: Synthesis) -> Result:
     from dyade.synthesis import function
 
     target = problem.target
-    made = function.generate(target.crank, target.output, target.method, problem.frame)
-    sweep = (float(np.rad2deg(target.crank[0])), float(np.rad2deg(target.crank[-1])),
-             _step(target.crank))
+    offsets = None
+    if target.profile is not None:
+        from dyade.motion.profile import evaluate
+
+        master = np.linspace(target.crank[0], target.crank[-1], target.rows)
+        lift = evaluate(target.profile, master).s
+        made, offsets = function.from_profile(
+            master, lift, target.method, problem.frame, *target.zeros,
+            lift_at=lambda x: evaluate(target.profile, x).s,
+            min_transmission=problem.min_transmission or function.MIN_TRANSMISSION)
+    else:
+        made = function.generate(target.crank, target.output, target.method, problem.frame)
+    sweep = (float(np.rad2deg(made.crank[0])), float(np.rad2deg(made.crank[-1])),
+             _step(made.crank))
     data = function.data(made.linkage, speed_rpm(problem), sweep, problem.name,
                          problem.masses)
     error = float(np.rad2deg(np.nanmax(np.abs(made.error)))) if np.isfinite(
@@ -108,8 +119,16 @@ def _function(problem: Synthesis) -> Result:
     if not np.isfinite(made.error).all():
         notes.append(f"the four-bar does not close at {np.count_nonzero(~np.isfinite(made.error))}"
                      f" of the table's {made.error.size} crank angles")
+    if offsets is not None:
+        notes.append(f"the profile's master {np.rad2deg(target.crank[0]):.6g}° … "
+                     f"{np.rad2deg(target.crank[-1]):.6g}° is the crank angle "
+                     f"{np.rad2deg(made.crank[0]):.6g}° … {np.rad2deg(made.crank[-1]):.6g}° "
+                     f"from the frame line; its output s = 0 is the output angle "
+                     f"{np.rad2deg(offsets.output):.6g}°"
+                     + (" (both found by the synthesis)" if offsets.fitted else ""))
     design = Design(problem.name, data, error, True, made.crank, made.traced, notes=notes)
     result = Result(problem, [design])
+    result.offsets = offsets
     result.function = made  # the structural error at every row, for the table
     return result
 
@@ -139,6 +158,7 @@ def settings_of(problem: Synthesis, scale: bool | None = None):
                     method=problem.method, seed=problem.seed, positions=problem.positions,
                     min_transmission=problem.min_transmission, scale=problem.scale,
                     rounds=problem.rounds, keep=max(40, 4 * problem.keep),
+                    variants=topology.variants,
                     regions=tuple((0 if name == "A0" else 1, *box)
                                   for name, box in problem.regions.items()))
 
@@ -252,11 +272,10 @@ def trace(data: dict, offset: float = 0.0, count: int = 361) -> tuple[np.ndarray
     turn, through dyade's positions-only stage."""
     from dyade.files.mechanism import build
     from dyade.linkage.positions import positions
-    from dyade.synthesis.topology import COUPLER
-
     mechanism = build(data)
     crank = offset + np.linspace(0.0, 2.0 * np.pi, count)
-    found = positions(mechanism, crank, [(COUPLER, mechanism.links[COUPLER].points["P"])])
+    link = next(k for k, body in sorted(mechanism.links.items()) if "P" in body.points)
+    found = positions(mechanism, crank, [(link, mechanism.links[link].points["P"])])
     return crank, found.points[:, 0, 0] + 1j * found.points[:, 0, 1]
 
 
@@ -298,6 +317,14 @@ def _stretch(problem: Synthesis, jobs, executor, progress) -> Result:
     designs.sort(key=lambda r: r.error)
     out = []
     for rank, refined in enumerate(designs[:problem.keep], start=1):
+        scaled = None
+        if target.kind == "arc" and target.radius is not None:  # a similarity: the same
+            from dyade.synthesis.stretch import circle  # deviation over length, to R
+
+            along = refined.start + np.linspace(0.0, target.stretch, 121)
+            _, radius = circle(topology.path(refined.values, refined.variant, along)[0])
+            refined.values = refined.values * (target.radius / radius)
+            scaled = target.radius / radius
         data = topology.data(refined.values, refined.variant, Placement(), speed_rpm(problem),
                              problem.masses, name=f"{problem.name}: design {rank}")
         crank, path = trace(data)
@@ -305,6 +332,9 @@ def _stretch(problem: Synthesis, jobs, executor, progress) -> Result:
         design.stretch = (refined.start, refined.start + target.stretch)
         design.notes.append(f"the stretch runs from crank angle {np.rad2deg(refined.start) % 360:.2f}° "
                             f"to {np.rad2deg(refined.start + target.stretch) % 360:.2f}°")
+        if scaled is not None:
+            design.notes.append(f"scaled by {scaled:.6g} so that the arc's circle has the "
+                                f"radius asked, {target.radius:.6g} m")
         out.append(design)
     return Result(problem, out, best.evaluated, best.assembled)
 

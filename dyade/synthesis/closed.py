@@ -219,6 +219,69 @@ def burmester(poses: np.ndarray, samples: int = 720) -> Burmester:
                      np.concatenate(cranks))
 
 
+def _circumcentres(points: np.ndarray) -> np.ndarray:
+    """(m,) complex: the centres of the circles through rows of three points (m, 3)."""
+    z1, z2, z3 = points[:, 0], points[:, 1], points[:, 2]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        w = (z3 - z1) / (z2 - z1)
+        return z1 + (z2 - z1) * (w - np.abs(w) ** 2) / (2j * w.imag)
+
+
+def _five(poses: np.ndarray, moving: np.ndarray) -> np.ndarray:
+    """(m, 2): how far poses 4 and 5 put each moving pivot (m,) off the circle of its
+    first three positions [m] (zero at a Ball–Burmester point)."""
+    at = pose_points(poses, moving)
+    centre = _circumcentres(at[:, :3])
+    radius = np.abs(at[:, 0] - centre)
+    return np.column_stack([np.abs(at[:, 3] - centre) - radius,
+                            np.abs(at[:, 4] - centre) - radius])
+
+
+def ball_burmester(poses: np.ndarray, samples: int = 2880) -> tuple[np.ndarray, np.ndarray]:
+    """The Ball–Burmester points of five poses: the moving pivots (circle points, world
+    positions in pose 0) whose five positions lie on one circle, and that circle's
+    centre (the fixed pivot) [m]: the points of the circle-point curve of poses 1–4
+    (``burmester``) where the fifth position's distance from the centre changes sign,
+    each refined by Newton's method on both conditions. None, two or four exist (one
+    between samples too close to tell apart may be missed).
+
+    Returns
+    -------
+    (centres, circles) : ndarray, ndarray
+        (k,) complex each, k ≤ 4.
+    """
+    poses = np.asarray(poses, dtype=float)
+    if poses.shape != (5, 3):
+        raise InputError(f"the Ball–Burmester points need exactly five poses, got "
+                         f"{len(poses)}.")
+    z = poses[:, 0] + 1j * poses[:, 1]
+    size = max(float(np.ptp(z.real)), float(np.ptp(z.imag)), 1e-9)
+    curve = burmester(poses[:4], samples).circle
+    f = _five(poses, curve)[:, 1]
+    near = np.abs(np.diff(curve)) < 0.05 * size  # neighbours on one branch of the curve
+    change = np.flatnonzero(near & (np.sign(f[:-1]) * np.sign(f[1:]) < 0))
+    found: list[complex] = []
+    for k in change:  # a few points: Newton from each bracket, vectorised within
+        x = np.array([0.5 * (curve[k] + curve[k + 1])])
+        for _ in range(50):
+            g = _five(poses, x)[0]
+            h = 1e-7 * size
+            jac = np.column_stack([(_five(poses, x + h)[0] - g) / h,
+                                   (_five(poses, x + 1j * h)[0] - g) / h])
+            if not np.all(np.isfinite(jac)) or abs(np.linalg.det(jac)) < 1e-300:
+                break
+            step = np.linalg.solve(jac, -g)
+            x = x + complex(step[0], step[1])
+            if abs(complex(step[0], step[1])) < 1e-14 * size:
+                break
+        if np.all(np.abs(_five(poses, x)[0]) < 1e-10 * size) and not any(
+                abs(x[0] - other) < 1e-8 * size for other in found):
+            found.append(complex(x[0]))
+    circles = np.array(found, dtype=complex)
+    centres = _circumcentres(pose_points(poses, circles)[:, :3]) if found else circles
+    return centres, circles
+
+
 # -- cognates ------------------------------------------------------------------------------
 def points(linkage: FourBar, crank: float) -> dict[str, complex]:
     """A0, A, B, B0 and the coupler point P of a four-bar at crank angle φ [rad]."""

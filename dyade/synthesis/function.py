@@ -152,3 +152,188 @@ def _fit(start: closed.FourBar, phi: FloatArray, psi: FloatArray) -> closed.Four
                       ftol=1e-14).x
     return closed.FourBar(float(x[0]), float(abs(x[1])), float(x[2]), start.d,
                           variant=start.variant)
+
+
+# -- a motion profile as the target ------------------------------------------------------
+RATIO = (0.2, 5.0)
+"""a profile's four-bar: each of a, b, c between these multiples of the frame d"""
+MIN_TRANSMISSION = np.radians(20.0)
+"""a profile's four-bar: the least transmission angle over the range when the problem
+states none [rad] (a fit would otherwise use a near-dead-centre's sharp turn)"""
+OFFSET_GRID = 36
+"""the starting offsets tried per axis (every 10°): the crank angle of the profile's
+master zero and the output angle of its zero"""
+
+
+@dataclass(slots=True, eq=False)
+class Offsets:
+    """Where a profile sits on the four-bar: ψ = output + s(φ − crank) [rad]."""
+
+    crank: float
+    """the crank angle φ (from the frame line) at the profile's master zero [rad]"""
+    output: float
+    """the output angle ψ (from the frame line) where the profile's s = 0 [rad]"""
+    fitted: bool
+    """found by the synthesis (else given in the file)"""
+
+
+def _batched(phi: FloatArray, psi: FloatArray, frame: float):
+    """Freudenstein's four-bars of many triples at once: (G, 3) φ and ψ [rad] ->
+    a, b, c (G,) [m] and the variant (G,) (NaN where the triple gives none)."""
+    matrix = np.stack([np.cos(psi), -np.cos(phi), np.ones_like(phi)], axis=-1)
+    det = np.linalg.det(matrix)
+    good = np.abs(det) > 1e-9
+    matrix[~good] = np.eye(3)
+    k = np.linalg.solve(matrix, np.cos(phi - psi)[..., None])[..., 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a, c = frame / k[:, 0], frame / k[:, 1]
+        square = a * a + c * c + frame * frame - 2.0 * a * c * k[:, 2]
+        b = np.where(good & (square > 0.0) & np.isfinite(a) & np.isfinite(c),
+                     np.sqrt(np.abs(square)), np.nan)
+    ax, ay = a * np.cos(phi[:, 0]), a * np.sin(phi[:, 0])
+    bx, by = frame + c * np.cos(psi[:, 0]), c * np.sin(psi[:, 0])
+    variant = np.where((bx - ax) * (0.0 - ay) - (by - ay) * (frame - ax) < 0.0, 1, -1)
+    return a, b, c, variant
+
+
+def transmission(a, b, c, d, phi):
+    """The transmission angle μ between coupler and rocker folded to [0, π/2] [rad]
+    at crank angles φ (broadcast; NaN where the four-bar does not close)."""
+    with np.errstate(invalid="ignore"):
+        cosine = (b * b + c * c - (a * a + d * d - 2.0 * a * d * np.cos(phi))) / (
+            2.0 * b * np.abs(c))
+        mu = np.arccos(np.where(np.abs(cosine) <= 1.0, cosine, np.nan))
+    return np.minimum(mu, np.pi - mu)
+
+
+def _batched_output(a, b, c, d, variant, phi):
+    """ψ (G, N) [rad] of the four-bars (G,) at crank angles (G, N) (NaN: open)."""
+    ax, ay = a[:, None] * np.cos(phi), a[:, None] * np.sin(phi)
+    up = closed.rrr(ax, ay, d, 0.0, b[:, None], np.abs(c)[:, None], 1)
+    down = closed.rrr(ax, ay, d, 0.0, b[:, None], np.abs(c)[:, None], -1)
+    x = np.where(variant[:, None] > 0, up[0], down[0])
+    y = np.where(variant[:, None] > 0, up[1], down[1])
+    return np.arctan2(y, x - d) + np.where(c > 0, 0.0, np.pi)[:, None]
+
+
+def from_profile(master: FloatArray, lift: FloatArray, method: str = "fit",
+                 frame: float = 1.0, crank_zero: float | None = None,
+                 output_zero: float | None = None, lift_at=None,
+                 min_transmission: float = MIN_TRANSMISSION) -> tuple[Generated, Offsets]:
+    """Synthesise a four-bar whose output angle follows a motion profile s(x) over
+    the crank angle: ψ(φ0 + x) = ψ0 + s(x).
+
+    Parameters
+    ----------
+    master, lift : ndarray, shape (N,)
+        The profile's master angles x [rad], ascending, and its output s(x) [rad]
+        (``dyade.motion.profile.evaluate``).
+    method : {"precision", "chebyshev", "fit"}
+        "precision" and "chebyshev": through three Chebyshev-spaced points of the
+        range; "fit": then the least squares of the structural error over every row,
+        the offsets included where they are free.
+    crank_zero, output_zero : float, optional
+        φ0 and ψ0 [rad]; None: found (a grid of starts every 10°, the one of least
+        largest structural error, then fitted).
+    lift_at : callable, optional
+        s at any master angles [rad] (the profile itself): the precision points' values;
+        None: interpolated in the rows.
+    min_transmission : float
+        The least transmission angle over the range [rad]: starts below it are not
+        tried, the fit is held above it.
+
+    Returns
+    -------
+    (Generated, Offsets)
+        Its crank angles are φ0 + x, its target ψ0 + s.
+    """
+    x, s = np.asarray(master, dtype=float), np.asarray(lift, dtype=float)
+    if x.size < 3:
+        raise InputError(f"a profile target needs at least three rows, got {x.size}.",
+                         key="target.rows")
+    grid = np.arange(OFFSET_GRID) * (2.0 * np.pi / OFFSET_GRID)
+    phi0 = grid if crank_zero is None else np.array([crank_zero])
+    psi0 = grid if output_zero is None else np.array([output_zero])
+    phi0, psi0 = (v.ravel() for v in np.meshgrid(phi0, psi0, indexing="ij"))
+    chosen = closed.chebyshev(x[0], x[-1], 3)
+    values = np.interp(chosen, x, s) if lift_at is None else np.asarray(lift_at(chosen))
+    a, b, c, variant = _batched(phi0[:, None] + chosen, psi0[:, None] + values, frame)
+    psi = _batched_output(a, b, c, frame, variant, phi0[:, None] + x)
+    worst = np.max(np.abs(wrap(psi - psi0[:, None] - s)), axis=1)
+    lengths = np.stack([np.abs(a), b, np.abs(c)]) / frame
+    usable = np.all((lengths >= RATIO[0]) & (lengths <= RATIO[1]), axis=0)  # NaN: False
+    mu = transmission(a[:, None], b[:, None], c[:, None], frame, phi0[:, None] + x)
+    usable &= np.min(mu, axis=1) >= min_transmission  # NaN: False
+    worst = np.where(np.isfinite(worst) & usable, worst, np.inf)
+    if not np.isfinite(worst).any():
+        from dyade.errors import DyadeError
+
+        raise DyadeError("no four-bar through three Chebyshev points of the profile moves "
+                         "over its whole range on one assembly branch, for any placement "
+                         "tried (every 10° of crank and output angle, links between "
+                         f"{RATIO[0]:g} and {RATIO[1]:g} times the frame, a transmission angle "
+                         f"of at least {np.degrees(min_transmission):.4g}°): a range this long "
+                         "or a motion this large is beyond a four-bar; shorten target.range "
+                         "(or leave target.crank_zero and output_zero to the synthesis).")
+    starts = np.argsort(worst)[:3 if method == "fit" else 1]
+    best = None
+    for k in starts:  # a few local fits: a loop over candidates, each vectorised
+        linkage = closed.FourBar(float(a[k]), float(b[k]), float(c[k]), frame,
+                                 variant=int(variant[k]))
+        zero = (float(phi0[k]), float(psi0[k]))
+        if method == "fit":
+            linkage, zero = _fit_offsets(linkage, zero, x, s, crank_zero is None,
+                                         output_zero is None, min_transmission)
+        miss = np.abs(wrap(closed.output_angle(linkage, zero[0] + x) - zero[1] - s))
+        least = np.min(transmission(linkage.a, linkage.b, linkage.c, frame, zero[0] + x))
+        score = float(np.max(miss)) if np.isfinite(miss).all() else np.inf
+        score = score if least >= min_transmission * (1 - 1e-6) else np.inf
+        if best is None or score < best[0]:
+            best = (score, linkage, zero)
+    if not np.isfinite(best[0]):  # every fit left the transmission bound: the best start
+        k = starts[0]
+        linkage = closed.FourBar(float(a[k]), float(b[k]), float(c[k]), frame,
+                                 variant=int(variant[k]))
+        best = (None, linkage, (float(phi0[k]), float(psi0[k])))
+    _, linkage, zero = best
+    crank, target = x + zero[0], s + zero[1]
+    precision = chosen + zero[0] if method != "fit" else np.zeros(0)
+    made = Generated(linkage, crank, target, traced(linkage, crank), precision, method)
+    return made, Offsets(zero[0], zero[1], crank_zero is None or output_zero is None)
+
+
+def _fit_offsets(start: closed.FourBar, zero: tuple[float, float], x: FloatArray,
+                 s: FloatArray, free_crank: bool, free_output: bool,
+                 min_transmission: float = 0.0):
+    """The least squares of the structural error over (a, b, c) and the free offsets,
+    d fixed, the transmission angle held above ``min_transmission`` by a penalty."""
+    from dyade.synthesis.search import scipy_least_squares
+
+    least_squares = scipy_least_squares()
+
+    signs = np.sign([start.a, 1.0, start.c])
+
+    def unpack(v):  # lengths by their logarithms within RATIO, their signs kept
+        a, b, c = signs * np.exp(v[:3]) * start.d
+        phi0 = v[3] if free_crank else zero[0]
+        psi0 = v[3 + free_crank] if free_output else zero[1]
+        return closed.FourBar(a, b, c, start.d, variant=start.variant), phi0, psi0
+
+    def residual(v):
+        trial, phi0, psi0 = unpack(v)
+        miss = wrap(closed.output_angle(trial, phi0 + x) - psi0 - s)
+        mu = transmission(trial.a, trial.b, trial.c, trial.d, phi0 + x)
+        below = np.where(np.isfinite(mu), np.maximum(min_transmission - mu, 0.0), 1.0)
+        return np.concatenate([np.where(np.isfinite(miss), miss, 1.0), 10.0 * below])
+
+    low, high = np.log(RATIO)
+    v0 = list(np.clip(np.log(np.abs([start.a, start.b, start.c]) / start.d), low, high))
+    v0 += [zero[0]] * free_crank + [zero[1]] * free_output
+    n = len(v0)
+    v = least_squares(residual, v0, method="trf", bounds=([low] * 3 + [-np.inf] * (n - 3),
+                                                          [high] * 3 + [np.inf] * (n - 3)),
+                      xtol=1e-13, ftol=1e-13, gtol=1e-13, max_nfev=150).x
+    trial, phi0, psi0 = unpack(v)
+    linkage = closed.FourBar(float(trial.a), float(trial.b), float(trial.c), start.d,
+                             variant=start.variant)
+    return linkage, (float(phi0), float(psi0))

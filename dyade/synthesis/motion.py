@@ -29,6 +29,8 @@ def _candidates(poses: np.ndarray):
             except DyadeError:
                 fixed.append(complex(np.nan, np.nan))
         fixed = np.array(fixed)
+    elif len(poses) == 5:
+        fixed, moving = closed.ball_burmester(poses)
     else:
         curves = closed.burmester(poses, samples=720)
         step = max(1, curves.centre.size // 160)

@@ -17,7 +17,7 @@ import numpy as np
 
 from dyade.arrays import FloatArray, Variants
 from dyade.synthesis.shape import SAMPLES, closed_match, resample, timed_match
-from dyade.synthesis.topology import COUPLER, Placement, Topology
+from dyade.synthesis.topology import Placement, Topology
 
 
 @dataclass(frozen=True, slots=True)
@@ -153,8 +153,8 @@ def traced(topology: Topology, values: FloatArray, variant: int, crank: FloatArr
 
     count = len(values)
     mechanism = stacked(topology, values, variant, crank.size)
-    point = mechanism.links[COUPLER].points["P"]
-    found = positions(mechanism, crank, [(COUPLER, point)], repeat=count)
+    point = mechanism.links[topology.coupler].points["P"]
+    found = positions(mechanism, crank, [(topology.coupler, point)], repeat=count)
     z = found.points[:, 0, 0] + 1j * found.points[:, 0, 1]
     z = z.reshape(count, crank.size)
     closes = found.closes.reshape(count, crank.size).all(axis=1)
@@ -384,8 +384,14 @@ def fit(topology: Topology, values: FloatArray, variant: int, target: np.ndarray
             columns[count + np.arange(count), dims + 3 + np.arange(count)] = change[count:]
         return columns
 
-    solution = least_squares(residual, x0, jac=jacobian, method="lm", xtol=1e-15, ftol=1e-15,
-                             gtol=1e-15, max_nfev=MAX_STEPS)
+    size_ = max(size, 1e-300)
+    for _ in range(max(1, dims // 6) ** 2):  # more dimensions, more steps: in stages of
+        solution = least_squares(residual, x0, jac=jacobian, method="lm", xtol=1e-15,
+                                 ftol=1e-15, gtol=1e-15, max_nfev=MAX_STEPS)  # MAX_STEPS,
+        x0 = solution.x  # stopped once the fit meets the target
+        reached = np.sqrt(np.mean(np.abs(placed(x0) - target) ** 2)) / size_
+        if solution.success or reached <= tolerance:
+            break
     x = solution.x
     miss = np.abs(placed(x) - target)
     rms = float(np.sqrt(np.mean(miss ** 2))) if np.all(np.isfinite(miss)) else math.inf

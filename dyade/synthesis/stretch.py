@@ -49,6 +49,17 @@ def deviation(points: np.ndarray, kind: str = "line") -> FloatArray:
     return np.where(np.isfinite(out), out, np.inf)
 
 
+def circle(points: np.ndarray) -> tuple[complex, float]:
+    """Kåsa's algebraic circle through the points (N,) complex: (centre, radius) [m]."""
+    z = np.asarray(points)
+    mean = z.mean()
+    u = z - mean
+    a = np.column_stack([u.real, u.imag, np.ones(u.size)])
+    solved = np.linalg.lstsq(a, -(u.real ** 2 + u.imag ** 2), rcond=None)[0]
+    centre = -0.5 * (solved[0] + 1j * solved[1])
+    return complex(mean + centre), float(np.sqrt(abs(centre) ** 2 - solved[2]))
+
+
 def best_window(curves: np.ndarray, window: int, kind: str = "line"
                 ) -> tuple[FloatArray, np.ndarray]:
     """(score (C,), start (C,)): the best window of ``window`` consecutive samples of

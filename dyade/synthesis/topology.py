@@ -45,6 +45,14 @@ class Topology:
     """the canonical dimensions [m]"""
     defaults: dict[str, tuple[float, float]]
     """default bounds of each dimension [m], for a frame of about 1"""
+    coupler: int = COUPLER
+    """the link that carries the coupler point P"""
+    variants: tuple[int, ...] = (1, -1)
+    """the assembly variants a search draws (``dyad_variants`` spells each out)"""
+
+    def dyad_variants(self, variant: int) -> tuple[int, ...]:
+        """Each dyad's assembly variant (+1/−1) of a topology's ``variant``."""
+        return (int(variant),)
 
     def data(self, values: dict[str, Any], variant: int, placement: Placement = Placement(),
              speed_rpm: float = 60.0, masses: dict | None = None,
@@ -177,7 +185,87 @@ class SliderCrank(Topology):
         return b > a + np.abs(e)
 
 
-TOPOLOGIES = {"fourbar": FourBar(), "slider-crank": SliderCrank()}
+class SixBar(Topology):
+    """The six-bars made of two RRR dyads as dyade assembles them: the four-bar
+    A0–A–B–B0 (a, b, c, d as ``FourBar``), then a second dyad from a point E of the
+    rocker (Watt II: E in the rocker's frame, origin B0, ξ towards B) or of the coupler
+    (Stephenson III: E in the coupler's frame, origin A, ξ towards B) to the frame pivot
+    D0 = (gx, gy): E–F of length f, D0–F of length g; the coupler point P = (p, q) on
+    the second coupler E–F (origin E, ξ towards F). Links: 1 frame, 2 crank, 3 coupler,
+    4 rocker, 5 second coupler, 6 output rocker.
+
+    ``variant`` 1…4 spells the two dyads' assembly variants: (+1, +1), (+1, −1),
+    (−1, +1), (−1, −1)."""
+
+    names = ("a", "b", "c", "d", "ex", "ey", "gx", "gy", "f", "g", "p", "q")
+    defaults = {"a": (0.1, 1.0), "b": (0.3, 3.0), "c": (0.3, 3.0), "d": (1.0, 1.0),
+                "ex": (-1.5, 1.5), "ey": (-1.5, 1.5), "gx": (-1.0, 2.0), "gy": (-1.5, 1.5),
+                "f": (0.3, 3.0), "g": (0.3, 3.0), "p": (-2.0, 2.0), "q": (-2.0, 2.0)}
+    coupler = 5
+    variants = (1, 2, 3, 4)
+    SPELLED = {1: (1, 1), 2: (1, -1), 3: (-1, 1), 4: (-1, -1)}
+
+    def __init__(self, chain: str) -> None:
+        self.chain = chain
+        self.name = f"{chain}-sixbar"
+        self.carrier = 4 if chain == "watt" else 3
+        """the link that carries E"""
+
+    def dyad_variants(self, variant):
+        return self.SPELLED[int(variant)]
+
+    def data(self, values, variant, placement=Placement(), speed_rpm=60.0, masses=None,
+             sweep=(0.0, 360.0, 1.0), name="") -> dict:
+        values = self.named(values)
+        first, second = self.dyad_variants(variant)
+        four = FourBar().data({k: values[k] for k in FourBar.names[:4]} | {"p": 0.0, "q": 0.0},
+                              first, placement, speed_rpm, masses, sweep, name)
+        s, turn = placement.scale, np.exp(1j * placement.angle)
+        d0 = placement.origin + s * turn * (values["gx"] + 1j * values["gy"])
+        if isinstance(values["gx"], np.ndarray) or isinstance(values["gy"], np.ndarray):
+            four["frame"]["points"]["D0"] = [d0.real, d0.imag]
+        else:
+            four["frame"]["points"]["D0"] = [float(d0.real), float(d0.imag)]
+        four["name"] = name or f"{self.chain.capitalize()} six-bar (synthesised)"
+        four["dyad"].append({"kind": "RRR", "links": [5, 6],
+                             "A": {"link": self.carrier, "point": "E"},
+                             "C": {"link": 1, "point": "D0"},
+                             "lengths": [s * values["f"], s * values["g"]],
+                             "variant": int(second)})
+        links = four["links"]
+        links["3"] = {k: v for k, v in links["3"].items() if k != "points"}
+        links.setdefault(str(self.carrier), {})["points"] = {
+            "E": [s * values["ex"], s * values["ey"]]}
+        links["5"] = {"points": {"P": [s * values["p"], s * values["q"]]}}
+        if masses:
+            per, each = masses.get("per_length"), masses.get("each")
+            links["5"].update(bar(s * values["f"], per, each))
+            links["6"] = bar(s * values["g"], per, each)
+        if not links["3"]:
+            del links["3"]
+        return four
+
+    def path(self, values, variant, crank):
+        values = np.atleast_2d(values)
+        a, b, c, d, ex, ey, gx, gy, f, g, p, q = (values[:, k, None] for k in range(12))
+        first, second = self.dyad_variants(variant)
+        ax, ay = a * np.cos(crank), a * np.sin(crank)
+        bx, by = rrr(ax, ay, d, 0.0 * d, b, c, first)
+        if self.chain == "watt":  # E on the rocker: origin B0, ξ towards B
+            ox, oy, ux, uy = d, 0.0 * d, (bx - d) / c, by / c
+        else:  # E on the coupler: origin A, ξ towards B
+            ox, oy, ux, uy = ax, ay, (bx - ax) / b, (by - ay) / b
+        px, py = ox + ux * ex - uy * ey, oy + uy * ex + ux * ey
+        fx, fy = rrr(px, py, gx, gy, f, g, second)
+        vx, vy = (fx - px) / f, (fy - py) / f
+        return (px + vx * p - vy * q) + 1j * (py + vy * p + vx * q)
+
+    def turns(self, values):
+        return FourBar().turns(values[:, :4])
+
+
+TOPOLOGIES = {"fourbar": FourBar(), "slider-crank": SliderCrank(),
+              "watt-sixbar": SixBar("watt"), "stephenson-sixbar": SixBar("stephenson")}
 """name -> topology"""
 
 

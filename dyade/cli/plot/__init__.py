@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dyade.cli import main
 from dyade.cli.plot import (cam, clearance, coupling, driveline, gears, linkage, profile,
-                             servo, study)
+                             servo, study, synthesis)
 
 
 @main.group()
@@ -34,5 +34,6 @@ def plot() -> None:
 for command in (linkage.polar, linkage.curves, linkage.mechanism, linkage.animate,
                 coupling.coupling_figure, clearance.clearance_figure, gears.campbell_figure,
                 gears.modes_figure, driveline.driveline_figure, study.study_figure,
-                profile.profile_figure, servo.servo_figure, cam.cam_figure):
+                profile.profile_figure, servo.servo_figure, cam.cam_figure,
+                synthesis.synthesis_figure):
     plot.add_command(command)
