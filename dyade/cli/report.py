@@ -32,9 +32,9 @@ def report_options(command):
                    "as dyade analyse's.")
 def report(file: str, output: str | None, units: str, **options) -> None:
     """The design report of FILE (a mechanism, gear, study, coupling, cam or synthesis
-    file) as one self-contained HTML page to read, share or print: what `dyade describe` says, the key
-    results, the notes on where the model holds, the figures of `dyade plot` and the
-    motion with a crank-angle slider; for a gear file its modes, Campbell diagram and mode
+    file) as one self-contained HTML page to read, share or print: what `dyade describe`
+    says, the key results, the notes on where the model holds, the figures of `dyade plot`
+    and the motion with a crank-angle slider; for a gear file its modes, Campbell diagram and mode
     shapes; for a study its tables and the figure of its question; for a coupling file
     its torsional resonance, transfer functions and phases; for a cam file the cam's
     checks, notes and figure of `dyade cam` (--step: the cam-angle step); for a synthesis
