@@ -37,9 +37,16 @@ def spec(press: str, parameters: dict, **plan):
     return dyade.study.parse(data)
 
 
-def test_the_grids_best_law_and_ratio_is_the_direct_runs_best(press):
-    ratios = [5.0, 10.0]
-    result = dyade.study(spec(press, {"profile.segment.2.law": LAWS, "servo.ratio": ratios}))
+RATIOS = [5.0, 10.0]
+
+
+@pytest.fixture(scope="module")
+def grid(press):
+    return dyade.study(spec(press, {"profile.segment.2.law": LAWS, "servo.ratio": RATIOS}))
+
+
+def test_the_grids_best_law_and_ratio_is_the_direct_runs_best(press, grid):
+    ratios, result = RATIOS, grid
     table = result.columns()
     assert table["profile.segment.2.law"].tolist() == [law for law in LAWS for _ in ratios]
     rms = np.asarray(table["motor_torque_rms"], dtype=float)
@@ -103,3 +110,15 @@ def test_a_choice_the_reader_refuses_is_named_before_any_run(press):
     with pytest.raises(InputError, match=r"`parameters.profile.segment.1.law`: the choice "
                                          r"'cycloid' is refused: .*given for a dwell"):
         dyade.study(study)
+
+
+@pytest.mark.slow  # (matplotlib and its first figure: seconds)
+def test_the_study_figure_names_the_choices(grid):
+    pytest.importorskip("matplotlib")
+    from dyade.plot.study import versus
+
+    for x in ("servo.ratio", "profile.segment.2.law"):
+        fig = versus(grid, "motor_torque_rms", x)
+        labels = [text.get_text() for text in fig.axes[0].get_legend().get_texts()]
+        assert labels == ([f"profile.segment.2.law = {law}" for law in LAWS]
+                          if x == "servo.ratio" else ["servo.ratio = 5", "servo.ratio = 10"])
