@@ -320,7 +320,8 @@ def parameter(label: str, key: str, value: Any, rel_step: float) -> Parameter:
         nominal = _number(label, f"{where}.nominal", value["nominal"])
         out = Parameter(key, "values", (nominal,), nominal=nominal)
     else:
-        raise fail(label, where, f"must be a number, a list of values, {{ range = [low, high], "
+        raise fail(label, where, f"must be a number, a list of values (or of names: a "
+                                 f"choice), {{ range = [low, high], "
                                  f"count = n }}, {{ uniform = [low, high] }}, {{ nominal = x, "
                                  f"tol = t }} or {{ nominal = x, sd = s, truncate = [low, high] "
                                  f"}}; got {value!r}.")
