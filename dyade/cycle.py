@@ -52,9 +52,25 @@ def segments(angle: FloatArray, values: FloatArray) -> tuple[FloatArray, FloatAr
     closing the revolution) and its three-point slopes."""
     h = np.diff(np.append(angle, angle[0] + TURN))
     left = np.roll(h, 1)
-    ahead, behind = np.roll(values, -1, axis=-1), np.roll(values, 1, axis=-1)
-    slope = (left * left * (ahead - values) + h * h * (values - behind)) / (left * h * (left + h))
+    step = _ahead(values) - values  # (each difference once: the next's is this one's)
+    slope = (left * left * step + h * h * _behind(step)) / (left * h * (left + h))
     return h, slope
+
+
+def _ahead(values: FloatArray) -> FloatArray:
+    """``np.roll(values, -1, axis=-1)``: each position's next, the last's the first."""
+    out = np.empty_like(values)
+    out[..., :-1] = values[..., 1:]
+    out[..., -1] = values[..., 0]
+    return out
+
+
+def _behind(values: FloatArray) -> FloatArray:
+    """``np.roll(values, 1, axis=-1)``: each position's previous, the first's the last."""
+    out = np.empty_like(values)
+    out[..., 1:] = values[..., :-1]
+    out[..., 0] = values[..., -1]
+    return out
 
 
 def integrals(angle: FloatArray, values: FloatArray) -> FloatArray:
@@ -62,8 +78,8 @@ def integrals(angle: FloatArray, values: FloatArray) -> FloatArray:
     interval closes the revolution), at its distinct positions (``values``: one curve,
     or one per row, all at ``angle``)."""
     h, slope = segments(angle, values)
-    return (0.5 * h * (values + np.roll(values, -1, axis=-1))
-            + h * h / 12.0 * (slope - np.roll(slope, -1, axis=-1)))
+    return (0.5 * h * (values + _ahead(values))
+            + h * h / 12.0 * (slope - _ahead(slope)))
 
 
 def mean(angle: FloatArray, values: FloatArray) -> float:
@@ -108,9 +124,9 @@ def means(angle: FloatArray, values: FloatArray) -> FloatArray:
     distinct, _, periodic = revolution(angle, angle)
     whole = np.isfinite(values).all(axis=1) if periodic else np.zeros(len(out), dtype=bool)
     if whole.any():
-        rows = values[whole]
+        rows = values if whole.all() else values[whole]
         totals = np.sum(integrals(distinct, rows[:, :distinct.size]), axis=-1) / TURN
-        scale = np.max(np.abs(rows), axis=1)
+        scale = np.maximum(np.max(rows, axis=1), -np.min(rows, axis=1))  # max |row|
         out[whole] = np.where(np.abs(totals) <= ROUNDOFF * scale, 0.0, totals + 0.0)
     for k in np.flatnonzero(~whole):
         out[k] = _one(angle, values[k])

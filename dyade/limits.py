@@ -43,6 +43,9 @@ PLAUSIBLE: dict[str, tuple[float, float, str]] = {
     "order": (0.0, 1e4, "-"),
     "teeth": (1, 10_000, "-"),
     "ratio": (1e-4, 1e4, "-"),  # a gear ratio
+    "force": (-1e10, 1e10, "N"),
+    "acceleration": (0.0, 1e4, "m/s²"),  # a gravity field: a thousand g at most
+    "friction_coefficient": (0.0, 10.0, "-"),
 }
 """quantity -> (lowest, highest, unit): what any machine dyade models has"""
 

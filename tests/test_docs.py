@@ -108,18 +108,21 @@ def _session() -> list[str]:
 
 
 def test_the_getting_started_session_runs_as_written(monkeypatch):
-    """Read a shipped mechanism, analyse it, a table with pandas, a figure: the ten lines
-    of the notebook session, as the page shows them."""
+    """Read a shipped mechanism, analyse it, a table with pandas, a column and the values
+    at an angle, a figure: the dozen lines of the notebook session, as the page shows
+    them."""
     pytest.importorskip("pandas")
     pytest.importorskip("matplotlib")
     cells = _session()
     lines = [line for cell in cells for line in cell.splitlines() if line.strip()]
-    assert 6 <= len(lines) <= 10
+    assert 6 <= len(lines) <= 12
     monkeypatch.chdir(ROOT)
     space: dict = {}
     for cell in cells:
         exec(compile(cell, "getting-started.md", "exec"), space)
     assert space["frame"].index.name == "angle_deg"
+    assert space["row"]["angle_deg"] == 37.0 and space["between"]["angle_deg"] == 37.25
+    assert space["row"]["F_2_3"] == space["frame"].loc[37.0, "F_2_3"]
     png = space["fig"]._repr_png_()  # what the notebook shows
     assert png[:4] == b"\x89PNG" and len(png) > 10_000
     summary = space["summary"]

@@ -80,3 +80,56 @@ def test_readme_block_runs_as_written(case, tmp_path):
                          capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stderr[-2000:]
     assert "Traceback" not in run.stderr and "failed:" not in run.stdout, run.stderr[-2000:]
+
+
+# -- the README tells the whole product (issue 42) ----------------------------------------
+README = (ROOT / "README.md").read_text()
+QUICK_START = re.findall(r"```sh\n(.*?)\n```", README, flags=re.S)[:2]
+
+
+def test_the_readme_is_short_and_names_every_command_page_and_study():
+    from dyade.cli import SUBCOMMANDS
+
+    assert len(README.encode()) < 12_000
+    missing = [name for name in SUBCOMMANDS if f"`dyade {name} " not in README]
+    assert not missing, f"commands the README does not name: {missing}"
+    pages = [page.relative_to(ROOT).as_posix()
+             for folder in ("guide", "reference") for page in (ROOT / "docs" / folder).glob("*.md")
+             if page.name != "index.md"]
+    unlinked = [page for page in pages if f"]({page})" not in README]
+    assert not unlinked, f"pages the README does not link: {unlinked}"
+    studies = [path.name for path in (ROOT / "mechanisms" / "studies").glob("*.toml")]
+    assert studies and all(name in README for name in studies) and "mechanisms/studies/" in README
+
+
+def test_ci_runs_the_readmes_two_commands_verbatim():
+    assert len(QUICK_START) == 2 and all(len(block.splitlines()) == 1 for block in QUICK_START)
+    ci = (ROOT / ".ci" / "run").read_text().splitlines()
+    assert all(command in ci for command in QUICK_START), QUICK_START
+
+
+IMPORTED_BY_TESTS = {  # a module the default tests import or skip without -> its distribution
+    "pandas": "pandas", "matplotlib": "matplotlib", "scipy": "scipy", "numpydoc": "numpydoc",
+    "docutils.core": "numpydoc", "pyarrow.parquet": "pyarrow", "distributed": "distributed",
+    "hypothesis": "hypothesis", "pytest_benchmark": "pytest-benchmark", "ezdxf": "ezdxf",
+    "scipy.integrate": "scipy", "scipy.special": "scipy",
+}
+SITE_ONLY = {"sphinx", "myst_nb"}  # the site's build: tests/test_docs.py, slow, docs extra
+
+
+def test_the_readmes_test_command_installs_what_every_default_test_needs():
+    """No default test skips after the quick start's second command: each module a test
+    skips without (pytest.importorskip) comes with the extras that command installs."""
+    import tomllib
+
+    extras = re.search(r'pip install "\.\[([\w,]+)\]"', QUICK_START[1])[1].split(",")
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    installed = {re.split(r"[<>=\[ ]", requirement)[0].lower()
+                 for extra in extras for requirement in project["optional-dependencies"][extra]}
+    needed = set()
+    for path in (ROOT / "tests").rglob("*.py"):
+        needed |= set(re.findall(r'importorskip\("([\w.]+)"\)', path.read_text()))
+    unknown = needed - set(IMPORTED_BY_TESTS) - SITE_ONLY
+    assert not unknown, f"name the distribution of {unknown} in IMPORTED_BY_TESTS"
+    lacking = {IMPORTED_BY_TESTS[module] for module in needed - SITE_ONLY} - installed
+    assert not lacking, f"the README's test command does not install {lacking}"

@@ -43,6 +43,9 @@ def units(follower: str) -> dict[str, tuple[str, str]]:
                                "contact)"),
         "drive_torque": ("N·m", "torque turning the cam against the follower, in its sense "
                                 "of rotation"),
+        "guide_margin": ("-", "the guide's lock margin 1 − μ·p/n_y for a push along the "
+                              "guide (≤ 0: a push cannot move the follower)"),
+        "jammed": ("flag", "the cam pushes the follower and it jams in its guide here"),
     }
 
 
@@ -89,6 +92,9 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         del columns["rho_pitch"]
     if cam.width is None:
         del columns["hertz_stress"]
+    if result.guide is not None:
+        columns["guide_margin"] = result.guide.margin
+        columns["jammed"] = result.jammed
     outcome = Outcome("cam", figures=("cam",),
                       meta={"name": cam.name, "source": None if cam.source is None
                             else os.fspath(cam.source), "follower": cam.follower,
@@ -169,6 +175,23 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                          f"dead centre, at cam angles {_ranges(geometry.spans(theta, bad))}: "
                          f"its forces, the contact force and the drive torque are not given "
                          f"there.")
+    if result.guide is not None:
+        margin = result.guide.margin
+        km = int(np.nanargmin(margin))
+        add("guide_margin_min", float(margin[km]), "-", at(km),
+            f"least lock margin of the guide (μ = {cam.guide_friction:g})", limit=0.0)
+        jams = geometry.spans(theta, result.jammed)
+        if jams:
+            notes.append(f"warning: the follower jams in its guide at cam angles "
+                         f"{_ranges(jams)}: the cam pushes it at a pressure angle the guide's "
+                         f"friction μ = {cam.guide_friction:g} locks (lock margin down to "
+                         f"{float(margin[km]):.3g}); the contact force and the drive torque "
+                         f"are not given there. A longer guide, less overhang or a smaller "
+                         f"pressure angle frees it.")
+        elif float(margin[km]) <= 0.0:
+            notes.append(f"note: the guide would lock a push at cam angle "
+                         f"{math.degrees(theta[km]):.1f}° (margin {float(margin[km]):.3g}), "
+                         f"but the cam does not push the follower along its motion there.")
     # forces
     force = result.contact_force
     given = np.isfinite(force)

@@ -198,7 +198,8 @@ def mechanism_curve(source: Any, options: dict[str, Any], budget: Budget):
             else math.radians(step_deg))
     count = int(math.ceil(2.0 * math.pi / step - 1e-9))
     try:
-        check_size(mechanism, count, budget.max_memory)
+        check_size(mechanism, count, budget.max_memory,  # one revolution: no range to shorten
+                   advice="Use a coarser step (the torque curve covers one revolution)")
         budget.time(sweep_seconds(mechanism, count), f"the torque curve at {count:,} positions")
         return torque_curve(mechanism, step_deg=step_deg, max_memory=budget.max_memory)
     except InputError as err:
@@ -244,6 +245,9 @@ def balance(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     if not given.any():
         none_given(mechanism.name, "no crank position of the sweep has its shaking force given",
                    result.before.notes)
+    if not (result.before.columns()["forces_valid"] == 1.0).any():  # beyond what a machine has
+        none_given(mechanism.name, "no crank position of the sweep has its forces given, so "
+                                   "no balance can be judged", result.before.notes)
     weights = result.counterweights
     columns = {"link": np.array([w.link for w in weights], dtype=np.int64),
                "first_moment": np.array([w.first_moment for w in weights]),

@@ -50,6 +50,31 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     import numpy as np
 
     from dyade.errors import InputError
+
+    with np.errstate(over="ignore", invalid="ignore"):
+        try:
+            outcome = tabulate(source, options, budget)
+            numbers = [np.asarray(v, dtype=float) for v in outcome.columns.values()]
+            numbers += [np.asarray(f.value, dtype=float) for f in outcome.summary.values()
+                        if isinstance(f.value, (int, float))]
+            finite = all(np.isfinite(v).all() for v in numbers)
+        except OverflowError:
+            finite = False
+    if not finite:  # lifts over durations (or a master speed) beyond floating point
+        where = "" if not isinstance(source, (str, os.PathLike)) else \
+            f"{os.path.basename(os.fspath(source))}: "
+        raise InputError(f"{where}the profile's velocity, acceleration or jerk exceed the "
+                         f"range of numbers (a lift too large for its segment's duration, "
+                         f"or --speed too small): check the segments' `to` and `end` in "
+                         f"[profile], and the master speed.", key="profile.segment")
+    return outcome
+
+
+def tabulate(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``run`` without its range check: the Outcome as computed."""
+    import numpy as np
+
+    from dyade.errors import InputError
     from dyade.files.profile import MASTER_UNITS, output_factor
     from dyade.motion import profile as engine
     from dyade.units import RPM

@@ -28,10 +28,12 @@ def values(text: str, api: str, unit: str, quantity: str | None = None,
     except ValueError as err:
         raise InputError.parameter(api, str(err), value=text, unit=unit or None) from None
     if quantity is not None:
-        from dyade.limits import PLAUSIBLE, plausible_range
+        from dyade.limits import PLAUSIBLE
 
-        if out[-1] > PLAUSIBLE[quantity][1]:
-            raise InputError.parameter(api, f"must stay within {plausible_range(quantity)} "
+        low, high, _ = PLAUSIBLE[quantity]
+        low = low if positive_start else 0.0  # a range that may start at rest says so
+        if out[-1] > high or positive_start and out[0] < low:
+            raise InputError.parameter(api, f"must stay within {low:g}…{high:g} {unit} "
                                             f"(what a machine has), got {text!r}.",
                                        value=text, unit=unit or None)
     return out

@@ -88,6 +88,10 @@ class ServoRun:
     """``dyade.machine.servo.MotorLoad`` at ``ratio``"""
 
 
+RATIO_RANGE = (1e-6, 1e6)  # [-] gear ratios a servo sizing takes
+INERTIA_RANGE = (1e-12, 1e6)  # [kg·m²] rotor and gear inertias a servo sizing takes
+
+
 def ratio_range(text: str, count: int | None = None
                 ) -> tuple[tuple[float, float], list[float] | None]:
     """``--ratio-range``: ``START:STOP:STEP`` (as every range option of dyade: START,
@@ -165,12 +169,29 @@ def checked_profile(profile, label: str) -> tuple[str, ...]:
 
 
 def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    import numpy as np
+
+    from dyade.errors import InputError
+
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        outcome = size(source, options, budget)  # a profile beyond any machine overflows:
+    if not all(np.isfinite(np.asarray(v, dtype=float)).all()  # its forces withheld, or here
+               for v in outcome.columns.values()):
+        raise InputError("the servo's torques or speeds over the cycle exceed the range of "
+                         "numbers: check the profile's lifts and durations ([profile]) for "
+                         "values far beyond a machine's.", key="profile")
+    return outcome
+
+
+def size(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
+    """``run`` without its range check: the Outcome as computed."""
     import math
 
     import numpy as np
 
     from dyade.errors import DyadeError, InputError
     from dyade.files.catalogue import read_catalogue
+    from dyade.files.mechanism.servo import MAX_SAMPLES
     from dyade.linkage import servo as linkage
     from dyade.machine import servo as engine
     from dyade.model.servo import Gear
@@ -195,13 +216,31 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                         if options.get("ratio_range") else (servo.ratio_range, None)))
     rotor = options.get("rotor_inertia") or servo.rotor_inertia
     limit = options.get("max_inertia_ratio") or servo.max_inertia_ratio
+    for value, flag, key, unit, (low, high) in (
+            (samples, "--samples", "servo.samples", "", (36, MAX_SAMPLES)),
+            (gear.ratio, "--ratio", "servo.ratio", " [-]", RATIO_RANGE),
+            *((end, "--ratio-range", "servo.ratio_range", " [-]", RATIO_RANGE)
+              for end in bounds or ()),
+            (rotor or 1.0, "--rotor-inertia", "servo.rotor_inertia", " [kg·m²]", INERTIA_RANGE),
+            (gear.inertia or 1.0, "", "servo.gear_inertia",
+             " [kg·m²]", INERTIA_RANGE)):
+        if not low <= value <= high:  # beyond any machine, and beyond floating point's squares
+            name = f"{flag} ({key})" if flag else f"`{key}`"
+            raise InputError(f"{os.path.basename(label)}: {name} must lie in {low:g}…{high:g}"
+                             f"{unit}, got {value:g}.", source=label, key=key, value=value)
     catalogue = servo.catalogue
     if options.get("catalogue"):
         catalogue = read_catalogue(options["catalogue"])
     budget.time(samples * 2e-5 * max(1, len(mechanism.dyads)), f"the cycle at {samples} instants")
 
     notes = [f"note: {text}" for text in checked_profile(servo.profile, label)]
-    motion = linkage.crank_motion(mechanism, servo.output, servo.start, target(servo, samples))
+    try:
+        motion = linkage.crank_motion(mechanism, servo.output, servo.start,
+                                      target(servo, samples))
+    except DyadeError as err:  # beyond a dead centre: said with the file's name
+        if type(err) is not DyadeError:
+            raise
+        raise DyadeError(f"{os.path.basename(label)}: {err}") from None
     motion = linkage.inverse_dynamics(mechanism, motion)
     cycle = motion.cycle()
     line = None
@@ -287,11 +326,11 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         + (f" of {chosen.motor.name}" if chosen is not None else ""))
     peak_t = float(figures.peak_at[0])
     add("crank_torque_peak", float(np.max(np.abs(motion.torque))), "N·m",
-        where={"t": float(motion.time[np.argmax(np.abs(motion.torque))])},
+        where={"time_s": float(motion.time[np.argmax(np.abs(motion.torque))])},
         description="peak torque the crank shaft needs")
     add("crank_speed_max_rpm", float(np.max(np.abs(motion.speed))) * RAD_PER_S_TO_RPM, "rpm",
         description="top crank speed")
-    add("motor_torque_peak", float(figures.peak_torque[0]), "N·m", where={"t": peak_t},
+    add("motor_torque_peak", float(figures.peak_torque[0]), "N·m", where={"time_s": peak_t},
         description="peak motor torque")
     add("motor_torque_rms", float(figures.rms_torque[0]), "N·m",
         description="RMS motor torque √(1/T·∫M²dt) (heating)")
@@ -332,7 +371,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         add("crank_lag_max_deg", float(np.max(np.abs(columns["lag_deg"]))), "°",
             description="largest lag of the crank behind its profile (elastic line)")
         add("line_torque_peak", float(np.max(np.abs(cycle.torque))), "N·m",
-            where={"t": float(motion.time[np.argmax(np.abs(cycle.torque))])},
+            where={"time_s": float(motion.time[np.argmax(np.abs(cycle.torque))])},
             description="peak torque of the drive line's shaft")
     if motion.branch is not None:
         add("dead_centre_first_deg", math.degrees(motion.branch[0]), "°",

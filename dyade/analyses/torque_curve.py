@@ -51,4 +51,13 @@ def read_torque_curve(path: str | os.PathLike, *, speed_rpm: float | None = None
 
     InputError.refuse_renamed("read_torque_curve", renamed, RENAMED)
     speed = None if speed_rpm is None else rpm_to_rad_per_s(speed_rpm)
-    return table_curve(read_table(path, text), speed)
+    table = read_table(path, text)
+    try:
+        return table_curve(table, speed)
+    except InputError as err:  # the engine names its arguments: here they are columns
+        column = {"angle": "angle_deg", "load": "M_load"}.get(err.key or "")
+        if column is None or err.reason is None:
+            raise
+        raise InputError(f"{table.source}: column {column} {err.reason}", source=table.source,
+                         key=column, value=err.value, unit=err.unit, reason=err.reason
+                         ) from None

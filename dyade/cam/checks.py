@@ -69,6 +69,11 @@ class CamResult:
     """the motion profile's own notes (allowed acceleration jumps)"""
     chain: object = None
     """``dyade.cam.chain.ChainResult`` of the linkage the follower drives (None: none)"""
+    guide: object = None
+    """``dyade.cam.guide.Guide`` of a translating follower with guide friction (None:
+    none)"""
+    jammed: FloatArray | None = None
+    """bool, shape (n,): the follower jams in its guide here (None: no guide friction)"""
 
 
 def motion(cam, theta: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
@@ -147,7 +152,18 @@ def check(cam, step: float = math.radians(1.0), make: bool = True) -> CamResult:
     omega = cam.speed
     along = dict(inertia=cam.mass, stiffness=cam.stiffness, preload=cam.preload, load=cam.load)
     driven = None
-    if cam.chain is None:
+    guided = jammed = None
+    if cam.guide_friction > 0.0:
+        from dyade.cam import guide
+
+        guided = guide.guide(geo, s, v, friction=cam.guide_friction, length=cam.guide_length,
+                             overhang=cam.guide_overhang)
+        pushed = cam.mass * a * omega ** 2 + cam.stiffness * (s + cam.preload) + cam.load
+        force, jammed = guide.contact_force(
+            pushed, np.sum(geo.contact_normal * geo.direction, axis=1), guided,
+            cam.guide_friction)
+        lowest, highest, k_low, k_high = forces.contact_speeds(s, a, **along)
+    elif cam.chain is None:
         force = forces.contact_force(s, a, geo.pressure_angle, omega, lever=cam.lever, **along)
         lowest, highest, k_low, k_high = forces.contact_speeds(s, a, **along)
     else:
@@ -162,6 +178,8 @@ def check(cam, step: float = math.radians(1.0), make: bool = True) -> CamResult:
         lowest, highest, k_low, k_high = forces.contact_speeds(
             np.zeros_like(s), np.where(driven.valid, growth, 0.0), inertia=1.0, stiffness=0.0,
             preload=0.0, load=np.where(driven.valid, at_rest, 1.0))
+    # with guide friction N·(n_y ∓ μ·p) keeps the sign of the load where the follower
+    # moves at all: contact is lost where the friction-free balance loses it
     lifted = (force < 0.0) if cam.closure == "spring" else np.zeros(theta.size, dtype=bool)
     force = np.where(lifted, np.nan, force)
     torque = (forces.drive_torque(geo.contact, geo.contact_normal, force) if driven is None
@@ -184,4 +202,4 @@ def check(cam, step: float = math.radians(1.0), make: bool = True) -> CamResult:
     return CamResult(cam, geo, s, v, a, j, force, lifted, stress, torque, (lowest, highest),
                      (float(theta[k_low]) if k_low >= 0 else None,
                       float(theta[k_high]) if k_high >= 0 else None),
-                     smallest, made, tuple(notes), driven)
+                     smallest, made, tuple(notes), driven, guided, jammed)

@@ -21,7 +21,7 @@ SUBCOMMANDS = {"describe": "describe", "analyse": "analyse", "init": "init",
                "flywheel": "machine", "balance": "machine",
                "plot": "plot", "gears": "gears", "driveline": "driveline",
                "study": "study", "report": "report", "profile": "profile",
-               "servo": "servo", "synthesise": "synthesise", "cam": "cam"}
+               "servo": "servo", "synthesise": "synthesise", "cam": "cam", "help": "help"}
 """command -> module of dyade.cli that defines it, imported when the command is used
 (or listed by --help), so that a run pays only for its own command"""
 
@@ -143,7 +143,8 @@ def main() -> None:
     """Kinematics and kinetostatics of planar linkages built from dyads.
 
     A mechanism file (TOML) lists the frame points, the crank (link 2) and the dyads in
-    assembly order; see docs/reference/mechanism-file.md for every key. Start with
+    assembly order; `dyade help mechanism-file` shows every key (`dyade help`: every
+    page of the file references and the user guide). Start with
 
     \b
         dyade describe mechanisms/fourbar.toml

@@ -48,7 +48,7 @@ def angles(ctx, param, values: tuple[str, ...]) -> tuple[float, ...]:
               help="table: the key results (--all: min/max of every column and where); csv: "
                    "the whole sweep, one row per crank position; json: the columns as arrays "
                    "with their units, the summary's figures, the notes "
-                   "(docs/reference/json.md); parquet: the CSV's columns with their units "
+                   "(`dyade help json`); parquet: the CSV's columns with their units "
                    "(needs -o and the parquet extra). "
                    "[default: table on stdout; with -o: from its suffix (.json, .txt), else csv]")
 @click.option("-o", "--output", type=click.Path(writable=True),
@@ -174,6 +174,6 @@ class Job(NamedTuple):
         if len(names) == 1:
             raise click.BadParameter(f"no column matches {', '.join(self.columns)}; the "
                                      f"columns are {', '.join(list(every)[:12])}, … "
-                                     f"(docs/reference/columns.md lists them).",
+                                     f"(`dyade help columns` lists them).",
                                      param_hint="--columns")
         return names

@@ -49,7 +49,7 @@ def cam(cam_file: Path, fmt, output, points_file, cutter_file, dxf_file, **optio
 
     CAM_FILE holds [cam] (follower kind, base radius, speed), [follower] (roller,
     offset or arm, mass, spring), [manufacture] (chord tolerance, cutter radius) and the
-    follower's motion as a [profile] over the cam angle (docs/guide/cams.md):
+    follower's motion as a [profile] over the cam angle (`dyade help cams`):
 
     \b
         dyade cam mechanisms/cams/translating-roller.toml

@@ -17,7 +17,7 @@ ENTRY = ENTRIES["describe"]
 @contract.declare(ENTRY)
 @click.option("--format", "fmt", type=click.Choice(["table", "json"]), default="table",
               show_default=True, help="json: the plan and the mechanism's figures "
-                                      "(docs/reference/json.md).")
+                                      "(`dyade help json`).")
 @click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True),
               help="Write to this file instead of standard output.")
 def describe(mechanism_file: str, fmt: str, output: str | None, **options) -> None:

@@ -9,7 +9,7 @@ from dyade.analyses.base import COMMON
 from dyade.analyses.drive_line import ENTRIES, ETA_RANGE, MAP, SPEED_RANGE, SPEED_RPM
 from dyade.analyses.inputs import SET
 from dyade.cli import contract, main
-from dyade.cli.options import MECHANISM_FILE, Renamed
+from dyade.cli.options import MECHANISM_FILE, Renamed, as_given
 
 ANALYSES = ("frequency", "steady", "resonance", "stability", "map", "run-up")
 """``--analysis`` -> the entry ``driveline-<analysis>``"""
@@ -40,8 +40,8 @@ def solve(what: str, mechanism_file: str, params: dict):
         if params.get(option.api) is not None and option.api not in own:
             users = [name.removeprefix("driveline-") for name, other in ENTRIES.items()
                      if option in other.options]
-            raise click.UsageError(f"{option.flag} is for --analysis {' and '.join(users)}, "
-                                   f"not {what}.")
+            raise click.UsageError(f"{as_given(option.flag)} is for --analysis "
+                                   f"{' and '.join(users)}, not {what}.")
     source = Text(sys.stdin.read()) if mechanism_file == "-" else mechanism_file
     return contract.run(entry, source, params)
 

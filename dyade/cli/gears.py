@@ -66,7 +66,7 @@ def gears(gear_file: str, fmt: str, output: str | None, **options) -> None:
         dyade gears mechanisms/gears/two-stage.toml --speed-range 0:3000:10
         dyade gears mechanisms/gears/two-stage.toml --frequency-range 10:1000:1 --format csv
 
-    docs/reference/gear-file.md documents every key of a gear-drive file.
+    `dyade help gear-file` documents every key of a gear-drive file.
     """
     entry = chosen(options)
     outcome = contract.run(entry, read_source(gear_file), options)

@@ -48,6 +48,33 @@ class Renamed(click.Option):
         super().__init__(names + list(old) + dest, **kwargs)
         self.old = tuple(old)
 
+    def add_to_parser(self, parser, ctx) -> None:
+        """The new names as usual; the old ones stored apart, so that ``consume_value``
+        knows which name the user typed."""
+        opts = self.opts
+        self.opts = [o for o in opts if o not in self.old]
+        try:
+            super().add_to_parser(parser, ctx)
+        finally:
+            self.opts = opts
+        if self.old:
+            parser.add_option(obj=self, opts=list(self.old), dest=f"{self.name}\0old",
+                              action=("append" if self.multiple else "store")
+                              + ("_const" if self.is_flag else ""),
+                              nargs=self.nargs,
+                              **({"const": self.flag_activation_value} if self.is_flag else {}))
+
+    def consume_value(self, ctx, opts):
+        """The value under either name; an old name typed is remembered
+        (``renamed_from``), so that messages say it was renamed."""
+        old = opts.get(f"{self.name}\0old")
+        if old is not None:
+            new = opts.get(self.name)
+            value = (list(new or ()) + list(old)) if self.multiple else old
+            opts = {**opts, self.name: value}
+            ctx.meta.setdefault(RENAMED_KEY, {})[self.opts[0]] = "/".join(self.old)
+        return super().consume_value(ctx, opts)
+
     def _shown(self, method, ctx):
         opts = self.opts
         self.opts = [o for o in opts if o not in self.old]
@@ -60,7 +87,31 @@ class Renamed(click.Option):
         return self._shown(super().get_help_record, ctx)
 
     def get_error_hint(self, ctx):
-        return self._shown(super().get_error_hint, ctx)
+        hint = self._shown(super().get_error_hint, ctx)
+        old = renamed_from(self.opts[0], ctx)
+        return f"{hint} (renamed from {old})" if old else hint
+
+
+RENAMED_KEY = "dyade.renamed"
+"""``ctx.meta`` key: new flag -> the old name the user typed"""
+
+
+def renamed_from(flag: str, ctx=None) -> str | None:
+    """The former name under which the user gave ``flag`` in this command, if any."""
+    ctx = ctx or click.get_current_context(silent=True)
+    while ctx is not None:
+        old = ctx.meta.get(RENAMED_KEY, {}).get(flag)
+        if old:
+            return old
+        ctx = ctx.parent
+    return None
+
+
+def as_given(flag: str) -> str:
+    """``flag`` as messages name it: ``--speed (renamed from --speed-rpm)`` where the user
+    typed the former name."""
+    old = renamed_from(flag) if flag.startswith("-") else None
+    return f"{flag} (renamed from {old})" if old else flag
 
 
 FINITE = Number()

@@ -187,7 +187,9 @@ def flags(names: dict[str, str]) -> Iterator[None]:
     try:
         yield
     except InputError as err:
-        raise err.naming(names) from None
+        from dyade.cli.options import as_given  # a former name typed: the message says so
+
+        raise err.naming({api: as_given(flag) for api, flag in names.items()}) from None
 
 
 @contextmanager

@@ -27,9 +27,10 @@ def solve(file: Path, options: dict):
 
 @main.command()
 @profile_options
-@click.option("--format", "fmt", type=click.Choice(["table", "csv", "json"]), default="table",
-              show_default=True, help="csv: every row, for a motion controller (master, s, "
-                                      "v, a, j, segment in the file's units).")
+@click.option("--format", "fmt", type=click.Choice(["table", "csv", "json"]), default=None,
+              help="csv: every row, for a motion controller (master, s, v, a, j, segment "
+                   "in the file's units). [default: table on stdout; with -o: from its "
+                   "suffix (.csv, .json, .txt)]")
 @click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True, path_type=Path),
               help="Write the result to this file instead of standard output.")
 @click.option("--plot", "plot_file", type=click.Path(dir_okay=False, path_type=Path),
@@ -54,8 +55,14 @@ def profile(file: Path, fmt, output, plot_file, **options) -> None:
     Laws: simple-harmonic, cycloid, inclined-sine, modified-sine, modified-trapezoid,
     polynomial-345, polynomial-4567, polynomial, harmonic-combination,
     acceleration-trapezoid, quintic-spline, constant-velocity
-    (docs/guide/motion-laws.md).
+    (`dyade help motion-laws`).
     """
+    from dyade.cli.common import infer_format
+
+    fmt = fmt or infer_format(None if output is None else str(output))
+    if fmt not in ("table", "csv", "json"):  # .parquet: not written by this command
+        raise click.BadParameter(f"{output}: dyade profile writes .csv, .json or .txt (the "
+                                 f"table); or give --format table|csv|json.", param_hint="-o")
     outcome = solve(file, options)
     tables = None
     if fmt == "table":

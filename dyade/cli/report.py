@@ -1,4 +1,4 @@
-"""``dyade report``: the design report of a mechanism, gear, study or coupling file, one
+"""``dyade report``: the design report of a mechanism, gear, study, coupling or cam file, one
 HTML page."""
 
 from __future__ import annotations
@@ -31,12 +31,13 @@ def report_options(command):
               help="The tables' lengths in the mechanism file's length unit or in SI (m), "
                    "as dyade analyse's.")
 def report(file: str, output: str | None, units: str, **options) -> None:
-    """The design report of FILE (a mechanism, gear, study or coupling file) as one
+    """The design report of FILE (a mechanism, gear, study, coupling or cam file) as one
     self-contained HTML page to read, share or print: what `dyade describe` says, the key
     results, the notes on where the model holds, the figures of `dyade plot` and the
     motion with a crank-angle slider; for a gear file its modes, Campbell diagram and mode
     shapes; for a study its tables and the figure of its question; for a coupling file
-    its torsional resonance, transfer functions and phases.
+    its torsional resonance, transfer functions and phases; for a cam file the cam's
+    checks, notes and figure of `dyade cam` (--step: the cam-angle step).
 
     The options of `dyade analyse` that choose the sweep (--start, --stop, --step,
     --allow-partial) choose the report's: a mechanism that closes over part of the turn is

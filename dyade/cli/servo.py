@@ -64,12 +64,16 @@ def servo(mechanism_file: str, controller: str | None, fmt: str | None, output: 
     \b
         dyade servo mechanisms/servo/press.toml
         dyade servo mechanisms/servo/press.toml --ratio-range 3:40:1
+        dyade servo mechanisms/servo/press.toml --ratio-range 2:40 --catalogue mechanisms/servo/motors.csv
         dyade servo mechanisms/servo/fourbar.toml --controller cam-table.csv
 
     `dyade init servo FILE` writes a commented example; `dyade plot servo` draws the
     torque-speed points over the motor's envelope and the profile's s, v, a, j.
     """
     fmt = fmt or infer_format(output)
+    if fmt not in ("table", "csv", "json"):  # .parquet: not written by this command
+        raise click.BadParameter(f"{output}: dyade servo writes .csv, .json or .txt (the "
+                                 f"table); or give --format table|csv|json.", param_hint="-o")
     outcome = solve(mechanism_file, options)
     if controller:
         write_controller(outcome, controller)

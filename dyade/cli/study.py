@@ -45,7 +45,7 @@ def study(study_file: str, output: str | None, fmt: str | None, resume: bool,
     The study file names the parameters (lists, ranges, distributions), the plan (grid,
     latin-hypercube, monte-carlo, sensitivity, optimise) and the question (tolerance
     limits, objectives); `dyade init study FILE` writes a commented one, and
-    docs/reference/study-file.md documents every key.
+    `dyade help study-file` documents every key.
 
     \b
         dyade study tolerance.toml -j 0 -o tolerance.csv

@@ -58,7 +58,7 @@ def synthesise(synthesis_file: Path, folder: Path | None, figure: Path | None, f
     install "dyade[study]"). With masses ([scores] mass_per_length or mass_each, kg/m or
     kg) every design gets the sweep's figures at the operating speed and the Pareto
     front of error against one of them. `dyade init synthesis FILE` writes a commented
-    file; docs/guide/synthesis.md documents every key.
+    file; `dyade help synthesis` documents every key.
 
     \b
         dyade synthesise coupler-curve.toml -j 0 --write designs --plot designs.png

@@ -20,6 +20,9 @@ mass = 0.8                        # [kg] (oscillating: [kg·m²] about the pivot
 stiffness = 2000                  # [N/m] (oscillating: [N·m/rad])
 preload = 10                      # spring compression at s = 0 [length] (oscillating: [angle])
 load = 15                         # [N] pressing it onto the cam (oscillating: [N·m])
+guide_friction = 0.1              # μ of a translating follower's guide (default 0: none)
+guide_length = 40                 # L between the guide's bearing points [length]
+guide_overhang = 25               # roller centre to the guide's near end at s = 0 [length]
 
 [manufacture]
 chord_tolerance = 0.01            # [length]
@@ -46,7 +49,8 @@ CHAIN_KEYS = {"mechanism", "centre"}
 CAM_KEYS = {"follower", "base_radius", "speed_rpm", "rotation", "closure",
             "pressure_angle_max", "width", "material"}
 FOLLOWER_KEYS = {"roller_radius", "offset", "pivot_distance", "arm_length", "mass",
-                 "stiffness", "preload", "load", "material"}
+                 "stiffness", "preload", "load", "material", "guide_friction",
+                 "guide_length", "guide_overhang"}
 MANUFACTURE_KEYS = {"chord_tolerance", "cutter_radius"}
 MATERIAL_KEYS = {"young", "poisson"}
 CHORD_TOLERANCE = 1e-5  # [m] the exported profile's chord tolerance where the file gives none
@@ -56,7 +60,9 @@ KEYS = {"follower": "cam.follower", "base_radius": "cam.base_radius", "speed": "
         "offset": "follower.offset", "pivot_distance": "follower.pivot_distance",
         "arm_length": "follower.arm_length", "mass": "follower.mass",
         "stiffness": "follower.stiffness", "preload": "follower.preload",
-        "load": "follower.load", "chord_tolerance": "manufacture.chord_tolerance",
+        "load": "follower.load", "guide_friction": "follower.guide_friction",
+        "guide_length": "follower.guide_length",
+        "guide_overhang": "follower.guide_overhang", "chord_tolerance": "manufacture.chord_tolerance",
         "cutter_radius": "manufacture.cutter_radius", "profile": "profile",
         "profile.master": "profile.master", "profile.period": "profile.period",
         "profile.unit": "profile.unit", "chain": "chain", "chain_centre": "chain.centre"}
@@ -204,6 +210,11 @@ def read_cam(path: str | os.PathLike, text: str | None = None):
             preload=coordinate(follower, "preload", "follower.preload"),
             load=reader.number(follower.get("load", 0.0), "follower.load",
                                "N·m" if angular else "N"),
+            guide_friction=reader.number(follower.get("guide_friction", 0.0),
+                                         "follower.guide_friction", "-", non_negative=True),
+            guide_length=length(follower, "guide_length", "follower.guide_length",
+                                positive=True),
+            guide_overhang=length(follower, "guide_overhang", "follower.guide_overhang") or 0.0,
             pressure_angle_max=None if limit is None else reader.angle_of(
                 limit, "cam.pressure_angle_max"),
             width=length(cam, "width", "cam.width", positive=True),

@@ -28,6 +28,7 @@ COLUMNS = {"name": "", "rated_torque": "N·m", "peak_torque": "N·m", "rated_spe
            "top_speed_rpm": "rpm", "rotor_inertia": "kg·m²"}
 """required column -> its unit"""
 OPTIONAL = ("envelope",)
+LARGEST = 1e9  # [N·m, rpm, kg·m²] beyond any motor: refused before its squares overflow
 
 
 def read_catalogue(path: str | os.PathLike, label: str | None = None):
@@ -41,11 +42,14 @@ def read_catalogue(path: str | os.PathLike, label: str | None = None):
     """
     label = label or os.fspath(path)
     try:
-        with open(path, encoding="utf-8", newline="") as handle:
+        with open(path, encoding="utf-8-sig", newline="") as handle:  # -sig: Excel's BOM
             text = handle.read()
     except OSError as err:
         raise InputError(f"{label}: cannot read the motor catalogue ({err.strerror}).",
                          source=label) from None
+    except UnicodeDecodeError:
+        raise InputError(f"{label}: the motor catalogue is not a text file in UTF-8: save "
+                         f"it as CSV (UTF-8).", source=label) from None
     return parse_catalogue(text, label)
 
 
@@ -56,6 +60,7 @@ def parse_catalogue(text: str, label: str = "catalogue"):
     from dyade.model.servo import Catalogue, ServoMotor
     from dyade.units import RPM
 
+    text = text.removeprefix("\ufeff")  # a byte-order mark (Excel's "CSV UTF-8")
     lines = [line for line in text.splitlines()
              if line.strip() and not line.lstrip().startswith("#")]
     reader = csv.DictReader(io.StringIO("\n".join(lines)))
@@ -68,6 +73,11 @@ def parse_catalogue(text: str, label: str = "catalogue"):
                                  source=label)
     motors = []
     for row_number, raw in enumerate(reader, start=1):
+        if None in raw:  # csv.DictReader's key of the fields beyond the header's
+            raise InputError(f"{label}: row {row_number} ({raw.get('name') or 'no name'}) "
+                             f"has {len(header) + len(raw[None])} fields, the header "
+                             f"{len(header)}: a comma inside a value? Quote the value, or "
+                             f"name the extra column in the header.", source=label)
         row = {(k or "").strip(): (v or "").strip() for k, v in raw.items()}
         name = row["name"] or f"row {row_number}"
         where = f"row {row_number} ({name})"
@@ -102,10 +112,10 @@ def _positive(text: str, label: str, where: str, column: str, unit: str) -> floa
         value = float(text)
     except ValueError:
         value = math.nan
-    if not (math.isfinite(value) and value > 0.0):
+    if not (math.isfinite(value) and 0.0 < value <= LARGEST):
         raise InputError.in_file(label, column, f"of {where} must be a positive number "
-                                 f"[{unit}], got {text!r}.", source=label, value=text,
-                                 unit=unit)
+                                 f"[{unit}]{' up to %g' % LARGEST if value > 0.0 else ''}, "
+                                 f"got {text!r}.", source=label, value=text, unit=unit)
     return value
 
 

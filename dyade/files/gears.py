@@ -148,6 +148,7 @@ class Reader(UnitReader):
 
     top_keys = TOP_KEYS
     plausible = True
+    ceiling = False  # its own check below: the whole range, floors included
 
     # -- plausibility: every number within what a machine has (dyade.limits) ----------
     def number(self, value: Any, key: str, unit: str, positive: bool = False,

@@ -102,11 +102,12 @@ class ProfileReader(TableReader):
                                 f"run end to end (leave `start` out to take it).", start, x_unit)
             first_start = start if first_start is None else first_start
             stop = self.number(self.required(seg, "end", path), f"{path}.end", x_unit)
-            if not stop > start:
+            if not stop - start > MEET_RTOL * period:  # shorter: the segments meet there
                 raise self.fail(f"{path}.end", f"= {amount(stop, x_unit)} is not after the "
                                 f"segment's start ({amount(start, x_unit)}): a segment needs a "
-                                f"positive duration, got {amount(stop - start, x_unit)}.",
-                                stop, x_unit)
+                                f"positive duration, got {amount(stop - start, x_unit)}"
+                                + ("." if stop <= start else f" (less than {MEET_RTOL:g} of "
+                                   f"the period)."), stop, x_unit)
             lift_from = self.number(seg.get("from", lift), f"{path}.from", unit)
             if number > 1 and abs(lift_from - lift) > MEET_RTOL * max(abs(lift), 1.0):
                 raise self.fail(f"{path}.from", f"= {amount(lift_from, unit)} does not meet where "

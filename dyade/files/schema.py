@@ -231,15 +231,29 @@ def is_number(value: Any) -> bool:
         value, Variants)
 
 
+CEILINGS = {"kg": "mass", "kg·m²": "inertia", "N/m": "stiffness", "N·m/rad": "stiffness",
+            "N·s/m": "damping", "N·m·s/rad": "damping", "rpm": "speed_rpm", "Hz": "frequency",
+            "N·m": "torque", "N": "force", "m/s²": "acceleration", "Pa": "modulus",
+            "kg/m³": "density"}
+"""unit of a number read -> its quantity in ``dyade.limits.PLAUSIBLE``: a magnitude above
+that range's top is refused wherever a file gives it (the floors are each key's own).
+Seconds are not among them: a time constant and a machine's cycle time differ."""
+
+
 class TableReader:
     """Walks parsed TOML with key paths for the error messages.
 
     ``label`` names the file in messages (its base name), ``source`` is its path.
     ``top_keys``: the file's top-level keys, for the hint that a key was written below
     a [table] header by mistake.
+
+    Every number read with a unit of ``CEILINGS`` is refused above what a machine has
+    (``ceiling``; keys in ``unbounded`` are left to their reader's own rule).
     """
 
     top_keys: set[str] = set()
+    ceiling = True
+    unbounded: frozenset[str] = frozenset()
 
     def __init__(self, label: str, source: str | None = None) -> None:
         self.label = label
@@ -305,7 +319,28 @@ class TableReader:
             raise self.fail(key, f"must be positive [{unit}], got {fmt(value)}.", value, unit)
         if non_negative and value < 0.0:
             raise self.fail(key, f"must not be negative [{unit}], got {fmt(value)}.", value, unit)
+        if self.ceiling and key not in self.unbounded:
+            self.below_top(value, key, CEILINGS.get(unit), unit)
         return value
+
+    def below_top(self, value: float, key: str, quantity: str | None, unit: str,
+                  scale: float = 1.0) -> None:
+        """Refuse ``value`` [``unit``; ``value * scale`` in SI] whose magnitude lies above
+        what a machine has (``dyade.limits.PLAUSIBLE[quantity]``), naming ``key`` and the
+        range; nothing for ``quantity`` None."""
+        if quantity is None:
+            return
+        from dyade.limits import PLAUSIBLE
+
+        if isinstance(value, Variants):  # each variant's own check
+            for one in value:
+                self.below_top(float(one), key, quantity, unit, scale)
+            return
+        low, high, _ = PLAUSIBLE[quantity]
+        if abs(value * scale) > high:
+            shown = f"{low / scale:g}…{high / scale:g}{'' if unit == '-' else f' {unit}'}"
+            raise self.fail(key, f"must lie in {shown} (what a machine has), got {value:g}.",
+                            value, unit)  # as ``within`` words it
 
     def integer(self, value: Any, key: str) -> int:
         if isinstance(value, bool) or not isinstance(value, int):
@@ -355,7 +390,10 @@ class UnitReader(TableReader):
 
     def length_of(self, value: Any, key: str, positive: bool = False,
                   non_negative: bool = False) -> float:
-        return self.number(value, key, self.length_unit, positive, non_negative) * self.length
+        number = self.number(value, key, self.length_unit, positive, non_negative)
+        if self.ceiling:
+            self.below_top(number, key, "length", self.length_unit, self.length)
+        return number * self.length
 
     def angle_of(self, value: Any, key: str) -> float:
         return self.number(value, key, self.angle_unit) * self.angle

@@ -13,6 +13,8 @@ import os
 import numpy as np
 
 from dyade.errors import InputError
+from dyade.limits import PLAUSIBLE
+from dyade.units import rpm_to_rad_per_s
 from dyade.model.torque_table import TorqueTable
 
 REQUIRED = ("angle_deg", "M_drive")
@@ -22,7 +24,12 @@ OPTIONAL = ("M_load", "J_red", "dJ_red", "omega_2")
 CHECKED = ("angle_deg", "M_drive", "M_load")
 """columns whose every cell must be a finite, plausible number (the others of dyade's
 CSV are empty where a sweep gives no value)"""
+RADIANS_SPAN = 2.0 * np.pi + 5e-3  # [-] a span up to 2π written with few digits (6.28319, 6.283)
 TORQUE_LIMIT = 1e9  # [N·m] no machine's crank shaft carries more (dyade.limits "torque")
+BOUNDED = {"J_red": (PLAUSIBLE["inertia"][1], "kg·m²"),
+           "omega_2": (rpm_to_rad_per_s(PLAUSIBLE["speed_rpm"][1]), "rad/s")}
+"""the optional columns of dyade's CSV -> the largest magnitude a machine has, and its unit
+(they may be empty where a sweep gives no value)"""
 
 
 def load_columns(path: str | os.PathLike, text: str | None = None) -> dict[str, np.ndarray]:
@@ -89,6 +96,11 @@ def load_columns(path: str | os.PathLike, text: str | None = None) -> dict[str, 
                 raise InputError(f"{label}: line {number}, column {column}: {cell} N·m is "
                                  f"beyond what a machine has (|M| ≤ {TORQUE_LIMIT:g} N·m).",
                                  source=path, key=name)
+            if name in BOUNDED and abs(value) > BOUNDED[name][0]:  # NaN (empty) passes
+                top, unit = BOUNDED[name]
+                raise InputError(f"{label}: line {number}, column {column}: {cell} {unit} is "
+                                 f"beyond what a machine has (at most {top:g} {unit}).",
+                                 source=path, key=name)
             row.append(value)
         rows.append(row)
         numbers.append(number)
@@ -104,7 +116,7 @@ def load_columns(path: str | os.PathLike, text: str | None = None) -> dict[str, 
         raise InputError(f"{label}: line {numbers[k + 1]}, column {column}: {angle[k + 1]:g} "
                          f"{what} line {numbers[k]}'s {angle[k]:g}; the angles must rise "
                          f"strictly over one revolution.", source=path, key="angle_deg")
-    if angle[-1] - angle[0] <= 2.0 * np.pi + 1e-9 and angle[-1] - angle[0] > 3.0:
+    if angle[-1] - angle[0] <= RADIANS_SPAN and angle[-1] - angle[0] > 3.0:
         raise InputError(f"{label}: column {column} runs from {angle[0]:g} to {angle[-1]:g} "
                          f"(lines {numbers[0]} to {numbers[-1]}): these look like radians; "
                          f"the column is in degrees (0 to 360): multiply by 180/π.",

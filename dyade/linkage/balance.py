@@ -239,7 +239,7 @@ def balance(mechanism: Mechanism, *, links=None, radius: float | None = None) ->
     check_size(mechanism, 3 * mechanism.sweep.count, None)  # the fit and two sweeps
     if not any(link.mass > 0.0 for link in mechanism.links.values()):
         raise InputError(f"{mechanism.name}: no link has a mass, so there is no shaking force "
-                         f"to balance (add mass data, see docs/reference/mechanism-file.md).")
+                         f"to balance (add mass data, see `dyade help mechanism-file`).")
     kin = kinematics.sweep(mechanism)
     usable = kin.valid
     if usable.sum() < 2:

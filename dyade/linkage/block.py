@@ -47,3 +47,6 @@ class Block:
     ``columns.PLAUSIBLE``"""
     implausible_columns: dict[str, tuple[str, ...]] = field(default_factory=dict)
     """"kinematics"/"forces" -> the columns that held such a value"""
+    implausible_variants: dict[str, dict[int, tuple[str, ...]]] = field(default_factory=dict)
+    """a block of a run of variants: "kinematics"/"forces" -> variant -> the columns of
+    that variant that held such a value"""

@@ -6,6 +6,8 @@ documented in ``docs/reference/columns.md`` and are stable: scripts rely on them
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from dyade.arrays import FloatArray
@@ -13,7 +15,7 @@ from dyade.linkage.block import Block, Columns
 from dyade.linkage.kinematics import joint_anchor
 from dyade.linkage.motion import travel
 from dyade.linkage.reduced import reduced
-from dyade.model.mechanism import CRANK, Mechanism, Prismatic, Revolute
+from dyade.model.mechanism import CRANK, FRAME, Mechanism, Prismatic, Revolute
 
 
 UNITS = {"kinematics": "1/0", "angle_deg": "°", "phi": "°", "omega": "rad/s",
@@ -26,6 +28,8 @@ UNITS = {"kinematics": "1/0", "angle_deg": "°", "phi": "°", "omega": "rad/s",
 
 POINT = ("x", "y", "vx", "vy", "ax", "ay")
 """the columns of a point, in contract order (``Motion.point_motion``)"""
+MACHINE = ("J_red", "dJ_red", "M_load")
+"""the columns of the linkage reduced to the crank (``force_columns`` with ``machine``)"""
 
 
 def _tag(name: tuple[int, int]) -> str:
@@ -33,17 +37,20 @@ def _tag(name: tuple[int, int]) -> str:
 
 
 def kinematic_columns(mech: Mechanism, block: Block, phases: dict[int, Continuous],
-                      points: bool = True) -> Columns:
+                      points: bool = True, own: bool = True) -> Columns:
     """Every kinematic column of a block, in contract order; ``phases``: link ->
     its angle's unwrapping, carried on from the blocks before; without ``points``, not
-    the motion of the revolute joints and named points (x_, y_, vx_, vy_, ax_, ay_)."""
+    the motion of the revolute joints and named points (x_, y_, vx_, vy_, ax_, ay_);
+    without ``own``, a link's ω and α may be views of the block's motion."""
     kin, rows = block.kinematics, block.rows
     motion = kin.motion
+    every = bool(rows.all())  # (every position reported: no copies by a mask)
     out: Columns = {"angle_deg": np.rad2deg(kin.crank_angle)}
     for link in mech.moving_links:
-        out[f"phi_{link}_deg"] = np.rad2deg(phases[link](motion.angle[rows, link]))
-        out[f"omega_{link}"] = motion.omega[:, link].copy()  # the columns' own
-        out[f"alpha_{link}"] = motion.alpha[:, link].copy()
+        angle = motion.angle[:, link] if every else motion.angle[rows, link]
+        out[f"phi_{link}_deg"] = np.rad2deg(phases[link](angle))
+        out[f"omega_{link}"] = motion.omega[:, link].copy() if own else motion.omega[:, link]
+        out[f"alpha_{link}"] = motion.alpha[:, link].copy() if own else motion.alpha[:, link]
     for joint in mech.joints:
         tag = _tag(joint.name)
         if isinstance(joint, Revolute):
@@ -59,10 +66,10 @@ def kinematic_columns(mech: Mechanism, block: Block, phases: dict[int, Continuou
             out[f"{prefix}_{name}"] = value
     for col, dyad in enumerate(mech.dyads):
         out[f"mu_{dyad.number}_deg"] = np.rad2deg(kin.transmission[:, col])
-    if not rows.all():  # (the link angles are of the reported rows already)
+    if not every:  # (the link angles are of the reported rows already)
         out = {key: value if key.startswith("phi_") else value[rows]
                for key, value in out.items()}
-    valid = block.valid[rows]
+    valid = block.valid if every else block.valid[rows]
     if not valid.all():  # nothing of an invalid row but its crank and transmission angles
         out = {key: value if key == "angle_deg" or key.startswith("mu_")
                else np.where(valid, value, np.nan) for key, value in out.items()}
@@ -126,6 +133,53 @@ class Continuous:
 
     def commit(self) -> None:
         self.state = self.pending
+
+
+class EachVariant:
+    """The link angle's unwrapping (``Continuous``) of a run of variants whose blocks
+    hold whole variants of ``count`` positions each: every variant unwrapped on its own
+    from its first value, as a sweep of it alone unwraps it (the same arithmetic, row by
+    row; a variant with a position without a value through ``Continuous`` itself)."""
+
+    def __init__(self, count: int) -> None:
+        self.count = count
+
+    def __call__(self, angle: FloatArray) -> FloatArray:
+        if angle.size == 0:
+            return angle
+        rows = angle.reshape(-1, self.count)
+        out = np.empty(rows.shape)
+        finite = np.isfinite(rows).all(axis=1)
+        for k in np.flatnonzero(~finite):
+            out[k] = Continuous()(rows[k])
+        if finite.all():
+            out = unwrapped(rows)
+        elif finite.any():
+            out[finite] = unwrapped(rows[finite])
+        return out.reshape(-1)
+
+    def commit(self) -> None:
+        """(nothing carries over from one block to the next)"""
+
+
+def unwrapped(rows: FloatArray) -> FloatArray:
+    """Each row of finite angles [rad] unwrapped across ±π from its first value, which
+    is brought into (−π, π]: ``Continuous`` of a first block, row by row."""
+    values = rows.copy()
+    if rows.shape[1] > 1:
+        dd = np.diff(rows, axis=1)
+        if (abs(dd) >= np.pi).any():
+            ddmod = np.mod(dd + np.pi, 2 * np.pi) - np.pi  # np.unwrap with period 2π
+            np.copyto(ddmod, np.pi, where=(ddmod == -np.pi) & (dd > 0))
+            correction = ddmod - dd
+            np.copyto(correction, 0, where=abs(dd) < np.pi)
+            values[:, 1:] = rows[:, 1:] + correction.cumsum(axis=1)
+        else:
+            values[:, 1:] = rows[:, 1:] + 0.0
+    turns = np.ceil((values[:, 0] - np.pi) / (2.0 * np.pi))
+    if turns.any():
+        values -= 2.0 * np.pi * turns[:, None]
+    return values
 
 
 def force_columns(mech: Mechanism, block: Block, machine: bool = True, own: bool = True
@@ -199,7 +253,7 @@ def columns(mech: Mechanism, block: Block, phases: dict[int, Continuous],
     """All columns of a block, in contract order (without ``points``, not the motion of
     the revolute joints and named points: ``kinematic_columns``; without ``machine``
     and ``own``: ``force_columns``)."""
-    return (kinematic_columns(mech, block, phases, points)
+    return (kinematic_columns(mech, block, phases, points, own)
             | force_columns(mech, block, machine, own))
 
 
@@ -208,6 +262,74 @@ FORCE_PREFIXES = ("Fx_", "Fy_", "F_", "FN_", "M_", "P_", "MR_", "FR_", "lock_mar
                   "friction_iterations", "forces_valid", "friction_det_")
 """names of the force block; the rest (and ``KINEMATIC_EXEMPT``) are kinematic"""
 KINEMATIC_EXEMPT = ("kinematics_valid",)
+
+
+def bound(mech: Mechanism, block: Block, machine: bool, count: int = 1) -> float:
+    """A bound [SI] on the magnitude of every value of the columns ``columns`` gives
+    only with ``points`` (x, y, vx, vy, ax, ay of the joints and named points) and,
+    with ``machine``, only with ``machine`` (J_red, dJ_red; not M_load: a caller
+    computes those where the mechanism has gravity, loads or springs), at the block's
+    positions. For a point at distance r ≤ R from its link's origin O,
+    |x| ≤ |O| + R, |v| ≤ |v_O| + |ω|·R, |a| ≤ |a_O| + (|α| + ω²)·R, each
+    magnitude the largest of any component of any link (NaN left aside: a NaN is no
+    value beyond the limit); J ≤ Σ m·v_S² + J_S·ω² and |J′| ≤ 2·Σ m·|v_S|·|a_S| +
+    J_S·|ω|·|α| over the least crank speed Ω² and Ω³. Infinite where a value is.
+    ``count``: the positions per variant of a run of variants (a number that differs
+    between them is read once per variant)."""
+    motion = block.kinematics.motion
+
+    def largest(values: FloatArray) -> float:  # whole arrays: one fast reduction each
+        values = values[:, FRAME:]  # (index 0 is no link)
+        if values.size == 0:
+            return 0.0
+        top = max(float(np.fmax.reduce(values, axis=None)),
+                  -float(np.fmin.reduce(values, axis=None)))
+        return 0.0 if math.isnan(top) else top  # (none given)
+
+    origin, velocity, acceleration = (largest(motion.origin), largest(motion.velocity),
+                                      largest(motion.acceleration))
+    w, a = largest(motion.omega), largest(motion.alpha)
+    radius = max((_radius(mech, link, count) for link in mech.links), default=0.0)
+    out = max(origin + radius, velocity + w * radius, acceleration + (a + w * w) * radius)
+    if machine and motion.omega.shape[0]:
+        energy = rate = 0.0
+        for link, body in mech.links.items():
+            if link == FRAME or not body.has_mass:
+                continue
+            mass, inertia = _largest(body.mass, count), _largest(body.inertia, count)
+            centre = _largest(np.hypot(*(_each(x, count) for x in body.centre)))
+            speed = velocity + w * centre
+            energy += mass * speed * speed + inertia * w * w
+            rate += mass * speed * (acceleration + (a + w * w) * centre) + inertia * w * a
+        crank = float(np.fmin.reduce(np.abs(motion.omega[:, CRANK])))
+        if crank == 0.0:
+            return math.inf
+        if not math.isnan(crank):  # (NaN: no position given)
+            out = max(out, energy / crank ** 2, 2.0 * rate / crank ** 3)
+    return math.inf if math.isnan(out) else float(out)
+
+
+def _each(value, count: int = 1):
+    """A number of a mechanism: as it is, or (one per position, the same at the
+    ``count`` positions of a variant) one per variant."""
+    return value if np.ndim(value) == 0 else np.asarray(value)[::count]
+
+
+def _largest(value, count: int = 1) -> float:
+    """The largest magnitude of a number of a mechanism (one, or one per position)."""
+    return float(np.max(np.abs(_each(value, count))))
+
+
+def _radius(mech: Mechanism, link: int, count: int = 1) -> float:
+    """The largest distance of a point of ``link`` (a joint's or a named one) from its
+    origin [m] (of every variant, where they differ)."""
+    points = [local for joint in mech.joints
+              for number, local in zip(joint.links, joint.points if isinstance(joint, Revolute)
+                                       else (joint.guide_point, joint.slider_point))
+              if number == link]
+    points += [local for _, number, local in mech.named_points if number == link]
+    return max((_largest(np.hypot(_each(x, count), _each(y, count))) for x, y in points),
+               default=0.0)
 
 
 def implausible(cols: Columns, names) -> FloatArray:

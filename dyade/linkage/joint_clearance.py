@@ -111,6 +111,13 @@ class ForceLine:
     """(m,) |F| at those positions [N]"""
 
 
+NO_FORCE = "the joint carries no force"
+"""the reason of a ``ForceLine`` whose force is zero wherever it is given"""
+NOT_GIVEN = ("its force is not given at the positions (fewer than 3 have it: the others are "
+             "withheld)")
+"""the reason of a ``ForceLine`` whose force is not given: nothing is known of it"""
+
+
 def force_line(name: tuple[int, int], crank_angle: FloatArray, force: FloatArray,
                full_cycle: bool, max_wander: float = MAX_WANDER) -> ForceLine:
     """The dominant line of action of one joint's force (n, 2) [N] over the crank angles
@@ -119,9 +126,12 @@ def force_line(name: tuple[int, int], crank_angle: FloatArray, force: FloatArray
     keep = np.all(np.isfinite(force), axis=1)
     phi, force = crank_angle[keep], force[keep]
     nothing, pair = np.empty(0), np.empty((0, 2))
-    if phi.size < 3 or not np.any(np.hypot(force[:, 0], force[:, 1]) > 0):
-        return ForceLine(name, np.nan, np.nan, False, "the joint carries no force", nothing,
-                         nothing, pair, nothing, nothing)
+    if phi.size < 3:  # withheld (beyond what a machine has, dead centres): not zero
+        return ForceLine(name, np.nan, np.nan, False, NOT_GIVEN, nothing, nothing, pair,
+                         nothing, nothing)
+    if not np.any(np.hypot(force[:, 0], force[:, 1]) > 0):
+        return ForceLine(name, np.nan, np.nan, False, NO_FORCE, nothing, nothing, pair,
+                         nothing, nothing)
     angle, wander = line_of_action(force)
     if wander > max_wander:
         return ForceLine(name, angle, wander, False,
@@ -189,7 +199,7 @@ def needs_forces(result, what: str) -> None:
     springs), for ``what`` needs them."""
     if result.forces_valid is None:
         raise InputError(f"{what} needs joint forces: the file has no masses, loads or "
-                         f"springs (add mass data, see docs/reference/mechanism-file.md).")
+                         f"springs (add mass data, see `dyade help mechanism-file`).")
 
 
 def _revolute(mechanism, name: tuple[int, int]) -> Revolute:

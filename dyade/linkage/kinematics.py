@@ -180,16 +180,24 @@ class Kinematics:
 
 def crank_motion(mechanism: Mechanism, crank_angle: FloatArray,
                  placed: tuple[int, ...] = (), crank_speed: FloatArray | float | None = None,
-                 crank_acceleration: FloatArray | float | None = None) -> Motion:
+                 crank_acceleration: FloatArray | float | None = None,
+                 repeat: int = 1) -> Motion:
     """Motion with the frame at rest and the crank turning about its pivot, at the
     mechanism's constant speed unless ``crank_speed`` [rad/s] and ``crank_acceleration``
     [rad/s²] (scalars or one value per position) are given; the ``placed`` links are left
-    for the caller to fill (``Motion.at_rest``)."""
+    for the caller to fill (``Motion.at_rest``). ``repeat``: the crank angles are that
+    many copies of the same sweep (a run of variants; its cosines computed once)."""
     n = crank_angle.shape[0]
     motion = Motion.at_rest(n, mechanism.max_link + 1, placed)
     motion.origin[:, CRANK] = mechanism.crank.pivot
     motion.angle[:, CRANK] = crank_angle
-    cos_sin(crank_angle, motion.cos[:, CRANK], motion.sin[:, CRANK])
+    if repeat > 1 and n % repeat == 0:
+        cos = motion.cos[:, CRANK].reshape(repeat, -1)  # (views: link-major storage)
+        sin = motion.sin[:, CRANK].reshape(repeat, -1)
+        cos_sin(crank_angle[:cos.shape[1]], cos[0], sin[0])
+        cos[1:], sin[1:] = cos[0], sin[0]
+    else:
+        cos_sin(crank_angle, motion.cos[:, CRANK], motion.sin[:, CRANK])
     motion.velocity[:, CRANK] = 0.0
     motion.omega[:, CRANK] = mechanism.crank.speed if crank_speed is None else crank_speed
     motion.acceleration[:, CRANK] = 0.0  # the pivot (the crank frame's origin) stays put
@@ -229,20 +237,23 @@ def _comb(p: float, a: FloatArray, q: float, b: FloatArray):
 
 def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
           crank_speed: FloatArray | float | None = None,
-          crank_acceleration: FloatArray | float | None = None) -> Kinematics:
+          crank_acceleration: FloatArray | float | None = None, repeat: int = 1
+          ) -> Kinematics:
     """Positions, velocities and accelerations of every link over the crank sweep.
 
     The crank turns at the mechanism's constant speed Ω unless ``crank_speed`` φ̇21
     [rad/s] and ``crank_acceleration`` φ̈21 [rad/s²] are given (scalars, or one value
     per crank angle): the crank's twist is then φ̇21·S₁₂ and its rate of change
     φ̈21·S₁₂ (S₁₂ is fixed in the frame), and every dyad takes them as its known motion.
+    ``repeat``: the crank angles are that many copies of one sweep (variants stacked
+    into ``mechanism``, ``dyade.linkage.stack``).
     """
     if crank_angle is None:
         crank_angle = mechanism.sweep.angles()
     crank_angle = np.asarray(crank_angle, dtype=np.float64)
     n = crank_angle.shape[0]
     motion = crank_motion(mechanism, crank_angle, tuple(mechanism.moving_links), crank_speed,
-                          crank_acceleration)
+                          crank_acceleration, repeat)
     count = len(mechanism.dyads)
     # per dyad and position, each dyad's column contiguous (the results are (n, dyads))
     closes, singular = np.empty((count, n), dtype=bool), np.empty((count, n), dtype=bool)

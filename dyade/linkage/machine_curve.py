@@ -58,9 +58,10 @@ def torque_curve(mechanism: Mechanism, *, step_deg: float | None = None,
                                                f"{step_deg}.", value=step_deg, unit="°")
     if not mechanism.has_dynamics:
         raise InputError(f"{mechanism.name}: no masses, loads or springs, so no drive torque to "
-                         f"size a flywheel by (add mass data, see docs/reference/mechanism-file.md).")
+                         f"size a flywheel by (add mass data, see `dyade help mechanism-file`).")
     count = int(math.ceil(2.0 * math.pi / step - 1e-9))
-    check_size(mechanism, count, max_memory)
+    check_size(mechanism, count, max_memory,
+               advice="Use a coarser step_deg (the curve covers one revolution)")
     angle = mechanism.sweep.start + step * np.arange(count)
     result = analyse_si(mechanism, crank_angle=angle, constant_speed=True)
     cols = result.columns()

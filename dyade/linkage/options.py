@@ -146,12 +146,12 @@ def collect_estimate(block_size: int):
 
 
 def check_size(mechanism: Mechanism, positions: int, max_memory: float | None,
-               estimate=None) -> None:
+               estimate=None, advice: str = "Use a coarser step or a shorter range") -> None:
     """Refuse a sweep that would take more than ``max_memory`` [B], before allocating;
-    ``estimate(mechanism, positions)`` [B] (default ``memory_estimate``)."""
+    ``estimate(mechanism, positions)`` [B] (default ``memory_estimate``); ``advice``:
+    what the caller can ask for instead (only what it has options for)."""
     need = (estimate or memory_estimate)(mechanism, positions)
-    check_memory(need, f"this sweep of {positions:,} positions", max_memory,
-                 "Use a coarser step or a shorter range")
+    check_memory(need, f"this sweep of {positions:,} positions", max_memory, advice)
 
 
 def stream_estimate(block_size: int):

@@ -9,7 +9,8 @@ the names) must be the same in every variant, else ``NotStackable``.
 
 A block of variants read at once (``dyade.arrays.Variants`` where the file has a
 number, one per variant) becomes such a mechanism by ``spread``; ``pick`` takes one
-variant out of it again, and ``same`` compares two mechanisms number by number.
+variant out of it again, ``part`` a run of them, and ``same`` compares two mechanisms
+number by number.
 """
 
 from __future__ import annotations
@@ -84,6 +85,11 @@ def spread(mechanism: Mechanism, positions: int) -> Mechanism:
     return _map(mechanism, lambda v: np.repeat(np.asarray(v), positions))
 
 
+def part(mechanism: Mechanism, first: int, last: int) -> Mechanism:
+    """Variants first..last−1 of a block read at once (each ``Variants`` sliced)."""
+    return _map(mechanism, lambda v: Variants(np.asarray(v)[first:last]))
+
+
 def pick(mechanism: Mechanism, index: int) -> Mechanism:
     """Variant ``index`` of a block read at once: each ``Variants`` its number."""
     return _map(mechanism, lambda v: float(v[index]))
@@ -110,26 +116,33 @@ def _map(value, leaf):
     return value
 
 
-def same(a, b, rtol: float = 1e-14, where: str = "mechanism") -> str:
+def same(a, b, rtol: float = 1e-14, where: str = "mechanism", index: int | None = None
+         ) -> str:
     """"" when ``a`` and ``b`` hold the same structure and numbers (to ``rtol``:
-    numpy's and Python's arithmetic may round a last bit apart), else where they differ."""
+    numpy's and Python's arithmetic may round a last bit apart), else where they differ.
+    With ``index``: variant ``index`` of ``a``, a block read at once, against ``b``
+    (``same(pick(a, index), b)`` in one walk)."""
+    if index is not None and isinstance(a, Variants):
+        a = float(a[index])
     if dataclasses.is_dataclass(a) and not isinstance(a, type):
         if type(a) is not type(b):
             return f"{where}: of different types"
         for f in dataclasses.fields(a):
-            problem = same(getattr(a, f.name), getattr(b, f.name), rtol, f"{where}.{f.name}")
+            problem = same(getattr(a, f.name), getattr(b, f.name), rtol, f"{where}.{f.name}",
+                           index)
             if problem:
                 return problem
         return ""
     if isinstance(a, dict):
         if not isinstance(b, dict) or a.keys() != b.keys():
             return f"{where}: different keys"
-        return next((p for k in a if (p := same(a[k], b[k], rtol, f"{where}[{k}]"))), "")
+        return next((p for k in a if (p := same(a[k], b[k], rtol, f"{where}[{k}]", index))),
+                    "")
     if isinstance(a, tuple) and not hasattr(a, "_fields"):
         if not isinstance(b, tuple) or len(a) != len(b):
             return f"{where}: different lengths"
         return next((p for k, (x, y) in enumerate(zip(a, b))
-                     if (p := same(x, y, rtol, f"{where}[{k}]"))), "")
+                     if (p := same(x, y, rtol, f"{where}[{k}]", index))), "")
     if type(a) is float and type(b) is float:  # (most of a mechanism: fast)
         return "" if a == b or abs(a - b) <= rtol * max(abs(a), abs(b)) else \
             f"{where}: {a!r} against {b!r}"

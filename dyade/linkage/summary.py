@@ -240,7 +240,8 @@ def key_figures(mechanism, angle_deg: np.ndarray, cols: Mapping[str, np.ndarray]
     per slider, swing and time ratio per rocker; with ``forces`` the drive torque's
     peak, trough and RMS, the mean drive power, each joint's peak force, the shaking
     force's peak and RMS and the shaking moment's largest magnitude. One sweep is one
-    variant (``figures``); a study's variants are many (``dyade.linkage.variants``).
+    variant (``figures``); a study's variants are many (a run of variants of the pipeline,
+    ``dyade.linkage.pipeline.prepare_variants``).
 
     A figure no variant has (a slider that never moves) is left out; NaN for a variant
     without it. ``presence`` (filled if given): the figures a variant has only where it
@@ -250,15 +251,13 @@ def key_figures(mechanism, angle_deg: np.ndarray, cols: Mapping[str, np.ndarray]
     out: dict[str, np.ndarray] = {}
 
     def each(rows: list[np.ndarray], function) -> list:
-        """``function`` of the rows of several (variants, positions) arrays in one call
-        (they share the crank angles): its results split again, one per array."""
-        if not rows:
-            return []
-        count = rows[0].shape[0]
-        results = function(np.concatenate(rows))
-        results = results if isinstance(results, tuple) else (results,)
-        return [tuple(r[k * count:(k + 1) * count] for r in results)
-                for k in range(len(rows))]
+        """``function`` of the rows of each of several (variants, positions) arrays (it
+        works row by row: one call per array, without copying them into one)."""
+        out = []
+        for array in rows:
+            results = function(array)
+            out.append(results if isinstance(results, tuple) else (results,))
+        return out
 
     presence = {} if presence is None else presence
 

@@ -67,6 +67,96 @@ class Result(Outcome):
         angles in degrees: names ending in ``_deg``); NaN where a value is not given."""
         return self.table
 
+    def __getitem__(self, name: str) -> FloatArray:
+        """The column ``name`` (``result["F_2_3"]``), as ``columns()[name]``: one value per
+        reported position, NaN where not given; a name it does not have is a
+        ``KeyError`` naming the closest ones."""
+        try:
+            return self.table[name]
+        except (KeyError, TypeError):
+            import difflib
+
+            close = difflib.get_close_matches(str(name), list(self.table), n=3)
+            hint = (f" Did you mean {', '.join(close)}?" if close
+                    else " Its columns: result.columns().keys() (`dyade help columns`).")
+            raise KeyError(f"the sweep has no column {name!r}.{hint}") from None
+
+    def __contains__(self, name: object) -> bool:
+        return name in self.table
+
+    def at(self, angle_deg: float) -> dict[str, float]:
+        """Every column's value at the crank angle ``angle_deg`` [°]: the sweep's own row
+        where the angle is one of its positions, else computed exactly at that angle by
+        the rule of ``analyse(..., crank_angle_deg=[angle_deg])`` (``dyade analyse --at``)
+        with the sweep's own settings (plan, validity bands, crank speed). NaN where a
+        value is not given, as in ``columns()``.
+
+        Parameters
+        ----------
+        angle_deg : float
+            The crank angle φ21 [°], within the swept range.
+
+        Returns
+        -------
+        dict
+            Column name -> value (units as in ``columns()``: SI, angles in degrees).
+
+        Raises
+        ------
+        InputError
+            The angle lies outside the swept range, or the sweep's crank motion is not
+            one an angle between its positions has (a run-up, or speeds given per
+            position).
+
+        Examples
+        --------
+        >>> import dyade
+        >>> result = dyade.analyse(dyade.read_mechanism("mechanisms/fourbar.toml"))
+        >>> round(result.at(37)["F_2_3"], 3) == round(float(result["F_2_3"][37]), 3)
+        True
+        >>> round(result.at(37.5)["M_drive"], 4)      # between positions: computed there
+        0.3768
+        """
+        try:
+            angle = float(angle_deg)
+        except (TypeError, ValueError):
+            raise InputError.parameter("angle_deg", f"must be a number [°], got "
+                                                    f"{angle_deg!r}.", value=angle_deg,
+                                       unit="°") from None
+        angles = self.table["angle_deg"]
+        given = angles[np.isfinite(angles)]
+        low, high = (float(given.min()), float(given.max())) if given.size else (np.nan, np.nan)
+        tol = 1e-9 * max(1.0, abs(angle))  # [°] the table's angles, converted from radians
+        if not low - tol <= angle <= high + tol:
+            raise InputError.parameter(
+                "angle_deg", f"must lie within the swept range {low:g}°…{high:g}°, got "
+                             f"{angle:g}: a result answers where it was swept (analyse at that "
+                             f"angle: crank_angle_deg=[{angle:g}]).", value=angle, unit="°")
+        hit = np.flatnonzero(np.abs(angles - angle) <= tol)
+        if hit.size:
+            return {name: float(column[hit[0]]) for name, column in self.table.items()}
+        return self._computed_at(angle)
+
+    def _computed_at(self, angle: float) -> dict[str, float]:
+        """``at`` between the sweep's positions: one position computed with its settings."""
+        setup = self.setup
+        speed = acceleration = None
+        if setup.motion is not None:
+            if setup.motion.state == "run-up":
+                raise InputError.parameter("angle_deg", f"must be one of the run-up's own "
+                                                        f"positions, got {angle:g}: the "
+                                                        f"run-up passes each angle more than "
+                                                        f"once.", value=angle, unit="°")
+        else:
+            speed, acceleration = (_one_value(setup.speed, "crank_speed", angle),
+                                   _one_value(setup.acceleration, "crank_acceleration", angle))
+        one = analyse_si(setup.mechanism, crank_angle=np.array([np.deg2rad(angle)]),
+                         allow_partial=setup.allow_partial, plan=setup.plan,
+                         crank_speed=speed, crank_acceleration=acceleration)
+        table = one.columns()
+        return {name: float(table[name][0]) if name in table and table[name].size else np.nan
+                for name in self.table}
+
     def summary(self, cols: Columns | None = None) -> dict[str, Any]:
         """The summary's figures by name (``dyade.linkage.summary``): drive torque and
         power, joint peaks, the shaking force, transmission angles, strokes, swings,
@@ -112,6 +202,21 @@ class Result(Outcome):
     def friction(self) -> friction.FrictionResult | None:
         """Friction loads, determinants and verdicts; None without friction."""
         return self.whole().friction
+
+
+def _one_value(value, name: str, angle: float) -> float | None:
+    """A sweep's crank speed or acceleration as one value for a position between its
+    own (None: the file's); refused where it was given per position and varies."""
+    if value is None or np.ndim(value) == 0:
+        return value
+    values = np.asarray(value, dtype=np.float64)
+    if values.size and np.all(values == values[0]):
+        return float(values[0])
+    raise InputError.parameter("angle_deg", f"must be one of the sweep's own positions, got "
+                                            f"{angle:g}: its {name} was given per position "
+                                            f"(analyse at that angle with the {name} there: "
+                                            f"crank_angle_deg=[{angle:g}], {name}=...).",
+                               value=angle, unit="°")
 
 
 def _decided(block: Block, rubbing) -> Block:

@@ -556,7 +556,7 @@ def line_data(mechanism: Mechanism) -> DriveLineData:
     if mechanism.drive_line is None:
         raise InputError(f"{mechanism.name}: no [drive_line] table: give the elastic element "
                          f"between motor and crank (`drive_line.stiffness` [N·m/rad], or "
-                         f"`drive_line.coupling` = a coupling file), see docs/guide/drive-line.md.",
+                         f"`drive_line.coupling` = a coupling file), see `dyade help drive-line`.",
                          key="drive_line")
     return mechanism.drive_line
 

@@ -64,6 +64,13 @@ class Cam:
     load: float = 0.0
     """a constant force pressing the follower onto the cam [N] (oscillating: moment
     [N·m]); gravity belongs here"""
+    guide_friction: float = 0.0
+    """μ [-] of a translating follower's guide (0: none; ``dyade.cam.guide``)"""
+    guide_length: float | None = None
+    """L [m], the guide's length between its two bearing points"""
+    guide_overhang: float = 0.0
+    """b [m], from the roller centre (flat face: the face) to the guide's near end at
+    zero lift"""
     pressure_angle_max: float | None = None
     """the limit of |α| [rad]; None: ``PRESSURE_ANGLE_MAX`` of the kind"""
     width: float | None = None
@@ -133,6 +140,20 @@ class Cam:
                                           f"{self.chord_tolerance:g} m.")
         if self.width is not None and not self.width > 0.0:
             raise fail("width", f"must be positive [m], got {self.width:g}.")
+        if not self.guide_friction >= 0.0:
+            raise fail("guide_friction", f"must not be negative [-], got "
+                                         f"{self.guide_friction:g}.", self.guide_friction)
+        if self.guide_friction > 0.0:
+            if self.follower == "oscillating-roller":
+                raise fail("guide_friction", "belongs to a translating follower's guide: an "
+                                             "oscillating follower turns about its pivot.")
+            if self.guide_length is None or not self.guide_length > 0.0:
+                raise fail("guide_length", "is needed with guide friction: the guide's "
+                                           "length L [length] between its bearing points.")
+            if not self.guide_overhang >= 0.0:
+                raise fail("guide_overhang", f"must not be negative [m] (the roller centre "
+                                             f"below the guide's near end at zero lift), got "
+                                             f"{self.guide_overhang:g}.")
         self.check_profile(fail)
         if self.chain is not None:
             if self.follower != "oscillating-roller":

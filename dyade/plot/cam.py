@@ -147,6 +147,8 @@ def figure(outcome, angles_deg=(0.0,), fig: Figure | None = None) -> Figure:
             pressure.axhline(sign * limit, color=canvas.COLOURS[1], lw=0.8,
                              linestyle=canvas.DASHES[1],
                              label=f"limit ±{limit:g}°" if sign == 1 else None)
+        if result.jammed is not None:  # guide friction: where the follower jams
+            _spans(pressure, angle, result.jammed, "jams in its guide")
         pressure.set_ylabel("pressure angle α [°]")
         canvas.legend_above(pressure)
         curvature = fig.add_subplot(grid[2, 1], sharex=motion)

@@ -120,7 +120,7 @@ def _check(names: list[str], cols: dict) -> None:
             close = difflib.get_close_matches(name, [c for c in cols if c != "angle_deg"], n=3)
             hint = (f" Did you mean {', '.join(close)}?" if close else
                     " The columns are those of `dyade analyse --format csv` "
-                    "(docs/reference/mechanism-file.md).")
+                    "(`dyade help columns`).")
             raise InputError.parameter("quantities", f"{name!r} is not a column of this "
                                                      f"result.{hint}", value=name)
 

@@ -18,7 +18,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from dyade.errors import InputError
-from dyade.linkage.joint_clearance import MAX_WANDER_DEG, force_lines
+from dyade.linkage.joint_clearance import MAX_WANDER_DEG, NO_FORCE, force_lines
 from dyade.linkage.options import radians
 from dyade.plot import canvas
 from dyade.plot.labels import Placer, leader, merge
@@ -94,7 +94,7 @@ def figure(result, joints=None, *, max_wander_deg: float = MAX_WANDER_DEG,
     InputError.refuse_renamed("polar.figure", renamed, {"max_wander": "max_wander_deg"})
     if result.forces is None:
         raise InputError("joint-force polar diagrams need joint forces: the mechanism has no "
-                         "masses, loads or springs (add mass data, see docs/reference/mechanism-file.md).")
+                         "masses, loads or springs (add mass data, see `dyade help mechanism-file`).")
     lines = force_lines(result, joints, max_wander=radians(max_wander_deg, "max_wander_deg"))
     cols = result.columns()
     rows, columns = canvas.grid(len(lines))
@@ -219,7 +219,7 @@ def _text(angles: np.ndarray, group: list[int]) -> str:
 def status_line(line) -> str:
     """What the panel says of the line of action, short."""
     if np.isnan(line.line_angle):
-        return "no force"
+        return "no force" if line.reason == NO_FORCE else "force not given"
     if not line.applies:
         return f"no reversals: the force turns {np.rad2deg(line.wander):.0f}° off its line"
     direction = f"line of action {np.rad2deg(line.line_angle):.0f}°"

@@ -17,16 +17,24 @@ LAYERS = {"working": "CAM-WORKING", "cutter": "CAM-CUTTER"}
 """curve -> the DXF layer it is drawn on"""
 
 
-def tables(outcome):
-    """The summary (lengths in the file's unit) and every k-th angle of the columns."""
+COLUMNS = ("angle_deg", "s", "v", "a", "pressure_angle_deg", "rho_pitch", "rho_working",
+           "undercut", "contact_force", "hertz_stress", "drive_torque", "guide_margin",
+           "jammed")
+"""the columns of the table over the turn that ``dyade cam`` prints"""
+REPORT_COLUMNS = ("angle_deg", "s", "v", "pressure_angle_deg", "rho_pitch", "undercut",
+                  "contact_force", "hertz_stress", "drive_torque", "guide_margin")
+"""the narrower table of the design report (``dyade report``), a page's width"""
+
+
+def tables(outcome, columns=COLUMNS):
+    """The summary (lengths in the file's unit) and every k-th angle of ``columns``
+    (those the Outcome has)."""
     from dyade.report.outcome import columns_table, summary_table
 
     unit = outcome.meta.get("length_unit", "m")
     title = (f"Cam: {outcome.meta.get('name')} ({outcome.meta.get('follower')} follower, "
              f"{outcome.meta.get('rotation')}, {outcome.meta.get('closure')} closure)")
-    names = [n for n in ("angle_deg", "s", "v", "a", "pressure_angle_deg", "rho_pitch",
-                         "rho_working", "undercut", "contact_force", "hertz_stress",
-                         "drive_torque") if n in outcome.columns]
+    names = [n for n in columns if n in outcome.columns]
     parts = [summary_table(outcome, title, length_unit=unit),
              columns_table(outcome, "Over the turn", names, length_unit=unit, most=36)]
     return [part for part in parts if part is not None]

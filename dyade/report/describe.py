@@ -49,8 +49,7 @@ def describe(outcome) -> Tree:
                 + (f"  ({mechanism.source})" if mechanism.source else "")
                 + f"  — lengths in {length.unit}")
     frame = tree.add("link 1: frame")
-    for name, point in mechanism.links[FRAME].points.items():
-        frame.add(f"point {name} = {length.point(point)}")
+    _points(frame, FRAME, list(mechanism.links[FRAME].points.items()), length)
     crank = mechanism.crank
     rpm = abs(crank.speed) * RAD_PER_S_TO_RPM
     sense = "counter-clockwise" if crank.speed > 0 else "clockwise"
@@ -151,14 +150,23 @@ def _link(node: Tree, mechanism: Mechanism, number: int, length: Lengths,
         node.add(f"link {number}: " + "; ".join(parts))
     named = [(name, point) for name, point in link.points.items()
              if not (number == CRANK and name == "tip")]
+    _points(node, number, named, length)
+
+
+def _points(node: Tree, number: int, named: list, length: Lengths) -> None:
+    """The first ``SHOWN_POINTS`` named points of link ``number`` (the frame's too) and
+    how many more there are: the tree stays small whatever the file holds."""
+    frame = number == FRAME
     for name, point in named[:SHOWN_POINTS]:
-        node.add(f"link {number} point {name} = {length.point(point)} (ξ, η)")
+        node.add(f"point {name} = {length.point(point)}" if frame
+                 else f"link {number} point {name} = {length.point(point)} (ξ, η)")
     if len(named) > SHOWN_POINTS:
         node.add(f"link {number}: {len(named) - SHOWN_POINTS:,} more named points "
-                 f"({named[SHOWN_POINTS][0]} … {named[-1][0]}; dyade analyse gives their paths)")
+                 f"({named[SHOWN_POINTS][0]} … {named[-1][0]}"
+                 f"{'' if frame else '; dyade analyse gives their paths'})")
 
 
-SHOWN_POINTS = 50  # named points listed per link; a file may have thousands
+SHOWN_POINTS = 50  # named points listed per link and the frame; a file may have thousands
 
 
 def _loads(tree: Tree, mechanism: Mechanism, length: Lengths) -> None:

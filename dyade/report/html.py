@@ -9,7 +9,9 @@ has clearance data, the crank's speed and the motor where it has a ``[drive]``) 
 motion, one frame per swept position, scrubbed with a crank-angle slider, and last, for
 reference, the file in assembly order as ``dyade describe`` says it. For a gear
 file: the natural frequencies and energy shares, the Campbell diagram and the mode
-shapes; for a study file its tables and the figure of its question.
+shapes; for a study file its tables and the figure of its question; for a cam file the
+cam's checks, their notes, the cam with its follower and its curves over the turn
+(``dyade cam`` and ``dyade plot cam``).
 
 Self-contained: figures inline as SVG (text as paths: no font is needed), the motion's
 script and data inline, no request leaves the file; printable (a print stylesheet keeps
@@ -164,8 +166,9 @@ def report(path: str, overrides: dict[str, Any] | None = None, **options: Any) -
     ----------
     path : str
         A mechanism file (with a ``[crank]`` table), a gear file (``[[shaft]]``,
-        ``[[gear]]`` … tables), a study file (``[plan]`` and ``[parameters]``) or a
-        coupling file (``J``, ``c1``, ``c2``).
+        ``[[gear]]`` … tables), a study file (``[plan]`` and ``[parameters]``), a
+        coupling file (``J``, ``c1``, ``c2``) or a cam file (``[cam]`` and
+        ``[follower]``).
     overrides : dict, optional
         Dotted keys and values that replace the file's (as ``--set``).
     **options
@@ -201,6 +204,8 @@ def report(path: str, overrides: dict[str, Any] | None = None, **options: Any) -
         for where in sorted({os.fspath(path), os.path.abspath(path)}, key=len, reverse=True):
             page = page.replace(html.escape(where), html.escape(source))
         return page
+    if "cam" in data and "follower" in data:
+        return cam_report(path, overrides, source=source, **options)
     given = sorted(name for name, value in options.items() if value not in (None, False))
     if given:
         raise InputError.parameter(tuple(given), f"apply to a mechanism file; {source} is "
@@ -217,7 +222,7 @@ def report(path: str, overrides: dict[str, Any] | None = None, **options: Any) -
                      f"(no [[shaft]], [[gear]] or [[body]] tables), a study file ([plan] "
                      f"and [parameters]) nor a coupling file (J, c1, c2), the last two "
                      f"without --set: a report is made of one of these (see "
-                     f"docs/reference/mechanism-file.md).{other_kind(data, set())}")
+                     f"`dyade help mechanism-file`).{other_kind(data, set())}")
 
 
 # -- a mechanism -------------------------------------------------------------------------
@@ -366,6 +371,47 @@ def motion_html(result) -> str:
             f'<script>{SCRIPT}</script>')
 
 
+# -- a disc cam ---------------------------------------------------------------------------
+CAM_ANGLES = (0.0, 180.0)
+"""[°] the cam angles the report draws the cam and its follower at (the first solid)"""
+
+
+def cam_report(path, overrides=None, *, source: str = "", step_deg: float | None = None,
+               **options: Any) -> str:
+    """The design report of a cam file (see ``report``): the checks of the ``cam`` entry
+    (pressure angle, curvature and undercut, smallest base circle, contact force,
+    lift-off speed, Hertz stress, drive torque, the profile to manufacture), its notes,
+    the cam figure of ``dyade plot cam`` and the table over the turn (as ``dyade cam``
+    gives them). ``step_deg``: the cam-angle step of the checks (the entry's)."""
+    from dyade.plot import cam as plot
+    from dyade.registry import REGISTRY
+    from dyade.report import cam as words
+
+    given = sorted(name for name, value in options.items()
+                   if value not in (None, False) and name != "units")
+    if given or overrides:
+        raise InputError.parameter(tuple(given) or ("set",),
+                                   f"apply to a mechanism file; {source} is a cam file (its "
+                                   f"report takes --step, the cam-angle step).")
+    outcome = REGISTRY["cam"](path, **({} if step_deg is None else {"step_deg": step_deg}))
+    summary, *rest = words.tables(outcome, words.REPORT_COLUMNS)
+    page = Page(f"{outcome.meta.get('name') or 'Cam'}: design report", source)
+    page.section("The cam's checks", table_html(summary, caption=False))
+    notes = outcome.notes
+    page.section("Notes: pressure angle, undercut, lift-off, the profile",
+                 notes_html(notes) if notes else
+                 '<p class="none">None: the cam passes every check over the turn.</p>')
+    angles = ", ".join(f"{a:g}°" for a in CAM_ANGLES)
+    page.section("The cam and its follower", figure(
+        plot.figure(outcome, CAM_ANGLES), "cam",
+        f"The cam turned to {angles} with its follower (the first solid, the common "
+        f"normal dashed), the follower's motion s, s′, s″, s‴, the pressure angle against "
+        f"its limit, the radii of curvature with the roller's radius (undercut shaded), "
+        f"the contact force and the drive torque over the turn."))
+    page.section("Over the turn", table_html_many(rest))
+    return page.html()
+
+
 # -- a gear drive ------------------------------------------------------------------------
 def gear_report(drive, *, source: str = "") -> str:
     """The design report of a gear drive (see ``report``): its modes, Campbell diagram
@@ -512,7 +558,9 @@ def table_html(table, caption: bool = True) -> str:
     from rich.text import Text
 
     def plain(value) -> str:
-        return value.plain if isinstance(value, Text) else Text.from_markup(str(value)).plain
+        # texts as written, as the terminal shows them (dyade.cli.output.literal): "[mm]"
+        # in a header is a unit, not markup
+        return value.plain if isinstance(value, Text) else str(value)
 
     columns = table.columns
     head = "".join(f"<th>{html.escape(plain(c.header))}</th>" for c in columns)

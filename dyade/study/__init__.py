@@ -11,7 +11,7 @@ close", "refused", "failed"), then every key result of ``analyse``'s summary
 The variants run in blocks of at least 0.1 s of work, here, on ``jobs`` processes or on
 any ``concurrent.futures.Executor`` (a Dask cluster's: ``Client(address).get_executor()``);
 within a block they are read at once and swept together where the file allows
-(``dyade.study.evaluate.Evaluator``, ``dyade.linkage.variants``);
+(``dyade.study.evaluate.Evaluator``, ``dyade.linkage.pipeline.prepare_variants``);
 the rows stream to ``output`` block by block, and ``resume`` computes only the blocks
 not yet there. The plan's rows are made here from its seed: the same table on any
 number of workers.

@@ -1,7 +1,8 @@
 """The study's variants: each one's mechanism file with the study's overrides, swept by
 ``dyade.analyse`` and its summary flattened to named key results (``key_results``), or
-a block of them read at once and swept together (``Evaluator``,
-``dyade.linkage.variants``), their key results by the same functions
+a block of them read at once and run together through the same sweep pipeline as
+variants × positions (``Evaluator``, ``dyade.linkage.pipeline.prepare_variants``), their
+key results by the same functions
 (``dyade.linkage.summary.key_figures``): a study's outputs are the summary's figures,
 of the same names and values.
 
@@ -109,8 +110,8 @@ def status_of(values: dict[str, float]) -> str:
 
 
 STACK = 120
-"""variants swept together (``dyade.linkage.variants``): 43 320 positions of a four-bar,
-its arrays in the cache"""
+"""variants run together through the pipeline (``pipeline.prepare_variants``): 43 320
+positions of a four-bar"""
 
 
 class Evaluator:
@@ -118,15 +119,17 @@ class Evaluator:
     values) gives one row per variant (a class, not a closure: it pickles for the
     processes of any executor).
 
-    A block is read and swept together, ``STACK`` variants at a time, where the plan
-    allows (``dyade.linkage.variants``: no friction, [drive] or clearance data, no
-    extra outputs, parameters that are numbers of the file): the file read once with
-    ``Variants`` at the parameters' key paths (checked against the first and the last
-    variant read alone), the variants × positions swept in one run, the key results
-    by the summary's own functions over (variants, positions)
-    (``dyade.linkage.summary.key_figures``). Every variant that is
-    not clean there (it does not close, comes near a dead centre, is refused, ...) and
-    every block that cannot be stacked is evaluated alone (``one``)."""
+    A block is read at once and run through the sweep pipeline ``STACK`` variants at a
+    time, where the plan allows (``pipeline.stackable``: no friction, [drive] or
+    [drive_line]; no extra outputs; parameters that are numbers of the file): the file
+    read once with ``Variants`` at the parameters' key paths (checked against its own
+    reading of the first and the last variant, of the last once a block has passed),
+    the variants × positions one run of the pipeline, whose validity policy, bands and
+    plausibility check decide per variant as in a sweep of each alone (a variant that
+    does not close: its row says why), the key results by the summary's own functions
+    over (variants, positions) (``dyade.linkage.summary.key_figures``). A variant the
+    reader refuses, and every block that cannot be stacked, is evaluated alone
+    (``one``: ``dyade.analyse``, the same pipeline for one variant)."""
 
     def __init__(self, path: str, data: dict[str, Any], keys: tuple[str, ...],
                  extras: tuple[str, ...] = (), fluctuation: float = 0.02,
@@ -145,6 +148,8 @@ class Evaluator:
         """whether blocks are worth stacking (cleared on the first that cannot be)"""
         self.stages: bool | None = None
         """whether the file's stages can be stacked (None: not known yet)"""
+        self.verified = False
+        """a block read at once has been each of its variants' own reading"""
 
     def mechanism(self, values) -> Any:
         """The variant's mechanism: the file's data (with the study's fixed overrides)
@@ -197,12 +202,13 @@ class Evaluator:
         ``Variants`` where they differ; None where the reader cannot take them so (a
         value it checks in a way an array does not pass, a refused variant) or the
         result is not each variant's own mechanism (the first and the last compared
-        with their own reading), or the variants' plans differ."""
+        with their own reading; once a block has passed, the last only), or the
+        variants' plans differ."""
         from dyade.arrays import Variants
         from dyade.errors import InputError
         from dyade.files.mechanism import NUMBERING, build, set_dotted
         from dyade.linkage.plan import plan
-        from dyade.linkage.stack import pick, same
+        from dyade.linkage.stack import same
 
         data = copy.deepcopy(self.data)
         try:
@@ -215,25 +221,26 @@ class Evaluator:
             if dynamics.any() and not dynamics.all() and not (together.loads
                                                               or together.springs):
                 return None
-            for index in (0, len(values) - 1):
+            for index in (len(values) - 1,) if self.verified else (0, len(values) - 1):
                 alone = self.mechanism(values[index])
-                if same(pick(together, index), alone) or plan(alone) != plan(together):
+                if same(together, alone, index=index) or plan(alone) != plan(together):
                     return None
         except (InputError, ValueError, TypeError):  # read variant by variant instead
             return None
+        self.verified = True
         return together
 
     def stages_stack(self, values: np.ndarray) -> bool:
         """Whether the file's stages let variants be swept together (decided on the
-        first variant that reads; ``variants.stackable``)."""
+        first variant that reads; ``pipeline.stackable``)."""
         from dyade.errors import InputError
-        from dyade.linkage import variants
+        from dyade.linkage.pipeline import stackable
         from dyade.linkage.plan import plan
 
         if self.stages is None:
             for row in values:
                 try:
-                    self.stages = variants.stackable(plan(self.mechanism(row)))
+                    self.stages = stackable(plan(self.mechanism(row)))
                 except InputError:
                     continue
                 self.stacks = self.stacks and self.stages
@@ -262,16 +269,24 @@ class Evaluator:
         except NotStackable:
             return [], None
 
-    def swept_together(self, values: np.ndarray) -> dict[int, tuple[str, str, dict]]:
-        """Variant (row of ``values``) -> its row, for the clean variants of one sweep of
-        them all (``dyade.linkage.variants``); empty where the block is not stacked.
-        The variants are read at once (``read_together``), else one by one."""
-        from dyade.linkage import variants
+    def swept_together(self, values: np.ndarray, together=None
+                       ) -> dict[int, tuple[str, str, dict]]:
+        """Variant (row of ``values``) -> its row, for every variant of one run of them
+        all through the sweep pipeline (``pipeline.prepare_variants``: its validity
+        policy, bands and plausibility decide per variant, as in a sweep of each alone);
+        empty where the block is not stacked. The variants are read at once
+        (``read_together``; ``together``: so read already), else one by one; a variant
+        that does not close has the status "does not close" and the pipeline's
+        reason."""
+        from dyade.errors import DyadeError
+        from dyade.linkage.pipeline import Run, prepare_variants
         from dyade.linkage.stack import spread
+        from dyade.linkage.summary import key_figures
 
         if not self.stacks or len(values) < 2 or not self.stages_stack(values):
             return {}
-        together = self.read_together(values)
+        if together is None:
+            together = self.read_together(values)
         if together is not None:
             read, stacked = list(range(len(values))), spread(together, together.sweep.count)
         else:
@@ -279,34 +294,69 @@ class Evaluator:
             if stacked is None:
                 return {}
         try:
-            swept = variants.sweep(stacked, len(read))
+            setup = prepare_variants(stacked, len(read))
+            run = Run(setup, setup.positions, points=False, machine=False)
+            blocks = list(run)
         except (ValueError, TypeError):  # NotStackable, or a number the engine takes
             self.stacks = False          # as one: every block variant by variant
             return {}
-        from dyade.linkage.summary import key_figures
+        except DyadeError:  # (each variant alone says what)
+            return {}
+        count = setup.each
+        rows: dict[int, tuple[str, str, dict]] = {
+            read[variant]: (OPEN, str(err), {}) for variant, err in run.failed.items()}
+        given = [variant for variant in range(len(read)) if variant not in run.failed]
+        if given:
+            cols = blocks[0].columns if len(blocks) == 1 else {
+                name: np.concatenate([block.columns[name] for block in blocks])
+                for name in blocks[0].columns}
+            shaped = {name: values.reshape(len(given), count) for name, values in cols.items()
+                      if name != "angle_deg"}
+            presence: dict[str, str] = {}
+            out = key_figures(stacked, np.rad2deg(setup.crank_angle[:count]), shaped,
+                              setup.plan.kinetostatics, presence)
+            names = list(out)
+            table = np.column_stack([out[name] for name in names]).tolist() if names else \
+                [[] for _ in given]
+            # the figures a variant has only where it has a value (as alone): those rows
+            # that lack one are filtered, the others taken whole
+            lacks = np.zeros(len(given), dtype=bool)
+            for name in presence:
+                lacks |= np.isnan(out[presence[name]])
+            locking = any(name.startswith("locks_") for name in names)
+            valid = np.concatenate([block.valid[block.rows] for block in blocks])
+            none_given = ~valid.reshape(len(given), count).any(axis=1)
+            for variant, numbers, filtered, withheld in zip(given, table, lacks.tolist(),
+                                                            none_given.tolist()):
+                if withheld:  # (issue 42) never a row of blanks as "ok": as alone
+                    from dyade.analyses.machine import withholding
 
-        presence: dict[str, str] = {}
-        out = key_figures(stacked, swept.angle_deg, swept.columns, swept.forces, presence)
-        clean = np.flatnonzero(swept.clean)
-        self.calls += clean.size
-        self.together += clean.size
-        names = list(out)
-        table = np.column_stack([out[name][clean] for name in names]).tolist()
-        rows = {}
-        for i, numbers in zip(clean.tolist(), table):
-            row = dict(zip(names, numbers))  # the figures this variant has, as alone
-            row = {name: value for name, value in row.items()
-                   if name not in presence or not math.isnan(row[presence[name]])}
-            rows[read[i]] = (status_of(row), "", row)
+                    why = withholding(run.notes[variant]) if run.notes else ""
+                    rows[read[variant]] = (WITHHELD, "every position is withheld"
+                                           f"{f': {why}' if why else ''}", {})
+                    continue
+                row = dict(zip(names, numbers))
+                if filtered:
+                    row = {name: value for name, value in row.items()
+                           if name not in presence or not math.isnan(row[presence[name]])}
+                rows[read[variant]] = (status_of(row) if locking else OK, "", row)
+        self.calls += len(read)
+        self.together += len(read)
         return rows
 
     def __call__(self, block: tuple[int, np.ndarray]) -> list[tuple[int, str, str, dict]]:
+        from dyade.linkage.stack import part as variants
+
         first, values = block
         rows = []
         parts = -(-len(values) // STACK)  # as many sweeps as needed, of equal size
+        together = None  # the whole block read at once (checked once)
+        if parts > 1 and self.stacks and self.stages_stack(values):
+            together = self.read_together(values)
         for indices in np.array_split(np.arange(len(values)), max(parts, 1)):
             start, part = int(indices[0]) if indices.size else 0, values[indices]
-            done = self.swept_together(part)
+            done = self.swept_together(part, None if together is None or not indices.size
+                                       else variants(together, start, start + indices.size))
             rows += [(first + start + i, *(done[i] if i in done else self.one(row)))
                      for i, row in enumerate(part)]
         return rows

@@ -645,7 +645,7 @@ def _current(label: str, key: str, name: str) -> None:
     new = RENAMED.get(name) or renamed(name)
     if new is not None and new != name:
         raise fail(label, key, f"names the output {name!r}, which is now {new!r} (a study's "
-                               f"outputs are the summary's figures, docs/reference/json.md "
+                               f"outputs are the summary's figures, `dyade help json` "
                                f"lists the old names and the new).")
 
 

@@ -34,7 +34,7 @@ def same(a, b) -> bool:
 
 
 @pytest.mark.parametrize("mechanism, parameters, fixed, stacked", [
-    # numbers of the file: the variants are swept together (dyade.linkage.variants)
+    # numbers of the file: the variants run together (pipeline.prepare_variants)
     ("fourbar.toml", {"dyad.2.lengths.1": "[190, 205]", "links.4.mass": "[0.8, 1.1]"}, None,
      True),
     ("dyade-16.toml", {"dyad.2.lengths.2": "[145, 155]"}, None, True),

@@ -4,10 +4,11 @@
         --benchmark-columns=min,median,rounds
 
 - four-bar variants: ``dyade.study`` of 10 000 variants × 361 positions (the file
-  read once per block, the variants swept together: ``dyade.linkage.variants``)
-  against the numpy yardstick that broadcasts the four-bar's closed form over variants
-  × positions (``yardstick.fourbar_variants``: every output the study gives, checked in
-  tests/study/test_yardstick.py). Target of the issue: within 2x;
+  read once per block, the variants an axis of the sweep pipeline:
+  ``dyade.linkage.pipeline.prepare_variants``) against the numpy yardstick that
+  broadcasts the four-bar's closed form over variants × positions
+  (``yardstick.fourbar_variants``: every output the study gives, checked in
+  tests/study/test_yardstick.py). Target (issue 41): within 1.2x (1.63x before);
 - dyade-16 with friction: a study's cost per variant against ``read_mechanism`` and
   ``dyade.analyse`` of each variant in the same process (target ≤ 1.1x);
 - ``-j 2`` against ``-j 1`` on a study of about 10 s (dyade-16 with friction; target

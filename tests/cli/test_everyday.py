@@ -54,17 +54,33 @@ def test_a_known_suffix_or_an_explicit_format_writes(tmp_path):
     assert (tmp_path / "a.dat").read_text().startswith("angle_deg,")
 
 
+def _ctrl_c_as_on_a_terminal() -> None:
+    """In the child, before it runs: SIGINT at its default, as a shell gives a foreground
+    command. A process started with SIGINT ignored (a job started with `&` by a shell
+    without job control, and every process it starts) keeps it ignored, Python too: the
+    SIGINT below then did nothing and the sweep ended with 0 (issue 42)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def test_ctrl_c_exits_130_without_a_traceback():
-    """A real SIGINT to a real process, in the middle of a long sweep."""
+    """A real SIGINT to a real process, in the middle of a long sweep; whatever this
+    process does with SIGINT (here: ignores it, as a background job does)."""
     env = {k: v for k, v in os.environ.items() if k != "CI"}
-    process = subprocess.Popen([sys.executable, "-m", "dyade", "analyse",
-                                str(shipped("fourbar.toml")), "--step", "0.0005", "--format",
-                                "csv", "-o", os.devnull], cwd=ROOT, env=env,
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    time.sleep(1.0)  # well inside the run: interpreter, imports and sweep start
+    ours = signal.signal(signal.SIGINT, signal.SIG_IGN)  # the case that failed, on purpose
+    try:
+        process = subprocess.Popen([sys.executable, "-m", "dyade", "analyse",
+                                    str(shipped("fourbar.toml")), "--step", "0.0005", "--format",
+                                    "csv", "-o", os.devnull], cwd=ROOT, env=env,
+                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                   preexec_fn=_ctrl_c_as_on_a_terminal)
+    finally:
+        signal.signal(signal.SIGINT, ours)
+    estimate = process.stderr.readline()  # said before the sweep starts: it runs now
+    time.sleep(0.3)
     process.send_signal(signal.SIGINT)
     out, err = process.communicate(timeout=60)
-    assert process.returncode == 130, (process.returncode, err)
+    assert "the sweep of 720,001 positions: about" in estimate, estimate
+    assert process.returncode == 130, (process.returncode, estimate + err)
     assert "Traceback" not in err and "Interrupted." in err
 
 

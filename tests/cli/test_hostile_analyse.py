@@ -40,9 +40,11 @@ def test_a_sweep_with_no_position_given_says_why_and_exits_1(tmp_path):
         assert old in text
         text = text.replace(old, new)
     path = tmp_path / "huge.toml"
-    path.write_text(text)
-    expect(["analyse", path, "--format", "csv"], 1, "kinematics (J_red) beyond 1e+12",
-           "no position of the sweep has its kinematics given")
+    path.write_text(text)  # lengths of 1000 km: refused where they are read (issue 42)
+    expect(["analyse", path, "--format", "csv"], 2, "huge.toml", "`frame.points.B0`",
+           "must lie in 1e-07…1000 m")
+    expect(["analyse", FOURBAR, "--set", "crank.speed_rpm=1e9", "--format", "csv"], 1,
+           "beyond 1e+12", "no position of the sweep has its kinematics given")
 
 
 def test_describe_of_a_file_with_many_named_points(tmp_path):

@@ -14,7 +14,7 @@ ENGINE = shipped("torque/engine.csv")
 FOURBAR = shipped("fourbar.toml")
 
 FLAGS = {  # extra arguments on the engine CSV -> words (exit 2)
-    "tiny speed": (["--speed-rpm", "1e-300", "--fluctuation", "0.02"],
+    "tiny speed": (["--speed", "1e-300", "--fluctuation", "0.02"],
                    ["--speed must lie in 0.01…1e+06 rpm"]),
     "huge speed": (["--speed-rpm", "1e300", "--fluctuation", "0.02"], ["--speed"]),
     "nan speed": (["--speed-rpm", "nan", "--fluctuation", "0.02"], ["finite"]),

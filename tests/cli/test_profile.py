@@ -95,3 +95,12 @@ def test_plot_profile(tmp_path):
     out = run("plot", "profile", INDEXING, "-o", png)
     assert out.exit_code == 0, out.output
     assert png.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_the_format_of_o_comes_from_its_suffix(tmp_path):
+    out = run("profile", INDEXING, "--points", "3", "-o", tmp_path / "cam.csv")
+    assert out.exit_code == 0, out.output
+    assert (tmp_path / "cam.csv").read_text().startswith("angle_deg,s,v,a,j,segment")
+    out = run("profile", INDEXING, "--points", "3", "-o", tmp_path / "cam.parquet")
+    assert out.exit_code == 2 and "writes .csv, .json or .txt" in out.output
+    assert not (tmp_path / "cam.parquet").exists()

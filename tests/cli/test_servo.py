@@ -92,8 +92,12 @@ BAD = {
                        ("`servo.output`", "s_i_j")),
     "odd samples": (PRESS_TEXT.replace("samples = 720", "samples = 721"), 2,
                     ("`servo.samples`", "even")),
+    "a crank that does not come round": (FOURBAR.read_text().replace("to = 360", "to = 180"),
+                                         2, ("`profile.segment.2.to`", "180°", "whole")),
+    "an output that does not come back": (PRESS_TEXT.replace("to = 0\n", "to = 5\n"), 2,
+                                          ("`profile.segment.5.to`", "5 mm", "s_1_4 back")),
     "beyond a dead centre": (PRESS_TEXT.replace("to = 60", "to = 90").replace(
-        "to = 0\n", "to = 0\n", 1), 1, ("beyond a dead centre", "2.86599°", "184.78°")),
+        "to = 0\n", "to = 0\n", 1), 1, ("m.toml: the profile moves", "beyond a dead centre", "2.86599°", "184.78°")),
 }
 
 
@@ -193,6 +197,61 @@ def test_the_profile_may_be_a_file_of_its_own(tmp_path):
     expect(["servo", both], 2, "`servo.profile`", "keep one")
     none = servo_file(tmp_path, text[:cut], "none.toml")
     expect(["servo", none], 2, "`servo`", "needs a motion profile")
+
+
+def test_where_a_peak_occurs_is_a_time_with_its_unit(press):
+    from dyade.report.format import where
+
+    shown = where(press.summary["motor_torque_peak"].where)
+    assert shown.startswith("time ") and shown.endswith(" s"), shown
+
+
+def test_parquet_is_refused_not_written_as_a_table(tmp_path):
+    from click.testing import CliRunner
+
+    from dyade.cli import main
+
+    out = CliRunner().invoke(main, ["servo", str(PRESS), "-o", str(tmp_path / "s.parquet")])
+    assert out.exit_code == 2 and "writes .csv, .json or .txt" in out.output
+    assert not (tmp_path / "s.parquet").exists()
+
+
+@pytest.mark.parametrize("flags, words", [
+    (["--rotor-inertia", "1e300"], ("--rotor-inertia", "servo.rotor_inertia", "1e+300")),
+    (["--ratio-range", "1e-300:40"], ("--ratio-range", "1e-300")),
+    (["--set", "servo.gear_inertia=1e300"], ("`servo.gear_inertia`",)),
+    (["--samples", "1000000"], ("--samples", "200000")),
+])
+def test_numbers_beyond_any_machine_are_refused_before_they_overflow(flags, words):
+    expect(["servo", PRESS, *flags], 2, "press.toml", *words)
+
+
+def test_a_profile_beyond_any_machine_ends_without_a_warning(tmp_path):
+    import warnings
+
+    text = FOURBAR.read_text().replace("to = 360", "to = 3.6e300")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        result = expect(["servo", servo_file(tmp_path, text)], 1, "not given")
+    assert "Traceback" not in result.output
+
+
+def test_the_help_examples_name_files_that_exist():
+    from pathlib import Path
+
+    from click.testing import CliRunner
+
+    from dyade.cli import main
+
+    root = Path(__file__).resolve().parents[2]
+    text = CliRunner().invoke(main, ["servo", "--help"]).output
+    examples = [line.split() for line in text.splitlines()
+                if line.strip().startswith("dyade servo ")]
+    assert examples
+    for words in examples:
+        given = [words[2]] + [b for a, b in zip(words, words[1:]) if a == "--catalogue"]
+        for name in given:
+            assert (root / name).is_file(), (name, words)
 
 
 def test_ratio_range_is_start_stop_step_as_every_range_of_dyade():

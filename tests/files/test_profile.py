@@ -95,3 +95,10 @@ def test_constant_velocity_runs_its_own_law(tmp_path):
                                          r"`law` = 'cycloid' for a constant velocity") as err:
         read_profile(write(tmp_path, body))
     assert err.value.key == "profile.segment.2.law"
+
+
+def test_a_segment_shorter_than_the_meeting_tolerance_is_refused(tmp_path):
+    body = segment(kind="rise", law="cycloid", end=1e-300, to=10) + segment(kind="dwell",
+                                                                            end=360)
+    with pytest.raises(InputError, match="profile.segment.1.end.*positive duration"):
+        read_profile(write(tmp_path, body))

@@ -242,3 +242,54 @@ def test_the_report_sweeps_as_asked_and_refuses_options_that_do_not_apply(tmp_pa
                                     "--allow-partial", "-o", str(tmp_path / "c.html")],
                              catch_exceptions=False)
     assert out.exit_code == 2 and "--allow-partial apply to a mechanism file" in out.output
+
+
+def test_a_cam_file_refuses_a_mechanism_s_sweep_and_headers_keep_their_units(tmp_path):
+    """Cheap (no figure): a cam file's report refuses the sweep options of a mechanism
+    and --set before computing anything; a table's "[mm]" is a unit, not markup."""
+    from rich.table import Table
+
+    path = str(shipped("cams/translating-roller.toml"))
+    for extra in (["--start", "10"], ["--set", "cam.base_radius=50"]):
+        out = CliRunner().invoke(main, ["report", path, *extra, "-o", str(tmp_path / "r.html")])
+        assert out.exit_code == 2 and extra[0] in out.output and "cam file" in out.output
+        assert not (tmp_path / "r.html").exists()
+    table = Table(title="[x] t")
+    table.add_column("s [mm]")
+    table.add_row("[rpm]")
+    assert "<th>s [mm]</th>" in report_html.table_html(table)
+    assert "<td>[rpm]</td>" in report_html.table_html(table)
+
+
+@pytest.mark.slow
+def test_a_cam_reports_its_checks_notes_and_figure(tmp_path):
+    """The shipped feeder cam at --step 5: its checks, notes, figure and table over the
+    turn as ``dyade cam`` computes them (the largest pressure angle in the page, each
+    note once, a unit in every header of the table), nothing from outside."""
+    path = shipped("cams/translating-roller.toml")
+    page = write(path, tmp_path, "a.html", "--step", "5")
+    assert outside(page) == [] and len(page.encode()) < LIMIT
+    assert re.findall(r"<h2>(.*?)</h2>", page) == [
+        "The cam&#x27;s checks", "Notes: pressure angle, undercut, lift-off, the profile",
+        "The cam and its follower", "Over the turn"]
+    outcome = dyade.run("cam", str(path), step_deg=5.0)
+    alpha = outcome.summary["pressure_angle_max_deg"].value
+    assert f'<td class="number">{alpha:.6g} (limit 30)</td>' in page
+    assert 0 < alpha < 30
+    notes = re.search(r"<h2>Notes.*?</h2>(.*?)</section>", page, re.S).group(1)
+    assert notes.count("<li>") == len(outcome.notes) >= 1
+    assert page.count("<figure") == page.count("</figure>") == 1
+    turn = re.search(r"<h2>Over the turn</h2>(.*?)</section>", page, re.S).group(1)
+    assert "(72 rows, every 2nd shown" in turn
+    headers = re.findall(r"<th>(.*?)</th>", turn)
+    assert "s [mm]" in headers and "contact_force [N]" in headers
+    assert all("[" in h for h in headers if h != "undercut")  # no unit eaten as markup
+
+
+@pytest.mark.slow
+def test_a_cam_report_is_the_same_bytes_twice(tmp_path):
+    path = shipped("cams/cam-linkage.toml")
+    page = write(path, tmp_path, "a.html")
+    assert write(path, tmp_path / "elsewhere", "b.html") == page
+    ids = re.findall(r'\bid="([^"]+)"', page)
+    assert len(ids) == len(set(ids))

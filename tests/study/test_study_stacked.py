@@ -1,8 +1,9 @@
-"""A study's variants swept together (``dyade.linkage.variants``, issue 26 "Fast by
-design"): every row the stacked sweep gives equals the row of the variant evaluated
-alone (its own reading, ``analyse`` and summary) to 1e-12; the variants it cannot
-vouch for (refused, not closing, near a dead centre) are evaluated alone; stages that
-couple positions (friction) are never stacked."""
+"""A study's variants as an axis of the sweep pipeline (issue 41): every row of a run of
+stacked variants (``pipeline.prepare_variants``) equals the row of the variant evaluated
+alone (its own reading, ``analyse`` and summary) to the bit, the variants that do not
+close, meet a dead centre or hold implausible values included (the same validity
+policy, bands and plausibility check decide per variant); refused variants are read
+alone; stages that couple positions (friction) run variant by variant."""
 
 from __future__ import annotations
 
@@ -33,8 +34,8 @@ def _assert_same_rows(rows, want):
         for name, value in expected.items():
             if np.isnan(value):
                 assert np.isnan(got[name]), name
-            else:
-                assert got[name] == pytest.approx(value, rel=1e-12, abs=1e-12 * abs(value)), name
+            else:  # to the bit: the same pipeline, per variant
+                assert got[name] == value, name
 
 
 def _uniform(rng, bounds, count):
@@ -79,10 +80,12 @@ def test_masses_centres_and_the_speed_stack_too():
     _assert_same_rows(rows, alone((0, values)))
 
 
-def test_variants_it_cannot_vouch_for_are_evaluated_alone():
-    """Refused (a negative length: the block is read variant by variant and stacked),
-    not closing, and at a dead centre (coupler + rocker = frame + crank: the rigid model
-    has no value there, the single run leaves those positions out with a note)."""
+def test_variants_that_do_not_close_or_meet_a_dead_centre_in_the_stacked_run():
+    """Refused (a negative length: the block is read variant by variant and stacked;
+    the reader's refusal comes from reading it alone), not closing (the pipeline's
+    assembly check names it, as a sweep of it alone does), and at a dead centre
+    (coupler + rocker = frame + crank: the rigid model has no value there, the
+    pipeline's band leaves those positions out of that variant only)."""
     values = np.array([[200, 150], [-5, 150], [100, 150], [170, 130], [195, 152],
                        [250, 150], [201, 151]], dtype=float)
     together, alone = _pair("fourbar.toml", ("dyad.2.lengths.1", "dyad.2.lengths.2"))
@@ -90,7 +93,8 @@ def test_variants_it_cannot_vouch_for_are_evaluated_alone():
     want = alone((0, values))
     _assert_same_rows(rows, want)
     assert [r[1] for r in rows] == ["ok", "refused", "does not close", "ok", "ok", "ok", "ok"]
-    assert together.together == 4  # 170/130 touches a dead centre: alone
+    assert together.together == 6  # all but the refused one in the one run
+    assert rows[2][2].startswith("dyad 2")  # the pipeline's reason, as alone
     assert np.isnan(rows[3][3]["mu_2_min_deg"]) or rows[3][3]["mu_2_min_deg"] < 2.0
 
 
@@ -101,12 +105,12 @@ def test_friction_and_drive_lines_are_swept_variant_by_variant(monkeypatch, over
     """A file with friction (each variant's own Newton solve) or an elastic drive line
     (whose check a single sweep makes per variant) is never stacked: the stacked sweep
     does not even run."""
-    from dyade.linkage import variants
+    from dyade.linkage import pipeline
 
     def forbidden(*args, **kwargs):
         raise AssertionError("the study was stacked")
 
-    monkeypatch.setattr(variants, "sweep", forbidden)
+    monkeypatch.setattr(pipeline, "prepare_variants", forbidden)
     data = load_data(shipped("fourbar.toml"), overrides)
     together = Evaluator(str(shipped("fourbar.toml")), data, ("dyad.2.lengths.1",))
     rows = together((0, np.array([[198.0], [202.0]])))
@@ -162,9 +166,9 @@ def test_a_study_sweeps_its_variants_in_blocks(tmp_path):
     calls = []
     original = run.Evaluator.swept_together
 
-    def counting(self, values):
+    def counting(self, values, *args):
         calls.append(len(values))
-        return original(self, values)
+        return original(self, values, *args)
 
     import unittest.mock
 
@@ -174,29 +178,32 @@ def test_a_study_sweeps_its_variants_in_blocks(tmp_path):
     assert sum(calls) >= 1000 and max(calls) <= 200 and min(calls) > 1
 
 
-def test_a_variant_beyond_the_plausible_is_evaluated_alone():
+def test_a_variant_beyond_the_plausible_has_no_values_there():
     """At 3e7 rpm the accelerations pass 1e12 (``columns.PLAUSIBLE``): a single run
-    gives those rows no forces, so the stacked sweep must not give a number for them;
-    every position is withheld there: the variant's status says so (issue 42)."""
+    gives those rows no values, and so does the pipeline's plausibility check for that
+    variant in the stacked run (and for no other); every position is withheld there: the
+    variant's status says so (issue 42)."""
     values = np.array([[300.0], [2e6], [3e7]])
     together, alone = _pair("fourbar.toml", ("crank.speed_rpm",))
     rows = together((0, values))
     _assert_same_rows(rows, alone((0, values)))
     assert rows[2][1] == "withheld" and "M_drive_max" not in rows[2][3]
-    assert together.together <= 2
+    assert together.together == 3
+    assert not np.isnan(rows[1][3]["M_drive_max"])
 
 
-def test_kinematics_only_variants_at_a_dead_centre_are_evaluated_alone():
+def test_kinematics_only_variants_at_a_dead_centre():
     """Without masses only the kinematics is swept: the dead-centre band itself (not the
-    forces' validity) keeps the 170.03/130 variant (smallest transmission angle 1.6°,
-    inside the 2° band, not singular) out of the stacked sweep."""
+    forces' validity) takes the positions of the 170.03/130 variant (smallest
+    transmission angle 1.6°, inside the 2° band, not singular) out, in the stacked run
+    as alone."""
     data = load_data(shipped("fourbar.toml"))
     del data["links"]
     values = np.array([[200.0, 150.0], [170.03, 130.0], [195.0, 152.0]])
     together, alone = _pair("fourbar.toml", ("dyad.2.lengths.1", "dyad.2.lengths.2"), data)
     rows = together((0, values))
     _assert_same_rows(rows, alone((0, values)))
-    assert together.together == 2 and "M_drive_max" not in rows[0][3]
+    assert together.together == 3 and "M_drive_max" not in rows[0][3]
 
 
 def _numbers(data, prefix=""):
@@ -258,4 +265,4 @@ def test_a_dead_centre_band_that_differs_between_variants():
     together, alone = _pair("dyade-16.toml", ("sweep.dead_centre",), data)
     values = np.array([[31.0], [2.0]])
     _assert_same_rows(together((0, values)), alone((0, values)))
-    assert together.together == 1  # the 31° band holds a dyad: that variant alone
+    assert together.together == 2  # the 31° band holds a dyad: in that variant only

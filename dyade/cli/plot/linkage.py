@@ -41,9 +41,11 @@ def linkage_options(command):
 
 def run_linkage(kind: str, files: tuple[str, ...], output: str | None, fmt: str | None,
                  show: bool, dpi: int | None, options: tuple, draw: Callable,
-                 suffixes: tuple[str, ...] = FORMATS) -> None:
+                 suffixes: tuple[str, ...] = FORMATS, forces: bool = False) -> None:
     """Analyse each file and draw it with ``draw(result, target, announce)``; several
-    files write one figure each into the directory -o."""
+    files write one figure each into the directory -o. A sweep whose every position is
+    withheld (its kinematics, or with ``forces`` its joint forces) draws nothing: exit 1
+    saying so, as every analysis does (no empty panel that reads "no force")."""
     from dyade.errors import DyadeError
 
     prepare(show)
@@ -54,6 +56,7 @@ def run_linkage(kind: str, files: tuple[str, ...], output: str | None, fmt: str 
         mechanism = load(path, assignments, sweep_options).mechanism
         result = sweep(mechanism, allow_partial)
         warn(result.notes, mechanism, f"{os.path.basename(path)}: " if len(files) > 1 else "")
+        drawable(result, mechanism, forces)
         draw(result, Target(target, show, dpi, fmt), announce)
 
     announce = output is None
@@ -75,6 +78,26 @@ def run_linkage(kind: str, files: tuple[str, ...], output: str | None, fmt: str 
         from dyade.plot import canvas
 
         canvas.show()
+
+
+def drawable(result, mechanism, forces: bool = False) -> None:
+    """Refuse (``DyadeError``, exit 1) a sweep with no position given: none with its
+    kinematics, or with ``forces`` none with its joint forces; the reasons are its
+    notes."""
+    import numpy as np
+
+    from dyade.errors import DyadeError
+    from dyade.report.notes import say
+
+    given = np.asarray(result.valid, dtype=bool)
+    what = "kinematics"
+    if forces and given.any() and result.forces_valid is not None:  # None: no masses,
+        given = np.asarray(result.forces_valid, dtype=bool)     # which the figure refuses
+        what = "joint forces"
+    if given.size and not given.any():
+        reasons = "; ".join(say(note, mechanism) for note in result.notes[:3])
+        raise DyadeError(f"{mechanism.name}: no position of the sweep has its {what} given"
+                         f"{f' ({reasons})' if reasons else ''}: nothing to draw.")
 
 
 def static(build: Callable) -> Callable:
@@ -115,7 +138,8 @@ def polar(mechanism_files, start, stop, step, assignments, allow_partial, joints
             return figure.figure(result, chosen, max_wander_deg=max_wander, fig=fig)
 
     run_linkage("polar", mechanism_files, output, fmt, show, dpi,
-                 (SweepOptions(start, stop, step), assignments, allow_partial), static(build))
+                 (SweepOptions(start, stop, step), assignments, allow_partial), static(build),
+                 forces=True)
 
 
 @click.command()

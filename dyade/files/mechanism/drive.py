@@ -71,6 +71,8 @@ class DriveReader(UnitReader):
                         or not all(math.isfinite(v) for v in row)):
                     raise self.fail(f"drive.table.{r}", f"must be [speed [rpm], torque [N·m]], "
                                                         f"got {show(row)}.")
+                self.below_top(row[0], f"drive.table.{r}", "speed_rpm", "rpm")
+                self.below_top(row[1], f"drive.table.{r}", "torque", "N·m")
                 parsed.append([float(v) for v in row])
             arr = np.array(parsed)
             if arr[0, 0] < 0 or np.any(np.diff(arr[:, 0]) <= 0):

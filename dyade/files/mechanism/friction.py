@@ -32,6 +32,7 @@ class FrictionReader(UnitReader):
             for name in ("pin_radius", "slider_length", "slider_height") if name in friction}
         self.default_mu = self.number(friction.get("coefficient", 0.0), "friction.coefficient",
                                       "-", non_negative=True)
+        self.below_top(self.default_mu, "friction.coefficient", "friction_coefficient", "-")
         self.default_edges = self.boolean(friction.get("edge_friction", True),
                                           "friction.edge_friction")
         friction_tol = self.number(friction.get("tol", 1e-9), "friction.tol", "-", positive=True)
@@ -51,6 +52,7 @@ class FrictionReader(UnitReader):
         revolute joint, slider length L and height H for a prismatic one."""
         mu = self.number(table.get("friction", self.default_mu), f"{key}.friction", "-",
                          non_negative=True)
+        self.below_top(mu, f"{key}.friction", "friction_coefficient", "-")
         out: dict[str, Any] = {"friction": mu}
         for name in needs:
             if name in table:

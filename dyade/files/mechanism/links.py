@@ -5,6 +5,7 @@ are refused."""
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -29,6 +30,8 @@ PRISMATIC_KEYS = {"link", "point", "angle", "offset", "guide", "slider_point", "
 class LinkReader(FrictionReader):
     """Reads links, points, the crank and the joints that attach a dyad to placed links."""
 
+    unbounded = frozenset({"crank.speed_rpm"})  # above 1e6 rpm: analysed, its rows withheld
+
     points: dict[int, dict[str, Vec]]
     """link -> its named points (ξ, η) [m], the frame's included"""
     placed: list[int]
@@ -39,10 +42,16 @@ class LinkReader(FrictionReader):
                 or not all(is_number(v) for v in value)):
             raise self.fail(key, f"must be a pair of numbers [ξ, η] [{self.length_unit}], "
                                  f"got {show(value)}.", value, self.length_unit)
-        if not all(np.isfinite(v).all() for v in value):
+        if isinstance(value[0], Variants) or isinstance(value[1], Variants):
+            finite = all(np.isfinite(v).all() for v in value)
+        else:  # the common case, a file's point: plain floats (a file may have 100 000)
+            finite = math.isfinite(value[0]) and math.isfinite(value[1])
+        if not finite:
             raise self.fail(key, f"must be a pair of finite numbers [ξ, η] "
                                  f"[{self.length_unit}], got {show(value)}.", value,
                             self.length_unit)
+        for v in value:
+            self.below_top(_real(v), key, "length", self.length_unit, self.length)
         return (_real(value[0]) * self.length, _real(value[1]) * self.length)
 
     def named_points(self, table: Any, key: str) -> dict[str, Vec]:

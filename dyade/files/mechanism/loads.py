@@ -60,6 +60,9 @@ class LoadReader(LinkReader):
                     raise self.fail(f"{key}.table.{r}", f"must be four finite numbers [angle "
                                                         f"[{self.angle_unit}], Fx [N], Fy [N], "
                                                         f"M [N·m]], got {show(row)}.", row)
+                for v, quantity, unit in zip(row[1:], ("force", "force", "torque"),
+                                             ("N", "N", "N·m")):
+                    self.below_top(float(v), f"{key}.table.{r}", quantity, unit)
                 parsed.append([float(v) for v in row])
             arr = np.array(parsed)
             angles = arr[:, 0] * self.angle
@@ -73,6 +76,8 @@ class LoadReader(LinkReader):
                 or not all(math.isfinite(v) for v in force)):
             raise self.fail(f"{key}.force", f"must be two finite numbers [Fx, Fy] [N], got "
                                             f"{show(force)}.", force, "N")
+        for v in force:
+            self.below_top(float(v), f"{key}.force", "force", "N")
         moment = self.number(table.get("moment", 0.0), f"{key}.moment", "N·m")
         return Load(link, point, None, np.array([float(force[0])]), np.array([float(force[1])]),
                     np.array([moment]), frame == "link")

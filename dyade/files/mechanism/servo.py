@@ -77,6 +77,7 @@ class ServoReader(UnitReader):
                                             f"the profile in "
                                             f"{'deg or rad' if want_angle else 'a length unit'}.",
                             output)
+        self.periodic(profile, output)
         ratio = self.number(table.get("ratio", 1.0), "servo.ratio", "-", positive=True)
         efficiency = self.number(table.get("efficiency", 1.0), "servo.efficiency", "-",
                                  positive=True)
@@ -108,6 +109,28 @@ class ServoReader(UnitReader):
             catalogue = self.catalogue_file(table["catalogue"])
         return Servo(profile, output, start, Gear(ratio, efficiency, gear_inertia), rotor,
                      catalogue, ratio_range, samples, limit, cycle_time)
+
+    def periodic(self, profile, output: str) -> None:
+        """Refuse a profile after which the machine does not repeat: the crank turns whole
+        revolutions per cycle, an output inverted through the linkage comes back."""
+        import math
+
+        from dyade.files.profile import amount, output_factor
+
+        size = output_factor(profile.unit)
+        turns = profile.advance / (2.0 * math.pi)
+        scale = max(max(abs(s.lift_from), abs(s.lift_to)) for s in profile.segments) or 1.0
+        if output == "crank" and abs(turns - round(turns)) * 2.0 * math.pi <= 1e-9 * scale:
+            return
+        if output != "crank" and abs(profile.advance) <= 1e-9 * scale:
+            return
+        key = f"profile.segment.{len(profile.segments)}.to"
+        moved = amount(profile.advance / size, profile.unit)
+        need = ("the crank a whole number of revolutions (0, 360°, 720°, …)"
+                if output == "crank" else f"the output {output} back to where it starts")
+        raise self.fail(key, f"ends the cycle {moved} from where it starts: the servo's "
+                             f"machine repeats its cycle only when the profile brings {need}; "
+                             f"end the last segment there.", profile.segments[-1].lift_to / size)
 
     def relative(self, name: Any, key: str, what: str) -> str:
         if not isinstance(name, str) or not name:

@@ -71,7 +71,7 @@ def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: Float
     """Place a link whose local vector ``arm`` (of ``length``) lies along the world
     vector (wx, wy) of the same length, with its local point ``local`` on (px, py):
     the cosine and sine of its angle come without trigonometric functions."""
-    beta = scalar(np.arctan2(arm[1], arm[0]))
+    beta = _direction(arm)
     cos, sin, angle = motion.cos[:, link], motion.sin[:, link], motion.angle[:, link]
     np.arctan2(wy, wx, out=angle)
     if is_nought(beta):
@@ -90,6 +90,15 @@ def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: Float
         rx, ry = motion.rotated_xy(link, local)
         motion.origin[:, link, 0] = px - rx
         motion.origin[:, link, 1] = py - ry
+
+
+def _direction(arm) -> float | FloatArray:
+    """The angle of a local vector [rad] (a float, or one per position): exactly 0.0
+    (of the y part's sign) without an arctangent for one along +x, as a link's length
+    as a parameter of a study gives it (one value per variant and position)."""
+    if np.ndim(arm[1]) == 0 and arm[1] == 0.0 and np.all(np.greater(arm[0], 0.0)):
+        return float(arm[1])  # arctan2(±0, x > 0) = ±0
+    return scalar(np.arctan2(arm[1], arm[0]))
 
 
 def scalar(value):
@@ -115,7 +124,9 @@ def difference(a: Vec, b: Vec) -> tuple:
 
 
 def length(arm) -> float | FloatArray:
-    """|arm| (a float, or one per position)."""
+    """|arm| (a float, or one per position; hypot(x, ±0) = |x| exactly)."""
+    if np.ndim(arm[1]) == 0 and arm[1] == 0.0:
+        return scalar(np.abs(arm[0]))
     return scalar(np.hypot(arm[0], arm[1]))
 
 
