@@ -27,7 +27,7 @@ import dyade  # noqa: E402
 from dyade import clearance  # noqa: E402
 from dyade.plot import animate, canvas, clearance as clearance_plot  # noqa: E402
 from dyade.plot import campbell, coupling, curves, drive_line, mechanism, modes, polar  # noqa: E402
-from dyade.plot import profile  # noqa: E402
+from dyade.plot import profile, servo  # noqa: E402
 
 DOCS = ROOT / "docs"
 MECHANISMS = ROOT / "mechanisms"
@@ -104,6 +104,10 @@ def indexing_profile():
     return profile.figure(dyade.run("profile", MECHANISMS / "profiles" / "indexing.toml"))
 
 
+def servo_press():
+    return servo.figure(dyade.run("servo", MECHANISMS / "servo" / "press.toml"))
+
+
 LAW_PARAMETERS = {"inclined-sine": {"velocity": 0.5},
                   "quintic-spline": {"points": [[0.3, 0.2], [0.6, 0.7]]},
                   "polynomial": {"v0": 0.5, "a0": 0.0, "v1": 0.0, "a1": -2.0}}
@@ -155,6 +159,7 @@ FIGURES = {
     "dyade-16-mechanism.png": dyade16_mechanism,
     "self-locking-curves.png": self_locking_curves,
     "indexing-profile.png": indexing_profile,
+    "servo-press.png": servo_press,
 }
 """file in docs/ -> the function that makes it"""
 

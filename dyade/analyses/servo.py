@@ -19,11 +19,14 @@ from dyade.analyses.inputs import MECHANISM, load
 OPTIONS = MECHANISM + (
     Option("ratio", float, positive=True, metavar="I",
            help="Gear ratio i = motor speed / crank speed (overrides servo.ratio)"),
-    Option("ratio-range", str, metavar="LOW:HIGH",
-           help="Size over the gear ratios LOW…HIGH (log-spaced, --ratio-count of them) and "
-                "mark the RMS optimum (overrides servo.ratio_range)"),
-    Option("ratio-count", int, default=25, positive=True, metavar="N",
-           help="Gear ratios of the range"),
+    Option("ratio-range", str, metavar="START:STOP:STEP",
+           help="Size over the gear ratios START, START+STEP, … STOP, as every range of "
+                "dyade, and mark the RMS optimum within [START, STOP] (overrides "
+                "servo.ratio_range): --ratio-range 3:40:1. LOW:HIGH (two numbers) takes "
+                "--ratio-count ratios log-spaced instead"),
+    Option("ratio-count", int, positive=True, metavar="N",
+           help="Gear ratios of a LOW:HIGH range or of servo.ratio_range, log-spaced  "
+                "[default: 25]"),
     Option("catalogue", str, metavar="CSV", study=False,
            help="Motor catalogue to check row by row (overrides servo.catalogue): columns "
                 "name, rated_torque, peak_torque, rated_speed_rpm, top_speed_rpm, "
@@ -89,18 +92,40 @@ RATIO_RANGE = (1e-6, 1e6)  # [-] gear ratios a servo sizing takes
 INERTIA_RANGE = (1e-12, 1e6)  # [kg·m²] rotor and gear inertias a servo sizing takes
 
 
-def ratio_bounds(text: str) -> tuple[float, float]:
-    """``"LOW:HIGH"`` -> (low, high), 0 < low < high."""
+def ratio_range(text: str, count: int | None = None
+                ) -> tuple[tuple[float, float], list[float] | None]:
+    """``--ratio-range``: ``START:STOP:STEP`` (as every range option of dyade: START,
+    START + STEP, … up to STOP) -> ((START, STOP), its ratios); ``LOW:HIGH`` (two
+    numbers, as before) -> ((LOW, HIGH), None: ``count`` log-spaced ratios, the
+    caller's). An ``InputError`` on ``ratio_range`` (0 < START < STOP, STEP > 0, at
+    most 10 000 ratios) or on ``ratio_count`` given with a STEP."""
     from dyade.errors import InputError
+    from dyade.files.schema import range_values
 
+    parts = text.split(":")
     try:
-        low, high = (float(part) for part in text.split(":"))
+        numbers = [float(part) for part in parts]
     except ValueError:
-        low = high = float("nan")
-    if not 0.0 < low < high < float("inf"):
-        raise InputError.parameter("ratio_range", f"must be LOW:HIGH with 0 < LOW < HIGH, got "
-                                                  f"{text!r}.", value=text)
-    return low, high
+        numbers = []
+    if len(numbers) not in (2, 3) or not 0.0 < numbers[0] < numbers[1] < float("inf") or (
+            len(numbers) == 3 and not 0.0 < numbers[2] < float("inf")):
+        raise InputError.parameter("ratio_range", f"must be START:STOP:STEP with 0 < START < "
+                                                  f"STOP and STEP > 0 (e.g. 3:40:1), or "
+                                                  f"LOW:HIGH for --ratio-count log-spaced "
+                                                  f"ratios; got {text!r}.", value=text)
+    bounds = (numbers[0], numbers[1])
+    if len(numbers) == 2:
+        return bounds, None
+    if count is not None:
+        raise InputError.parameter("ratio_count", f"counts the log-spaced ratios of a LOW:HIGH "
+                                                  f"range; --ratio-range {text} gives its own "
+                                                  f"(every {numbers[2]:g}). Give one or the "
+                                                  f"other.", value=count)
+    try:
+        ratios = range_values(*numbers, 10_000, "gear ratios")
+    except ValueError as err:
+        raise InputError.parameter("ratio_range", str(err), value=text) from None
+    return bounds, ratios
 
 
 def target(servo, samples: int):
@@ -187,8 +212,8 @@ def size(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     gear = servo.gear
     if options.get("ratio") is not None:
         gear = Gear(options["ratio"], gear.efficiency, gear.inertia)
-    bounds = (ratio_bounds(options["ratio_range"]) if options.get("ratio_range")
-              else servo.ratio_range)
+    bounds, stepped = ((ratio_range(options["ratio_range"], options.get("ratio_count"))
+                        if options.get("ratio_range") else (servo.ratio_range, None)))
     rotor = options.get("rotor_inertia") or servo.rotor_inertia
     limit = options.get("max_inertia_ratio") or servo.max_inertia_ratio
     for value, flag, key, unit, (low, high) in (
@@ -239,7 +264,8 @@ def size(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
             f"M_line (the periodic state; friction as at the rigid motion).")
     if bounds is not None:
         count = options.get("ratio_count") or 25
-        ratios = np.geomspace(bounds[0], bounds[1], count)
+        ratios = (np.asarray(stepped) if stepped is not None
+                  else np.geomspace(bounds[0], bounds[1], count))
     else:
         ratios = np.array([gear.ratio])
     optimum = None

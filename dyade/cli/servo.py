@@ -63,6 +63,7 @@ def servo(mechanism_file: str, controller: str | None, fmt: str | None, output: 
 
     \b
         dyade servo mechanisms/servo/press.toml
+        dyade servo mechanisms/servo/press.toml --ratio-range 3:40:1
         dyade servo mechanisms/servo/press.toml --ratio-range 2:40 --catalogue mechanisms/servo/motors.csv
         dyade servo mechanisms/servo/fourbar.toml --controller cam-table.csv
 

@@ -41,7 +41,8 @@ def versus(result, output: str, x: str, y: str | None = None, fig: Figure | None
             for k, key in enumerate(dict.fromkeys(keys)):
                 rows = np.array([i for i, other in enumerate(keys) if other == key])
                 order = rows[np.argsort(cols[x][rows])]
-                name = ", ".join(f"{p} = {v:g}" for p, v in zip(others, key))
+                name = ", ".join(f"{p} = {v if isinstance(v, str) else format(v, 'g')}"
+                                 for p, v in zip(others, key))  # (a choice: its name)
                 ax.plot(cols[x][order], np.where(ok[order], cols[output][order], np.nan),
                         **canvas.line(k, marker=True, label=name or None))
                 if len(dict.fromkeys(keys)) > 7:

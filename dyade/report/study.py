@@ -102,6 +102,16 @@ def tables(outcome) -> list:
             figure = figures[f"optimum_{identifier(key)}"]
             table.add_row(key, number(figure.value), figure.unit)
         out.append(table)
+        if best.get("choices"):  # categorical parameters: the best of each choice
+            unit = f" [{value.unit}]" if value.unit and value.unit != "-" else ""
+            each = Table(title=f"The best of each choice ({best['sense']} {best['objective']})",
+                         title_justify="left")
+            for key in result.parameters:
+                each.add_column(key, justify="right")
+            each.add_column(f"{best['objective']}{unit}", justify="right")
+            for row in best["choices"]:
+                each.add_row(*(number(v) for v in row["x"]), number(row["value"]))
+            out.append(each)
     else:
         table = Table(title="Outputs over the variants that give them", title_justify="left")
         for name in ("output", "unit", "min", "max"):

@@ -222,6 +222,7 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
 
 def _optimise(spec, evaluator, params, units, jobs, executor, max_memory=None,
               check_time=None) -> Study:
+    import math
     import time
 
     from dyade.study import questions, tables
@@ -234,7 +235,9 @@ def _optimise(spec, evaluator, params, units, jobs, executor, max_memory=None,
     bound(evaluator, nominal, 1, len(params) + 3, jobs if executor is None else 0, max_memory)
     if check_time is not None:
         settings = spec.optimise
-        most = settings["popsize"] * len(params) * (settings["maxiter"] + 1)
+        combos = math.prod(len(p.choices) for p in spec.free if p.categorical)
+        numeric = sum(not p.categorical for p in spec.free)
+        most = combos * (settings["popsize"] * numeric * (settings["maxiter"] + 1) or 1)
         workers = jobs if executor is None else max(jobs, 2)
         check_time(cost * most / max(workers, 1),
                    f"{spec.label}: at most {most:,} evaluations of the optimiser")
@@ -256,13 +259,13 @@ def _optimise(spec, evaluator, params, units, jobs, executor, max_memory=None,
     finally:
         if pool is not None:
             pool.shutdown()
-    status, reason, out = evaluator.one(optimum["x"])
+    status, reason, out = evaluator.one(spec.numeric(optimum["x"]))
     outputs = list(out)
     units.update({name: output_unit(name) for name in outputs})
     names = tables.header(params, outputs)
-    row = [0, *(float(v) for v in optimum["x"]), status, reason,
-           *(float(out[n]) for n in outputs)]
-    return Study(spec, params, outputs, tables.columns_of(names, [row]),
+    row = [0, *optimum["x"], status, reason, *(float(out[n]) for n in outputs)]
+    words = tuple(p.key for p in spec.parameters if p.categorical)
+    return Study(spec, params, outputs, tables.columns_of(names, [row], words),
                  optimum["evaluations"], optimum=optimum, units=units)
 
 

@@ -208,6 +208,11 @@ def optimum(outcome: Outcome, result) -> None:
     for key, value in place.items():
         outcome.add(f"optimum_{identifier(key)}", value, units.get(key, ""),
                     description=f"{key} at the optimum")
+    for k, each in enumerate(best.get("choices", ())):  # categorical: each choice's best
+        words = ", ".join(f"{key} = {value}" for key, value in each["choice"].items())
+        outcome.add(f"best_{name}_{k}", each["value"], units.get(name, ""),
+                    where=dict(zip(result.parameters, each["x"])),
+                    description=f"{best['sense']} {name} with {words}")
     outcome.add("evaluations", best["evaluations"], "-", description="evaluations of the "
                                                                        "optimiser")
     if not best.get("success", True):

@@ -132,8 +132,11 @@ class Evaluator:
     (``one``: ``dyade.analyse``, the same pipeline for one variant)."""
 
     def __init__(self, path: str, data: dict[str, Any], keys: tuple[str, ...],
-                 extras: tuple[str, ...] = (), fluctuation: float = 0.02) -> None:
+                 extras: tuple[str, ...] = (), fluctuation: float = 0.02,
+                 choices: dict[str, tuple[str, ...]] | None = None) -> None:
         self.path, self.data, self.keys = path, data, keys
+        self.choices = choices or {}
+        """key -> the names of a categorical parameter, whose values are their indices"""
         self.label = path.rsplit("/", 1)[-1]
         """the file's name, in messages"""
         self.extras, self.fluctuation = extras, fluctuation
@@ -141,7 +144,7 @@ class Evaluator:
         """variants evaluated by this object (in this process)"""
         self.together = 0
         """of these, variants evaluated in a stacked sweep"""
-        self.stacks = not extras and not any(_whole(key) for key in keys)
+        self.stacks = not extras and not self.choices and not any(_whole(key) for key in keys)
         """whether blocks are worth stacking (cleared on the first that cannot be)"""
         self.stages: bool | None = None
         """whether the file's stages can be stacked (None: not known yet)"""
@@ -156,6 +159,10 @@ class Evaluator:
         data = copy.deepcopy(self.data)
         for key, value in zip(self.keys, values):
             value = float(value)
+            if key in self.choices:  # a categorical parameter: the name of its index
+                value = self.choices[key][int(round(value))]
+                set_dotted(data, key, value, self.label, "parameter", NUMBERING)
+                continue
             set_dotted(data, key, int(value) if value.is_integer() and _whole(key) else value,
                        self.label, "parameter", NUMBERING)
         return build(data, self.path)

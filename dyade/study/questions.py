@@ -244,23 +244,72 @@ class Objective:
 def optimise(spec: Spec, evaluator: Evaluator, workers=1) -> dict[str, Any]:
     """Minimise (or maximise) one output over the parameters' ranges with
     ``scipy.optimize.differential_evolution`` (seeded; ``workers``: a map-like callable
-    or 1), polished locally by L-BFGS-B when ``polish``."""
-    from dyade.study.spec import needs
+    or 1), polished locally by L-BFGS-B when ``polish``.
 
-    needs("scipy", "optimise")
-    from scipy.optimize import differential_evolution
+    Categorical parameters (choices among names) are not searched by the optimiser:
+    every combination of their choices is taken in turn, the numeric parameters
+    optimised within each (each choice evaluated once where there are none), and the
+    best of them is the optimum; ``"choices"`` lists each combination's own best (its
+    names, its value, its numbers). ``"x"`` gives the choices by their names."""
+    import itertools
+
+    from dyade.study.spec import needs
 
     settings = spec.optimise
     (name, sense), = settings["objectives"]
     linked = len(spec.free) < len(spec.parameters)
     objective = Objective(evaluator, name, sense, settings["bounds"], spec if linked else None)
-    bounds = [(p.low, p.high) for p in spec.free]
-    result = differential_evolution(
-        objective, bounds, seed=spec.seed, maxiter=settings["maxiter"],
-        popsize=settings["popsize"], tol=settings["tol"], polish=settings["polish"],
-        workers=workers, updating="immediate" if workers == 1 else "deferred")
-    return {"objective": name, "sense": "minimise" if sense > 0 else "maximise",
-            "x": [float(v) for v in spec.complete(result.x)[0]],  # linked ones included
-            "value": float(sense * result.fun),
-            "evaluations": int(result.nfev), "success": bool(result.success),
-            "message": str(result.message)}
+    free = spec.free
+    names = [j for j, p in enumerate(free) if p.categorical]
+    numbers = [j for j, p in enumerate(free) if not p.categorical]
+    if numbers:
+        needs("scipy", "optimise")
+        from scipy.optimize import differential_evolution
+    combos = list(itertools.product(*(range(len(free[j].choices)) for j in names)))
+    best, each, evaluations, success, message = None, [], 0, True, ""
+    for combo in combos:
+        fixed = Fixed(objective, len(free), dict(zip(names, map(float, combo))), numbers)
+        if numbers:
+            result = differential_evolution(
+                fixed, [(free[j].low, free[j].high) for j in numbers], seed=spec.seed,
+                maxiter=settings["maxiter"], popsize=settings["popsize"],
+                tol=settings["tol"], polish=settings["polish"], workers=workers,
+                updating="immediate" if workers == 1 else "deferred")
+            x, fun, nfev = result.x, float(result.fun), int(result.nfev)
+            success, message = success and bool(result.success), str(result.message)
+        else:
+            x, fun, nfev = np.empty(0), float(fixed(np.empty(0))), 1
+        evaluations += nfev
+        row = spec.complete(fixed.full(x))[0]
+        each.append({"choice": {free[j].key: free[j].choices[c] for j, c in zip(names, combo)},
+                     "x": spec.shown(row), "value": float(sense * fun)})
+        if best is None or fun < best[1]:
+            best = (row, fun)
+    out = {"objective": name, "sense": "minimise" if sense > 0 else "maximise",
+           "x": spec.shown(best[0]),  # linked ones included; the choices by name
+           "value": float(sense * best[1]), "evaluations": evaluations, "success": success,
+           "message": message or "every choice evaluated"}
+    if names:
+        out["choices"] = each
+    return out
+
+
+class Fixed:
+    """The objective of the numeric parameters ``numbers`` (their positions in the free
+    ones) with the categorical ones fixed at ``fixed`` (position -> the choice's index);
+    a class: it pickles for the executor's processes."""
+
+    def __init__(self, objective: Objective, size: int, fixed: dict[int, float],
+                 numbers: list[int]) -> None:
+        self.objective, self.size, self.fixed, self.numbers = objective, size, fixed, numbers
+
+    def full(self, x) -> np.ndarray:
+        """Every free parameter's value: ``x`` at ``numbers``, the choices at theirs."""
+        row = np.empty(self.size)
+        row[self.numbers] = x
+        for j, value in self.fixed.items():
+            row[j] = value
+        return row
+
+    def __call__(self, x) -> float:
+        return self.objective(self.full(x))

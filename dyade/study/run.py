@@ -29,8 +29,10 @@ def evaluator_for(spec: Spec) -> Evaluator:
 
     data = load_data(spec.mechanism, spec.fixed, f"{spec.label}: set")
     evaluator = Evaluator(spec.mechanism, data, tuple(p.key for p in spec.parameters),
-                          spec.extras, spec.fluctuation)
+                          spec.extras, spec.fluctuation,
+                          {p.key: p.choices for p in spec.parameters if p.categorical})
     nominal = [p.nominal for p in spec.parameters]
+    check_choices(spec, evaluator, nominal)
     try:
         mechanism = evaluator.mechanism(nominal)
     except InputError as err:  # a key path that is not there; a value is the rows' to say
@@ -47,6 +49,24 @@ def evaluator_for(spec: Spec) -> Evaluator:
                              f"`set = {{ \"drive_line.stiffness\" = 1000 }}` in the study "
                              f"file.", source=spec.label, key="outputs.extra")
     return evaluator
+
+
+def check_choices(spec: Spec, evaluator: Evaluator, nominal: list[float]) -> None:
+    """Refuse, before any variant runs, a categorical parameter's choice that the
+    mechanism file's reader refuses (a law given to a dwell, a key path that takes no
+    name), naming the study file, the parameter and the choice, with the reader's
+    words (a variant refused for another of its values is its row's to say)."""
+    for j, p in enumerate(spec.parameters):
+        for index, name in enumerate(p.choices):
+            values = list(nominal)
+            values[j] = float(index)
+            try:
+                evaluator.mechanism(values)
+            except InputError as err:
+                if name in str(err) or p.key in str(err) or err.key == p.key:
+                    raise InputError(f"{spec.label}: `parameters.{p.key}`: the choice "
+                                     f"{name!r} is refused: {err}", source=spec.label,
+                                     key=f"parameters.{p.key}") from None
 
 
 KEY_PROBLEMS = ("unknown key", "are numbered", "is a value, not a table")
@@ -110,17 +130,19 @@ def execute(spec: Spec, evaluator: Evaluator, matrix: np.ndarray, outputs: list[
 
     params = [p.key for p in spec.parameters]
     names = tables.header(params, outputs)
-    journal = tables.Journal(journal_path, names, resume, spec.label)
+    words = tuple(p.key for p in spec.parameters if p.categorical)
+    journal = tables.Journal(journal_path, names, resume, spec.label, words)
     rows = dict(journal.done)
     for index, row in rows.items():  # the plan still gives these values (to the CSV's digits)?
         if index >= len(matrix) or any(
-                not tables.same(row[1 + j], matrix[index, j]) for j in range(len(params))):
+                not tables.same(row[1 + j], shown) for j, shown in
+                enumerate(spec.shown(matrix[index]))):
             journal.close()
             raise InputError(f"{spec.label}: resuming: variant {index} of {journal_path} has "
                              f"other parameter values than this plan gives (its seed, "
                              f"samples or parameters changed); remove the file or write "
                              f"elsewhere.", source=journal_path)
-        row[1:1 + len(params)] = matrix[index].tolist()  # the plan's own values
+        row[1:1 + len(params)] = spec.shown(matrix[index])  # the plan's own values
     todo = [i for i in range(len(matrix)) if i not in rows]
     workers = jobs if executor is None else max(jobs, 2)
     size = size or block_size(len(todo), cost, workers, STACK if evaluator.stacks else 1)
@@ -142,7 +164,7 @@ def execute(spec: Spec, evaluator: Evaluator, matrix: np.ndarray, outputs: list[
         if progress is not None:
             progress(done, len(matrix))
         for block in results:
-            lines = [[index, *matrix[index].tolist(), status, reason,
+            lines = [[index, *spec.shown(matrix[index]), status, reason,
                       *[out.get(name, math.nan) for name in outputs]]
                      for index, status, reason, out in block]
             journal.write(lines)
@@ -157,7 +179,7 @@ def execute(spec: Spec, evaluator: Evaluator, matrix: np.ndarray, outputs: list[
         close = getattr(results, "close", None)
         if close is not None:
             close()
-    return tables.columns_of(names, list(rows.values())), evaluated
+    return tables.columns_of(names, list(rows.values()), words), evaluated
 
 
 def _lost(block, reason: str):

@@ -32,7 +32,7 @@ class Parameter:
 
     key: str
     kind: str
-    """values, range, uniform, normal"""
+    """values, range, uniform, normal, linked, choices"""
     values: tuple[float, ...] = ()
     """values: the list; range: the grid points"""
     low: float = math.nan
@@ -45,11 +45,25 @@ class Parameter:
     """sensitivity: the step of the central differences (default: rel_step·|nominal|)"""
     equals: str = ""
     """linked: the expression of other parameters it equals (``dyade.study.expression``)"""
+    choices: tuple[str, ...] = ()
+    """choices: the names it takes (a motion law, ...); ``values`` are their indices 0, 1,
+    ... (the plans' matrix stays numeric), ``shown`` gives the name of an index"""
 
     @property
     def linked(self) -> bool:
         """Whether the parameter follows others (``{ equals = "..." }``), not varied itself."""
         return self.kind == "linked"
+
+    @property
+    def categorical(self) -> bool:
+        """Whether the parameter is a choice among names (``{ choices = [...] }`` or a
+        list of names), not a number."""
+        return self.kind == "choices"
+
+    def shown(self, value):
+        """A value of the plans' matrix as the table shows it: a choice's name (from its
+        index), else the number."""
+        return self.choices[int(round(float(value)))] if self.categorical else float(value)
 
     def quantile(self, u):
         """Values at probabilities ``u`` (an array in [0, 1)) of this parameter's
@@ -57,7 +71,7 @@ class Parameter:
         import numpy as np
 
         u = np.asarray(u, dtype=float)
-        if self.kind == "values":
+        if self.kind in ("values", "choices"):  # a choice: each equally likely
             picks = np.minimum((u * len(self.values)).astype(int), len(self.values) - 1)
             return np.asarray(self.values)[picks]
         if self.kind in ("range", "uniform"):
@@ -100,6 +114,16 @@ class Spec:
     def free(self) -> tuple[Parameter, ...]:
         """The parameters the plan varies (the linked ones follow them)."""
         return tuple(p for p in self.parameters if not p.linked)
+
+    def shown(self, row) -> list:
+        """A row of the matrix (every parameter, the study's order) as the table shows
+        it: the names of the choices, the numbers as floats."""
+        return [p.shown(v) for p, v in zip(self.parameters, row)]
+
+    def numeric(self, row) -> list[float]:
+        """``shown``'s inverse: a row with the choices' names as the matrix's numbers."""
+        return [float(p.choices.index(v)) if p.categorical and isinstance(v, str) else
+                float(v) for p, v in zip(self.parameters, row)]
 
     def complete(self, free):
         """(n, p) values of every parameter, in the study's order, from (n, f) values of
@@ -223,6 +247,14 @@ def parameter(label: str, key: str, value: Any, rel_step: float) -> Parameter:
         if step <= 0:
             raise fail(label, f"{where}.step", f"must be positive, got {step:g}.")
         value = {k: v for k, v in value.items() if k != "step"}
+    if isinstance(value, dict) and "choices" in value:
+        _keys(label, value, where, {"choices"})
+        return choices(label, f"{where}.choices", key, value["choices"])
+    if isinstance(value, list) and value and any(isinstance(v, str) for v in value):
+        return choices(label, where, key, value)
+    if isinstance(value, str):
+        raise fail(label, where, f"= {value!r} is one name: give the choices as a list, "
+                                 f"[\"{value}\", ...], or fix it with `set`.")
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         out = Parameter(key, "values", (_number(label, where, value),),
                         nominal=float(value))
@@ -288,7 +320,8 @@ def parameter(label: str, key: str, value: Any, rel_step: float) -> Parameter:
         nominal = _number(label, f"{where}.nominal", value["nominal"])
         out = Parameter(key, "values", (nominal,), nominal=nominal)
     else:
-        raise fail(label, where, f"must be a number, a list of values, {{ range = [low, high], "
+        raise fail(label, where, f"must be a number, a list of values (or of names: a "
+                                 f"choice), {{ range = [low, high], "
                                  f"count = n }}, {{ uniform = [low, high] }}, {{ nominal = x, "
                                  f"tol = t }} or {{ nominal = x, sd = s, truncate = [low, high] "
                                  f"}}; got {value!r}.")
@@ -298,6 +331,33 @@ def parameter(label: str, key: str, value: Any, rel_step: float) -> Parameter:
         out = replace(out, step=step)
     _positive(label, out)
     return out
+
+
+def choices(label: str, where: str, key: str, names: Any) -> Parameter:
+    """A categorical parameter: a list of names (a segment's motion law, ...), each
+    taken as the mechanism file would take it; a motion law's name checked here, with a
+    did-you-mean (``dyade.motion.laws.canonical``)."""
+    if not isinstance(names, list) or not names:
+        raise fail(label, where, f"must be a list of names, got {names!r}.")
+    if not all(isinstance(n, str) and n.strip() for n in names):
+        odd = next(n for n in names if not (isinstance(n, str) and n.strip()))
+        raise fail(label, where, f"mixes names and {odd!r}: a parameter is a list of numbers "
+                                 f"or a list of names (a choice), not both.")
+    if len(set(names)) < len(names):
+        twice = next(n for n in names if names.count(n) > 1)
+        raise fail(label, where, f"names {twice!r} twice: give each choice once.")
+    if key.rsplit(".", 1)[-1] == "law":  # a motion law: its name known before any run
+        from dyade.motion.laws import canonical
+
+        for name in names:
+            try:
+                canonical(name)
+            except InputError as err:
+                text = str(err).split("is not a motion law.", 1)[-1].strip()
+                raise fail(label, where, f"names {name!r}, which is not a motion law. "
+                                         f"{text}") from None
+    return Parameter(key, "choices", tuple(float(i) for i in range(len(names))), 0.0,
+                     float(len(names) - 1), nominal=0.0, choices=tuple(names))
 
 
 QUANTITY = {"length": "a length", "lengths": "a length", "slider_length": "a length",
@@ -426,7 +486,7 @@ def parse(data: dict[str, Any], label: str = "study", directory: str = ".") -> S
     free = tuple(p for p in params if not p.linked)
     if kind == "grid":
         for p in free:
-            if p.kind not in ("values", "range"):
+            if p.kind not in ("values", "range", "choices"):
                 raise fail(label, f"parameters.{p.key}", f"is a distribution ({p.kind}); a grid "
                                                          f"needs a list or a range (or plan.kind = "
                                                          f"\"monte-carlo\").")
@@ -451,6 +511,14 @@ def parse(data: dict[str, Any], label: str = "study", directory: str = ".") -> S
     optimise: dict[str, Any] = {}
     if kind == "sensitivity" or "sensitivity" in data:
         question = "sensitivity"
+        for p in free:
+            if p.categorical:
+                raise fail(label, f"parameters.{p.key}", f"is a choice among names "
+                                                         f"({', '.join(p.choices)}): a "
+                                                         f"sensitivity's central differences "
+                                                         f"need numbers. Fix it with `set` (one "
+                                                         f"study per choice), or ask a grid's "
+                                                         f"table instead.")
         _keys(label, data.get("sensitivity", {}), "sensitivity", set())
         if kind == "grid" and "kind" in plan:  # the differences of the grid's neighbours
             for p in free:
@@ -477,7 +545,7 @@ def parse(data: dict[str, Any], label: str = "study", directory: str = ".") -> S
                                            "latin-hypercube or monte-carlo plan.")
         if kind == "optimise":
             for p in free:
-                if p.kind != "range":
+                if p.kind != "range" and not p.categorical:
                     raise fail(label, f"parameters.{p.key}", "needs { range = [low, high], "
                                                              "count = n } (its bounds) to be "
                                                              "optimised.")
@@ -607,6 +675,9 @@ def linked(label: str, params: tuple[Parameter, ...]) -> tuple[Parameter, ...]:
                                      f"the study's parameters and numbers: + - * / ** and "
                                      f"parentheses).") from None
         for name in expression.names(tree):
+            if name in free and free[name].categorical:
+                raise fail(label, where, f"= {p.equals!r} names {name}, a choice among names: "
+                                         f"an expression takes numbers only.")
             if name in free:
                 continue
             if name == p.key or name in {q.key for q in params}:
@@ -632,7 +703,8 @@ def _flatten(table: dict, prefix: str = "") -> dict[str, Any]:
     for key, value in table.items():
         name = f"{prefix}{key}"
         if isinstance(value, dict) and not (set(value) & {"range", "uniform", "tol", "sd",
-                                                          "nominal", "step", "equals"}):
+                                                          "nominal", "step", "equals",
+                                                          "choices"}):
             out.update(_flatten(value, f"{name}."))
         else:
             out[name] = value

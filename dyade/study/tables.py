@@ -30,14 +30,14 @@ class Journal:
     written (the rows are the caller's)."""
 
     def __init__(self, path: str | None, names: list[str], resume: bool,
-                 label: str = "study") -> None:
+                 label: str = "study", words: tuple[str, ...] = ()) -> None:
         self.path, self.names = path, names
         self.done: dict[int, list] = {}
         self.handle = None
         if path is None:
             return
         if resume and os.path.exists(path) and os.path.getsize(path) > 0:
-            self.done = {index: typed(names, row)
+            self.done = {index: typed(names, row, words)
                          for index, row in _read_rows(path, names, label).items()}
             self._trim()
             self.handle = open(path, "a", newline="", encoding="utf-8")
@@ -71,16 +71,27 @@ def line(values) -> str:
     return ",".join(cell(value) for value in values) + "\n"
 
 
-def same(written: float, value: float) -> bool:
-    """Whether a number read back from a CSV (15 significant digits) is ``value``'s."""
+def same(written, value) -> bool:
+    """Whether a number read back from a CSV (15 significant digits) is ``value``'s (a
+    name: the same name)."""
     return cell(written) == cell(value)
 
 
-def typed(names: list[str], row: list[str]) -> list:
-    """A row of the CSV as values: the variant an int, the words as they are, the rest
-    floats (an empty cell NaN)."""
-    return [int(v) if name == "variant" else v if name in TEXT
-            else float(v) if v != "" else np.nan for name, v in zip(names, row)]
+def typed(names: list[str], row: list[str], words: tuple[str, ...] = ()) -> list:
+    """A row of the CSV as values: the variant an int, the words (``TEXT`` and the
+    categorical parameters ``words``) as they are, the rest floats (an empty cell NaN)."""
+    return [int(v) if name == "variant" else v if name in TEXT or name in words
+            else _number(v) for name, v in zip(names, row)]
+
+
+def _number(text: str):
+    """A cell as a float (empty: NaN); a name (a categorical parameter's) as it is."""
+    if text == "":
+        return np.nan
+    try:
+        return float(text)
+    except ValueError:
+        return text
 
 
 def _read_rows(path: str, names: list[str], label: str) -> dict[int, list[str]]:
@@ -108,18 +119,23 @@ def read_csv(path: str) -> dict[str, np.ndarray]:
     """A study's CSV as named columns (numbers as floats, ``variant`` as integers)."""
     with open(path, newline="", encoding="utf-8") as handle:
         rows = list(csv.reader(handle))
-    return columns_of(rows[0], [typed(rows[0], row) for row in rows[1:]])
+    values = [typed(rows[0], row) for row in rows[1:]]
+    words = tuple(name for k, name in enumerate(rows[0])
+                  if any(isinstance(row[k], str) for row in values))
+    return columns_of(rows[0], values, words)
 
 
-def columns_of(names: list[str], rows: list[list]) -> dict[str, np.ndarray]:
-    """Typed rows (``typed``) as named columns, in the order of their variants."""
+def columns_of(names: list[str], rows: list[list], words: tuple[str, ...] = ()
+               ) -> dict[str, np.ndarray]:
+    """Typed rows (``typed``) as named columns, in the order of their variants (the
+    words of ``TEXT`` and ``words``, a categorical parameter's names, as objects)."""
     rows = sorted(rows, key=lambda r: r[0])
     out: dict[str, np.ndarray] = {}
     for k, name in enumerate(names):
         values = [r[k] for r in rows]
         if name == "variant":
             out[name] = np.array(values, dtype=np.int64)
-        elif name in TEXT:
+        elif name in TEXT or name in words:
             out[name] = np.array(values, dtype=object)
         else:
             out[name] = np.array(values, dtype=float)

@@ -252,3 +252,19 @@ def test_the_help_examples_name_files_that_exist():
         given = [words[2]] + [b for a, b in zip(words, words[1:]) if a == "--catalogue"]
         for name in given:
             assert (root / name).is_file(), (name, words)
+
+
+def test_ratio_range_is_start_stop_step_as_every_range_of_dyade():
+    outcome = dyade.run("servo", FOURBAR, ratio_range="4:12:2", samples=72)
+    sizing, optimum = outcome.result.sizing, outcome.result.optimum
+    assert 4 < optimum < 12
+    assert np.allclose(sizing.ratio, sorted([4, 6, 8, 10, 12, optimum]), rtol=0, atol=1e-12)
+    # LOW:HIGH (two numbers) keeps its meaning: --ratio-count log-spaced ratios
+    two = dyade.run("servo", FOURBAR, ratio_range="4:12", ratio_count=3, samples=72)
+    assert np.allclose(np.delete(two.result.sizing.ratio, np.flatnonzero(
+        two.result.sizing.ratio == two.result.optimum)), [4, np.sqrt(48), 12], rtol=1e-12)
+    assert two.result.optimum == pytest.approx(optimum, rel=1e-8)
+    expect(["servo", str(FOURBAR), "--ratio-range", "4:12:2", "--ratio-count", "3"], 2,
+           "--ratio-count", "gives its own")
+    expect(["servo", str(FOURBAR), "--ratio-range", "12:4:1"], 2,
+           "START:STOP:STEP with 0 < START < STOP and STEP > 0")
