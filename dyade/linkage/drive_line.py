@@ -477,7 +477,7 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     records = {"start": list(first.start), "steps": list(first.steps),
                "accuracy": list(first.accuracy), "mult": list(first.multipliers),
                "converged": list(first.converged), "reason": list(first.reason),
-               "speed": list(speeds)}
+               "speed": list(speeds), "mesh": [None] * speeds.size}
     folds, branches, stopped = [], [], []
     if follow and first.converged.any() and speeds.size > 1:
         low, high = float(speeds.min()), float(speeds.max())
@@ -535,11 +535,13 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                 for key, value in (("start", more.start[i]), ("steps", more.steps[i]),
                                    ("accuracy", more.accuracy[i]),
                                    ("mult", more.multipliers[i]), ("converged", True),
-                                   ("reason", ""), ("speed", speeds[j])):
+                                   ("reason", ""), ("speed", speeds[j]), ("mesh", None)):
                     records[key].append(value)
         branches = [_branch_curve(line, shaft, branch) for branch in followed]
         stopped = [f"{branch.stopped}, at {branch.parameter[-1, 0] * RAD_PER_S_TO_RPM:.6g} rpm"
                    for branch in followed if branch.stopped and branch.parameter.size]
+    if follow and speeds.size > 1:
+        _fill(problem, p, speeds, records, found, n, tol, tick)
     rows = []  # (record, speed index)
     for j in range(speeds.size):
         rows += [(r, j) for r in found[j]] or [(j, j)]
@@ -549,7 +551,8 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     used = np.array(records["steps"])[record]
     converged = np.array(records["converged"], dtype=bool)[record]
     mult = np.array(records["mult"])[record]
-    values = _orbit_values(line, shaft, speeds[where], start, used, converged)
+    meshes = [records["mesh"][r] for r in record]
+    values = _orbit_values(line, shaft, speeds[where], start, used, converged, meshes)
     twist_amplitude, twist_max, peak, fluctuation, balance = values
     bad = converged & ~(balance <= BALANCE_TOL)
     reason = [records["reason"][r] for r in record]
@@ -577,21 +580,70 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                                      shaft=shaft), n, sorted(folds), branches, tol, stopped)
 
 
-def _orbit_values(line, shaft, speed, start, steps, converged):
+def _fill(problem, p, speeds, records, found, nodes, tol, tick) -> None:
+    """Speeds still without a converged solution, shot from a converged neighbour's
+    solution on a mesh of their own (``periodic.mesh_of``: the nodes gathered where the
+    crank nearly stops, the steps halved by accuracy), speed by speed inwards from both
+    sides of every gap, all gaps' fronts at once."""
+    from dyade.machine import periodic
+
+    tried = set()
+    while True:
+        pairs = []  # (speed j, record of its neighbour)
+        for j in range(speeds.size):
+            if found[j]:
+                continue
+            for k in (j - 1, j + 1):
+                if 0 <= k < speeds.size:
+                    pairs += [(j, r) for r in found[k] if (j, r) not in tried]
+        if not pairs:
+            return
+        tried.update(pairs)
+        groups: dict = {}
+        for j, r in pairs:
+            source = records["mesh"][r]
+            key = ("mesh", source.size) if source is not None else ("steps",
+                                                                     int(records["steps"][r]))
+            groups.setdefault(key, []).append((j, r))
+        for (what, size), group in groups.items():
+            js = np.array([j for j, _ in group])
+            rs = [r for _, r in group]
+            x = np.array([records["start"][r] for r in rs])
+            p_from = np.array([p[int(np.argmin(np.abs(speeds - records["speed"][r])))]
+                               for r in rs])
+            source = np.array([records["mesh"][r] for r in rs]) if what == "mesh" else None
+            mesh = periodic.mesh_of(problem, size, x, p_from, nodes, source)
+            shot = periodic.shoot(problem, p[js], x, tol=tol, mesh=mesh, progress=tick)
+            for i, j in enumerate(js):
+                if not shot.converged[i] or found[j]:
+                    continue
+                found[j].append(len(records["start"]))
+                for key, value in (("start", shot.start[i]), ("steps", shot.steps[i]),
+                                   ("accuracy", shot.accuracy[i]),
+                                   ("mult", shot.multipliers[i]), ("converged", True),
+                                   ("reason", ""), ("speed", speeds[j]),
+                                   ("mesh", shot.mesh[i])):
+                    records[key].append(value)
+
+
+def _orbit_values(line, shaft, speed, start, steps, converged, meshes=None):
     """Twist amplitude and largest |twist| [rad], peak shaft torque [N·m], speed
     fluctuation [-] and the energy balance [-] of each row's orbit (NaN where not
-    converged), one integration per step count (the scans' line: an ideal motor, one
-    shaft)."""
+    converged), one integration per step count (or per size of the rows' own
+    ``meshes``) (the scans' line: an ideal motor, one shaft)."""
     from dyade.machine import periodic
 
     rows = speed.size
     out = [np.full(rows, np.nan) for _ in range(5)]
-    for n in np.unique(steps[converged]):
-        idx = np.flatnonzero(converged & (steps == n))
+    meshes = meshes or [None] * rows
+    sizes = np.array([-1 if mesh is None else mesh.size for mesh in meshes])
+    for n, size in {(int(n), int(z)) for n, z, ok in zip(steps, sizes, converged) if ok}:
+        idx = np.flatnonzero(converged & (steps == n) & (sizes == size))
         problem = engine.problem(line, shaft.tables_at, int(n), works=True)
         p = engine.parameters(line, speed[idx])
         x0 = np.pad(start[idx], ((0, 0), (0, 3)))
-        path = periodic.trajectory(problem, int(n), x0, p)
+        mesh = None if size < 0 else np.array([meshes[i] for i in idx])
+        path = periodic.trajectory(problem, int(n), x0, p, mesh=mesh)
         twist = path[:, :, 1]
         crank = speed[idx][None, :] + path[:, :, 0]
         torque = p[:, 1] * path[:, :, 1] - p[:, 2] * path[:, :, 0]
