@@ -772,12 +772,18 @@ def problem(line: Line, tables_at: Callable[[int], Tables], steps: int, works: b
         return f
 
     # the crank shaft at any u (a mesh of its own per lane): the tables as Fourier series
+    # (all four on one set of orders: one exp per call)
     series = [Periodic1D(values[0::2]) for values in (coarse.inertia, coarse.slope,
                                                        coarse.load, coarse.friction)]
+    orders = np.unique(np.concatenate([table.orders for table in series]))
+    weights = np.zeros((orders.size, 4), dtype=complex)
+    for column, table in enumerate(series):
+        weights[np.searchsorted(orders, table.orders), column] = table.coefficients
+    cos_w, sin_w = weights.real, -weights.imag
 
     def field_at(u: FloatArray, x: FloatArray, p: FloatArray) -> FloatArray:
-        u = np.mod(u, 2.0 * math.pi)
-        inertia, slope, load, rub = (table.at(u) for table in series)
+        angle = np.multiply.outer(u, orders)
+        inertia, slope, load, rub = (np.cos(angle) @ cos_w + np.sin(angle) @ sin_w).T
         if line.ideal and m == 1:
             dv = x[:, 0]
             v = p[:, 0] + dv
