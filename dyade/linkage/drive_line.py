@@ -183,7 +183,18 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
                                                             speed)
     tables = shaft.tables_at(n)
     lanes = engine.Lanes.of(line, [speed])
-    solution, orbit, passes = _with_friction(shaft, tables, lanes, progress=progress)
+    try:
+        solution, orbit, passes = _with_friction(shaft, tables, lanes, progress=progress)
+    except DyadeError:
+        if not (line.ideal and line.elements == 1 and not shaft.friction):
+            raise
+        reached = _reached(shaft, speed, n)
+        if reached is None:
+            raise
+        n, solution = reached
+        tables = shaft.tables_at(n)
+        orbit = engine.integrate(line, tables, lanes, solution.start)
+        passes = {"reached_from_rpm": REACH * speed * RAD_PER_S_TO_RPM}
     out = _steady(shaft, tables, lanes, orbit, solution)
     out.figures.update(passes)
     if accuracy:
@@ -198,6 +209,44 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
                 out.figures["accuracy"] = float(np.max(np.abs(
                     fine - coarse_orbit.torque[:, 0, -1]))) / scale
     return out
+
+
+REACH = 0.9  # [-] a steady state the shooting misses is followed up from this share
+REACH_SPEEDS = 11  # [-] of its speed in this many speeds (``resonance_curve``)
+
+
+def _reached(shaft: CrankShaft, speed: float, steps: int
+             ) -> tuple[int, engine.Periodic] | None:
+    """The steady state at ``speed`` [rad/s] where the shooting from the linear response
+    misses it (a crank that nearly stops in a resonance): the branch followed up from
+    ``REACH``·speed (``resonance_curve``: continuation, meshes where the crank is slow),
+    its stable solution at the speed (the smallest |μ| where several coexist) shot again
+    on a uniform grid, the steps doubled until its multipliers change by less than
+    ``periodic.ACCURACY``: (steps, solution), or None."""
+    from dyade.machine import periodic
+
+    line = shaft.line
+    curve = resonance_curve(shaft.mechanism, np.linspace(REACH, 1.0, REACH_SPEEDS) * speed
+                            * RAD_PER_S_TO_RPM, shaft=shaft)
+    rows = np.flatnonzero(curve.converged & (curve.speed == curve.speed.max()))
+    if not rows.size:
+        return None
+    row = rows[np.argmin(curve.stability[rows])]
+    lanes = engine.Lanes.of(line, [speed])
+    start, before = curve.start[row][None, :], None
+    n = steps
+    while n <= MAX_REACH_STEPS:
+        solution = engine.periodic(line, shaft.tables_at(n), lanes, start)
+        if solution.converged[0]:
+            if (before is not None and periodic.multiplier_change(
+                    solution.multipliers, before.multipliers)[0] <= periodic.ACCURACY):
+                return n, solution
+            start, before = solution.start, solution
+        n *= 2
+    return None
+
+
+MAX_REACH_STEPS = 92160  # [-] the most uniform steps per revolution of ``_reached``
 
 
 def has_friction(mechanism: Mechanism) -> bool:
@@ -370,6 +419,9 @@ class ResonanceCurve:
     """the accuracy asked for [-]"""
     stopped: list = field(default_factory=list)
     """why a continuation stopped before the end of the range (worded), if one did"""
+    start: FloatArray | None = None
+    """(r, d) each row's state at u = 0 (δv [rad/s], twist [rad]; NaN where not
+    converged)"""
 
     @property
     def unstable(self) -> FloatArray:
@@ -577,7 +629,8 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                           used, np.array(records["accuracy"], dtype=float)[record], balance,
                           reason, omega_bar,
                           resonances(mechanism, omega_bar, speeds.min(), speeds.max(),
-                                     shaft=shaft), n, sorted(folds), branches, tol, stopped)
+                                     shaft=shaft), n, sorted(folds), branches, tol, stopped,
+                          np.where(converged[:, None], start, np.nan))
 
 
 def _fill(problem, p, speeds, records, found, nodes, tol, tick) -> None:
