@@ -363,6 +363,13 @@ def steady(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
             description="passes of the joint friction torque")
         add("friction_change", f["friction_change"], "N·m",
             description="change of the friction torque in the last pass")
+    if "reached_from_rpm" in f:
+        add("reached_from_rpm", f["reached_from_rpm"], "rpm",
+            description="the shooting missed the state: followed up in speed from here")
+        outcome.notes.append(f"The shooting from the line's linear response missed this "
+                             f"steady state (the crank nearly stops): it was followed up in "
+                             f"speed from {f['reached_from_rpm']:.5g} rpm and shot again on "
+                             f"{f['steps_per_revolution']} steps per revolution.")
     outcome.result = state
     return outcome
 

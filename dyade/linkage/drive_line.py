@@ -183,7 +183,18 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
                                                             speed)
     tables = shaft.tables_at(n)
     lanes = engine.Lanes.of(line, [speed])
-    solution, orbit, passes = _with_friction(shaft, tables, lanes, progress=progress)
+    try:
+        solution, orbit, passes = _with_friction(shaft, tables, lanes, progress=progress)
+    except DyadeError:
+        if not (line.ideal and line.elements == 1 and not shaft.friction):
+            raise
+        reached = _reached(shaft, speed, n)
+        if reached is None:
+            raise
+        n, solution = reached
+        tables = shaft.tables_at(n)
+        orbit = engine.integrate(line, tables, lanes, solution.start)
+        passes = {"reached_from_rpm": REACH * speed * RAD_PER_S_TO_RPM}
     out = _steady(shaft, tables, lanes, orbit, solution)
     out.figures.update(passes)
     if accuracy:
@@ -198,6 +209,44 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
                 out.figures["accuracy"] = float(np.max(np.abs(
                     fine - coarse_orbit.torque[:, 0, -1]))) / scale
     return out
+
+
+REACH = 0.9  # [-] a steady state the shooting misses is followed up from this share
+REACH_SPEEDS = 11  # [-] of its speed in this many speeds (``resonance_curve``)
+
+
+def _reached(shaft: CrankShaft, speed: float, steps: int
+             ) -> tuple[int, engine.Periodic] | None:
+    """The steady state at ``speed`` [rad/s] where the shooting from the linear response
+    misses it (a crank that nearly stops in a resonance): the branch followed up from
+    ``REACH``·speed (``resonance_curve``: continuation, meshes where the crank is slow),
+    its stable solution at the speed (the smallest |μ| where several coexist) shot again
+    on a uniform grid, the steps doubled until its multipliers change by less than
+    ``periodic.ACCURACY``: (steps, solution), or None."""
+    from dyade.machine import periodic
+
+    line = shaft.line
+    curve = resonance_curve(shaft.mechanism, np.linspace(REACH, 1.0, REACH_SPEEDS) * speed
+                            * RAD_PER_S_TO_RPM, shaft=shaft)
+    rows = np.flatnonzero(curve.converged & (curve.speed == curve.speed.max()))
+    if not rows.size:
+        return None
+    row = rows[np.argmin(curve.stability[rows])]
+    lanes = engine.Lanes.of(line, [speed])
+    start, before = curve.start[row][None, :], None
+    n = steps
+    while n <= MAX_REACH_STEPS:
+        solution = engine.periodic(line, shaft.tables_at(n), lanes, start)
+        if solution.converged[0]:
+            if (before is not None and periodic.multiplier_change(
+                    solution.multipliers, before.multipliers)[0] <= periodic.ACCURACY):
+                return n, solution
+            start, before = solution.start, solution
+        n *= 2
+    return None
+
+
+MAX_REACH_STEPS = 92160  # [-] the most uniform steps per revolution of ``_reached``
 
 
 def has_friction(mechanism: Mechanism) -> bool:
@@ -370,6 +419,9 @@ class ResonanceCurve:
     """the accuracy asked for [-]"""
     stopped: list = field(default_factory=list)
     """why a continuation stopped before the end of the range (worded), if one did"""
+    start: FloatArray | None = None
+    """(r, d) each row's state at u = 0 (δv [rad/s], twist [rad]; NaN where not
+    converged)"""
 
     @property
     def unstable(self) -> FloatArray:
@@ -477,7 +529,7 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     records = {"start": list(first.start), "steps": list(first.steps),
                "accuracy": list(first.accuracy), "mult": list(first.multipliers),
                "converged": list(first.converged), "reason": list(first.reason),
-               "speed": list(speeds)}
+               "speed": list(speeds), "mesh": [None] * speeds.size}
     folds, branches, stopped = [], [], []
     if follow and first.converged.any() and speeds.size > 1:
         low, high = float(speeds.min()), float(speeds.max())
@@ -535,11 +587,13 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                 for key, value in (("start", more.start[i]), ("steps", more.steps[i]),
                                    ("accuracy", more.accuracy[i]),
                                    ("mult", more.multipliers[i]), ("converged", True),
-                                   ("reason", ""), ("speed", speeds[j])):
+                                   ("reason", ""), ("speed", speeds[j]), ("mesh", None)):
                     records[key].append(value)
         branches = [_branch_curve(line, shaft, branch) for branch in followed]
         stopped = [f"{branch.stopped}, at {branch.parameter[-1, 0] * RAD_PER_S_TO_RPM:.6g} rpm"
                    for branch in followed if branch.stopped and branch.parameter.size]
+    if follow and speeds.size > 1:
+        _fill(problem, p, speeds, records, found, n, tol, tick)
     rows = []  # (record, speed index)
     for j in range(speeds.size):
         rows += [(r, j) for r in found[j]] or [(j, j)]
@@ -549,7 +603,8 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     used = np.array(records["steps"])[record]
     converged = np.array(records["converged"], dtype=bool)[record]
     mult = np.array(records["mult"])[record]
-    values = _orbit_values(line, shaft, speeds[where], start, used, converged)
+    meshes = [records["mesh"][r] for r in record]
+    values = _orbit_values(line, shaft, speeds[where], start, used, converged, meshes)
     twist_amplitude, twist_max, peak, fluctuation, balance = values
     bad = converged & ~(balance <= BALANCE_TOL)
     reason = [records["reason"][r] for r in record]
@@ -574,24 +629,74 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                           used, np.array(records["accuracy"], dtype=float)[record], balance,
                           reason, omega_bar,
                           resonances(mechanism, omega_bar, speeds.min(), speeds.max(),
-                                     shaft=shaft), n, sorted(folds), branches, tol, stopped)
+                                     shaft=shaft), n, sorted(folds), branches, tol, stopped,
+                          np.where(converged[:, None], start, np.nan))
 
 
-def _orbit_values(line, shaft, speed, start, steps, converged):
+def _fill(problem, p, speeds, records, found, nodes, tol, tick) -> None:
+    """Speeds still without a converged solution, shot from a converged neighbour's
+    solution on a mesh of their own (``periodic.mesh_of``: the nodes gathered where the
+    crank nearly stops, the steps halved by accuracy), speed by speed inwards from both
+    sides of every gap, all gaps' fronts at once."""
+    from dyade.machine import periodic
+
+    tried = set()
+    while True:
+        pairs = []  # (speed j, record of its neighbour)
+        for j in range(speeds.size):
+            if found[j]:
+                continue
+            for k in (j - 1, j + 1):
+                if 0 <= k < speeds.size:
+                    pairs += [(j, r) for r in found[k] if (j, r) not in tried]
+        if not pairs:
+            return
+        tried.update(pairs)
+        groups: dict = {}
+        for j, r in pairs:
+            source = records["mesh"][r]
+            key = ("mesh", source.size) if source is not None else ("steps",
+                                                                     int(records["steps"][r]))
+            groups.setdefault(key, []).append((j, r))
+        for (what, size), group in groups.items():
+            js = np.array([j for j, _ in group])
+            rs = [r for _, r in group]
+            x = np.array([records["start"][r] for r in rs])
+            p_from = np.array([p[int(np.argmin(np.abs(speeds - records["speed"][r])))]
+                               for r in rs])
+            source = np.array([records["mesh"][r] for r in rs]) if what == "mesh" else None
+            mesh = periodic.mesh_of(problem, size, x, p_from, nodes, source)
+            shot = periodic.shoot(problem, p[js], x, tol=tol, mesh=mesh, progress=tick)
+            for i, j in enumerate(js):
+                if not shot.converged[i] or found[j]:
+                    continue
+                found[j].append(len(records["start"]))
+                for key, value in (("start", shot.start[i]), ("steps", shot.steps[i]),
+                                   ("accuracy", shot.accuracy[i]),
+                                   ("mult", shot.multipliers[i]), ("converged", True),
+                                   ("reason", ""), ("speed", speeds[j]),
+                                   ("mesh", shot.mesh[i])):
+                    records[key].append(value)
+
+
+def _orbit_values(line, shaft, speed, start, steps, converged, meshes=None):
     """Twist amplitude and largest |twist| [rad], peak shaft torque [N·m], speed
     fluctuation [-] and the energy balance [-] of each row's orbit (NaN where not
-    converged), one integration per step count (the scans' line: an ideal motor, one
-    shaft)."""
+    converged), one integration per step count (or per size of the rows' own
+    ``meshes``) (the scans' line: an ideal motor, one shaft)."""
     from dyade.machine import periodic
 
     rows = speed.size
     out = [np.full(rows, np.nan) for _ in range(5)]
-    for n in np.unique(steps[converged]):
-        idx = np.flatnonzero(converged & (steps == n))
+    meshes = meshes or [None] * rows
+    sizes = np.array([-1 if mesh is None else mesh.size for mesh in meshes])
+    for n, size in {(int(n), int(z)) for n, z, ok in zip(steps, sizes, converged) if ok}:
+        idx = np.flatnonzero(converged & (steps == n) & (sizes == size))
         problem = engine.problem(line, shaft.tables_at, int(n), works=True)
         p = engine.parameters(line, speed[idx])
         x0 = np.pad(start[idx], ((0, 0), (0, 3)))
-        path = periodic.trajectory(problem, int(n), x0, p)
+        mesh = None if size < 0 else np.array([meshes[i] for i in idx])
+        path = periodic.trajectory(problem, int(n), x0, p, mesh=mesh)
         twist = path[:, :, 1]
         crank = speed[idx][None, :] + path[:, :, 0]
         torque = p[:, 1] * path[:, :, 1] - p[:, 2] * path[:, :, 0]

@@ -771,6 +771,38 @@ def problem(line: Line, tables_at: Callable[[int], Tables], steps: int, works: b
                           False)[0]
         return f
 
+    # the crank shaft at any u (a mesh of its own per lane): the tables as Fourier series
+    # (all four on one set of orders: one exp per call)
+    series = [Periodic1D(values[0::2]) for values in (coarse.inertia, coarse.slope,
+                                                       coarse.load, coarse.friction)]
+    orders = np.unique(np.concatenate([table.orders for table in series]))
+    weights = np.zeros((orders.size, 4), dtype=complex)
+    for column, table in enumerate(series):
+        weights[np.searchsorted(orders, table.orders), column] = table.coefficients
+    cos_w, sin_w = weights.real, -weights.imag
+
+    def field_at(u: FloatArray, x: FloatArray, p: FloatArray) -> FloatArray:
+        angle = np.multiply.outer(u, orders)
+        inertia, slope, load, rub = (np.cos(angle) @ cos_w + np.sin(angle) @ sin_w).T
+        if line.ideal and m == 1:
+            dv = x[:, 0]
+            v = p[:, 0] + dv
+            slow = 1.0 / np.where(v > 0.0, v, np.nan)
+            out = np.empty_like(x)
+            torque = p[:, 1] * x[:, 1] - p[:, 2] * dv
+            out[:, 0] = (torque + load - rub - 0.5 * slope * v * v) * slow / inertia
+            out[:, 1] = -dv * slow
+            if works:
+                out[:, 2] = torque * p[:, 0] * slow
+                out[:, 3] = p[:, 2] * dv * dv * slow
+                out[:, 4] = load - rub
+            return out
+        return _rates(line, lanes_of(line, p), x, inertia, slope, load, rub, False)[0]
+
+    def pace(x: FloatArray, p: FloatArray) -> FloatArray:  # Ω over the crank's speed
+        v = p[:, 0] + x[..., 0]
+        return (p[:, 0] / np.where(v > 0.0, v, np.nan)) ** 2
+
     def scale(p: FloatArray) -> FloatArray:
         return scales(line, coarse, lanes_of(line, p))
 
@@ -783,8 +815,9 @@ def problem(line: Line, tables_at: Callable[[int], Tables], steps: int, works: b
     if works:
         def wide(p: FloatArray) -> FloatArray:
             return np.pad(scale(p), ((0, 0), (0, 3)), constant_values=1.0)
-        return Problem(line.dimension + 3, field, wide, 2.0 * math.pi, steps)
-    return Problem(line.dimension, field, scale, 2.0 * math.pi, steps, span)
+        return Problem(line.dimension + 3, field, wide, 2.0 * math.pi, steps,
+                       field_at=field_at, pace=pace)
+    return Problem(line.dimension, field, scale, 2.0 * math.pi, steps, span, field_at, pace)
 
 
 SPAN = 0.1  # [-] a branch's step is measured against this share of Ω and of a radian

@@ -87,6 +87,13 @@ class Problem:
     span: Callable[[FloatArray], FloatArray] | None = None
     """``span(p)`` (B, q) -> (B, d): how far each component may range along a branch
     (the continuation measures its steps against it; default ``scale``)"""
+    field_at: Callable[[FloatArray, FloatArray, FloatArray], FloatArray] | None = None
+    """``field_at(s, x, p)``: dx/ds at any s (L,) per lane (for a ``mesh`` of its own per
+    lane, ``flow``); None: the problem has only its uniform grids"""
+    pace: Callable[[FloatArray, FloatArray], FloatArray] | None = None
+    """``pace(x, p)`` (…, L, d), (L, q) -> (…, L): how fast the motion goes per unit s
+    against its pace on a uniform grid (the drive line: Ω over the crank's speed); a
+    ``mesh`` puts its nodes by ``max(1, pace)`` (``mesh_of``)"""
     _fields: dict = field(default_factory=dict, repr=False)
 
     def at(self, steps: int) -> Field:
@@ -96,10 +103,13 @@ class Problem:
         return self._fields[steps]
 
 
-def flow(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, periods: int = 1
-         ) -> FloatArray:
+def flow(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, periods: int = 1,
+         mesh: FloatArray | None = None) -> FloatArray:
     """x(periods·T) from x(0) = ``x0`` (L, d) with the parameters ``p`` (L, q), by RK4
-    on ``steps`` steps per period."""
+    on ``steps`` steps per period, or on each lane's ``mesh`` (L, N + 1): the nodes
+    0 = s_0 < … < s_N = T of its steps (``problem.field_at``)."""
+    if mesh is not None:
+        return _on_mesh(problem, mesh, x0, p, periods, False)
     f = problem.at(steps)
     h = problem.period / steps
     x = np.array(x0, dtype=np.float64)
@@ -113,9 +123,12 @@ def flow(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, periods: i
     return x
 
 
-def trajectory(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, periods: int = 1
-               ) -> FloatArray:
-    """The states at the grid nodes s = n·h, n = 0 … steps·periods: (K + 1, L, d)."""
+def trajectory(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, periods: int = 1,
+               mesh: FloatArray | None = None) -> FloatArray:
+    """The states at the grid nodes s = n·h, n = 0 … steps·periods (or at the nodes of
+    each lane's ``mesh``): (K + 1, L, d)."""
+    if mesh is not None:
+        return _on_mesh(problem, mesh, x0, p, periods, True)
     f = problem.at(steps)
     h = problem.period / steps
     x = np.array(x0, dtype=np.float64)
@@ -132,8 +145,83 @@ def trajectory(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, peri
     return out
 
 
+def _on_mesh(problem: Problem, mesh: FloatArray, x0: FloatArray, p: FloatArray, periods: int,
+             keep: bool) -> FloatArray:
+    """RK4 over each lane's own nodes ``mesh`` (L, N + 1), the field at any s."""
+    f = problem.field_at
+    if f is None:
+        raise ValueError("a mesh of its own per lane needs the problem's field_at")
+    mesh = np.asarray(mesh, dtype=np.float64)
+    steps = mesh.shape[1] - 1
+    widths = np.diff(mesh, axis=1)
+    x = np.array(x0, dtype=np.float64)
+    out = np.empty((steps * periods + 1,) + x.shape) if keep else None
+    if keep:
+        out[0] = x
+    for n in range(steps * periods):
+        j = n % steps
+        s0 = mesh[:, j] + (n // steps) * problem.period
+        h = widths[:, j]
+        hh = h[:, None]
+        k1 = f(s0, x, p)
+        k2 = f(s0 + 0.5 * h, x + 0.5 * hh * k1, p)
+        k3 = f(s0 + 0.5 * h, x + 0.5 * hh * k2, p)
+        k4 = f(s0 + h, x + hh * k3, p)
+        x = x + hh / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+        if keep:
+            out[n + 1] = x
+    return out if keep else x
+
+
+def mesh_of(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, nodes: int,
+            mesh: FloatArray | None = None) -> FloatArray:
+    """Each lane's own mesh (L, nodes + 1) over one period: the nodes spread by the
+    density max(1, ``problem.pace``) along the motion from ``x0`` (L, d) (integrated on
+    ``steps`` uniform steps, or on ``mesh``), so that where the motion goes slowly in s
+    (a crank that nearly stops: its steps in crank angle are then steps in time) the
+    nodes gather. A lane whose motion is lost (not finite) gets the uniform mesh."""
+    p = np.atleast_2d(np.asarray(p, dtype=np.float64))
+    path = trajectory(problem, steps, x0, p, 1, mesh)  # (K + 1, L, d)
+    s = (np.broadcast_to(np.linspace(0.0, problem.period, steps + 1)[:, None],
+                         path.shape[:2]) if mesh is None else np.asarray(mesh).T)
+    density = np.maximum(1.0, problem.pace(path, p))  # (K + 1, L)
+    cumulative = np.concatenate((np.zeros((1, density.shape[1])), np.cumsum(
+        0.5 * (density[1:] + density[:-1]) * np.diff(s, axis=0), axis=0)))
+    lanes = density.shape[1]
+    out = np.empty((lanes, nodes + 1))
+    fine = np.isfinite(cumulative[-1]) & (cumulative[-1] > 0.0)
+    target = np.linspace(0.0, 1.0, nodes + 1)
+    out[~fine] = np.linspace(0.0, problem.period, nodes + 1)
+    if fine.any():
+        c = cumulative[:, fine] / cumulative[-1, fine]  # (K + 1, F) from 0 to 1
+        # inverse of each lane's monotone c(s) at the targets, all lanes at once: the
+        # lanes side by side on one axis (lane f's values shifted by 2f)
+        shift = 2.0 * np.arange(c.shape[1])
+        flat = (c + shift).T.ravel()
+        want = (target[None, :] + shift[:, None]).ravel()
+        i = np.clip(np.searchsorted(flat, want, side="right") - 1, 0, flat.size - 2)
+        k = c.shape[0]
+        i = np.minimum(i, (i // k) * k + k - 2)  # stay within the lane
+        low, high = flat[i], flat[i + 1]
+        frac = np.where(high > low, (want - low) / np.where(high > low, high - low, 1.0), 0.0)
+        sf = s[:, fine].T.ravel()
+        found = (sf[i] + frac * (sf[i + 1] - sf[i])).reshape(-1, nodes + 1)
+        found[:, 0], found[:, -1] = 0.0, problem.period
+        out[fine] = found
+    return out
+
+
+def refined(mesh: FloatArray) -> FloatArray:
+    """Every step of each lane's ``mesh`` (L, N + 1) halved: (L, 2N + 1)."""
+    mesh = np.asarray(mesh, dtype=np.float64)
+    out = np.empty((mesh.shape[0], 2 * mesh.shape[1] - 1))
+    out[:, 0::2] = mesh
+    out[:, 1::2] = 0.5 * (mesh[:, 1:] + mesh[:, :-1])
+    return out
+
+
 def period_map(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, scale: FloatArray,
-               periods: int = 1, parameter: bool = False
+               periods: int = 1, parameter: bool = False, mesh: FloatArray | None = None
                ) -> tuple[FloatArray, FloatArray, FloatArray | None]:
     """Φ(x0) (B, d), the monodromy matrix ∂Φ/∂x0 (B, d, d) by central differences, and
     with ``parameter`` ∂Φ/∂p[0] (B, d): every run of every lane in one integration."""
@@ -149,7 +237,9 @@ def period_map(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, scal
     if parameter:
         ps[:, -2, 0] += dp
         ps[:, -1, 0] -= dp
-    end = flow(problem, steps, xs.reshape(-1, d), ps.reshape(b * runs, -1), periods)
+    if mesh is not None:
+        mesh = np.repeat(np.asarray(mesh, dtype=np.float64), runs, axis=0)
+    end = flow(problem, steps, xs.reshape(-1, d), ps.reshape(b * runs, -1), periods, mesh)
     end = end.reshape(b, runs, d)
     jac = (end[:, 1:2 * d + 1:2, :] - end[:, 2:2 * d + 1:2, :]) / (2.0 * delta[:, :, None])
     by_p = (end[:, -2, :] - end[:, -1, :]) / (2.0 * dp[:, None]) if parameter else None
@@ -164,7 +254,8 @@ def ordered(multipliers: FloatArray) -> FloatArray:
 
 
 def newton(problem: Problem, steps: int, p: FloatArray, guess: FloatArray, scale: FloatArray,
-           periods: int = 1, progress: Callable[[], None] | None = None
+           periods: int = 1, progress: Callable[[], None] | None = None,
+           mesh: FloatArray | None = None
            ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, int]:
     """Shooting on one step count for all lanes: the state (B, d), converged (B,), the
     scaled residual (B,), the monodromy matrix at the last evaluation (B, d, d) and the
@@ -179,7 +270,8 @@ def newton(problem: Problem, steps: int, p: FloatArray, guess: FloatArray, scale
     iteration = 0
     for iteration in range(1, NEWTON_MAX_ITER + 1):
         idx = np.flatnonzero(active)
-        end, j, _ = period_map(problem, steps, x[idx], p[idx], scale[idx], periods)
+        end, j, _ = period_map(problem, steps, x[idx], p[idx], scale[idx], periods,
+                               mesh=None if mesh is None else mesh[idx])
         if progress is not None:
             progress()
         jac[idx] = j
@@ -248,6 +340,9 @@ class Solutions:
     """(B,) str: why a lane is not converged ("" where it is)"""
     periods: int = 1
     """the periods of the map (2: a period-2 orbit)"""
+    mesh: list | None = None
+    """(B,) each lane's own nodes (N + 1,) of its solution, when shot on meshes (else
+    None: ``steps`` uniform steps)"""
 
     @property
     def stability(self) -> FloatArray:
@@ -280,7 +375,8 @@ def kind_of(multipliers: FloatArray) -> str:
 
 def shoot(problem: Problem, p: FloatArray, guess: FloatArray, *, steps: int | None = None,
           tol: float = ACCURACY, doublings: int = MOST_DOUBLINGS, periods: int = 1,
-          progress: Callable[[], None] | None = None) -> Solutions:
+          progress: Callable[[], None] | None = None, mesh: FloatArray | None = None
+          ) -> Solutions:
     """The periodic solutions of all lanes with the steps chosen by accuracy (module
     docstring).
 
@@ -303,6 +399,10 @@ def shoot(problem: Problem, p: FloatArray, guess: FloatArray, *, steps: int | No
         Periods of the map (2: a period-2 orbit).
     progress : callable, optional
         ``progress()`` hears each Newton iteration (all lanes at once).
+    mesh : array_like, shape (B, N + 1), optional
+        Each lane's own nodes over one period (``mesh_of``; instead of ``steps``
+        uniform steps): its steps are halved by accuracy (``refined``), the solution's
+        mesh is ``Solutions.mesh``.
 
     Returns
     -------
@@ -312,8 +412,13 @@ def shoot(problem: Problem, p: FloatArray, guess: FloatArray, *, steps: int | No
     guess = np.atleast_2d(np.asarray(guess, dtype=np.float64))
     b, d = guess.shape
     scale = problem.scale(p)
-    n = steps or problem.steps
-    x, ok, residual, jac, _ = newton(problem, n, p, guess, scale, periods, progress)
+    if mesh is not None:
+        mesh = np.array(mesh, dtype=np.float64)
+        n = mesh.shape[1] - 1
+    else:
+        n = steps or problem.steps
+    x, ok, residual, jac, _ = newton(problem, n, p, guess, scale, periods, progress, mesh)
+    meshes = list(mesh) if mesh is not None else None
     mult = ordered(np.linalg.eigvals(np.where(np.isfinite(jac), jac, 0.0)))
     lane_steps = np.full(b, n)
     accuracy = np.full(b, np.nan)
@@ -324,9 +429,14 @@ def shoot(problem: Problem, p: FloatArray, guess: FloatArray, *, steps: int | No
         if not todo.size:
             break
         n *= 2
+        fine = None
+        if mesh is not None:  # the lanes still to do share their count of halvings
+            fine = refined(np.array([meshes[j] for j in todo]))
+            for j, row in zip(todo, fine):
+                meshes[j] = row
         start = np.where(ok[todo, None], x[todo], guess[todo])
         x2, ok2, res2, jac2, _ = newton(problem, n, p[todo], start, scale[todo], periods,
-                                        progress)
+                                        progress, fine)
         mult2 = ordered(np.linalg.eigvals(np.where(np.isfinite(jac2), jac2, 0.0)))
         change = np.maximum(np.max(np.abs(x2 - x[todo]) / scale[todo], axis=1),
                             multiplier_change(mult2, mult[todo]))
@@ -350,7 +460,8 @@ def shoot(problem: Problem, p: FloatArray, guess: FloatArray, *, steps: int | No
                           f"{lane_steps[j]:,} steps per period (tolerance {tol:.2g})")
     mult = np.where(settled[:, None], mult, np.nan)
     x = np.where(ok[:, None], x, np.nan)
-    return Solutions(p, x, settled, lane_steps, accuracy, residual, jac, mult, reason, periods)
+    return Solutions(p, x, settled, lane_steps, accuracy, residual, jac, mult, reason, periods,
+                     meshes)
 
 
 # -- continuation -----------------------------------------------------------------------

@@ -175,3 +175,42 @@ def test_a_bad_eta_range_exits_2_naming_the_flag(args, words):
                                     *args])
     assert out.exit_code == 2 and "--eta-range" in out.output and words in out.output
     assert "Traceback" not in out.output
+
+
+@pytest.mark.slow
+def test_a_near_stop_speed_on_a_mesh_of_its_own_against_an_independent_integration():
+    """J_c = 0.2 kg·m², d = 1.899 N·m·s/rad, η = 0.506: the uniform grid's shooting fails
+    up to 11 520 steps (the crank falls to a quarter of Ω). Shot from the neighbouring
+    speed's solution on a mesh of its own (the nodes gathered by (Ω/v)² where the crank
+    is slow), the solution converges on 1 440 steps to 1e-6 and is periodic for scipy's
+    DOP853 at rtol 1e-11 too, with the same largest |μ| (its monodromy matrix by central
+    differences of DOP853 runs): a perturbation decays as |μ| says."""
+    shaft = slider(0.2, 1.899)
+    line = shaft.ideal_line
+    problem = engine.problem(line, shaft.tables_at, 1440)
+    omega_bar = shaft.frequency.omega_bar
+
+    def p_of(eta):
+        return engine.parameters(line, [eta * omega_bar])
+
+    p = p_of(0.512)
+    guess = engine.linear_guess(line, shaft.tables_at(1440), engine.Lanes.of(line, p[:, 0]))
+    x, p_from, mesh = periodic.shoot(problem, p, guess).start, p, None
+    for eta in (0.509, 0.506):
+        mesh = periodic.mesh_of(problem, 2880 if mesh is None else 0, x, p_from, 1440, mesh)
+        found = periodic.shoot(problem, p_of(eta), x, mesh=mesh)
+        assert found.converged[0], found.reason
+        x, p_from, mesh = found.start, p_of(eta), np.array(found.mesh)
+    assert found.steps[0] <= 2880 and found.accuracy[0] <= periodic.ACCURACY
+    path = periodic.trajectory(problem, 0, x, p_from, mesh=mesh)
+    speed = float(p_from[0, 0])
+    assert np.min(speed + path[:, 0, 0]) < 0.3 * speed  # the crank nearly stops
+    start = x[0]
+    scale = problem.scale(p_from)[0]
+    assert np.all(np.abs(independent(shaft, speed, start) - start) <= 1e-6 * scale)
+    delta = scale * 1e-4
+    columns = [(independent(shaft, speed, start + delta[i] * np.eye(2)[i])
+                - independent(shaft, speed, start - delta[i] * np.eye(2)[i])) / (2 * delta[i])
+               for i in range(2)]
+    seen = np.max(np.abs(np.linalg.eigvals(np.column_stack(columns))))
+    assert seen == pytest.approx(found.stability[0], abs=1e-5)
