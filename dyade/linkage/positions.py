@@ -21,11 +21,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dyade.arrays import FloatArray, Vec
+from dyade.arrays import FloatArray, Variants, Vec
 from dyade.linkage import dyads
+from dyade.linkage.components import plus, rotate_xy
+from dyade.linkage.dyads.closure import arm_angle, difference, ends, is_nought, length, scalar
 from dyade.linkage.kinematics import cos_sin
 from dyade.linkage.motion import Motion
-from dyade.model.mechanism import CRANK, Mechanism
+from dyade.model.mechanism import CRANK, FRAME, Mechanism
 
 
 @dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
@@ -37,16 +39,19 @@ class Positions:
     the way does not close"""
     closes: FloatArray
     """(n,) bool: every dyad closes at this position"""
-    transmission: FloatArray
-    """(n, dyads) transmission angle μ of each dyad [rad], NaN where it does not close"""
+    transmission: FloatArray | None
+    """(n, dyads) transmission angle μ of each dyad [rad], NaN where it does not close;
+    None when only the points were asked for (``angles=False``)"""
     conditioning: FloatArray
     """(n, dyads) distance from a dead centre in [0, 1] (|sin μ| for RRR)"""
-    angles: FloatArray
-    """(n, links) the link angles φ [rad] (the frame's 0), NaN where not placed"""
+    angles: FloatArray | None
+    """(n, links) the link angles φ [rad] (the frame's 0), NaN where not placed; None
+    when only the points were asked for (``angles=False``)"""
 
 
 def positions(mechanism: Mechanism, crank_angle: FloatArray,
-              points: Sequence[tuple[int, Vec]], repeat: int = 1) -> Positions:
+              points: Sequence[tuple[int, Vec]], repeat: int = 1,
+              angles: bool = True) -> Positions:
     """World positions of ``points`` (link, local point (ξ, η) [m]) at every crank angle.
 
     Parameters
@@ -63,12 +68,29 @@ def positions(mechanism: Mechanism, crank_angle: FloatArray,
     repeat : int
         The crank angles are ``crank_angle`` repeated ``repeat`` times (``repeat``
         stacked variants over the same angles): their cosines and sines are taken once.
+        The mechanism's numbers may then also be ``Variants`` (one per variant, as a
+        block of variants is read at once, ``dyade.linkage.stack.spread``).
+    angles : bool
+        False: only the points (and where the linkage closes, and the conditioning) are
+        wanted; no link angle and no transmission angle is taken, and a mechanism whose
+        dyads are all RRR takes the angle-free path (cos/sin pairs over a grid of
+        variants × positions, each variant's number a column), the same points to the
+        bit.
 
     Returns
     -------
     Positions
     """
     turn = np.asarray(crank_angle, dtype=np.float64)
+    if not angles and _fast_kinds(mechanism):
+        return _angle_free(mechanism, turn, points, repeat)
+    if repeat > 1:
+        from dyade.linkage.stack import spread
+
+        mechanism = spread(mechanism, turn.shape[0])
+        points = [(link, tuple(np.repeat(np.asarray(v), turn.shape[0])
+                               if isinstance(v, Variants) else v for v in local))
+                  for link, local in points]
     n = turn.shape[0] * repeat
     motion = Motion.at_rest(n, mechanism.max_link + 1, tuple(mechanism.moving_links))
     motion.origin[:, CRANK] = mechanism.crank.pivot
@@ -94,3 +116,134 @@ def positions(mechanism: Mechanism, crank_angle: FloatArray,
     for k, (link, local) in enumerate(points):
         out[:, k, 0], out[:, k, 1] = motion.point_xy(link, local)
     return Positions(out, ok, transmission, conditioning, motion.angle)
+
+
+# -- the angle-free path ----------------------------------------------------------------
+# Only the points are asked for (``angles=False``) and every dyad has a fast closure: the
+# links' poses are kept as cos/sin pairs and origins over a (variants, positions) grid,
+# each number of a variant a (variants, 1) column broadcast over the positions (a block
+# of candidates × positions costs what the closed form costs), no angle and no
+# transmission angle taken. The arithmetic is the generic closures', operation for
+# operation (``dyade.linkage.dyads.rrr``, ``closure.orient``, ``Motion.point_xy``), so the
+# points and the conditioning are the same to the bit.
+
+def _fast_kinds(mechanism: Mechanism) -> bool:
+    return all(dyad.kind.name == "RRR" for dyad in mechanism.dyads)
+
+
+class _Grid:
+    """The numbers of a mechanism over (count, positions): a plain float, a (count, 1)
+    column for a number per variant (``Variants``), a (count, positions) view for a
+    number per (variant, position)."""
+
+    def __init__(self, count: int, steps: int) -> None:
+        self.count, self.steps = count, steps
+
+    def __call__(self, value):
+        if isinstance(value, Variants):
+            return scalar(np.asarray(value).reshape(self.count, 1))
+        if np.ndim(value) == 0:
+            return float(value)
+        return scalar(np.asarray(value).reshape(self.count, self.steps))
+
+    def point(self, local) -> tuple:
+        return self(local[0]), self(local[1])
+
+
+def _pin(joint, unknown: int, poses: dict, grid: _Grid) -> tuple:
+    """``closure.pin_xy`` on the grid."""
+    (p, q), (u_p, u_q) = joint.links, joint.points
+    known, local, other = (q, u_q, u_p) if p == unknown else (p, u_p, u_q)
+    local, other = grid.point(local), grid.point(other)
+    if known == FRAME:
+        return local, other
+    cos, sin, ox, oy = poses[known]
+    rx, ry = rotate_xy(cos, sin, local)
+    return (plus(ox, rx), plus(oy, ry)), other
+
+
+def _rotated(cos, sin, local) -> tuple:
+    """``Motion.rotated_xy``."""
+    u, v = local
+    if np.ndim(v) == 0 and v == 0.0:
+        return cos * u, sin * u
+    return cos * u - sin * v, sin * u + cos * v
+
+
+def _orient(wx, wy, arm, length, px, py, local) -> tuple:
+    """``closure.orient`` without the angle: the link's (cos, sin, ox, oy)."""
+    beta = arm_angle(arm)
+    if is_nought(beta):
+        cos, sin = wx / length, wy / length
+    else:
+        ex, ey = wx / length, wy / length
+        cb, sb = np.cos(beta), np.sin(beta)
+        cos, sin = ex * cb + ey * sb, ey * cb - ex * sb
+    if is_nought(local[0]) and is_nought(local[1]):
+        return cos, sin, px, py
+    rx, ry = _rotated(cos, sin, local)
+    return cos, sin, px - rx, py - ry
+
+
+def _rrr(dyad, poses: dict, grid: _Grid) -> tuple:
+    """``dyads.rrr.close`` on the grid: (closes, conditioning)."""
+    i, j = dyad.links
+    joint_a, joint_b, joint_c = dyad.joints
+    (ax, ay), a_i = _pin(joint_a, i, poses, grid)
+    (cx, cy), c_j = _pin(joint_c, j, poses, grid)
+    b_i, b_j = ends(joint_b, i)
+    arm_i, arm_j = difference(grid.point(b_i), a_i), difference(grid.point(b_j), c_j)
+    l_i, l_j = length(arm_i), length(arm_j)
+    dx, dy = cx - ax, cy - ay
+    dist_sq = dx * dx + dy * dy
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        inverse = 1.0 / np.sqrt(dist_sq)
+        along = (dist_sq + (l_i * l_i - l_j * l_j)) * (0.5 * inverse)
+        height_sq = l_i * l_i - along * along
+        closes = height_sq >= -1e-12 * l_i * l_i
+        ux, uy = dx * inverse, dy * inverse
+    height = np.sqrt(np.maximum(height_sq, 0.0))
+    if not closes.all():
+        height[~closes] = np.nan
+    side = height if dyad.variant > 0 else -height
+    bax, bay = along * ux - side * uy, along * uy + side * ux
+    bcx, bcy = (ax - cx) + bax, (ay - cy) + bay
+    poses[i] = _orient(bax, bay, arm_i, l_i, ax, ay, a_i)
+    poses[j] = _orient(bcx, bcy, arm_j, l_j, cx, cy, c_j)
+    sin = bax * bcy - bay * bcx
+    np.abs(sin, out=sin)
+    sin /= l_i * l_j
+    return closes, sin
+
+
+def _angle_free(mechanism: Mechanism, turn: FloatArray, points, repeat: int) -> Positions:
+    steps = turn.shape[0]
+    n = steps * repeat
+    grid = _Grid(repeat, steps)
+    cos, sin = np.empty(steps), np.empty(steps)
+    cos_sin(turn, cos, sin)
+    px, py = grid.point(mechanism.crank.pivot)
+    poses = {FRAME: (1.0, 0.0, 0.0, 0.0), CRANK: (cos[None, :], sin[None, :], px, py)}
+    shape = (repeat, steps)
+    count = len(mechanism.dyads)
+    conditioning = np.empty((count, repeat, steps))
+    ok = np.ones(shape, dtype=bool)
+    for col, dyad in enumerate(mechanism.dyads):
+        closes, conditioning[col] = _rrr(dyad, poses, grid)
+        ok &= closes
+        if not ok.all():
+            bad = ~ok
+            conditioning[col][bad] = np.nan
+            for link in dyad.links:
+                pose = [np.array(np.broadcast_to(v, shape)) for v in poses[link]]
+                for v in pose:
+                    v[bad] = np.nan
+                poses[link] = tuple(pose)
+    out = np.empty((n, len(points), 2))
+    for k, (link, local) in enumerate(points):
+        c, s, ox, oy = poses[link]
+        x, y = _rotated(c, s, grid.point(local))
+        grid_out = out.reshape(repeat, steps, len(points), 2)
+        grid_out[:, :, k, 0] = ox + x
+        grid_out[:, :, k, 1] = oy + y
+    return Positions(out, ok.reshape(n), None, conditioning.reshape(count, n).T, None)

@@ -152,9 +152,11 @@ def traced(topology: Topology, values: FloatArray, variant: int, crank: FloatArr
     from dyade.linkage.positions import positions
 
     count = len(values)
-    mechanism = stacked(topology, values, variant, crank.size)
+    template_, index = template(topology, variant)  # numbers one per candidate, unspread
+    mechanism = _substitute(template_, index, [Variants(values[:, k])
+                                               for k in range(values.shape[1])])
     point = mechanism.links[COUPLER].points["P"]
-    found = positions(mechanism, crank, [(COUPLER, point)], repeat=count)
+    found = positions(mechanism, crank, [(COUPLER, point)], repeat=count, angles=False)
     z = found.points[:, 0, 0] + 1j * found.points[:, 0, 1]
     z = z.reshape(count, crank.size)
     closes = found.closes.reshape(count, crank.size).all(axis=1)
