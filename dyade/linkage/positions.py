@@ -132,19 +132,19 @@ def _fast_kinds(mechanism: Mechanism) -> bool:
 
 
 class _Grid:
-    """The numbers of a mechanism over (count, positions): a plain float, a (count, 1)
-    column for a number per variant (``Variants``), a (count, positions) view for a
-    number per (variant, position)."""
+    """The numbers of a mechanism over variants lo..hi−1 × positions: a plain float, a
+    (rows, 1) column for a number per variant (``Variants``), a (rows, positions) view
+    for a number per (variant, position)."""
 
-    def __init__(self, count: int, steps: int) -> None:
-        self.count, self.steps = count, steps
+    def __init__(self, count: int, steps: int, lo: int, hi: int) -> None:
+        self.count, self.steps, self.lo, self.hi = count, steps, lo, hi
 
     def __call__(self, value):
         if isinstance(value, Variants):
-            return scalar(np.asarray(value).reshape(self.count, 1))
+            return scalar(np.asarray(value)[self.lo:self.hi, None])
         if np.ndim(value) == 0:
             return float(value)
-        return scalar(np.asarray(value).reshape(self.count, self.steps))
+        return scalar(np.asarray(value).reshape(self.count, self.steps)[self.lo:self.hi])
 
     def point(self, local) -> tuple:
         return self(local[0]), self(local[1])
@@ -216,34 +216,50 @@ def _rrr(dyad, poses: dict, grid: _Grid) -> tuple:
     return closes, sin
 
 
+CACHE_ELEMENTS = 16_384
+"""[-] about this many (variant, position) pairs at once on the angle-free path: a few
+dozen arrays of them stay in the processor's cache"""
+
+
 def _angle_free(mechanism: Mechanism, turn: FloatArray, points, repeat: int) -> Positions:
     steps = turn.shape[0]
     n = steps * repeat
-    grid = _Grid(repeat, steps)
     cos, sin = np.empty(steps), np.empty(steps)
     cos_sin(turn, cos, sin)
-    px, py = grid.point(mechanism.crank.pivot)
-    poses = {FRAME: (1.0, 0.0, 0.0, 0.0), CRANK: (cos[None, :], sin[None, :], px, py)}
-    shape = (repeat, steps)
+    crank = (cos[None, :], sin[None, :])
     count = len(mechanism.dyads)
-    conditioning = np.empty((count, repeat, steps))
-    ok = np.ones(shape, dtype=bool)
+    conditioning = np.empty((repeat, steps, count))
+    ok = np.ones((repeat, steps), dtype=bool)
+    out = np.empty((repeat, steps, len(points), 2))
+    rows = max(1, CACHE_ELEMENTS // max(steps, 1))
+    for lo in range(0, repeat, rows):
+        hi = min(lo + rows, repeat)
+        grid = _Grid(repeat, steps, lo, hi)
+        _chunk(mechanism, grid, crank, points, ok[lo:hi], conditioning[lo:hi], out[lo:hi])
+    return Positions(out.reshape(n, len(points), 2), ok.reshape(n), None,
+                     conditioning.reshape(n, count), None)
+
+
+def _chunk(mechanism: Mechanism, grid: _Grid, crank: tuple, points, ok, conditioning,
+           out) -> None:
+    """Variants grid.lo..grid.hi−1: their closes, conditioning and points into the
+    given slices."""
+    shape = ok.shape
+    px, py = grid.point(mechanism.crank.pivot)
+    poses = {FRAME: (1.0, 0.0, 0.0, 0.0), CRANK: (crank[0], crank[1], px, py)}
     for col, dyad in enumerate(mechanism.dyads):
-        closes, conditioning[col] = _rrr(dyad, poses, grid)
+        closes, conditioning[:, :, col] = _rrr(dyad, poses, grid)
         ok &= closes
         if not ok.all():
             bad = ~ok
-            conditioning[col][bad] = np.nan
+            conditioning[:, :, col][bad] = np.nan
             for link in dyad.links:
                 pose = [np.array(np.broadcast_to(v, shape)) for v in poses[link]]
                 for v in pose:
                     v[bad] = np.nan
                 poses[link] = tuple(pose)
-    out = np.empty((n, len(points), 2))
     for k, (link, local) in enumerate(points):
         c, s, ox, oy = poses[link]
         x, y = _rotated(c, s, grid.point(local))
-        grid_out = out.reshape(repeat, steps, len(points), 2)
-        grid_out[:, :, k, 0] = ox + x
-        grid_out[:, :, k, 1] = oy + y
-    return Positions(out, ok.reshape(n), None, conditioning.reshape(count, n).T, None)
+        np.add(ox, x, out=out[:, :, k, 0])
+        np.add(oy, y, out=out[:, :, k, 1])
