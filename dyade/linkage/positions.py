@@ -132,19 +132,34 @@ def _fast_kinds(mechanism: Mechanism) -> bool:
 
 
 class _Grid:
-    """The numbers of a mechanism over variants lo..hi−1 × positions: a plain float, a
-    (rows, 1) column for a number per variant (``Variants``), a (rows, positions) view
-    for a number per (variant, position)."""
+    """The numbers of a mechanism over variants lo..hi−1 × positions (``at``): a plain
+    float, a (rows, 1) column for a number per variant (``Variants``), a (rows,
+    positions) view for a number per (variant, position); each number looked at once."""
 
-    def __init__(self, count: int, steps: int, lo: int, hi: int) -> None:
-        self.count, self.steps, self.lo, self.hi = count, steps, lo, hi
+    def __init__(self, count: int, steps: int) -> None:
+        self.count, self.steps = count, steps
+        self.lo, self.hi = 0, count
+        self.seen: dict = {}
+
+    def at(self, lo: int, hi: int) -> _Grid:
+        self.lo, self.hi = lo, hi
+        return self
 
     def __call__(self, value):
-        if isinstance(value, Variants):
-            return scalar(np.asarray(value)[self.lo:self.hi, None])
-        if np.ndim(value) == 0:
-            return float(value)
-        return scalar(np.asarray(value).reshape(self.count, self.steps)[self.lo:self.hi])
+        if type(value) is float:
+            return value
+        key = id(value)
+        whole = self.seen.get(key)
+        if whole is None:
+            if isinstance(value, Variants):
+                whole = scalar(np.asarray(value)[:, None])
+            elif np.ndim(value) == 0:
+                whole = float(value)
+            else:
+                whole = scalar(np.asarray(value).reshape(self.count, self.steps))
+            self.seen[key] = whole = (value, whole)  # the value kept alive: its id stays
+        whole = whole[1]
+        return whole if type(whole) is float else whole[self.lo:self.hi]
 
     def point(self, local) -> tuple:
         return self(local[0]), self(local[1])
@@ -157,9 +172,17 @@ def _pin(joint, unknown: int, poses: dict, grid: _Grid) -> tuple:
     local, other = grid.point(local), grid.point(other)
     if known == FRAME:
         return local, other
-    cos, sin, ox, oy = poses[known]
+    cos, sin, ox, oy = _pose(poses, known)
     rx, ry = rotate_xy(cos, sin, local)
     return (plus(ox, rx), plus(oy, ry)), other
+
+
+def _pose(poses: dict, link: int) -> tuple:
+    """A link's (cos, sin, ox, oy), worked out now if it was left for later."""
+    pose = poses[link]
+    if callable(pose):
+        poses[link] = pose = pose()
+    return pose
 
 
 def _rotated(cos, sin, local) -> tuple:
@@ -194,29 +217,50 @@ def _rrr(dyad, poses: dict, grid: _Grid) -> tuple:
     b_i, b_j = ends(joint_b, i)
     arm_i, arm_j = difference(grid.point(b_i), a_i), difference(grid.point(b_j), c_j)
     l_i, l_j = length(arm_i), length(arm_j)
-    dx, dy = cx - ax, cy - ay
-    dist_sq = dx * dx + dy * dy
+    # the generic closure's operations, in place where an operand is an array of the grid
+    dx, dy = np.subtract(cx, ax), np.subtract(cy, ay)
+    shape = (grid.hi - grid.lo, grid.steps)
+    if np.shape(dx) != shape or np.shape(dy) != shape:  # a group fixed to the frame
+        dx, dy = (np.array(np.broadcast_to(v, shape), dtype=np.float64) for v in (dx, dy))
+    dist_sq = dx * dx
+    work = dy * dy
+    dist_sq += work
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        inverse = 1.0 / np.sqrt(dist_sq)
-        along = (dist_sq + (l_i * l_i - l_j * l_j)) * (0.5 * inverse)
-        height_sq = l_i * l_i - along * along
-        closes = height_sq >= -1e-12 * l_i * l_i
-        ux, uy = dx * inverse, dy * inverse
-    height = np.sqrt(np.maximum(height_sq, 0.0))
+        inverse = np.sqrt(dist_sq)
+        np.divide(1.0, inverse, out=inverse)
+        along = dist_sq
+        along += l_i * l_i - l_j * l_j
+        np.multiply(0.5, inverse, out=work)
+        along *= work
+        height = np.multiply(along, along, out=work)
+        np.subtract(l_i * l_i, height, out=height)
+        closes = height >= -1e-12 * l_i * l_i
+        ux, uy = dx, dy
+        ux *= inverse
+        uy *= inverse
+    np.maximum(height, 0.0, out=height)
+    np.sqrt(height, out=height)
     if not closes.all():
         height[~closes] = np.nan
-    side = height if dyad.variant > 0 else -height
-    bax, bay = along * ux - side * uy, along * uy + side * ux
-    bcx, bcy = (ax - cx) + bax, (ay - cy) + bay
-    poses[i] = _orient(bax, bay, arm_i, l_i, ax, ay, a_i)
-    poses[j] = _orient(bcx, bcy, arm_j, l_j, cx, cy, c_j)
+    side = height if dyad.variant > 0 else np.negative(height, out=height)
+    bax, bay = along * ux, along * uy
+    np.multiply(side, uy, out=inverse)
+    bax -= inverse
+    np.multiply(side, ux, out=inverse)
+    bay += inverse
+    bcx, bcy = np.subtract(ax, cx), np.subtract(ay, cy)
+    bcx += bax
+    bcy += bay
+    # a link's pose is worked out when first wanted (a rocker no point is asked on: never)
+    poses[i] = lambda: _orient(bax, bay, arm_i, l_i, ax, ay, a_i)
+    poses[j] = lambda: _orient(bcx, bcy, arm_j, l_j, cx, cy, c_j)
     sin = bax * bcy - bay * bcx
     np.abs(sin, out=sin)
     sin /= l_i * l_j
     return closes, sin
 
 
-CACHE_ELEMENTS = 16_384
+CACHE_ELEMENTS = 32_768
 """[-] about this many (variant, position) pairs at once on the angle-free path: a few
 dozen arrays of them stay in the processor's cache"""
 
@@ -232,9 +276,10 @@ def _angle_free(mechanism: Mechanism, turn: FloatArray, points, repeat: int) -> 
     ok = np.ones((repeat, steps), dtype=bool)
     out = np.empty((repeat, steps, len(points), 2))
     rows = max(1, CACHE_ELEMENTS // max(steps, 1))
+    grid = _Grid(repeat, steps)
     for lo in range(0, repeat, rows):
         hi = min(lo + rows, repeat)
-        grid = _Grid(repeat, steps, lo, hi)
+        grid.at(lo, hi)
         _chunk(mechanism, grid, crank, points, ok[lo:hi], conditioning[lo:hi], out[lo:hi])
     return Positions(out.reshape(n, len(points), 2), ok.reshape(n), None,
                      conditioning.reshape(n, count), None)
@@ -254,12 +299,12 @@ def _chunk(mechanism: Mechanism, grid: _Grid, crank: tuple, points, ok, conditio
             bad = ~ok
             conditioning[:, :, col][bad] = np.nan
             for link in dyad.links:
-                pose = [np.array(np.broadcast_to(v, shape)) for v in poses[link]]
+                pose = [np.array(np.broadcast_to(v, shape)) for v in _pose(poses, link)]
                 for v in pose:
                     v[bad] = np.nan
                 poses[link] = tuple(pose)
     for k, (link, local) in enumerate(points):
-        c, s, ox, oy = poses[link]
+        c, s, ox, oy = _pose(poses, link)
         x, y = _rotated(c, s, grid.point(local))
         np.add(ox, x, out=out[:, :, k, 0])
         np.add(oy, y, out=out[:, :, k, 1])
