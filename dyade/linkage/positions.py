@@ -115,6 +115,8 @@ def positions(mechanism: Mechanism, crank_angle: FloatArray,
     out = np.empty((n, len(points), 2))
     for k, (link, local) in enumerate(points):
         out[:, k, 0], out[:, k, 1] = motion.point_xy(link, local)
+    if not angles:
+        return Positions(out, ok, None, conditioning, None)
     return Positions(out, ok, transmission, conditioning, motion.angle)
 
 
