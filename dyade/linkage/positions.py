@@ -23,7 +23,7 @@ import numpy as np
 
 from dyade.arrays import FloatArray, Variants, Vec
 from dyade.linkage import dyads
-from dyade.linkage.components import plus, rotate_xy
+from dyade.linkage.components import direction_xy, full, minus, plus, rotate_xy, times
 from dyade.linkage.dyads.closure import arm_angle, difference, ends, is_nought, length, scalar
 from dyade.linkage.kinematics import cos_sin
 from dyade.linkage.motion import Motion
@@ -130,7 +130,7 @@ def positions(mechanism: Mechanism, crank_angle: FloatArray,
 # points and the conditioning are the same to the bit.
 
 def _fast_kinds(mechanism: Mechanism) -> bool:
-    return all(dyad.kind.name == "RRR" for dyad in mechanism.dyads)
+    return all(dyad.kind.name in _FAST for dyad in mechanism.dyads)
 
 
 class _Grid:
@@ -295,7 +295,7 @@ def _chunk(mechanism: Mechanism, grid: _Grid, crank: tuple, points, ok, conditio
     px, py = grid.point(mechanism.crank.pivot)
     poses = {FRAME: (1.0, 0.0, 0.0, 0.0), CRANK: (crank[0], crank[1], px, py)}
     for col, dyad in enumerate(mechanism.dyads):
-        closes, conditioning[:, :, col] = _rrr(dyad, poses, grid)
+        closes, conditioning[:, :, col] = _FAST[dyad.kind.name](dyad, poses, grid)
         ok &= closes
         if not ok.all():
             bad = ~ok
@@ -310,3 +310,83 @@ def _chunk(mechanism: Mechanism, grid: _Grid, crank: tuple, points, ok, conditio
         x, y = _rotated(c, s, grid.point(local))
         np.add(ox, x, out=out[:, :, k, 0])
         np.add(oy, y, out=out[:, :, k, 1])
+
+
+def _carry(joint, known: int, unknown: int, poses: dict, grid: _Grid) -> tuple:
+    """``closure.carry`` on the grid: the cos and sin of the link across a prismatic
+    joint from ``known``."""
+    offset = grid(joint.relative_angle)
+    if joint.carrier != known:
+        offset = -offset
+    if known == FRAME:
+        return scalar(np.cos(offset)), scalar(np.sin(offset))
+    ck, sk = _pose(poses, known)[:2]
+    if is_nought(offset):
+        return ck, sk
+    c, s = np.cos(offset), np.sin(offset)
+    return ck * c - sk * s, sk * c + ck * s
+
+
+def _guide_line(joint, unknown: int, poses: dict, grid: _Grid, cos, sin) -> tuple:
+    """``closure.guide_line`` on the grid."""
+    if joint.slider == unknown:
+        c_c, s_c, ox, oy = _pose(poses, joint.carrier)
+        px, py = rotate_xy(c_c, s_c, grid.point(joint.guide_point))
+        wx, wy = rotate_xy(cos, sin, grid.point(joint.slider_point))
+    else:
+        c_c, s_c = cos, sin
+        c_s, s_s, ox, oy = _pose(poses, joint.slider)
+        px, py = rotate_xy(c_s, s_s, grid.point(joint.slider_point))
+        wx, wy = rotate_xy(cos, sin, grid.point(joint.guide_point))
+    theta = grid(joint.guide_angle)
+    if type(theta) is float:
+        dx, dy = rotate_xy(c_c, s_c, (float(np.cos(theta)), float(np.sin(theta))))
+    else:
+        dx, dy = rotate_xy(c_c, s_c, (np.cos(theta), np.sin(theta)))
+    return (dx, dy), -dy * minus(plus(ox, px), wx) + dx * minus(plus(oy, py), wy)
+
+
+def _rrp(dyad, poses: dict, grid: _Grid) -> tuple:
+    """``dyads.rrp.close`` on the grid: (closes, conditioning)."""
+    i, j = dyad.links
+    _, h = dyad.known
+    joint_a, joint_b, joint_c = dyad.joints
+    (ax, ay), a_i = _pin(joint_a, i, poses, grid)
+    shape = (grid.hi - grid.lo, grid.steps)
+    if type(ax) is float:
+        ax = 0.0 + ax
+    if type(ay) is float:
+        ay = 0.0 + ay
+    if h == FRAME:  # A on the frame too: a constant group
+        ax, ay = (np.array(np.broadcast_to(v, shape), dtype=np.float64) for v in (ax, ay))
+    b_i, b_j = (grid.point(b) for b in ends(joint_b, i))
+    c_j, s_j = _carry(joint_c, h, j, poses, grid)
+    (dx, dy), offset = _guide_line(joint_c, j, poses, grid, c_j, s_j)
+    nx, ny = -dy, dx
+    if not (is_nought(b_j[0]) and is_nought(b_j[1])):  # closure.shift_line
+        ux, uy = rotate_xy(c_j, s_j, b_j)
+        offset = offset + (-dy * ux + dx * uy)
+    arm_i = (b_i[0] - a_i[0], b_i[1] - a_i[1])
+    l_i = length(arm_i)
+    height = minus(offset, plus(times(nx, ax), times(ny, ay)))
+    along = l_i ** 2 - height ** 2
+    closes = along >= -1e-12 * l_i ** 2
+    np.maximum(along, 0.0, out=along)
+    if not closes.all():
+        along[~closes] = np.nan
+    np.sqrt(along, out=along)
+    if dyad.variant < 0:
+        np.negative(along, out=along)
+    bx = plus(plus(ax, times(height, nx)), times(along, dx))
+    by = plus(plus(ay, times(height, ny)), times(along, dy))
+    abx, aby = bx - ax, by - ay
+    poses[i] = lambda: _orient(abx, aby, arm_i, l_i, ax, ay, a_i)
+    rx, ry = rotate_xy(c_j, s_j, b_j)  # closure.place_origin
+    poses[j] = (c_j, s_j, minus(bx, rx), minus(by, ry))
+    sin = np.abs(minus(times(abx, ny), times(aby, nx)))
+    sin /= l_i
+    return closes, sin
+
+
+_FAST = {"RRR": _rrr, "RRP": _rrp}
+"""the dyad kinds the angle-free path closes itself (the others: the generic path)"""

@@ -62,7 +62,8 @@ def test_only_the_points_are_the_same_points(name):
     assert fast.angles is None and fast.transmission is None
 
 
-def test_only_the_points_of_variants_that_do_not_always_close(monkeypatch):
+@pytest.mark.parametrize("kind", ["four-bar", "slider-crank"])
+def test_only_the_points_of_variants_that_do_not_always_close(monkeypatch, kind):
     """Candidates read at once (Variants), some of which lock up part of the turn (a
     crank longer than the Grashof limit), more than one chunk of the angle-free path:
     the generic path's points, NaN included, to the bit."""
@@ -70,17 +71,21 @@ def test_only_the_points_of_variants_that_do_not_always_close(monkeypatch):
     from dyade.linkage import positions as stage
     from dyade.linkage.stack import spread
     from dyade.synthesis.search import _substitute, template
-    from dyade.synthesis.topology import COUPLER, FourBar
+    from dyade.synthesis.topology import COUPLER, FourBar, SliderCrank
 
     monkeypatch.setattr(stage, "CACHE_ELEMENTS", 360)  # chunks of 10 candidates
     rng = np.random.default_rng(5)
     count = 47
+    topology = FourBar() if kind == "four-bar" else SliderCrank()
     values = np.column_stack([rng.uniform(0.1, 0.9, count), rng.uniform(0.5, 1.5, count),
                               rng.uniform(0.5, 1.5, count), np.ones(count),
                               rng.uniform(-1, 1, count), rng.uniform(-1, 1, count)])
+    if kind == "slider-crank":  # a, b, offset e, p, q
+        values = np.column_stack([values[:, 0], values[:, 1] * 0.7, values[:, 4] * 0.5,
+                                  values[:, 4], values[:, 5]])
     angle = np.deg2rad(np.arange(0.0, 360.0, 10.0))
     for variant in (1, -1):
-        mechanism, index = template(FourBar(), variant)
+        mechanism, index = template(topology, variant)
         read = _substitute(mechanism, index, [Variants(v) for v in values.T])
         point = read.links[COUPLER].points["P"]
         fast = positions(read, angle, [(COUPLER, point)], repeat=count, angles=False)
