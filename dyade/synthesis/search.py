@@ -110,16 +110,6 @@ def template(topology: Topology, variant: int):
     return _TEMPLATES[key]
 
 
-def stacked(topology: Topology, values: FloatArray, variant: int, positions: int):
-    """The candidates (rows of ``values``) as one stacked mechanism: each dimension one
-    number per (candidate, position), candidate-major (``dyade.linkage.stack``)."""
-    from dyade.linkage.stack import spread
-
-    mechanism, index = template(topology, variant)
-    columns = [Variants(values[:, k]) for k in range(values.shape[1])]
-    return spread(_substitute(mechanism, index, columns), positions)
-
-
 def _substitute(value, index: dict, columns: list):
     """``value`` with every stand-in number replaced by its dimension's column."""
     import dataclasses
@@ -152,9 +142,12 @@ def traced(topology: Topology, values: FloatArray, variant: int, crank: FloatArr
     from dyade.linkage.positions import positions
 
     count = len(values)
-    mechanism = stacked(topology, values, variant, crank.size)
+    template_, index = template(topology, variant)  # numbers one per candidate, unspread
+    mechanism = _substitute(template_, index, [Variants(values[:, k])
+                                               for k in range(values.shape[1])])
     point = mechanism.links[topology.coupler].points["P"]
-    found = positions(mechanism, crank, [(topology.coupler, point)], repeat=count)
+    found = positions(mechanism, crank, [(topology.coupler, point)], repeat=count,
+                      angles=False)
     z = found.points[:, 0, 0] + 1j * found.points[:, 0, 1]
     z = z.reshape(count, crank.size)
     closes = found.closes.reshape(count, crank.size).all(axis=1)

@@ -71,7 +71,7 @@ def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: Float
     """Place a link whose local vector ``arm`` (of ``length``) lies along the world
     vector (wx, wy) of the same length, with its local point ``local`` on (px, py):
     the cosine and sine of its angle come without trigonometric functions."""
-    beta = _direction(arm)
+    beta = arm_angle(arm)
     cos, sin, angle = motion.cos[:, link], motion.sin[:, link], motion.angle[:, link]
     np.arctan2(wy, wx, out=angle)
     if is_nought(beta):
@@ -92,7 +92,7 @@ def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: Float
         motion.origin[:, link, 1] = py - ry
 
 
-def _direction(arm) -> float | FloatArray:
+def arm_angle(arm) -> float | FloatArray:
     """The angle of a local vector [rad] (a float, or one per position): exactly 0.0
     (of the y part's sign) without an arctangent for one along +x, as a link's length
     as a parameter of a study gives it (one value per variant and position)."""
