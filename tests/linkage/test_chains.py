@@ -6,6 +6,7 @@ bound."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 import tomlkit
 from click.testing import CliRunner
 from hypothesis import given
@@ -22,6 +23,7 @@ from tests.linkage.test_kinetostatics import applied_power, kinetic_energy_rate
 H = 1e-6  # [rad] central-difference step of the crank angle
 
 
+@pytest.mark.slow  # 4 s: the default suite's budget
 @given(data=chained_files())
 def test_random_chains_through_the_command(data, tmp_path_factory):
     path = tmp_path_factory.mktemp("chain") / "chain.toml"

@@ -372,6 +372,7 @@ def _peak_kb(*args: str) -> int:
     return int(out.stdout)
 
 
+@pytest.mark.slow  # 4 s: the default suite's budget
 @pytest.mark.skipif(not hasattr(resource, "getrusage"), reason="needs getrusage")
 def test_memory_does_not_grow_with_a_friction_sweep():
     """The slider-crank with friction in every joint at 20 000 and 200 000 positions: the

@@ -499,6 +499,7 @@ def test_torsional_mode_shapes_follow_the_shafts_without_positions():
         assert not [l for l in axes[0].get_lines() if str(l.get_gid()).endswith("-uy")]
 
 
+@pytest.mark.slow  # 6 s: the default suite's budget (determinism, run by CI's slow set)
 def test_gear_plots_same_data_same_bytes():
     drive = dyade.read_gears(TWO_STAGE)
     for fmt in ("png", "svg"):
@@ -543,7 +544,8 @@ SPECIAL = {
 }
 
 
-@pytest.mark.parametrize("fmt", ["png", pytest.param("svg", marks=pytest.mark.slow)])
+@pytest.mark.slow  # 8 s per format: the default suite's budget (every kind, CI's slow set)
+@pytest.mark.parametrize("fmt", ["png", "svg"])
 def test_every_kind_writes_png_and_svg(fmt, tmp_path):
     magic = {"png": b"\x89PNG", "svg": b"<?xml"}[fmt]
     jobs = [(kind, [shipped(name)]) for kind, name in KINDS] + list(SPECIAL.items())
@@ -574,6 +576,7 @@ def test_the_commands_run_on_every_shipped_mechanism(path, tmp_path):
     assert out.exit_code == 0, out.output
 
 
+@pytest.mark.slow  # 8 s: the default suite's budget (determinism, run by CI's slow set)
 def test_same_data_same_bytes(tmp_path):
     result = dyade.analyse(dyade.read_mechanism(shipped("fourbar.toml")))
     for fmt in ("png", "svg", "pdf"):

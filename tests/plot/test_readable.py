@@ -113,8 +113,11 @@ def study_args(case: str, tmp_path) -> list:
     return [grid, *axes] + (["--y", "dyad.2.lengths.2"] if case.startswith("map") else [])
 
 
-QUICK = [pytest.param("polar", [shipped("dyade-16.toml")], id="polar-dyade-16"),
-         pytest.param("mechanism", [shipped("dyade-16.toml")], id="mechanism-dyade-16"),
+QUICK = [pytest.param("polar", [shipped("dyade-16.toml")], id="polar-dyade-16",
+                      marks=pytest.mark.slow),  # 5 s: the default suite's budget
+         pytest.param("mechanism", [shipped("dyade-16.toml")], id="mechanism-dyade-16",
+                      marks=pytest.mark.slow),
+         pytest.param("mechanism", [shipped("fourbar.toml")], id="mechanism-fourbar"),
          pytest.param("polar", [shipped("slider-crank.toml")], id="polar-slider-crank")]
 EVERY = linkage_jobs(SHIPPED) + [pytest.param(kind, args, id=f"{kind}-{k}")
                                  for kind, cases in OTHERS.items()
