@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import dataclasses
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Callable
@@ -306,19 +307,23 @@ class DoubleHarmonic(Piece):
     z0: float = 0.0
     z1: float = 1.0
     kind: str = "double-harmonic"
+    factor: float = 1.0
+    """s (and its derivatives) multiplied by this"""
 
     def __call__(self, z: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         z = np.asarray(z, dtype=float)
         c1, c2 = np.cos(PI * z), np.cos(2 * PI * z)
         s1, s2 = np.sin(PI * z), np.sin(2 * PI * z)
-        s = 0.5 * (1 - c1) - 0.125 * (1 - c2)
-        v = PI / 2 * s1 - PI / 4 * s2
-        a = PI**2 / 2 * (c1 - c2)
-        j = PI**3 / 2 * (2 * s2 - s1)
+        f = self.factor
+        s = f * (0.5 * (1 - c1) - 0.125 * (1 - c2))
+        v = f * (PI / 2 * s1 - PI / 4 * s2)
+        a = f * PI**2 / 2 * (c1 - c2)
+        j = f * PI**3 / 2 * (2 * s2 - s1)
         return s, v, a, j
 
-    def scaled(self, factor: float) -> Piece:  # pragma: no cover - never rescaled
-        raise NotImplementedError
+    def scaled(self, factor: float) -> Piece:
+        """The same piece with s multiplied by ``factor``."""
+        return dataclasses.replace(self, factor=self.factor * factor)
 
 
 def harmonic_combination() -> list[Piece]:

@@ -10,6 +10,7 @@ angle φ_world = φ + θ (``Placement``).
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from typing import Any
 
@@ -37,7 +38,7 @@ class Placement:
         return self.origin + self.scale * np.exp(1j * self.angle) * z
 
 
-class Topology:
+class Topology(ABC):
     """What a topology gives a synthesis (subclasses: ``FourBar``, ``SliderCrank``)."""
 
     name: str
@@ -54,15 +55,17 @@ class Topology:
         """Each dyad's assembly variant (+1/−1) of a topology's ``variant``."""
         return (int(variant),)
 
+    @abstractmethod
     def data(self, values: dict[str, Any], variant: int, placement: Placement = Placement(),
              speed_rpm: float = 60.0, masses: dict | None = None,
              sweep: tuple[float, float, float] = (0.0, 360.0, 1.0), name: str = "") -> dict:
-        raise NotImplementedError
+        """The mechanism file's data of one candidate (numbers, or ``Variants`` for a
+        block) placed by ``placement``."""
 
+    @abstractmethod
     def path(self, values: FloatArray, variant: int, crank: FloatArray) -> np.ndarray:
         """(candidates, positions) complex: the coupler point in the canonical frame at
         the crank angles ``crank`` [rad], in closed form; NaN where it does not close."""
-        raise NotImplementedError
 
     def named(self, values) -> dict[str, Any]:
         """Dimensions by name: a dict as it is, a sequence in ``names``' order as floats."""
@@ -70,9 +73,9 @@ class Topology:
             return values
         return dict(zip(self.names, (float(v) for v in values)))
 
+    @abstractmethod
     def turns(self, values: FloatArray) -> FloatArray:
         """(candidates,) bool: the crank can turn fully (Grashof), for each row of values."""
-        raise NotImplementedError
 
 
 def bar(length, per_length: float | None, each: float | None) -> dict:

@@ -122,3 +122,14 @@ def test_misspelt_law_and_parameter():
     with pytest.raises(InputError, match="strictly increasing"):
         law("quintic-spline", points=[[0.6, 0.5], [0.4, 0.6]])
     assert law("Polynomial 3-4-5").name == "polynomial-345"
+
+
+def test_every_piece_scales_its_position_and_derivatives():
+    """``scaled`` (which ``chain`` uses to end a law at s = 1) multiplies s, v, a and j,
+    for the double harmonic as for the polynomial and sine pieces."""
+    from dyade.motion.laws import DoubleHarmonic
+
+    z = np.linspace(0.0, 1.0, 11)
+    piece = DoubleHarmonic()
+    for got, want in zip(piece.scaled(2.5)(z), piece(z)):
+        np.testing.assert_allclose(got, 2.5 * want, rtol=1e-15, atol=1e-15)
