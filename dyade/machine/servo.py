@@ -297,8 +297,18 @@ def follow(machine: Callable[[float], tuple[float, float, float]], torque: Float
         inertia, slope, load = machine(p)
         return (drive[j] + load - 0.5 * slope * v * v) / inertia
 
+    angles, speeds = rk4(accel, phi, w, dt, len(drive))
+    return Followed(np.asarray(time[0::2]), np.array(angles), np.array(speeds))
+
+
+def rk4(accel: Callable[[int, float, float], float], phi: float, w: float, dt: float,
+        points: int) -> tuple[list[float], list[float]]:
+    """φ and φ̇ at the ends of the classical Runge–Kutta steps of φ̈ = accel(j, φ, φ̇)
+    over ``points`` half-step instants (j: the instant's index; a step of ``dt`` spans
+    j, j + 1, j + 2), from φ = ``phi``, φ̇ = ``w``. A step in time needs the one before:
+    a loop over steps."""
     angles, speeds = [phi], [w]
-    for k in range(0, len(drive) - 1, 2):
+    for k in range(0, points - 1, 2):
         a1 = accel(k, phi, w)
         p2, v2 = phi + 0.5 * dt * w, w + 0.5 * dt * a1
         a2 = accel(k + 1, p2, v2)
@@ -310,7 +320,7 @@ def follow(machine: Callable[[float], tuple[float, float, float]], torque: Float
         w += dt * (a1 + 2.0 * a2 + 2.0 * a3 + a4) / 6.0
         angles.append(phi)
         speeds.append(w)
-    return Followed(np.asarray(time[0::2]), np.array(angles), np.array(speeds))
+    return angles, speeds
 
 
 LINE_TOL = 1e-10  # [-] periodic when the state repeats to this share of its scale
@@ -367,20 +377,7 @@ def line_periodic(machine: Callable[[float], tuple[float, float, float]], angle:
         return (line + load - rub[j] - 0.5 * slope * w * w) / inertia
 
     def cycle(phi: float, w: float) -> tuple[list, list]:
-        angles, speeds = [phi], [w]
-        for k in range(0, len(p) - 1, 2):
-            a1 = accel(k, phi, w)
-            p2, v2 = phi + 0.5 * dt * w, w + 0.5 * dt * a1
-            a2 = accel(k + 1, p2, v2)
-            p3, v3 = phi + 0.5 * dt * v2, w + 0.5 * dt * a2
-            a3 = accel(k + 1, p3, v3)
-            p4, v4 = phi + dt * v3, w + dt * a3
-            a4 = accel(k + 2, p4, v4)
-            phi += dt * (w + 2.0 * v2 + 2.0 * v3 + v4) / 6.0
-            w += dt * (a1 + 2.0 * a2 + 2.0 * a3 + a4) / 6.0
-            angles.append(phi)
-            speeds.append(w)
-        return angles, speeds
+        return rk4(accel, phi, w, dt, len(p))
 
     scale_phi = max(abs(advance), float(np.max(np.abs(angle - angle[0]))), 1e-3)
     scale_w = max(float(np.max(np.abs(speed))), scale_phi / float(time[-1] - time[0]))

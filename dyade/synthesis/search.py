@@ -11,6 +11,7 @@ candidate number), so the result does not depend on how the blocks were spread.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -181,32 +182,45 @@ class Block:
 
     def __call__(self, block: int) -> Found:
         s = self.settings
-        drawn = draw(s, self.topology.names, block, self.round_, self.around, self.spread)
-        values, variant = drawn[:, :-1], drawn[:, -1].astype(int)
-        error = np.full(len(values), np.inf)
-        crank = np.linspace(0.0, 2.0 * np.pi, s.positions, endpoint=False)
-        turns = self.topology.turns(values)
-        kept = 0
-        for sign in s.variants:
-            rows = np.flatnonzero(turns & (variant == sign))
-            if not rows.size:
-                continue
-            curves, closes, least = traced(self.topology, values[rows], sign, crank)
-            ok = closes & (least >= s.min_transmission)
-            kept += int(ok.sum())
-            if ok.any():
-                if self.crank is not None:
-                    match = timed_match(self.target, self.crank, curves[ok], s.scale)
-                else:
-                    match = closed_match(self.target, resample(curves[ok], SAMPLES),
-                                         scale=s.scale)
-                error[rows[ok]] = np.where(self.inside(values[rows[ok]], match),
-                                           match.error, np.inf)
-        order = np.argsort(error, kind="stable")[:s.keep]
-        order = order[np.isfinite(error[order])]
-        number = self.round_ * 10 ** 9 + block * s.block + order
-        return Found(values[order], variant[order], error[order], number,
-                     evaluated=len(values), assembled=kept)
+
+        def score(values: FloatArray, curves: np.ndarray) -> FloatArray:
+            if self.crank is not None:
+                match = timed_match(self.target, self.crank, curves, s.scale)
+            else:
+                match = closed_match(self.target, resample(curves, SAMPLES), scale=s.scale)
+            return np.where(self.inside(values, match), match.error, np.inf)
+
+        return drawn_block(self.topology, s, block, self.round_, self.around, self.spread,
+                           score)
+
+
+def drawn_block(topology: Topology, s: Settings, block: int, round_: int,
+                around: Found | None, spread: float,
+                score: Callable[[FloatArray, np.ndarray], FloatArray]) -> Found:
+    """Block ``block`` of round ``round_``: its candidates drawn, those whose crank turns
+    traced through dyade's positions stage per assembly variant, the ones that close with
+    the least transmission angle allowed scored by ``score(values, curves)`` (an error
+    per candidate, inf: rejected), the best ``s.keep`` kept (every search's block)."""
+    drawn = draw(s, topology.names, block, round_, around, spread)
+    values, variant = drawn[:, :-1], drawn[:, -1].astype(int)
+    error = np.full(len(values), np.inf)
+    crank = np.linspace(0.0, 2.0 * np.pi, s.positions, endpoint=False)
+    turns = topology.turns(values)
+    kept = 0
+    for sign in s.variants:
+        rows = np.flatnonzero(turns & (variant == sign))
+        if not rows.size:
+            continue
+        curves, closes, least = traced(topology, values[rows], sign, crank)
+        ok = closes & (least >= s.min_transmission)
+        kept += int(ok.sum())
+        if ok.any():
+            error[rows[ok]] = score(values[rows[ok]], curves[ok])
+    order = np.argsort(error, kind="stable")[:s.keep]
+    order = order[np.isfinite(error[order])]
+    number = round_ * 10 ** 9 + block * s.block + order
+    return Found(values[order], variant[order], error[order], number,
+                 evaluated=len(values), assembled=kept)
 
 
 def pivots(values: FloatArray, match, centre: complex) -> np.ndarray:

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dyade.arrays import FloatArray
-from dyade.synthesis.search import Found, Settings, draw, traced
+from dyade.synthesis.search import Found, Settings, drawn_block
 from dyade.synthesis.topology import Topology
 
 PART = 256
@@ -91,27 +91,13 @@ class StretchBlock:
 
     def __call__(self, block: int) -> Found:
         s = self.settings
-        drawn = draw(s, self.topology.names, block, self.round_, self.around, self.spread)
-        values, variant = drawn[:, :-1], drawn[:, -1].astype(int)
-        error = np.full(len(values), np.inf)
-        crank = np.linspace(0.0, 2.0 * np.pi, s.positions, endpoint=False)
         window = int(math.ceil(self.stretch / (2.0 * np.pi / s.positions))) + 1
-        turns = self.topology.turns(values)
-        kept = 0
-        for sign in s.variants:
-            rows = np.flatnonzero(turns & (variant == sign))
-            if not rows.size:
-                continue
-            curves, closes, least = traced(self.topology, values[rows], sign, crank)
-            ok = closes & (least >= s.min_transmission)
-            kept += int(ok.sum())
-            if ok.any():
-                error[rows[ok]] = best_window(curves[ok], window, self.kind)[0]
-        order = np.argsort(error, kind="stable")[:s.keep]
-        order = order[np.isfinite(error[order])]
-        number = self.round_ * 10 ** 9 + block * s.block + order
-        return Found(values[order], variant[order], error[order], number,
-                     evaluated=len(values), assembled=kept)
+
+        def score(values: FloatArray, curves: np.ndarray) -> FloatArray:
+            return best_window(curves, window, self.kind)[0]
+
+        return drawn_block(self.topology, s, block, self.round_, self.around, self.spread,
+                           score)
 
 
 @dataclass(slots=True, eq=False)
