@@ -82,6 +82,8 @@ class Option:
     metavar: str | None = None
     positive: bool = False
     """a number that must be above 0"""
+    least: int = 1
+    """a positive whole number's smallest allowed value (``--help`` shows the range)"""
     study: bool = True
     """a study file may vary it"""
     old: tuple[str, ...] = ()
@@ -109,8 +111,8 @@ class Option:
             return value
         if self.multiple:
             values = value if isinstance(value, (list, tuple)) else (value,)
-            return tuple(Option(self.name, self.kind, self.unit, positive=self.positive
-                                ).check(v) for v in values)
+            return tuple(Option(self.name, self.kind, self.unit, positive=self.positive,
+                                least=self.least).check(v) for v in values)
         if isinstance(self.kind, tuple):
             if value not in self.kind:
                 raise InputError.parameter(self.api, f"must be one of {', '.join(self.kind)}, "
@@ -133,6 +135,9 @@ class Option:
                                                      f"{f' [{self.unit}]' if self.unit else ''}, "
                                                      f"got {value!r}.", value=value,
                                            unit=self.unit or None)
+            if self.positive and self.kind is int and number < self.least:
+                raise InputError.parameter(self.api, f"must be at least {self.least}, got "
+                                                     f"{value!r}.", value=value)
             return number
         if self.kind is bool and not isinstance(value, bool):
             raise InputError.parameter(self.api, f"must be True or False, got {value!r}.",

@@ -19,7 +19,7 @@ from typing import Any
 from dyade.analyses.base import Analysis, Budget, Option, Outcome
 
 OPTIONS = (
-    Option("points", int, default=361, positive=True,
+    Option("points", int, default=361, positive=True, least=2,
            help="Rows of the table over one cycle, both ends included (361: every degree "
                 "of a 360° cycle)"),
     Option("speed", float, "rpm", positive=True,

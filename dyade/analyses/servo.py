@@ -33,7 +33,7 @@ OPTIONS = MECHANISM + (
                 "rotor_inertia, optionally envelope"),
     Option("rotor-inertia", float, "kg·m²", positive=True, metavar="J",
            help="The motor's rotor inertia J_M (overrides servo.rotor_inertia)"),
-    Option("samples", int, positive=True, metavar="N",
+    Option("samples", int, positive=True, least=36, metavar="N",
            help="Time steps per cycle, even (overrides servo.samples)"),
     Option("max-inertia-ratio", float, positive=True, metavar="LAMBDA",
            help="Largest load-to-motor inertia ratio a motor passes with (overrides "

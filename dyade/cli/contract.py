@@ -31,7 +31,7 @@ def click_option(option: Option, hidden: bool = False):
     elif option.kind is float:
         kwargs["type"] = POSITIVE if option.positive else FINITE
     elif option.kind is int:
-        kwargs["type"] = click.IntRange(min=1) if option.positive else int
+        kwargs["type"] = click.IntRange(min=option.least) if option.positive else int
     else:
         kwargs["type"] = str
     return click.option(option.flag, option.api, default=None, **kwargs)

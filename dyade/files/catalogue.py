@@ -72,6 +72,7 @@ def parse_catalogue(text: str, label: str = "catalogue"):
                                  f"the file has {', '.join(header) or 'none'}.",
                                  source=label)
     motors = []
+    seen: dict[str, int] = {}
     for row_number, raw in enumerate(reader, start=1):
         if None in raw:  # csv.DictReader's key of the fields beyond the header's
             raise InputError(f"{label}: row {row_number} ({raw.get('name') or 'no name'}) "
@@ -81,6 +82,11 @@ def parse_catalogue(text: str, label: str = "catalogue"):
         row = {(k or "").strip(): (v or "").strip() for k, v in raw.items()}
         name = row["name"] or f"row {row_number}"
         where = f"row {row_number} ({name})"
+        if name in seen:
+            raise InputError.in_file(label, "name", f"{name!r} of row {row_number} is also "
+                                     f"the name of row {seen[name]}: the results name motors "
+                                     f"by it, so give each motor its own name.", source=label)
+        seen[name] = row_number
         values: dict[str, float] = {}
         for column, unit in COLUMNS.items():
             if column == "name":

@@ -32,3 +32,8 @@ def test_a_row_with_more_fields_than_the_header_is_refused_naming_the_row():
 def test_a_value_beyond_any_motor_is_refused_before_it_overflows():
     with pytest.raises(InputError, match="rotor_inertia.*row 1 \\(M1\\).*up to 1e\\+09"):
         parse_catalogue(HEADER + "M1,1,3,3000,6000,1e300\n", "m.csv")
+
+
+def test_two_motors_of_one_name_are_refused_naming_both_rows():
+    with pytest.raises(InputError, match="'M1' of row 2 is also the name of row 1"):
+        parse_catalogue(HEADER + "M1,1,3,3000,6000,1e-4\nM1,2,6,3000,6000,2e-4\n", "m.csv")
