@@ -202,14 +202,16 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
     points = np.array([complex(reader.length_of(p[0], "target.points"),
                                reader.length_of(p[1], "target.points")) for p in raw])
     closed = bool(table.get("closed", kind == "path"))
-    if not closed and crank is None:
-        raise reader.fail("target.crank", "is missing: an open path needs the crank angle of "
-                                          "each point (or closed = true for a closed curve).")
     least = 8 if crank is None else 4
+    why = f"({'with' if crank is not None else 'without'} crank angles)"
+    if not closed and crank is None:  # each point adds two equations and its crank angle
+        least = len(TOPOLOGIES[topology]) + 4  # the dimensions and the placement (3)
+        why = (f"(a part of a curve without crank angles: each point adds one equation "
+               f"beyond its own crank angle, and the {len(TOPOLOGIES[topology])} dimensions "
+               f"and the placement need more than {least - 1})")
     if points.size < least:
-        raise reader.fail("target.points", f"a path needs at least {least} points "
-                                           f"({'with' if crank is not None else 'without'} "
-                                           f"crank angles), got {points.size}.")
+        raise reader.fail("target.points", f"a path needs at least {least} points {why}, "
+                                           f"got {points.size}.")
     if crank is not None and crank.size != points.size:
         raise reader.fail("target.crank", f"has {crank.size} angles for {points.size} points.")
     return Target(kind, crank=crank, points=points, closed=closed)

@@ -175,12 +175,14 @@ def _no_candidate(problem: Synthesis, evaluated: int) -> InputError:
 
 def _path(problem: Synthesis, jobs, executor, progress) -> Result:
     from dyade.synthesis.search import fit, placement_of, search, traced
-    from dyade.synthesis.shape import SAMPLES, closed_match, resample, timed_match
+    from dyade.synthesis.shape import (FINE_FRACTIONS, FINE_SAMPLES, SAMPLES, closed_match,
+                                       open_match, resample, timed_match)
     from dyade.synthesis.topology import Placement
     topology = topology_of(problem)
     target = problem.target
     settings = settings_of(problem)
-    found = search(topology, target.points, settings, jobs, executor, progress, target.crank)
+    found = search(topology, target.points, settings, jobs, executor, progress, target.crank,
+                   target.closed)
     if not len(found.error):
         if settings.regions:
             raise DyadeError(
@@ -189,7 +191,10 @@ def _path(problem: Synthesis, jobs, executor, progress) -> Result:
                 f"[regions]: widen them, or the bounds.")
         raise _no_candidate(problem, found.evaluated)
     crank = np.linspace(0.0, 2.0 * np.pi, settings.positions, endpoint=False)
-    resampled = resample(target.points[None, :], SAMPLES)[0]
+    if target.closed:
+        resampled = resample(target.points[None, :], SAMPLES)[0]
+    else:  # a part of a curve: its window on each kept candidate's, finer than the search
+        resampled = resample(target.points[None, :], FINE_SAMPLES, closed=False)[0]
     fits: list = []
     tried = 0
     best_error = math.inf
@@ -205,6 +210,12 @@ def _path(problem: Synthesis, jobs, executor, progress) -> Result:
             centre = complex(np.mean(target.points))
             start = Placement(centre - match.factor[0] * match.centre[0],
                               float(abs(match.factor[0])), float(np.angle(match.factor[0])))
+        elif not target.closed:
+            match = open_match(resampled, curve, scale=settings.scale,
+                               fractions=FINE_FRACTIONS)
+            factor = match.factor[0]
+            start = Placement(complex(resampled.mean()) - factor * match.centre[0],
+                              float(abs(factor)), float(np.angle(factor)))
         else:
             match = closed_match(resampled, resample(curve, SAMPLES), scale=settings.scale)
             start = placement_of(match.factor[0], match.centre[0], target.points)
@@ -216,6 +227,11 @@ def _path(problem: Synthesis, jobs, executor, progress) -> Result:
         if np.isfinite(fitted.error) and not any(_same(fitted, other) for other in fits):
             fits.append(fitted)
     fits.sort(key=lambda f: f.error)
+    if not target.closed and target.crank is None:  # a part of a curve: a flat valley
+        from dyade.synthesis.partial import polish
+
+        fits = sorted((polish(topology, f, target.points) if not f.converged else f
+                       for f in fits[:problem.keep]), key=lambda f: f.error)
     designs = [_design(problem, topology, fitted, rank)
                for rank, fitted in enumerate(fits, start=1)]
     if not designs or designs[0].error > REACH:
