@@ -63,7 +63,8 @@ def polish(topology, fitted, target: np.ndarray, tolerance: float = 1e-12,
 
     def normal(x, phi):
         tangent = curve(x, phi + STEP) - curve(x, phi - STEP)
-        return 1j * tangent / np.abs(tangent)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return 1j * tangent / np.abs(tangent)
 
     def residual(x):
         phi = feet(x)
@@ -88,11 +89,13 @@ def polish(topology, fitted, target: np.ndarray, tolerance: float = 1e-12,
     x0 = np.concatenate([fitted.values, [fitted.placement.origin.real,
                                          fitted.placement.origin.imag,
                                          fitted.placement.angle]])
-    solution = least_squares(residual, x0, jac=jacobian, method="lm", xtol=1e-15,
-                             ftol=1e-15, gtol=1e-15, max_nfev=steps)
+    with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+        solution = least_squares(residual, x0, jac=jacobian, method="lm", xtol=1e-15,
+                                 ftol=1e-15, gtol=1e-15, max_nfev=steps)
     x = solution.x
-    phi = feet(x)
-    miss = np.abs(curve(x, phi) - target)
+    with np.errstate(invalid="ignore", over="ignore"):
+        phi = feet(x)
+        miss = np.abs(curve(x, phi) - target)
     rms = float(np.sqrt(np.mean(miss ** 2))) if np.all(np.isfinite(miss)) else math.inf
     if not rms / size < fitted.error:
         return fitted
