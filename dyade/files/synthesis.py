@@ -145,12 +145,22 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
 
     crank = angles("crank")
     if kind == "function":
-        if topology != "fourbar":
-            raise reader.fail("topology", "function generation sizes a four-bar: give "
-                                          "topology = \"fourbar\".")
+        if topology not in ("fourbar", "slider-crank"):
+            raise reader.fail("topology", "function generation sizes a four-bar (the output "
+                                          "angle) or a slider-crank (the slider's position): "
+                                          "give topology = \"fourbar\" or \"slider-crank\".")
+        slider = topology == "slider-crank"
         if "profile" in table:
-            return _profile_target(reader, table, crank)
-        output = angles("output")
+            return _profile_target(reader, table, crank, slider)
+        if slider:
+            values = table.get("output")
+            if values is not None and not (isinstance(values, list) and values):
+                raise reader.fail("target.output", f"must be a list of the slider's "
+                                                   f"positions [{reader.length_unit}].")
+            output = None if values is None else np.array(
+                [reader.length_of(v, "target.output") for v in values])
+        else:
+            output = angles("output")
         if crank is None or output is None:
             raise reader.fail("target.crank" if crank is None else "target.output",
                               "is missing: a function target is a table of crank angles and "
@@ -218,7 +228,7 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
 
 
 
-def _profile_target(reader: UnitReader, table: dict, crank) -> Target:
+def _profile_target(reader: UnitReader, table: dict, crank, slider: bool = False) -> Target:
     """A function target given as a motion profile: a profile file's path (from the
     synthesis file's folder) or an inline ``[target.profile]`` table."""
     from dyade.files.profile import ProfileReader, read_profile
@@ -243,10 +253,16 @@ def _profile_target(reader: UnitReader, table: dict, crank) -> Target:
     if profile.master != "angle":
         raise reader.fail("target.profile", "must run over a master angle (the crank "
                                             "angle), got a profile over time.")
-    if profile.output != "angle":
+    if slider and profile.output == "angle":
+        raise reader.fail("target.profile", f"gives an angle ({profile.unit}): a "
+                                            "slider-crank's function is the slider's "
+                                            "position; give the profile's unit in a length "
+                                            "(mm, m), or topology = \"fourbar\".")
+    if not slider and profile.output != "angle":
         raise reader.fail("target.profile", f"gives a length ({profile.unit}): function "
                                             "generation sizes a four-bar's output angle; "
-                                            "give the profile's unit in deg or rad.")
+                                            "give the profile's unit in deg or rad (or "
+                                            "topology = \"slider-crank\" for a slider).")
     span = (profile.start, profile.start + profile.period)
     if "range" in table:
         value = table["range"]
@@ -271,6 +287,11 @@ def _profile_target(reader: UnitReader, table: dict, crank) -> Target:
     if method not in METHODS:
         raise reader.fail("target.method", f"must be one of {', '.join(METHODS)}, got "
                                            f"{method!r}.")
+    if slider and "output_zero" in table:
+        raise reader.fail("target.output_zero", "applies to a four-bar's output angle; a "
+                                                "slider's start (its position where the "
+                                                "law's lift is zero) is found by the "
+                                                "synthesis: remove the key.")
     zeros = tuple(reader.angle_of(table[k], f"target.{k}") if k in table else None
                   for k in ("crank_zero", "output_zero"))
     return Target("function", crank=np.array(span), method=method, profile=profile,

@@ -37,9 +37,9 @@ from dyade.errors import DyadeError, InputError
 from dyade.model.synthesis import Synthesis
 
 from dyade.synthesis.designs import (ERROR_UNITS, ERROR_WORDS, FIGURES, HOPELESS, REACH,
-                                     Design, Result, pareto, speed_rpm)
+                                     Design, Result, error_unit, pareto, speed_rpm)
 
-__all__ = ["ERROR_UNITS", "ERROR_WORDS", "FIGURES", "Design", "Result", "pareto",
+__all__ = ["ERROR_UNITS", "ERROR_WORDS", "FIGURES", "Design", "Result", "error_unit", "pareto",
            "score", "synthesise", "trace"]
 
 
@@ -97,6 +97,8 @@ def _function(problem: Synthesis) -> Result:
     from dyade.synthesis import function
 
     target = problem.target
+    if problem.topology == "slider-crank":
+        return _slider(problem)
     offsets = None
     if target.profile is not None:
         from dyade.motion.profile import evaluate
@@ -129,6 +131,40 @@ def _function(problem: Synthesis) -> Result:
     design = Design(problem.name, data, error, True, made.crank, made.traced, notes=notes)
     result = Result(problem, [design])
     result.offsets = offsets
+    result.function = made  # the structural error at every row, for the table
+    return result
+
+
+def _slider(problem: Synthesis) -> Result:
+    """Function generation with a slider-crank: its slider's position s(φ)."""
+    from dyade.synthesis import slider
+
+    target = problem.target
+    notes = []
+    if target.profile is not None:
+        from dyade.motion.profile import evaluate
+
+        master = np.linspace(target.crank[0], target.crank[-1], target.rows)
+        lift = evaluate(target.profile, master).s
+        zero = target.zeros[0] or 0.0
+        made = slider.from_law(master + zero, lift, target.method)
+        notes.append(f"the law's master {np.rad2deg(master[0]):.6g}° … "
+                     f"{np.rad2deg(master[-1]):.6g}° is the crank angle "
+                     f"{np.rad2deg(master[0] + zero):.6g}° … {np.rad2deg(master[-1] + zero):.6g}° "
+                     f"from the guide; its lift 0 is the slider at s0 = {made.start:.6g} m "
+                     f"(found by the synthesis)")
+    else:
+        made = slider.generate(target.crank, target.output, target.method)
+    sweep = (float(np.rad2deg(made.crank[0])), float(np.rad2deg(made.crank[-1])),
+             _step(made.crank))
+    data = slider.data(made.linkage, speed_rpm(problem), sweep, problem.name, problem.masses)
+    error = float(np.nanmax(np.abs(made.error))) if np.isfinite(made.error).any() else math.inf
+    if not np.isfinite(made.error).all():
+        notes.append(f"the slider-crank does not close at "
+                     f"{np.count_nonzero(~np.isfinite(made.error))} of the table's "
+                     f"{made.error.size} crank angles")
+    design = Design(problem.name, data, error, True, made.crank, made.traced, notes=notes)
+    result = Result(problem, [design])
     result.function = made  # the structural error at every row, for the table
     return result
 
