@@ -77,10 +77,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
 
     def progress(done, total, best):
         rate = done / max(time.perf_counter() - started, 1e-9)
-        try:
-            budget.progress(done, total, f"{rate:,.0f} candidates/s, best error {best:.3g}")
-        except TypeError:  # a progress callback of two arguments (done, total)
-            budget.progress(done, total)
+        budget.step(done, total, f"{rate:,.0f} candidates/s, best error {best:.3g}")
 
     try:
         result = synthesise(problem, jobs=jobs if jobs > 0 else (os.cpu_count() or 1),
