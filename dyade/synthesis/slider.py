@@ -51,6 +51,11 @@ def position(linkage: SliderCrank, crank: FloatArray) -> FloatArray:
     return linkage.a * np.cos(phi) + linkage.variant * run
 
 
+def turns(linkage: SliderCrank) -> bool:
+    """The crank turns fully: b > |a| + |e|."""
+    return linkage.b > abs(linkage.a) + abs(linkage.e)
+
+
 def data(linkage: SliderCrank, speed_rpm: float = 60.0,
          sweep: tuple[float, float, float] = (0.0, 360.0, 1.0), name: str = "",
          masses: dict | None = None) -> dict:
@@ -234,6 +239,8 @@ def from_law(crank: FloatArray, lift: FloatArray, method: str = "fit") -> Genera
                 continue
             miss = np.nanmax(np.abs(position(linkage, phi) - s)) if np.isfinite(
                 position(linkage, phi)).all() else np.inf
+            if not turns(linkage):  # a crank that cannot turn fully only after all others
+                miss += 1e3 * stroke
             if miss < worst:
                 best, worst = (linkage, sign * s0), miss
     if best is None:
