@@ -19,7 +19,8 @@ TOP = {"name", "topology", "units", "target", "bounds", "regions", "search", "sc
 SIXBAR = ("a", "b", "c", "d", "ex", "ey", "gx", "gy", "f", "g", "p", "q")
 TOPOLOGIES = {"fourbar": ("a", "b", "c", "d", "p", "q"),
               "slider-crank": ("a", "b", "e", "p", "q"),
-              "watt-sixbar": SIXBAR, "stephenson-sixbar": SIXBAR}
+              "watt-sixbar": SIXBAR, "stephenson-sixbar": SIXBAR, "watt1-sixbar": SIXBAR,
+              "stephenson1-sixbar": SIXBAR}
 """topology -> its canonical dimensions (``dyade.synthesis.topology``)"""
 TARGET_KEYS = {"kind", "points", "closed", "crank", "output", "method", "poses", "stretch",
                "moving", "profile", "range", "rows", "crank_zero", "output_zero", "radius"}
