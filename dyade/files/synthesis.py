@@ -55,10 +55,10 @@ def parse(data: dict[str, Any], label: str = "synthesis", source: str | None = N
         raise reader.fail("topology", f"must be one of {', '.join(TOPOLOGIES)}, got "
                                       f"{topology!r}.{suggest(str(topology), TOPOLOGIES)}")
     target = _target(reader, reader.required(data, "target", ""), topology)
-    if topology.endswith("sixbar") and target.kind != "path":
-        raise reader.fail("topology", f"a six-bar is sized for path generation (kind = "
-                                      f"\"path\"), not for a {target.kind} target: use "
-                                      f"topology = \"fourbar\".")
+    if topology.endswith("sixbar") and target.kind not in ("path", "line", "arc"):
+        raise reader.fail("topology", f"a six-bar is sized for paths (kind = \"path\", "
+                                      f"\"line\" or \"arc\"), not yet for a {target.kind} "
+                                      f"target: use topology = \"fourbar\".")
     names = TOPOLOGIES[topology]
     bounds = {}
     for key, value in reader.keys(data.get("bounds", {}), "bounds", set(names)).items():

@@ -181,5 +181,6 @@ def _stretch(data: dict, stretch: tuple[float, float]):
 
     mechanism = build(data)
     crank = np.linspace(stretch[0], stretch[1], 121)
-    found = positions(mechanism, crank, [(3, mechanism.links[3].points["P"])])
+    carrier = next(k for k, body in sorted(mechanism.links.items()) if "P" in body.points)
+    found = positions(mechanism, crank, [(carrier, mechanism.links[carrier].points["P"])])
     return crank, found.points[:, 0, 0] + 1j * found.points[:, 0, 1]

@@ -54,10 +54,31 @@ def test_the_closed_form_curve_is_dyades_for_every_variant(name):
     assert checked >= 2
 
 
-def test_a_six_bar_sizes_paths_only():
+def test_a_six_bar_sizes_paths_and_stretches_not_yet_poses():
+    assert parse({"topology": "watt-sixbar", "target": {"kind": "line", "stretch": 120}},
+                 "s.toml").target.kind == "line"
     with pytest.raises(InputError) as err:
-        parse({"topology": "watt-sixbar", "target": {"kind": "line", "stretch": 120}}, "s.toml")
+        parse({"topology": "watt1-sixbar",
+               "target": {"kind": "poses", "poses": [[0, 0, 0], [1, 0, 10], [1, 1, 20]]}},
+              "s.toml")
     assert "topology" in str(err.value) and "path" in str(err.value)
+
+
+@pytest.mark.parametrize("name", list(SAMPLES))
+def test_the_least_transmission_angle_is_dyades(name):
+    """The stretch refinement's closed-form transmission angle of a six-bar (the least
+    of its two dyads') against the one dyade's positions stage reports."""
+    from dyade.synthesis.stretch import transmission
+
+    topology = TOPOLOGIES[name]
+    checked = 0
+    for variant in topology.variants:
+        _, closes, least = traced(topology, SAMPLES[name][None, :], variant, CRANK)
+        if closes[0]:
+            assert transmission(topology, SAMPLES[name], variant, CRANK) == pytest.approx(
+                least[0], abs=1e-12)
+            checked += 1
+    assert checked >= 2
 
 
 @pytest.mark.slow
