@@ -64,6 +64,8 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                                    value=jobs)
     if problem.target.kind in ("path", "line", "arc"):
         cost = 4e-7 * problem.positions * problem.candidates * problem.rounds
+        if not problem.target.closed and problem.target.crank is None:
+            cost += 3e-4 * problem.candidates * problem.rounds  # every window's match
         budget.time(cost / max(1, jobs or (os.cpu_count() or 1)),
                     f"{problem.name}: {problem.candidates * problem.rounds:,} candidates")
     client = None
