@@ -16,7 +16,6 @@ import math
 
 import numpy as np
 
-from dyade.arrays import FloatArray
 from dyade.synthesis.topology import Placement
 
 NEWTON = 12
@@ -103,7 +102,3 @@ def polish(topology, fitted, target: np.ndarray, tolerance: float = 1e-12,
     return Fitted(x[:dims].copy(), variant, placement, phi, rms / size, rms,
                   bool(rms / size <= tolerance), list(fitted.notes))
 
-
-def unwrap(phi: FloatArray) -> FloatArray:
-    """Crank angles along the path, unwrapped [rad]."""
-    return np.unwrap(np.asarray(phi, dtype=float))
