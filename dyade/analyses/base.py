@@ -302,16 +302,26 @@ class Budget:
     """The bounds of one run and its progress, as every analysis gets them.
 
     ``max_memory`` [B] and ``max_time`` [s] (None: no time bound); ``progress(done,
-    total)`` is called as the work goes on (``progress(done, total, note)`` with words on
-    how it goes, where the analysis has them: a synthesis's rate and best error) (the command line draws a bar on a
-    terminal); ``told(text)`` hears the estimate of a run above ``SAY_ABOVE`` seconds
-    before it starts (the command line prints it on stderr).
+    total)`` is called as the work goes on (the command line draws a bar on a
+    terminal), ``note(text)`` with words on how it goes where the analysis has them (a
+    study's or a synthesis's rate, a synthesis's best error so far: the command line
+    writes them beside the bar) right after the ``progress`` they belong to (``step``
+    calls both); ``told(text)`` hears the estimate of a run above ``SAY_ABOVE`` seconds
+    before it starts (the command line prints it on stderr). Every callback an API
+    caller gives has these signatures, whichever entry runs.
     """
 
     max_memory: float | None = None
     max_time: float | None = None
-    progress: Callable[..., None] = lambda done, total=None, note=None: None
+    progress: Callable[[float, float | None], None] = lambda done, total=None: None
     told: Callable[[str], None] = lambda text: None
+    note: Callable[[str], None] = lambda text: None
+
+    def step(self, done: float, total: float | None, note: str | None = None) -> None:
+        """``progress(done, total)``, then ``note(note)`` where there are words."""
+        self.progress(done, total)
+        if note:
+            self.note(note)
 
     SAY_ABOVE = 5.0  # [s] a run estimated above this is announced with its estimate
 
@@ -384,13 +394,15 @@ class Analysis:
         return {api: option.check(given.get(api, option.default)) for api, option in known.items()}
 
     def __call__(self, source: Any = None, *, progress: Callable | None = None,
-                 told: Callable[[str], None] | None = None, **options: Any) -> Outcome:
+                 told: Callable[[str], None] | None = None,
+                 note: Callable[[str], None] | None = None, **options: Any) -> Outcome:
         """Run the analysis from Python: ``REGISTRY["sweep"](path, step_deg=1)``;
-        ``progress(done, total)`` hears how far it is, ``told(text)`` the time estimate of
-        a long run. The command line runs it the same way (``dyade.cli.contract``)."""
+        ``progress(done, total)`` hears how far it is, ``note(text)`` how it goes (a
+        rate, a best error so far), ``told(text)`` the time estimate of a long run. The
+        command line runs it the same way (``dyade.cli.contract``)."""
         checked = self.checked(options)
-        callbacks = {name: f for name, f in (("progress", progress), ("told", told))
-                     if f is not None}
+        callbacks = {name: f for name, f in (("progress", progress), ("told", told),
+                                             ("note", note)) if f is not None}
         outcome = self.run(source, checked, budget(checked, **callbacks))
         outcome.options = {k: v for k, v in checked.items() if v is not None}
         return outcome

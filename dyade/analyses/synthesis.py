@@ -49,7 +49,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     from dyade.errors import InputError
     from dyade.files.synthesis import read_synthesis
     from dyade.model.synthesis import Synthesis
-    from dyade.synthesis import ERROR_UNITS, ERROR_WORDS, synthesise
+    from dyade.synthesis import error_unit, synthesise
 
     if source is None:
         raise InputError.parameter("source", "give a synthesis file (dyade init synthesis "
@@ -64,6 +64,8 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                                    value=jobs)
     if problem.target.kind in ("path", "line", "arc"):
         cost = 4e-7 * problem.positions * problem.candidates * problem.rounds
+        if not problem.target.closed and problem.target.crank is None:
+            cost += 3e-4 * problem.candidates * problem.rounds  # every window's match
         budget.time(cost / max(1, jobs or (os.cpu_count() or 1)),
                     f"{problem.name}: {problem.candidates * problem.rounds:,} candidates")
     client = None
@@ -77,10 +79,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
 
     def progress(done, total, best):
         rate = done / max(time.perf_counter() - started, 1e-9)
-        try:
-            budget.progress(done, total, f"{rate:,.0f} candidates/s, best error {best:.3g}")
-        except TypeError:  # a progress callback of two arguments (done, total)
-            budget.progress(done, total)
+        budget.step(done, total, f"{rate:,.0f} candidates/s, best error {best:.3g}")
 
     try:
         result = synthesise(problem, jobs=jobs if jobs > 0 else (os.cpu_count() or 1),
@@ -95,12 +94,12 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                             "topology": problem.topology, "target": kind},
                       result=result)
     designs = result.designs
-    unit = ERROR_UNITS[kind]
+    unit, words = error_unit(problem)
     columns: dict[str, Any] = {"design": np.arange(1, len(designs) + 1, dtype=float),
                                "error": np.array([d.error for d in designs])}
     units = {"design": "-", "error": unit}
     descriptions = {"design": "the design's rank (its file: design-N.toml)",
-                    "error": ERROR_WORDS[kind]}
+                    "error": words}
     names = sorted({name for d in designs for name in d.figures},
                    key=list(FIGURE_UNITS).index)
     for name in names:
@@ -112,7 +111,23 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         units["pareto"] = "-"
         descriptions["pareto"] = f"on the Pareto front of error and {problem.figure}"
     made = getattr(result, "function", None)
-    if made is not None:  # function generation: the structural error at every row
+    if made is not None and problem.topology == "slider-crank":  # the slider's position
+        columns = {"crank_deg": np.rad2deg(made.crank), "output_m": made.target,
+                   "traced_m": made.traced, "error_m": made.error}
+        units = {"crank_deg": "°", "output_m": "m", "traced_m": "m", "error_m": "m"}
+        descriptions = {"crank_deg": "the table's crank angle φ (from the guide)",
+                        "output_m": "the target's slider position s (along the guide, "
+                                    "from the crank pivot's foot)",
+                        "traced_m": "the position the slider-crank gives (through dyade)",
+                        "error_m": "the structural error s_traced − s_target"}
+        if made.method != "fit" and made.precision.size:
+            for k, at in enumerate(np.rad2deg(made.precision), start=1):
+                outcome.add(f"precision_{k}_deg", float(at), "°",
+                            description=f"precision point {k}: crank angle")
+        if getattr(problem.target, "profile", None) is not None:
+            outcome.add("output_zero", made.start, "m",
+                        description="the slider's position where the law's lift is zero")
+    elif made is not None:  # function generation: the structural error at every row
         columns = {"crank_deg": np.rad2deg(made.crank), "output_deg": np.rad2deg(made.target),
                    "traced_deg": np.rad2deg(made.target + made.error),
                    "error_deg": np.rad2deg(made.error)}
@@ -136,7 +151,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                         description=f"precision point {k}: crank angle")
     outcome.columns, outcome.units, outcome.descriptions = columns, units, descriptions
     best = designs[0]
-    outcome.add("error", best.error, unit, description=f"best design: {ERROR_WORDS[kind]}")
+    outcome.add("error", best.error, unit, description=f"best design: {words}")
     outcome.add("converged", bool(best.converged), "-",
                 description="the best design's local fit converged")
     for name in names:

@@ -77,7 +77,8 @@ def run(entry: Analysis, source: Any, params: dict[str, Any], what: str = "", **
     options = options_of(entry, params)
     err = console(stderr=True)
     with naming(flags(entry)), progress(what or entry.title) as tick:
-        return entry(source, progress=tick, told=lambda text: err.print(text, markup=False),
+        return entry(source, progress=tick, note=tick.note,
+                     told=lambda text: err.print(text, markup=False),
                      **options, **extra)
 
 

@@ -196,13 +196,16 @@ def flags(names: dict[str, str]) -> Iterator[None]:
 def progress(description: str, total: float | None = None, show: bool = True
              ) -> Iterator[Any]:
     """A transient progress bar on stderr while a long run goes on, only when stderr is
-    a terminal (and ``show``); yields ``tick(done, total=None, note=None)`` (``note``:
-    words after the description, how it goes), which does nothing
-    otherwise. The commands show it for runs expected to take more than about a second.
+    a terminal (and ``show``); yields ``tick(done, total=None)`` with ``tick.note(text)``
+    (words after the description, how it goes), which do nothing otherwise. The commands show it for runs expected to take more than about a second.
     The bar (and its refresh thread) starts at the first tick: the worker processes of
     ``-j`` are forked before, from a process without threads."""
     if not show or not sys.stderr.isatty():
-        yield lambda done, total=None, note=None: None
+        def idle(done: float, total: float | None = None) -> None:
+            return None
+
+        idle.note = lambda text: None  # type: ignore[attr-defined]
+        yield idle
         return
     from rich.progress import Progress
 
@@ -210,15 +213,18 @@ def progress(description: str, total: float | None = None, show: bool = True
     task = bar.add_task(description, total=total)
     started = False
 
-    def tick(done: float, new_total: float | None = None, note: str | None = None) -> None:
+    def tick(done: float, new_total: float | None = None) -> None:
         nonlocal started
         if not started:  # the bar's refresh thread starts here, after any fork of -j
             bar.start()
             started = True
-        extra = {} if new_total is None else {"total": new_total}
-        if note:  # how it goes (a synthesis: its rate and best error so far)
-            extra["description"] = f"{description}: {note}"
-        bar.update(task, completed=done, **extra)
+        bar.update(task, completed=done, **({} if new_total is None else {"total": new_total}))
+
+    def note(text: str) -> None:  # how it goes (a rate, a best error so far)
+        if started:
+            bar.update(task, description=f"{description}: {text}")
+
+    tick.note = note  # type: ignore[attr-defined]
 
     try:
         yield tick

@@ -45,13 +45,14 @@ def solve(synthesis_file: Path, options: dict):
               help="Write the result to this file instead of standard output.")
 def synthesise(synthesis_file: Path, folder: Path | None, figure: Path | None, fmt, output,
                **options) -> None:
-    """Find the mechanisms that do what SYNTHESIS_FILE asks: function generation (output
-    angle over crank angle: three precision points by Freudenstein's equation, Chebyshev
-    spacing or a least-squares fit of a table or of a motion profile), motion generation
-    (three poses in closed form, four by the Burmester curves) or path generation (a
-    closed coupler curve, or a straight-line or circular-arc stretch over a crank range)
-    with a four-bar or a slider-crank; a closed coupler curve also with a Watt or
-    Stephenson six-bar.
+    """Find the mechanisms that do what SYNTHESIS_FILE asks: function generation (a
+    four-bar's output angle or a slider-crank's slider position over the crank angle:
+    three precision points in closed form, Chebyshev spacing or a least-squares fit of a
+    table or of a motion profile), motion generation (three poses in closed form, four by
+    the Burmester curves) or path generation (a closed coupler curve, a part of one
+    without crank angles, or a straight-line or circular-arc stretch over a crank range)
+    with a four-bar or a slider-crank; paths and stretches also with the Watt I/II and
+    Stephenson I/III six-bars.
 
     A path search traces many candidates in blocks through dyade's positions-only stage
     (seeded: the same result on any -j or cluster), matches them by a start-point-free

@@ -19,7 +19,8 @@ TOP = {"name", "topology", "units", "target", "bounds", "regions", "search", "sc
 SIXBAR = ("a", "b", "c", "d", "ex", "ey", "gx", "gy", "f", "g", "p", "q")
 TOPOLOGIES = {"fourbar": ("a", "b", "c", "d", "p", "q"),
               "slider-crank": ("a", "b", "e", "p", "q"),
-              "watt-sixbar": SIXBAR, "stephenson-sixbar": SIXBAR}
+              "watt-sixbar": SIXBAR, "stephenson-sixbar": SIXBAR, "watt1-sixbar": SIXBAR,
+              "stephenson1-sixbar": SIXBAR}
 """topology -> its canonical dimensions (``dyade.synthesis.topology``)"""
 TARGET_KEYS = {"kind", "points", "closed", "crank", "output", "method", "poses", "stretch",
                "moving", "profile", "range", "rows", "crank_zero", "output_zero", "radius"}
@@ -54,10 +55,10 @@ def parse(data: dict[str, Any], label: str = "synthesis", source: str | None = N
         raise reader.fail("topology", f"must be one of {', '.join(TOPOLOGIES)}, got "
                                       f"{topology!r}.{suggest(str(topology), TOPOLOGIES)}")
     target = _target(reader, reader.required(data, "target", ""), topology)
-    if topology.endswith("sixbar") and target.kind != "path":
-        raise reader.fail("topology", f"a six-bar is sized for path generation (kind = "
-                                      f"\"path\"), not for a {target.kind} target: use "
-                                      f"topology = \"fourbar\".")
+    if topology.endswith("sixbar") and target.kind not in ("path", "line", "arc"):
+        raise reader.fail("topology", f"a six-bar is sized for paths (kind = \"path\", "
+                                      f"\"line\" or \"arc\"), not yet for a {target.kind} "
+                                      f"target: use topology = \"fourbar\".")
     names = TOPOLOGIES[topology]
     bounds = {}
     for key, value in reader.keys(data.get("bounds", {}), "bounds", set(names)).items():
@@ -145,12 +146,22 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
 
     crank = angles("crank")
     if kind == "function":
-        if topology != "fourbar":
-            raise reader.fail("topology", "function generation sizes a four-bar: give "
-                                          "topology = \"fourbar\".")
+        if topology not in ("fourbar", "slider-crank"):
+            raise reader.fail("topology", "function generation sizes a four-bar (the output "
+                                          "angle) or a slider-crank (the slider's position): "
+                                          "give topology = \"fourbar\" or \"slider-crank\".")
+        slider = topology == "slider-crank"
         if "profile" in table:
-            return _profile_target(reader, table, crank)
-        output = angles("output")
+            return _profile_target(reader, table, crank, slider)
+        if slider:
+            values = table.get("output")
+            if values is not None and not (isinstance(values, list) and values):
+                raise reader.fail("target.output", f"must be a list of the slider's "
+                                                   f"positions [{reader.length_unit}].")
+            output = None if values is None else np.array(
+                [reader.length_of(v, "target.output") for v in values])
+        else:
+            output = angles("output")
         if crank is None or output is None:
             raise reader.fail("target.crank" if crank is None else "target.output",
                               "is missing: a function target is a table of crank angles and "
@@ -202,21 +213,23 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
     points = np.array([complex(reader.length_of(p[0], "target.points"),
                                reader.length_of(p[1], "target.points")) for p in raw])
     closed = bool(table.get("closed", kind == "path"))
-    if not closed and crank is None:
-        raise reader.fail("target.crank", "is missing: an open path needs the crank angle of "
-                                          "each point (or closed = true for a closed curve).")
     least = 8 if crank is None else 4
+    why = f"({'with' if crank is not None else 'without'} crank angles)"
+    if not closed and crank is None:  # each point adds two equations and its crank angle
+        least = len(TOPOLOGIES[topology]) + 4  # the dimensions and the placement (3)
+        why = (f"(a part of a curve without crank angles: each point adds one equation "
+               f"beyond its own crank angle, and the {len(TOPOLOGIES[topology])} dimensions "
+               f"and the placement need more than {least - 1})")
     if points.size < least:
-        raise reader.fail("target.points", f"a path needs at least {least} points "
-                                           f"({'with' if crank is not None else 'without'} "
-                                           f"crank angles), got {points.size}.")
+        raise reader.fail("target.points", f"a path needs at least {least} points {why}, "
+                                           f"got {points.size}.")
     if crank is not None and crank.size != points.size:
         raise reader.fail("target.crank", f"has {crank.size} angles for {points.size} points.")
     return Target(kind, crank=crank, points=points, closed=closed)
 
 
 
-def _profile_target(reader: UnitReader, table: dict, crank) -> Target:
+def _profile_target(reader: UnitReader, table: dict, crank, slider: bool = False) -> Target:
     """A function target given as a motion profile: a profile file's path (from the
     synthesis file's folder) or an inline ``[target.profile]`` table."""
     from dyade.files.profile import ProfileReader, read_profile
@@ -241,10 +254,16 @@ def _profile_target(reader: UnitReader, table: dict, crank) -> Target:
     if profile.master != "angle":
         raise reader.fail("target.profile", "must run over a master angle (the crank "
                                             "angle), got a profile over time.")
-    if profile.output != "angle":
+    if slider and profile.output == "angle":
+        raise reader.fail("target.profile", f"gives an angle ({profile.unit}): a "
+                                            "slider-crank's function is the slider's "
+                                            "position; give the profile's unit in a length "
+                                            "(mm, m), or topology = \"fourbar\".")
+    if not slider and profile.output != "angle":
         raise reader.fail("target.profile", f"gives a length ({profile.unit}): function "
                                             "generation sizes a four-bar's output angle; "
-                                            "give the profile's unit in deg or rad.")
+                                            "give the profile's unit in deg or rad (or "
+                                            "topology = \"slider-crank\" for a slider).")
     span = (profile.start, profile.start + profile.period)
     if "range" in table:
         value = table["range"]
@@ -269,6 +288,11 @@ def _profile_target(reader: UnitReader, table: dict, crank) -> Target:
     if method not in METHODS:
         raise reader.fail("target.method", f"must be one of {', '.join(METHODS)}, got "
                                            f"{method!r}.")
+    if slider and "output_zero" in table:
+        raise reader.fail("target.output_zero", "applies to a four-bar's output angle; a "
+                                                "slider's start (its position where the "
+                                                "law's lift is zero) is found by the "
+                                                "synthesis: remove the key.")
     zeros = tuple(reader.angle_of(table[k], f"target.{k}") if k in table else None
                   for k in ("crank_zero", "output_zero"))
     return Target("function", crank=np.array(span), method=method, profile=profile,

@@ -67,7 +67,9 @@ def figure(result, *, fig: Figure | None = None) -> Figure:
     fig = canvas.new(11.0, 4.8, fig)
     left, right = fig.subplots(1, 2)
     colours = [canvas.line(k)["color"] for k in range(MOST)]
-    if target.kind == "function":
+    if target.kind == "function" and result.problem.topology == "slider-crank":
+        _slider(left, result.function, colours)
+    elif target.kind == "function":
         made = result.function
         left.plot(np.rad2deg(made.crank), np.rad2deg(made.target), "o", ms=3, color="0.3",
                   label="target")
@@ -149,11 +151,36 @@ def figure(result, *, fig: Figure | None = None) -> Figure:
     return fig
 
 
+def _slider(axes, made, colours) -> None:
+    """A slider's position: the target, the slider-crank's (through dyade), the
+    precision points, the structural error on a second axis [mm]."""
+    from dyade.synthesis.slider import traced
+    from dyade.units import LENGTH_FACTORS
+
+    MM = LENGTH_FACTORS["mm"]
+
+    axes.plot(np.rad2deg(made.crank), made.target / MM, "o", ms=3, color="0.3",
+              label="target")
+    dense = np.linspace(made.crank[0], made.crank[-1], 241)
+    axes.plot(np.rad2deg(dense), traced(made.linkage, dense) / MM, "-", color=colours[0],
+              label="slider-crank (dyade)")
+    if made.precision.size:
+        axes.plot(np.rad2deg(made.precision), traced(made.linkage, made.precision) / MM, "s",
+                  mfc="none", color=colours[0], label="precision points")
+    twin = axes.twinx()
+    twin.plot(np.rad2deg(made.crank), made.error / MM, ":", color=colours[1])
+    twin.set_ylabel("structural error [mm]", color=colours[1])
+    axes.set_xlabel("crank angle φ [°]")
+    axes.set_ylabel("slider position s [mm]")
+    axes.set_title("Function: target and slider-crank")
+
+
 def _stretch(data: dict, stretch: tuple[float, float]):
     from dyade.files.mechanism import build
     from dyade.linkage.positions import positions
 
     mechanism = build(data)
     crank = np.linspace(stretch[0], stretch[1], 121)
-    found = positions(mechanism, crank, [(3, mechanism.links[3].points["P"])])
+    carrier = next(k for k, body in sorted(mechanism.links.items()) if "P" in body.points)
+    found = positions(mechanism, crank, [(carrier, mechanism.links[carrier].points["P"])])
     return crank, found.points[:, 0, 0] + 1j * found.points[:, 0, 1]

@@ -86,7 +86,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         result = run_study(spec, jobs=jobs if jobs > 0 else (os.cpu_count() or 1),
                            executor=None if client is None else client.get_executor(),
                            output=options.get("journal"), resume=bool(options.get("resume")),
-                           block_size=options.get("block_size"), progress=budget.progress,
+                           block_size=options.get("block_size"), progress=rated(budget),
                            max_memory=budget.max_memory, check_time=budget.time)
     except InputError as err:
         raise err.naming({"max_memory": "max_memory_mb"}) from None
@@ -221,3 +221,17 @@ def optimum(outcome: Outcome, result) -> None:
 
 ENTRIES = {"study": Analysis("study", "A design study: many variants of one mechanism file",
                              run, OPTIONS, source="study", command="dyade study")}
+
+
+def rated(budget):
+    """``progress(done, total)`` for the study's blocks: the budget's, with the rate
+    (variants per second) as its note, as the synthesis tells its candidates'."""
+    import time
+
+    started = time.perf_counter()
+
+    def progress(done, total):
+        rate = done / max(time.perf_counter() - started, 1e-9)
+        budget.step(done, total, f"{rate:,.0f} variants/s")
+
+    return progress

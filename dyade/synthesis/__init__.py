@@ -37,9 +37,9 @@ from dyade.errors import DyadeError, InputError
 from dyade.model.synthesis import Synthesis
 
 from dyade.synthesis.designs import (ERROR_UNITS, ERROR_WORDS, FIGURES, HOPELESS, REACH,
-                                     Design, Result, pareto, speed_rpm)
+                                     Design, Result, error_unit, pareto, speed_rpm)
 
-__all__ = ["ERROR_UNITS", "ERROR_WORDS", "FIGURES", "Design", "Result", "pareto",
+__all__ = ["ERROR_UNITS", "ERROR_WORDS", "FIGURES", "Design", "Result", "error_unit", "pareto",
            "score", "synthesise", "trace"]
 
 
@@ -97,6 +97,8 @@ def _function(problem: Synthesis) -> Result:
     from dyade.synthesis import function
 
     target = problem.target
+    if problem.topology == "slider-crank":
+        return _slider(problem)
     offsets = None
     if target.profile is not None:
         from dyade.motion.profile import evaluate
@@ -129,6 +131,40 @@ def _function(problem: Synthesis) -> Result:
     design = Design(problem.name, data, error, True, made.crank, made.traced, notes=notes)
     result = Result(problem, [design])
     result.offsets = offsets
+    result.function = made  # the structural error at every row, for the table
+    return result
+
+
+def _slider(problem: Synthesis) -> Result:
+    """Function generation with a slider-crank: its slider's position s(φ)."""
+    from dyade.synthesis import slider
+
+    target = problem.target
+    notes = []
+    if target.profile is not None:
+        from dyade.motion.profile import evaluate
+
+        master = np.linspace(target.crank[0], target.crank[-1], target.rows)
+        lift = evaluate(target.profile, master).s
+        zero = target.zeros[0] or 0.0
+        made = slider.from_law(master + zero, lift, target.method)
+        notes.append(f"the law's master {np.rad2deg(master[0]):.6g}° … "
+                     f"{np.rad2deg(master[-1]):.6g}° is the crank angle "
+                     f"{np.rad2deg(master[0] + zero):.6g}° … {np.rad2deg(master[-1] + zero):.6g}° "
+                     f"from the guide; its lift 0 is the slider at s0 = {made.start:.6g} m "
+                     f"(found by the synthesis)")
+    else:
+        made = slider.generate(target.crank, target.output, target.method)
+    sweep = (float(np.rad2deg(made.crank[0])), float(np.rad2deg(made.crank[-1])),
+             _step(made.crank))
+    data = slider.data(made.linkage, speed_rpm(problem), sweep, problem.name, problem.masses)
+    error = float(np.nanmax(np.abs(made.error))) if np.isfinite(made.error).any() else math.inf
+    if not np.isfinite(made.error).all():
+        notes.append(f"the slider-crank does not close at "
+                     f"{np.count_nonzero(~np.isfinite(made.error))} of the table's "
+                     f"{made.error.size} crank angles")
+    design = Design(problem.name, data, error, True, made.crank, made.traced, notes=notes)
+    result = Result(problem, [design])
     result.function = made  # the structural error at every row, for the table
     return result
 
@@ -175,12 +211,14 @@ def _no_candidate(problem: Synthesis, evaluated: int) -> InputError:
 
 def _path(problem: Synthesis, jobs, executor, progress) -> Result:
     from dyade.synthesis.search import fit, placement_of, search, traced
-    from dyade.synthesis.shape import SAMPLES, closed_match, resample, timed_match
+    from dyade.synthesis.shape import (FINE_FRACTIONS, FINE_SAMPLES, SAMPLES, closed_match,
+                                       open_match, resample, timed_match)
     from dyade.synthesis.topology import Placement
     topology = topology_of(problem)
     target = problem.target
     settings = settings_of(problem)
-    found = search(topology, target.points, settings, jobs, executor, progress, target.crank)
+    found = search(topology, target.points, settings, jobs, executor, progress, target.crank,
+                   target.closed)
     if not len(found.error):
         if settings.regions:
             raise DyadeError(
@@ -189,7 +227,10 @@ def _path(problem: Synthesis, jobs, executor, progress) -> Result:
                 f"[regions]: widen them, or the bounds.")
         raise _no_candidate(problem, found.evaluated)
     crank = np.linspace(0.0, 2.0 * np.pi, settings.positions, endpoint=False)
-    resampled = resample(target.points[None, :], SAMPLES)[0]
+    if target.closed:
+        resampled = resample(target.points[None, :], SAMPLES)[0]
+    else:  # a part of a curve: its window on each kept candidate's, finer than the search
+        resampled = resample(target.points[None, :], FINE_SAMPLES, closed=False)[0]
     fits: list = []
     tried = 0
     best_error = math.inf
@@ -205,6 +246,12 @@ def _path(problem: Synthesis, jobs, executor, progress) -> Result:
             centre = complex(np.mean(target.points))
             start = Placement(centre - match.factor[0] * match.centre[0],
                               float(abs(match.factor[0])), float(np.angle(match.factor[0])))
+        elif not target.closed:
+            match = open_match(resampled, curve, scale=settings.scale,
+                               fractions=FINE_FRACTIONS)
+            factor = match.factor[0]
+            start = Placement(complex(resampled.mean()) - factor * match.centre[0],
+                              float(abs(factor)), float(np.angle(factor)))
         else:
             match = closed_match(resampled, resample(curve, SAMPLES), scale=settings.scale)
             start = placement_of(match.factor[0], match.centre[0], target.points)
@@ -216,6 +263,11 @@ def _path(problem: Synthesis, jobs, executor, progress) -> Result:
         if np.isfinite(fitted.error) and not any(_same(fitted, other) for other in fits):
             fits.append(fitted)
     fits.sort(key=lambda f: f.error)
+    if not target.closed and target.crank is None:  # a part of a curve: a flat valley
+        from dyade.synthesis.partial import polish
+
+        fits = sorted((polish(topology, f, target.points) if not f.converged else f
+                       for f in fits[:problem.keep]), key=lambda f: f.error)
     designs = [_design(problem, topology, fitted, rank)
                for rank, fitted in enumerate(fits, start=1)]
     if not designs or designs[0].error > REACH:

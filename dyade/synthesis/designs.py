@@ -16,6 +16,19 @@ ERROR_WORDS = {"function": "largest structural error |ψ − ψ_target|",
                "line": "largest deviation from a straight line over the stretch's length",
                "arc": "largest deviation from a circular arc over the arc's length",
                "poses": "largest distance of the coupler point from the poses"}
+SLIDER_UNIT = "m"
+"""the match error's unit of a slider-crank's function (the slider's position)"""
+SLIDER_WORDS = "largest structural error |s − s_target| of the slider's position"
+
+
+def error_unit(problem: Synthesis) -> tuple[str, str]:
+    """(unit, words) of a problem's match error."""
+    kind = problem.target.kind
+    if kind == "function" and problem.topology == "slider-crank":
+        return SLIDER_UNIT, SLIDER_WORDS
+    return ERROR_UNITS[kind], ERROR_WORDS[kind]
+
+
 REACH = 0.02
 """[-] a path whose best match is worse than this (RMS over the target's size) is
 not reached: an error, not a result"""

@@ -17,7 +17,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from dyade.arrays import FloatArray, Variants
-from dyade.synthesis.shape import SAMPLES, closed_match, resample, timed_match
+from dyade.synthesis.shape import (OPEN_SAMPLES, SAMPLES, closed_match, open_match,
+                                   resample, timed_match)
 from dyade.synthesis.topology import Placement, Topology
 
 
@@ -172,6 +173,9 @@ class Block:
     spread: float = 0.15
     crank: np.ndarray | None = None
     """the target points' crank angles [rad] (from an unknown zero); None: no timing"""
+    closed: bool = True
+    """without timing: the target is a closed curve (else a part of one, ``target``
+    resampled as an open curve, matched to every window: ``shape.open_match``)"""
 
     def inside(self, values: FloatArray, match) -> np.ndarray:
         """(candidates,) bool: the placed frame pivots lie in the settings' regions."""
@@ -186,6 +190,8 @@ class Block:
         def score(values: FloatArray, curves: np.ndarray) -> FloatArray:
             if self.crank is not None:
                 match = timed_match(self.target, self.crank, curves, s.scale)
+            elif not self.closed:
+                match = open_match(self.target, curves, scale=s.scale)
             else:
                 match = closed_match(self.target, resample(curves, SAMPLES), scale=s.scale)
             return np.where(self.inside(values, match), match.error, np.inf)
@@ -270,16 +276,21 @@ def run_blocks(function, blocks: list[int], jobs: int = 1, executor=None, progre
 
 
 def search(topology: Topology, target: np.ndarray, settings: Settings, jobs: int = 1,
-           executor=None, progress=None, crank: np.ndarray | None = None) -> Found:
-    """The best candidates for a closed path ``target`` (complex points [m], in order
-    along the curve, start and timing unknown).
+           executor=None, progress=None, crank: np.ndarray | None = None,
+           closed: bool = True) -> Found:
+    """The best candidates for a path ``target`` (complex points [m], in order along the
+    curve, start and timing unknown; ``closed``: a closed curve, else a part of one).
 
     Round 0 draws ``settings.candidates`` in blocks; each later round draws as many
     again about the best so far, closer each time. ``progress(evaluated, total, best)``
     hears every block.
     """
-    resampled = (np.asarray(target) if crank is not None
-                 else resample(np.asarray(target)[None, :], SAMPLES)[0])
+    if crank is not None:
+        resampled = np.asarray(target)
+    elif closed:
+        resampled = resample(np.asarray(target)[None, :], SAMPLES)[0]
+    else:
+        resampled = resample(np.asarray(target)[None, :], OPEN_SAMPLES, closed=False)[0]
     blocks = max(1, math.ceil(settings.candidates / settings.block))
     total = blocks * settings.block * settings.rounds
     state = {"done": 0, "best": math.inf}
@@ -295,7 +306,7 @@ def search(topology: Topology, target: np.ndarray, settings: Settings, jobs: int
     parts_all: list[Found] = []
     for round_ in range(settings.rounds):
         spread = 0.15 / (3.0 ** (round_ - 1)) if round_ else 0.0
-        function = Block(topology, settings, resampled, round_, best, spread, crank)
+        function = Block(topology, settings, resampled, round_, best, spread, crank, closed)
         parts = run_blocks(function, list(range(blocks)), jobs, executor, heard)
         parts_all += parts
         best = merge(parts_all, settings.keep)

@@ -164,3 +164,92 @@ def timed_match(target: np.ndarray, crank: FloatArray, curves: np.ndarray,
     centre = w[rows, shift].mean(axis=1)
     return Match(np.where(np.isfinite(error), error, np.inf), factor, shift,
                  np.zeros(count, dtype=bool), centre)
+
+
+FRACTIONS = np.geomspace(0.08, 0.92, 12)
+"""the parts of a candidate's closed curve (by arc length) an open target is matched
+against in a search's first pass, each from every start (22 % apart)"""
+FINE_FRACTIONS = np.geomspace(0.04, 0.96, 40)
+"""... and when a kept candidate's placement is recovered (8 % apart)"""
+OPEN_SAMPLES = 16
+"""points of an open target's arc-length resampling in the first pass"""
+FINE_SAMPLES = 32
+"""... and for the placement of a kept candidate"""
+
+
+def open_match(target: np.ndarray, curves: np.ndarray, scale: bool = True,
+               either_way: bool = True, fractions: FloatArray = FRACTIONS) -> Match:
+    """The distance of an open target (a part of a curve: where it starts on the
+    candidate's closed curve, how much of it it covers and the timing all unknown) to
+    every window of each candidate's closed curve.
+
+    For each fraction f of the candidate's arc length, the candidate is resampled at
+    n = (K − 1)/f points equally spaced in arc length around its loop, so that K
+    consecutive samples cover the part f; the correlation of the target with the
+    window starting at every sample m is one transform, c_m = Σ_k conj(w_{m+k})·z_k
+    (z centred), and each window's sum and sum of squares (its centroid and norm about
+    it) come from cumulative sums. The best similarity of every window is that of
+    ``closed_match``; the best window over the fractions, starts and directions kept.
+
+    Parameters
+    ----------
+    target : ndarray, shape (K,)
+        The target resampled as an open curve (``resample(..., closed=False)``),
+        complex [m].
+    curves : ndarray, shape (candidates, M)
+        The candidates' closed curves, in order (any sampling), complex [m].
+
+    Returns
+    -------
+    Match
+        ``shift``: the window's first sample at the best fraction; ``centre``: the
+        window's centroid (the similarity is z ≈ mean(z) + α·(w − centre)).
+    """
+    z = np.asarray(target)
+    count = z.size
+    zc = z - z.mean()
+    norm_z = float(np.vdot(zc, zc).real)
+    rows = np.arange(len(curves))
+    best = np.full(len(curves), np.inf)
+    factor = np.full(len(curves), np.nan + 0j)
+    centre = np.full(len(curves), np.nan + 0j)
+    shift = np.zeros(len(curves), dtype=int)
+    flip = np.zeros(len(curves), dtype=bool)
+    for fraction in fractions:
+        n = max(count, int(round((count - 1) / fraction)))
+        w = resample(curves, n, closed=True)
+        padded = np.zeros(n, dtype=complex)
+        padded[:count] = zc
+        spectrum = np.conj(np.fft.fft(padded))
+        for back in ((False, True) if either_way else (False,)):
+            v = w[:, ::-1] if back else w
+            # conj(c_m) = Σ_k w_{m+k}·conj(z_k): one cyclic correlation
+            corr = np.conj(np.fft.ifft(np.fft.fft(v, axis=1) * spectrum[None, :], axis=1))
+            ring = np.concatenate([v, v[:, :count - 1]], axis=1)
+            first = np.concatenate([np.zeros((len(v), 1)), np.cumsum(ring, axis=1)], axis=1)
+            second = np.concatenate([np.zeros((len(v), 1)),
+                                     np.cumsum(np.abs(ring) ** 2, axis=1)], axis=1)
+            sums = first[:, count:count + n] - first[:, :n]
+            squares = second[:, count:count + n] - second[:, :n]
+            norm_w = squares - np.abs(sums) ** 2 / count
+            size = np.abs(corr)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                residual = (norm_z - size ** 2 / norm_w if scale
+                            else norm_z + norm_w - 2.0 * size)
+            residual = np.where(np.isnan(residual) | ~(norm_w > 0), np.inf, residual)
+            at = np.argmin(residual, axis=1)
+            value = residual[rows, at]
+            better = value < best
+            if not better.any():
+                continue
+            c = corr[rows, at]
+            with np.errstate(invalid="ignore", divide="ignore"):
+                alpha = c / norm_w[rows, at] if scale else c / np.abs(c)
+            best = np.where(better, value, best)
+            factor = np.where(better, alpha, factor)
+            centre = np.where(better, sums[rows, at] / count, centre)
+            shift = np.where(better, at, shift)
+            flip = np.where(better, back, flip)
+    with np.errstate(invalid="ignore"):
+        error = np.sqrt(np.maximum(best, 0.0) / norm_z)
+    return Match(np.where(np.isfinite(error), error, np.inf), factor, shift, flip, centre)

@@ -160,6 +160,8 @@ def transmission(topology: Topology, dims: FloatArray, variant: int, crank: Floa
     coupler and the rocker; slider-crank: between the conrod and the guide's normal)."""
     from dyade.synthesis.closed import rrr
 
+    if hasattr(topology, "chain"):  # a six-bar: the least of its two dyads'
+        return sixbar_transmission(topology, dims, variant, crank)
     if topology.name != "fourbar":
         a, b, e = dims[0], dims[1], dims[2]
         return float(np.nanmin(np.arccos(np.clip(np.abs(e - a * np.sin(crank)) / b, 0, 1))))
@@ -168,3 +170,41 @@ def transmission(topology: Topology, dims: FloatArray, variant: int, crank: Floa
     bx, by = rrr(ax, ay, d, 0.0, b, c, variant)
     sin = np.abs((bx - ax) * by - (by - ay) * (bx - d)) / (b * c)
     return float(np.nanmin(np.arcsin(np.clip(sin, 0.0, 1.0))))
+
+
+def sixbar_transmission(topology: Topology, dims: FloatArray, variant: int,
+                        crank: FloatArray) -> float:
+    """A six-bar's least transmission angle over ``crank`` [rad]: of the four-bar's
+    dyad at B and of the second dyad at F (between E–F and G–F)."""
+    from dyade.synthesis.topology import FourBar
+
+    first, second = topology.dyad_variants(variant)
+    least = transmission(FourBar(), dims[:4], first, crank)
+    f, g = dims[8], dims[9]
+    # F from the path's coupler point with P at F: (p, q) = (f, 0)
+    at_f = dims.copy()
+    at_f[10], at_f[11] = f, 0.0
+    at_e = dims.copy()
+    at_e[10], at_e[11] = 0.0, 0.0
+    z_f = topology.path(at_f, variant, crank)[0]
+    z_e = topology.path(at_e, variant, crank)[0]
+    z_g = _anchor(topology, dims, variant, crank)
+    sin = np.abs(((z_f - z_e).conjugate() * (z_f - z_g)).imag) / (f * g)
+    return float(min(least, np.nanmin(np.arcsin(np.clip(sin, 0.0, 1.0)))))
+
+
+def _anchor(topology: Topology, dims: FloatArray, variant: int, crank: FloatArray):
+    """G of a six-bar's second dyad at each crank angle (complex [m], canonical)."""
+    from dyade.synthesis.closed import rrr
+
+    a, b, c, d, _, _, gx, gy = dims[:8]
+    first, _ = topology.dyad_variants(variant)
+    ax, ay = a * np.cos(crank), a * np.sin(crank)
+    bx, by = rrr(ax, ay, d, 0.0, b, c, first)
+    g = complex(gx, gy)
+    if topology.anchor == 1:
+        return np.full(crank.shape, g)
+    origin, toward = {2: (0j, ax + 1j * ay), 3: (ax + 1j * ay, bx + 1j * by),
+                      4: (d + 0j, bx + 1j * by)}[topology.anchor]
+    unit = (toward - origin) / np.abs(toward - origin)
+    return origin + unit * g

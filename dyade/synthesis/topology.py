@@ -190,29 +190,48 @@ class SliderCrank(Topology):
 
 class SixBar(Topology):
     """The six-bars made of two RRR dyads as dyade assembles them: the four-bar
-    A0–A–B–B0 (a, b, c, d as ``FourBar``), then a second dyad from a point E of the
-    rocker (Watt II: E in the rocker's frame, origin B0, ξ towards B) or of the coupler
-    (Stephenson III: E in the coupler's frame, origin A, ξ towards B) to the frame pivot
-    D0 = (gx, gy): E–F of length f, D0–F of length g; the coupler point P = (p, q) on
-    the second coupler E–F (origin E, ξ towards F). Links: 1 frame, 2 crank, 3 coupler,
-    4 rocker, 5 second coupler, 6 output rocker.
+    A0–A–B–B0 (a, b, c, d as ``FourBar``), then a second dyad E–F–G of lengths f
+    (E–F) and g (G–F) from a point E of one of the four-bar's moving links to a point G
+    of the frame or of another link, (gx, gy) in that link's frame (the frame's: the
+    canonical one); the coupler point P = (p, q) on the second coupler E–F (origin E,
+    ξ towards F). Links: 1 frame, 2 crank (origin A0, ξ towards A), 3 coupler (origin
+    A, ξ towards B), 4 rocker (origin B0, ξ towards B), 5 second coupler, 6 the second
+    dyad's other link. The chains (``CHAINS``):
+
+    - Watt II: E on the rocker, G on the frame (the frame and the rocker ternary,
+      adjacent at B0);
+    - Stephenson III: E on the coupler, G on the frame (the frame and the coupler
+      ternary, apart);
+    - Watt I: E on the coupler, G on the rocker (the two ternaries adjacent at B, the
+      frame binary);
+    - Stephenson I: E on the crank, G on the rocker (the ternary crank and rocker
+      apart, joined by the binary frame and coupler).
+
+    Stephenson II (the frame a binary of the chain's two-link path between its
+    ternaries) has no crank whose remaining links split into two dyads: it needs a
+    triad, which dyade does not assemble.
 
     ``variant`` 1…4 spells the two dyads' assembly variants: (+1, +1), (+1, −1),
     (−1, +1), (−1, −1)."""
 
     names = ("a", "b", "c", "d", "ex", "ey", "gx", "gy", "f", "g", "p", "q")
-    defaults = {"a": (0.1, 1.0), "b": (0.3, 3.0), "c": (0.3, 3.0), "d": (1.0, 1.0),
-                "ex": (-1.5, 1.5), "ey": (-1.5, 1.5), "gx": (-1.0, 2.0), "gy": (-1.5, 1.5),
-                "f": (0.3, 3.0), "g": (0.3, 3.0), "p": (-2.0, 2.0), "q": (-2.0, 2.0)}
     coupler = 5
     variants = (1, 2, 3, 4)
     SPELLED = {1: (1, 1), 2: (1, -1), 3: (-1, 1), 4: (-1, -1)}
+    CHAINS = {"watt": (4, 1, "Watt II"), "stephenson": (3, 1, "Stephenson III"),
+              "watt1": (3, 4, "Watt I"), "stephenson1": (2, 4, "Stephenson I")}
+    """chain -> (the link that carries E, the one that carries G, its name)"""
 
     def __init__(self, chain: str) -> None:
         self.chain = chain
         self.name = f"{chain}-sixbar"
-        self.carrier = 4 if chain == "watt" else 3
-        """the link that carries E"""
+        self.carrier, self.anchor, self.title = self.CHAINS[chain]
+        """the links that carry E and G"""
+        self.defaults = {"a": (0.1, 1.0), "b": (0.3, 3.0), "c": (0.3, 3.0), "d": (1.0, 1.0),
+                         "ex": (-1.5, 1.5), "ey": (-1.5, 1.5),
+                         "gx": (-1.0, 2.0) if self.anchor == 1 else (-1.5, 1.5),
+                         "gy": (-1.5, 1.5), "f": (0.3, 3.0), "g": (0.3, 3.0),
+                         "p": (-2.0, 2.0), "q": (-2.0, 2.0)}
 
     def dyad_variants(self, variant):
         return self.SPELLED[int(variant)]
@@ -224,21 +243,26 @@ class SixBar(Topology):
         four = FourBar().data({k: values[k] for k in FourBar.names[:4]} | {"p": 0.0, "q": 0.0},
                               first, placement, speed_rpm, masses, sweep, name)
         s, turn = placement.scale, np.exp(1j * placement.angle)
-        d0 = placement.origin + s * turn * (values["gx"] + 1j * values["gy"])
-        if isinstance(values["gx"], np.ndarray) or isinstance(values["gy"], np.ndarray):
-            four["frame"]["points"]["D0"] = [d0.real, d0.imag]
-        else:
-            four["frame"]["points"]["D0"] = [float(d0.real), float(d0.imag)]
-        four["name"] = name or f"{self.chain.capitalize()} six-bar (synthesised)"
+        links = four["links"]
+        if self.anchor == 1:  # G a frame pivot, placed in the world
+            d0 = placement.origin + s * turn * (values["gx"] + 1j * values["gy"])
+            if isinstance(values["gx"], np.ndarray) or isinstance(values["gy"], np.ndarray):
+                four["frame"]["points"]["D0"] = [d0.real, d0.imag]
+            else:
+                four["frame"]["points"]["D0"] = [float(d0.real), float(d0.imag)]
+            end = {"link": 1, "point": "D0"}
+        else:  # G on a moving link, in its frame
+            links.setdefault(str(self.anchor), {}).setdefault("points", {})["G"] = [
+                s * values["gx"], s * values["gy"]]
+            end = {"link": self.anchor, "point": "G"}
+        four["name"] = name or f"{self.title} six-bar (synthesised)"
         four["dyad"].append({"kind": "RRR", "links": [5, 6],
-                             "A": {"link": self.carrier, "point": "E"},
-                             "C": {"link": 1, "point": "D0"},
+                             "A": {"link": self.carrier, "point": "E"}, "C": end,
                              "lengths": [s * values["f"], s * values["g"]],
                              "variant": int(second)})
-        links = four["links"]
         links["3"] = {k: v for k, v in links["3"].items() if k != "points"}
-        links.setdefault(str(self.carrier), {})["points"] = {
-            "E": [s * values["ex"], s * values["ey"]]}
+        links.setdefault(str(self.carrier), {}).setdefault("points", {})["E"] = [
+            s * values["ex"], s * values["ey"]]
         links["5"] = {"points": {"P": [s * values["p"], s * values["q"]]}}
         if masses:
             per, each = masses.get("per_length"), masses.get("each")
@@ -254,12 +278,19 @@ class SixBar(Topology):
         first, second = self.dyad_variants(variant)
         ax, ay = a * np.cos(crank), a * np.sin(crank)
         bx, by = rrr(ax, ay, d, 0.0 * d, b, c, first)
-        if self.chain == "watt":  # E on the rocker: origin B0, ξ towards B
-            ox, oy, ux, uy = d, 0.0 * d, (bx - d) / c, by / c
-        else:  # E on the coupler: origin A, ξ towards B
-            ox, oy, ux, uy = ax, ay, (bx - ax) / b, (by - ay) / b
-        px, py = ox + ux * ex - uy * ey, oy + uy * ex + ux * ey
-        fx, fy = rrr(px, py, gx, gy, f, g, second)
+        frames = {2: (0.0 * ax, 0.0 * ay, ax / a, ay / a),  # origin, ξ of each moving link
+                  3: (ax, ay, (bx - ax) / b, (by - ay) / b),
+                  4: (d + 0.0 * bx, 0.0 * by, (bx - d) / c, by / c)}
+
+        def at(link, x, y):
+            if link == 1:
+                return x + 0.0 * ax, y + 0.0 * ay
+            ox, oy, ux, uy = frames[link]
+            return ox + ux * x - uy * y, oy + uy * x + ux * y
+
+        px, py = at(self.carrier, ex, ey)
+        hx, hy = at(self.anchor, gx, gy)
+        fx, fy = rrr(px, py, hx, hy, f, g, second)
         vx, vy = (fx - px) / f, (fy - py) / f
         return (px + vx * p - vy * q) + 1j * (py + vy * p + vx * q)
 
@@ -268,7 +299,7 @@ class SixBar(Topology):
 
 
 TOPOLOGIES = {"fourbar": FourBar(), "slider-crank": SliderCrank(),
-              "watt-sixbar": SixBar("watt"), "stephenson-sixbar": SixBar("stephenson")}
+              **{f"{chain}-sixbar": SixBar(chain) for chain in SixBar.CHAINS}}
 """name -> topology"""
 
 

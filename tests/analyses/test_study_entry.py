@@ -142,3 +142,16 @@ def test_the_journal_streams_by_the_one_cell_rule(tmp_path):
     journal = tmp_path / "journal.csv"
     REGISTRY["study"](path, journal=str(journal))
     assert journal.read_text() == cli("study", path, "--format", "csv").stdout
+
+
+def test_progress_and_its_note_as_every_entry_gives_them():
+    """The study tells its rate through the budget's note, the synthesis its rate and
+    best error: one signature each, progress(done, total) and note(text)."""
+    from pathlib import Path
+
+    heard, notes = [], []
+    REGISTRY["study"](Path(__file__).parent / "small-study.toml",
+                      progress=lambda done, total: heard.append((done, total)),
+                      note=notes.append)
+    assert heard and heard[-1] == (3, 3)
+    assert len(notes) == len(heard) and all(n.endswith("variants/s") for n in notes)

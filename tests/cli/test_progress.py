@@ -25,8 +25,9 @@ def test_a_bar_only_on_a_terminal(monkeypatch):
         with output.progress("working", total=4) as tick:
             for done in range(1, 5):
                 tick(done)
+                tick.note(f"{done} a second")  # how it goes, beside the bar
     assert quiet.getvalue() == ""
-    assert "working" in loud.getvalue()
+    assert "working" in loud.getvalue() and "a second" in loud.getvalue()
 
 
 @pytest.mark.parametrize("args", [

@@ -27,7 +27,7 @@ def test_units_become_si():
     ({"target": {"kind": "pth"}}, "target.kind", "Did you mean"),
     ({"target": {"kind": "path", "points": [[0, 0]] * 5}}, "target.points", "at least 8"),
     ({"target": {"kind": "path", "points": [[0, 0], [1, 0], [1, 1], [0, 1]], "closed": False,
-                 }}, "target.crank", "open path"),
+                 }}, "target.points", "a part of a curve without crank angles"),
     ({"target": {"kind": "function", "crank": [1, 2], "output": [1, 2, 3]}}, "target.output",
      "3 angles for 2"),
     ({"target": {"kind": "poses", "poses": [[0, 0, 0], [1, 0, 10]]}}, "target.poses", "three"),

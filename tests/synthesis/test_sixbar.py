@@ -17,6 +17,14 @@ from dyade.synthesis.topology import TOPOLOGIES
 
 STEPHENSON = np.array([0.3, 1.0, 0.9, 1.0, 0.5, 0.4, 0.6, 1.4, 1.2, 1.0, 0.4, -0.2])
 CRANK = np.linspace(0.0, 2.0 * np.pi, 48, endpoint=False)
+SAMPLES = {"stephenson-sixbar": STEPHENSON,
+           "watt-sixbar": np.array([0.2, 0.8, 0.6, 1.0, 0.4, -0.24, 1.8, 1.0, 0.72, 0.48, 0.36,
+                                    0.12]),
+           "watt1-sixbar": np.array([0.2, 0.8, 0.6, 1.0, 0.58, 0.03, 0.21, -0.46, 0.98, 0.78,
+                                     0.36, 0.12]),  # E on the coupler, G on the rocker
+           "stephenson1-sixbar": np.array([0.2, 0.8, 0.6, 1.0, 0.27, -0.16, 0.59, 0.16, 0.76,
+                                           0.98, 0.36, 0.12])}  # E on the crank, G on the rocker
+"""six-bars whose second dyad closes over the whole turn on both of its branches"""
 
 
 def test_the_shipped_watt_sixbar_is_the_watt_topology():
@@ -30,11 +38,11 @@ def test_the_shipped_watt_sixbar_is_the_watt_topology():
     assert np.abs(TOPOLOGIES["watt-sixbar"].path(values, 1, CRANK)[0] - dyade_path).max() > 1e-3
 
 
-@pytest.mark.parametrize("name", ["watt-sixbar", "stephenson-sixbar"])
+@pytest.mark.parametrize("name", ["watt-sixbar", "stephenson-sixbar", "watt1-sixbar",
+                                  "stephenson1-sixbar"])
 def test_the_closed_form_curve_is_dyades_for_every_variant(name):
     topology = TOPOLOGIES[name]
-    values = STEPHENSON if name == "stephenson-sixbar" else np.array(
-        [0.2, 0.8, 0.6, 1.0, 0.4, -0.24, 1.8, 1.0, 0.72, 0.48, 0.36, 0.12])
+    values = SAMPLES[name]
     checked = 0
     for variant in topology.variants:
         expected = topology.path(values, variant, CRANK)[0]
@@ -46,10 +54,31 @@ def test_the_closed_form_curve_is_dyades_for_every_variant(name):
     assert checked >= 2
 
 
-def test_a_six_bar_sizes_paths_only():
+def test_a_six_bar_sizes_paths_and_stretches_not_yet_poses():
+    assert parse({"topology": "watt-sixbar", "target": {"kind": "line", "stretch": 120}},
+                 "s.toml").target.kind == "line"
     with pytest.raises(InputError) as err:
-        parse({"topology": "watt-sixbar", "target": {"kind": "line", "stretch": 120}}, "s.toml")
+        parse({"topology": "watt1-sixbar",
+               "target": {"kind": "poses", "poses": [[0, 0, 0], [1, 0, 10], [1, 1, 20]]}},
+              "s.toml")
     assert "topology" in str(err.value) and "path" in str(err.value)
+
+
+@pytest.mark.parametrize("name", list(SAMPLES))
+def test_the_least_transmission_angle_is_dyades(name):
+    """The stretch refinement's closed-form transmission angle of a six-bar (the least
+    of its two dyads') against the one dyade's positions stage reports."""
+    from dyade.synthesis.stretch import transmission
+
+    topology = TOPOLOGIES[name]
+    checked = 0
+    for variant in topology.variants:
+        _, closes, least = traced(topology, SAMPLES[name][None, :], variant, CRANK)
+        if closes[0]:
+            assert transmission(topology, SAMPLES[name], variant, CRANK) == pytest.approx(
+                least[0], abs=1e-12)
+            checked += 1
+    assert checked >= 2
 
 
 @pytest.mark.slow
@@ -74,3 +103,23 @@ def test_a_search_recovers_a_stephenson_sixbar_from_its_own_coupler_curve():
     # the written mechanism traces the target through dyade
     traced_path = best.traced
     assert np.min(np.abs(traced_path[:, None] - points[None, :]), axis=0).max() < 2e-3 * 0.1
+
+
+@pytest.mark.parametrize("name", ["watt1-sixbar", "stephenson1-sixbar"])
+def test_the_written_mechanism_file_traces_the_closed_form(tmp_path, name):
+    """Watt I and Stephenson I as files: written as ``dyade synthesise --write`` writes
+    them, read back, their coupler point through dyade's engine is the closed form's."""
+    from dyade.report.synthesis import mechanism_text
+    from dyade.synthesis import Design
+    from dyade.synthesis.topology import Placement
+
+    topology = TOPOLOGIES[name]
+    placement = Placement(0.1 - 0.2j, 0.25, 0.4)
+    data = topology.data(SAMPLES[name], 3, placement)
+    path = tmp_path / "design-1.toml"
+    path.write_text(mechanism_text(Design("design 1", data, 0.0, True, CRANK, CRANK)))
+    mechanism = read_mechanism(path)
+    found = positions(mechanism, CRANK + placement.angle, [(5, mechanism.links[5].points["P"])])
+    traced_path = found.points[:, 0, 0] + 1j * found.points[:, 0, 1]
+    expected = placement.apply(topology.path(SAMPLES[name], 3, CRANK)[0])
+    assert np.abs(traced_path - expected).max() < 1e-12
