@@ -146,7 +146,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     add("undercut", bool(geo.undercut.any()), "flag", None, "the working curve undercuts")
     if result.smallest_base_radius is not None:
         what = ("smallest base circle for the pressure-angle limit"
-                if cam.follower == "translating-roller" else
+                if cam.follower != "translating-flat" else
                 "smallest base circle without a cusp (r_b + s + s″ > 0)")
         add("base_radius_min", result.smallest_base_radius, "m", None, what)
     if cam.roller_radius > cam.base_radius:

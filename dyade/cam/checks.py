@@ -62,8 +62,9 @@ class CamResult:
     contact_speed_angles: tuple[float | None, float | None]
     """the cam angles [rad] that set them (None where none does)"""
     smallest_base_radius: float | None
-    """the smallest r_b [m] for the pressure-angle limit (translating roller) or for a
-    cusp-free flat-faced cam; None for an oscillating follower"""
+    """the smallest r_b [m] for the pressure-angle limit (roller followers; None where no
+    pitch circle the oscillating follower's arm reaches meets it) or for a cusp-free
+    flat-faced cam"""
     manufacture: tuple[Manufacture, ...]
     profile_notes: tuple[str, ...]
     """the motion profile's own notes (allowed acceleration jumps)"""
@@ -197,7 +198,9 @@ def check(cam, step: float = math.radians(1.0), make: bool = True) -> CamResult:
     elif cam.follower == "translating-flat":
         smallest = geometry.smallest_flat_base_radius(s, a)
     else:
-        smallest = None
+        smallest = geometry.smallest_oscillating_base_radius(
+            s, v, cam.limit, roller_radius=cam.roller_radius,
+            pivot_distance=cam.pivot_distance, arm_length=cam.arm_length)
     made = manufacture(cam, geo) if make else ()
     return CamResult(cam, geo, s, v, a, j, force, lifted, stress, torque, (lowest, highest),
                      (float(theta[k_low]) if k_low >= 0 else None,
