@@ -46,6 +46,9 @@ def units(follower: str) -> dict[str, tuple[str, str]]:
         "guide_margin": ("-", "the guide's lock margin 1 − μ·p/n_y for a push along the "
                               "guide (≤ 0: a push cannot move the follower)"),
         "jammed": ("flag", "the cam pushes the follower and it jams in its guide here"),
+        "outer_flank": ("flag", "a groove's outer flank carries the load here (the contact "
+                                "force is negative: the outer wall pushes the roller towards "
+                                "the cam centre)"),
     }
 
 
@@ -95,6 +98,8 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     if result.guide is not None:
         columns["guide_margin"] = result.guide.margin
         columns["jammed"] = result.jammed
+    if result.outer_flank is not None:
+        columns["outer_flank"] = result.outer_flank
     outcome = Outcome("cam", figures=("cam",),
                       meta={"name": cam.name, "source": None if cam.source is None
                             else os.fspath(cam.source), "follower": cam.follower,
@@ -249,12 +254,48 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         notes.append("note: the follower is off the cam at every angle.")
         outcome.notes = notes
         withheld(outcome, given, "no cam angle has its contact force given")
+    if result.outer_flank is not None:
+        flanks(outcome, result, theta, notes)
     for made in result.manufacture:
         add(f"{made.name}_points", int(made.points.shape[0]), "-", None,
-            f"points of the {'working curve' if made.name == 'working' else 'cutter path'} "
-            f"within the chord tolerance {_length(made.tolerance, cam)}")
+            f"points of the {CURVES[made.name]} within the chord tolerance "
+            f"{_length(made.tolerance, cam)}")
     outcome.notes = notes
     return outcome
+
+
+CURVES = {"working": "working curve", "outer": "groove's outer flank",
+          "cutter": "cutter path"}
+"""a curve to manufacture -> its words"""
+
+
+def flanks(outcome, result, theta, notes: list[str]) -> None:
+    """A grooved cam's flanks: which one carries the load over the turn (a share and
+    the cam angles where the contact switches flanks, N changing sign)."""
+    import math
+
+    import numpy as np
+
+    from dyade.cam import geometry
+
+    given = np.isfinite(result.contact_force)
+    outer = np.asarray(result.outer_flank, dtype=bool) & given
+    share = float(np.sum(outer) / max(int(np.sum(given)), 1))
+    outcome.add("outer_flank_share", share, "-", None,
+                "share of the turn over which the groove's outer flank carries the load")
+    if not outer.any():
+        notes.append("note: the groove's inner flank (the working curve) carries the load "
+                     "over the whole turn: a spring would hold this follower on as well.")
+        return
+    inner = ~outer & given
+    words = ", ".join(f"{math.degrees(theta[k]):.1f}°" for k in np.flatnonzero(
+        given & np.roll(given, 1) & (outer != np.roll(outer, 1)))[:8])
+    notes.append(f"note: the contact switches flanks of the groove at cam angles {words}: the "
+                 f"outer flank carries the load at {_ranges(geometry.spans(theta, outer))}, "
+                 f"the inner flank (the working curve) at "
+                 f"{_ranges(geometry.spans(theta, inner)) or 'no angle'}. The roller's spin "
+                 f"reverses at each switch: the groove's clearance is crossed there, with an "
+                 f"impact.")
 
 
 def _label(cam) -> str:

@@ -170,6 +170,25 @@ def translating_roller(theta, s, ds, dds, *, base_radius: float, roller_radius: 
                    base_radius, roller_radius, 1.0, clockwise)
 
 
+def outer_wall(geo: CamGeometry) -> tuple[FloatArray, FloatArray]:
+    """The groove's outer flank of a roller follower's grooved cam (form closure): the
+    pitch curve moved outwards by the roller radius along the cam's normal, and its
+    radius of curvature ρ_p + r_r [m] (convex positive as a curve about the cam centre;
+    the roller touches it from inside, where it is concave).
+
+    Returns
+    -------
+    points : ndarray, shape (n, 2)
+        [m], cam frame (the working curve, ``geo.working``, is the inner flank).
+    radius : ndarray, shape (n,)
+        ρ_p + r_r [m].
+    """
+    if geo.pitch is None:
+        raise ValueError("a flat-faced follower has no groove: the outer flank belongs to a "
+                         "roller follower")
+    return geo.pitch + geo.roller_radius * geo.normal, geo.pitch_curvature_radius + geo.roller_radius
+
+
 def rest_angle(pitch_radius: float, pivot_distance: float, arm_length: float) -> float:
     """ψ0 [rad]: the arm's angle to the line A→O with the roller on the pitch circle,
     cos ψ0 = (a² + l² − r_p²)/(2·a·l)."""

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from dyade.analyses.cam import ENTRIES
+from dyade.analyses.cam import CURVES, ENTRIES
 from dyade.cli import contract, main
 
 ENTRY = ENTRIES["cam"]
@@ -38,11 +38,15 @@ def solve(cam_file: Path, options: dict):
 @click.option("--cutter-points", "cutter_file", type=click.Path(dir_okay=False, writable=True,
                                                                 path_type=Path),
               help="Write the cutter centre's path as CSV (needs manufacture.cutter_radius).")
+@click.option("--outer-points", "outer_file", type=click.Path(dir_okay=False, writable=True,
+                                                              path_type=Path),
+              help='Write a grooved cam\'s outer flank as CSV (needs cam.closure = "groove").')
 @click.option("--dxf", "dxf_file", type=click.Path(dir_okay=False, writable=True,
                                                    path_type=Path),
               help="Write the working curve (and the cutter's path) as a DXF drawing "
                    '(needs ezdxf: pip install "dyade[cad]").')
-def cam(cam_file: Path, fmt, output, points_file, cutter_file, dxf_file, **options) -> None:
+def cam(cam_file: Path, fmt, output, points_file, cutter_file, outer_file, dxf_file,
+        **options) -> None:
     """A disc cam and its follower over one turn: the pressure angle against its limit,
     the radii of curvature and undercut, the smallest base circle, the contact force, the
     lift-off speed, the Hertz stress, the drive torque; and the profile to manufacture.
@@ -68,18 +72,23 @@ def cam(cam_file: Path, fmt, output, points_file, cutter_file, dxf_file, **optio
     from dyade.cli.output import atomic, console
 
     err = console(stderr=True)
-    for target, name in ((points_file, "working"), (cutter_file, "cutter")):
+    wanted = ((points_file, "working"), (cutter_file, "cutter"), (outer_file, "outer"))
+    for target, name in wanted:  # every curve asked for is there before any is written
+        if target is not None and report.curve(result, name) is None:
+            raise click.UsageError(
+                f"--cutter-points: {cam_file.name} gives no `manufacture.cutter_radius`, so "
+                f"there is no cutter path." if name == "cutter" else
+                f"--outer-points: {cam_file.name} is not a grooved cam (`cam.closure` = "
+                f"\"groove\", a roller follower), so there is no outer flank.")
+    for target, name in wanted:
         if target is None:
             continue
         made = report.curve(result, name)
-        if made is None:
-            raise click.UsageError(f"--cutter-points: {cam_file.name} gives no "
-                                   f"`manufacture.cutter_radius`, so there is no cutter path.")
         with atomic(target) as handle:
             report.write_points(made, handle, unit)
-        err.print(f"wrote {target}: {made.points.shape[0]} points of the "
-                  f"{'working curve' if name == 'working' else 'cutter path'} within "
-                  f"{made.tolerance / _factor(unit):g} {unit} of the curve.", markup=False)
+        err.print(f"wrote {target}: {made.points.shape[0]} points of the {CURVES[name]} "
+                  f"within {made.tolerance / _factor(unit):g} {unit} of the curve.",
+                  markup=False)
     if dxf_file is not None:
         report.write_dxf(result, dxf_file, unit)
         err.print(f"wrote {dxf_file} (DXF, {unit}).", markup=False)

@@ -108,6 +108,10 @@ class Cam:
         if self.closure not in CLOSURES:
             raise fail("closure", f"must be one of {', '.join(CLOSURES)}, got "
                                   f"{self.closure!r}.", self.closure)
+        if self.closure == "groove" and self.follower == "translating-flat":
+            raise fail("closure", "= \"groove\" needs a roller follower: a roller runs in "
+                                  "a groove, a flat face does not (hold it on by a spring, "
+                                  "closure = \"spring\").", self.closure)
         if not self.base_radius > 0.0:
             raise fail("base_radius", f"must be positive [m], got {self.base_radius:g}.")
         if self.follower == "translating-flat":

@@ -149,3 +149,50 @@ def test_a_cam_linkage_chain_from_its_file():
     at = dyade.run("cam", "mechanisms/cams/cam-linkage.toml", speed_rpm=lift, step_deg=1.0)
     force = at.result.chain.contact_force  # as solved (a value a hair below 0 is lifted off)
     assert force.min() == pytest.approx(0.0, abs=1e-9 * force.max())
+
+
+@pytest.fixture(scope="module")
+def grooved(cam):
+    return dyade.run("cam", dataclasses.replace(cam, closure="groove", width=0.012),
+                     speed_rpm=700.0)
+
+
+def test_a_grooved_cam_carries_the_load_on_the_flank_the_force_says(grooved, cam):
+    result, columns = grooved.result, grooved.columns
+    omega = 700.0 * math.pi / 30.0
+    alpha = result.geometry.pressure_angle
+    # the balance along the follower, both signs: N = (m·s″·ω² + k·(s + s0) + F)/cos α
+    expected = (cam.mass * result.a * omega ** 2 + cam.stiffness * (result.s + cam.preload)
+                + cam.load) / np.cos(alpha)
+    assert np.allclose(columns["contact_force"], expected, rtol=1e-12, atol=0)
+    outer = columns["outer_flank"]
+    assert np.array_equal(outer, expected < 0) and 0 < outer.sum() < outer.size
+    assert grooved.value("outer_flank_share") == pytest.approx(outer.mean(), rel=1e-12)
+    assert grooved.summary.get("lift_off_speed_rpm") is None  # a groove never lifts off
+    note = next(n for n in grooved.notes if "switches flanks" in n)
+    switches = np.flatnonzero(outer != np.roll(outer, 1))
+    assert all(f"{columns['angle_deg'][k]:.1f}°" in note for k in switches)
+    # Hertz: the roller inside the outer wall (concave, ρ_p + r_r), outside the inner one
+    modulus = 1 / (2 * (1 - 0.3 ** 2) / 210e9)
+    rho_p, r_r = columns["rho_pitch"], cam.roller_radius
+    curvature = np.where(outer, 1 / r_r - 1 / (rho_p + r_r), 1 / r_r + 1 / (rho_p - r_r))
+    p0 = np.sqrt(np.abs(expected) * modulus * curvature / (np.pi * 0.012))
+    assert np.allclose(columns["hertz_stress"], p0, rtol=1e-12, atol=0)
+
+
+def test_the_groove_s_outer_flank_is_the_roller_s_envelope(grooved, outcome, cam):
+    from dyade.cam import checks
+    from dyade.report import cam as report
+
+    outer = report.curve(grooved.result, "outer")
+    assert outer is not None and outer.deviation <= cam.chord_tolerance
+    # every exported point of the outer flank lies r_r from the pitch curve (the roller's
+    # centre path, a dense closed-form sampling), on its far side from the working curve
+    fine, _ = checks.curves(grooved.result.cam, np.linspace(0, 2 * np.pi, 10_001)[:-1])
+    distance = np.min(np.hypot(*(outer.points[:, None, :] - fine.pitch[None, ::2, :]).T), axis=0)
+    # (a sampled curve only overestimates the distance: by h²/(8·r_r) ≈ 7e-8 m here)
+    assert cam.roller_radius - 1e-12 < distance.min() and distance.max() < cam.roller_radius + 2e-7
+    assert np.all(np.hypot(*outer.points.T) > np.interp(
+        outer.theta, fine.theta, np.hypot(*fine.pitch.T)) - 1e-12)
+    # the plain spring cam makes no outer flank
+    assert report.curve(outcome.result, "outer") is None
