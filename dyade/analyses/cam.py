@@ -22,6 +22,17 @@ OPTIONS = (
            help="Cam-angle step of the checks"),
 )
 
+STUDY_OUTPUTS = {
+    "pressure_angle_max_deg": "°", "rho_pitch_convex_min": "m", "rho_working_min": "m",
+    "undercut": "-", "base_radius_min": "m", "lift_off_speed_rpm": "rpm",
+    "contact_speed_min_rpm": "rpm", "contact_force_min": "N", "contact_force_max": "N",
+    "drive_torque_max": "N·m", "hertz_stress_max": "Pa", "guide_margin_min": "-",
+    "outer_flank_share": "-", "face_width": "m", "face_contact_min": "m",
+    "face_contact_max": "m"}
+"""the summary figures a study of a cam file gives (``dyade.study.cam``), SI, angles in
+degrees; a flag 1 or 0"""
+
+
 def units(follower: str) -> dict[str, tuple[str, str]]:
     """column -> (unit, description) for a follower kind (an oscillating follower's
     coordinate is an angle)."""
@@ -54,14 +65,10 @@ def units(follower: str) -> dict[str, tuple[str, str]]:
 
 def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     import dataclasses
-    import math
 
-    import numpy as np
-
-    from dyade.cam import checks, geometry
-    from dyade.errors import DyadeError, InputError
+    from dyade.errors import InputError
     from dyade.model.cam import Cam
-    from dyade.units import DEG, RPM
+    from dyade.units import RPM
 
     if isinstance(source, Cam):
         cam = source
@@ -73,15 +80,40 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         cam = read_cam(source)
     if options.get("speed_rpm") is not None:
         cam = dataclasses.replace(cam, speed=options["speed_rpm"] * RPM)
-    step = options["step_deg"] * DEG
+    return checked(cam, options["step_deg"], budget)
+
+
+def checked(cam, step_deg: float = 1.0, budget: Budget | None = None,
+            make: bool = True) -> Outcome:
+    """The Outcome of a ``dyade.model.cam.Cam``'s checks at the cam-angle step
+    ``step_deg`` [°] (``make``: with the profile to manufacture; a study's variants go
+    without); what ``dyade.run("cam", cam, step_deg=...)`` gives.
+
+    Raises
+    ------
+    InputError
+        A step above 30°.
+    DyadeError
+        The follower can never keep contact with the cam.
+    """
+    import math
+
+    import numpy as np
+
+    from dyade.cam import checks, geometry
+    from dyade.errors import DyadeError, InputError
+    from dyade.units import DEG, RPM
+
+    step = step_deg * DEG
     if not step <= math.radians(30.0):
         raise InputError.parameter("step_deg", f"must be at most 30 [°] (a cam's checks need "
                                                f"the angles between), got "
-                                               f"{options['step_deg']:g}.",
-                                   value=options["step_deg"], unit="°")
+                                               f"{step_deg:g}.",
+                                   value=step_deg, unit="°")
     count = int(math.ceil(2 * math.pi / step))
-    budget.time(count * 2e-6 + 0.05, f"the cam's checks at {count:,} angles")
-    result = checks.check(cam, step)
+    if budget is not None:
+        budget.time(count * 2e-6 + 0.05, f"the cam's checks at {count:,} angles")
+    result = checks.check(cam, step, make=make)
     geo = result.geometry
     theta = geo.theta
     described = units(cam.follower)
