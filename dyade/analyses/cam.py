@@ -181,6 +181,16 @@ def checked(cam, step_deg: float = 1.0, budget: Budget | None = None,
             "smallest radius of curvature of the working curve where it bulges (negative: "
             "it folds, undercut)")
     add("undercut", bool(geo.undercut.any()), "flag", None, "the working curve undercuts")
+    if cam.follower == "translating-flat":  # the face's contact travels across it: x = s′
+        across = (geo.contact[:, 0] - geo.centre[:, 0])  # from the stem's line, as drawn
+        low, high = int(np.argmin(across)), int(np.argmax(across))
+        add("face_contact_min", float(across[low]), "m", at(low),
+            "the contact's least distance from the stem's line across the face (x, "
+            "negative: left of the stem)")
+        add("face_contact_max", float(across[high]), "m", at(high),
+            "the contact's largest distance from the stem's line across the face")
+        add("face_width", float(across[high] - across[low]), "m", None,
+            "face width the contact's travel needs (the range of s′)")
     if result.smallest_base_radius is not None:
         what = ("smallest base circle for the pressure-angle limit"
                 if cam.follower != "translating-flat" else

@@ -196,3 +196,26 @@ def test_the_groove_s_outer_flank_is_the_roller_s_envelope(grooved, outcome, cam
         outer.theta, fine.theta, np.hypot(*fine.pitch.T)) - 1e-12)
     # the plain spring cam makes no outer flank
     assert report.curve(outcome.result, "outer") is None
+
+
+@pytest.mark.parametrize("clockwise", [False, True])
+def test_a_flat_face_s_width_and_its_cusp(clockwise):
+    flat = dataclasses.replace(read_cam("mechanisms/cams/flat-faced.toml"), offset=0.003,
+                               clockwise=clockwise, chord_tolerance=1e-4)
+    outcome = dyade.run("cam", flat, step_deg=2.0)
+    v = outcome.result.v
+    # the face touches the cam at x = s′ and the stem runs along x = e; a clockwise cam
+    # is the mirror image of the counter-clockwise one with −e: the contact at x = −s′
+    across = -v - 0.003 if clockwise else v - 0.003
+    assert outcome.value("face_contact_min") == pytest.approx(across.min(), rel=1e-12)
+    assert outcome.value("face_contact_max") == pytest.approx(across.max(), rel=1e-12)
+    assert outcome.value("face_width") == pytest.approx(np.ptp(v), rel=1e-12)
+    # below the smallest base circle r_b + s + s″ > 0 fails: a cusp, named with its angles
+    smallest = outcome.value("base_radius_min")
+    assert smallest == pytest.approx(np.max(-outcome.result.s - outcome.result.a), rel=1e-12)
+    cusped = dyade.run("cam", dataclasses.replace(flat, base_radius=0.8 * smallest),
+                       step_deg=2.0)
+    radius = cusped.columns["rho_working"]
+    assert np.array_equal(cusped.columns["undercut"], radius <= 0) and (radius < 0).any()
+    note = next(n for n in cusped.notes if n.startswith("warning: undercut at cam angles"))
+    assert "cannot follow the motion (cusp)" in note and f"{smallest * 1e3:.4g} mm" in note
