@@ -247,12 +247,21 @@ def checked(cam, step_deg: float = 1.0, budget: Budget | None = None,
     if cam.closure == "spring":
         if highest == 0.0 or lowest > highest:
             where_ = result.contact_speed_angles[1 if highest == 0.0 else 0]
+            why = "no speed keeps it on"
+            if highest == 0.0 and where_ is not None:
+                k = int(np.argmin(np.abs(theta - where_)))
+                pressing = cam.stiffness * (result.s[k] + cam.preload) + cam.load
+                why = ("nothing presses it on (no spring force or load: k·(s + s0) + F = 0)"
+                       if pressing == 0.0 else
+                       f"the spring and the load pull it off (k·(s + s0) + F = "
+                       f"{pressing:.4g} {'N·m' if cam.follower == 'oscillating-roller' else 'N'})")
             raise DyadeError(
-                f"{_label(cam)}: the follower can never keep contact with the cam: "
-                f"{'the spring and the load pull it off' if highest == 0.0 else 'no speed keeps it on'}"
-                f"{'' if where_ is None else f' at cam angle {math.degrees(where_):.1f}°'} "
-                f"(the spring force k·(s + s0) + F must press it on: check `follower."
-                f"preload`, `follower.stiffness` and `follower.load`).")
+                f"{_label(cam)}: the follower can never keep contact with the cam: {why}"
+                f"{'' if where_ is None else f' at cam angle {math.degrees(where_):.1f}°'}. "
+                f"The spring force "
+                f"k·(s + s0) + F must press it on: check `follower.preload`, "
+                f"`follower.stiffness` and `follower.load`, or groove the cam "
+                f"(`cam.closure` = \"groove\").")
         lift_rpm = highest / RPM if math.isfinite(highest) else None
         where_high = result.contact_speed_angles[1]
         add("lift_off_speed_rpm", lift_rpm, "rpm",

@@ -65,7 +65,7 @@ class CamResult:
     smallest_base_radius: float | None
     """the smallest r_b [m] for the pressure-angle limit (roller followers; None where no
     pitch circle the oscillating follower's arm reaches meets it) or for a cusp-free
-    flat-faced cam"""
+    flat-faced cam; 0 where any base circle does"""
     manufacture: tuple[Manufacture, ...]
     profile_notes: tuple[str, ...]
     """the motion profile's own notes (allowed acceleration jumps)"""
@@ -206,9 +206,10 @@ def check(cam, step: float = math.radians(1.0), make: bool = True) -> CamResult:
                                           cam.width, modulus)
     if cam.follower == "translating-roller":
         offset = -cam.offset if cam.clockwise else cam.offset
-        smallest = geometry.smallest_pitch_radius(s, v, cam.limit, offset) - cam.roller_radius
+        smallest = max(geometry.smallest_pitch_radius(s, v, cam.limit, offset)
+                       - cam.roller_radius, 0.0)  # 0: any base circle meets the limit
     elif cam.follower == "translating-flat":
-        smallest = geometry.smallest_flat_base_radius(s, a)
+        smallest = max(geometry.smallest_flat_base_radius(s, a), 0.0)
     else:
         smallest = geometry.smallest_oscillating_base_radius(
             s, v, cam.limit, roller_radius=cam.roller_radius,

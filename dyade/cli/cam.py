@@ -27,8 +27,9 @@ def solve(cam_file: Path, options: dict):
 
 @main.command()
 @cam_options
-@click.option("--format", "fmt", type=click.Choice(["table", "csv", "json"]), default="table",
-              show_default=True, help="csv/json: every cam angle.")
+@click.option("--format", "fmt", type=click.Choice(["table", "csv", "json"]), default=None,
+              help="csv/json: every cam angle. [default: table on stdout; with -o: from its "
+                   "suffix (.csv, .json, .txt)]")
 @click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True, path_type=Path),
               help="Write the result to this file instead of standard output.")
 @click.option("--points", "points_file", type=click.Path(dir_okay=False, writable=True,
@@ -62,8 +63,22 @@ def cam(cam_file: Path, fmt, output, points_file, cutter_file, outer_file, dxf_f
 
     Exit 1 where the follower can never keep contact; an undercut is a warning.
     """
+    from dyade.cli.common import infer_format
     from dyade.report import cam as report
 
+    fmt = fmt or infer_format(None if output is None else str(output))
+    if fmt not in ("table", "csv", "json"):  # .parquet: not written by this command
+        raise click.BadParameter(f"{output}: dyade cam writes .csv, .json or .txt (the "
+                                 f"table); or give --format table|csv|json.", param_hint="-o")
+    for flag, target, suffixes in (("--points", points_file, (".csv", ".txt")),
+                                   ("--cutter-points", cutter_file, (".csv", ".txt")),
+                                   ("--outer-points", outer_file, (".csv", ".txt")),
+                                   ("--dxf", dxf_file, (".dxf",))):
+        if target is not None and (str(target) == "-" or target.suffix.lower() not in suffixes):
+            raise click.BadParameter(
+                f"{target}: {flag} writes "
+                f"{'a DXF drawing: name the file .dxf (CSV points: --points)' if flag == '--dxf' else 'CSV points: name the file .csv (a DXF drawing: --dxf)'}.",
+                param_hint=flag)
     if dxf_file is not None:
         report.require_ezdxf()  # before anything is computed or written
     outcome = solve(cam_file, options)
@@ -90,7 +105,15 @@ def cam(cam_file: Path, fmt, output, points_file, cutter_file, outer_file, dxf_f
                   f"within {made.tolerance / _factor(unit):g} {unit} of the curve.",
                   markup=False)
     if dxf_file is not None:
-        report.write_dxf(result, dxf_file, unit)
+        from dyade.errors import InputError
+
+        try:  # (ezdxf writes the file itself: the folder made as -o makes it)
+            if dxf_file.parent != Path(""):
+                dxf_file.parent.mkdir(parents=True, exist_ok=True)
+            report.write_dxf(result, dxf_file, unit)
+        except OSError as err:
+            raise InputError(f"{dxf_file}: cannot write the file ({err.strerror or err}).",
+                             source=str(dxf_file)) from None
         err.print(f"wrote {dxf_file} (DXF, {unit}).", markup=False)
     tables = report.tables(outcome) if fmt == "table" else None
     contract.emit(outcome, fmt, output, tables, width=160 if output else None)

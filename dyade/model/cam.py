@@ -142,6 +142,13 @@ class Cam:
             raise fail("chord_tolerance", f"must be at least {CHORD_TOLERANCE_MIN:g} m (0.1 µm, "
                                           f"finer than any machine tool cuts), got "
                                           f"{self.chord_tolerance:g} m.")
+        if self.pressure_angle_max is not None and not (
+                0.0 < self.pressure_angle_max < math.pi / 2):
+            raise fail("pressure_angle_max", f"must lie between 0° and 90° (a limit of |α|; "
+                                             f"30° for a translating follower, 45° for an "
+                                             f"oscillating one are usual), got "
+                                             f"{math.degrees(self.pressure_angle_max):g}°.",
+                       math.degrees(self.pressure_angle_max))
         if self.width is not None and not self.width > 0.0:
             raise fail("width", f"must be positive [m], got {self.width:g}.")
         if not self.guide_friction >= 0.0:
