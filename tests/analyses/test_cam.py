@@ -153,7 +153,8 @@ def test_a_cam_linkage_chain_from_its_file():
 
 @pytest.fixture(scope="module")
 def grooved(cam):
-    return dyade.run("cam", dataclasses.replace(cam, closure="groove", width=0.012),
+    return dyade.run("cam", dataclasses.replace(cam, closure="groove", width=0.012,
+                                                chord_tolerance=2e-5, cutter_radius=None),
                      speed_rpm=700.0)
 
 
@@ -189,9 +190,11 @@ def test_the_groove_s_outer_flank_is_the_roller_s_envelope(grooved, outcome, cam
     # every exported point of the outer flank lies r_r from the pitch curve (the roller's
     # centre path, a dense closed-form sampling), on its far side from the working curve
     fine, _ = checks.curves(grooved.result.cam, np.linspace(0, 2 * np.pi, 10_001)[:-1])
-    distance = np.min(np.hypot(*(outer.points[:, None, :] - fine.pitch[None, ::2, :]).T), axis=0)
-    # (a sampled curve only overestimates the distance: by h²/(8·r_r) ≈ 7e-8 m here)
-    assert cam.roller_radius - 1e-12 < distance.min() and distance.max() < cam.roller_radius + 2e-7
+    near = (np.searchsorted(fine.theta, outer.theta)[:, None] + np.arange(-200, 201)) % 10_000
+    distance = np.min(np.hypot(*np.moveaxis(outer.points[:, None, :] - fine.pitch[near], -1, 0)),
+                      axis=1)
+    # (a sampled curve only overestimates the distance: by h²/(8·r_r) ≈ 2e-8 m here)
+    assert cam.roller_radius - 1e-12 < distance.min() and distance.max() < cam.roller_radius + 5e-8
     assert np.all(np.hypot(*outer.points.T) > np.interp(
         outer.theta, fine.theta, np.hypot(*fine.pitch.T)) - 1e-12)
     # the plain spring cam makes no outer flank
@@ -219,3 +222,16 @@ def test_a_flat_face_s_width_and_its_cusp(clockwise):
     assert np.array_equal(cusped.columns["undercut"], radius <= 0) and (radius < 0).any()
     note = next(n for n in cusped.notes if n.startswith("warning: undercut at cam angles"))
     assert "cannot follow the motion (cusp)" in note and f"{smallest * 1e3:.4g} mm" in note
+
+
+def test_the_oscillating_follower_s_smallest_base_circle_is_reported():
+    lever = dataclasses.replace(read_cam("mechanisms/cams/oscillating-roller.toml"),
+                                chord_tolerance=1e-4, cutter_radius=None)  # (quick)
+    outcome = dyade.run("cam", lever, step_deg=2.0)
+    smallest = outcome.value("base_radius_min")
+    document = outcome.to_document()["summary"]["base_radius_min"]
+    assert document["unit"] == "m" and document["value"] == pytest.approx(smallest, rel=1e-12)
+    assert 0 < smallest < lever.base_radius and "limit" not in document
+    # that cam meets the 45° of an oscillating follower just: its largest |α| is the limit
+    at = dyade.run("cam", dataclasses.replace(lever, base_radius=smallest), step_deg=2.0)
+    assert at.value("pressure_angle_max_deg") == pytest.approx(45.0, abs=1e-7)
