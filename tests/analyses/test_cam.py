@@ -186,7 +186,7 @@ def test_the_groove_s_outer_flank_is_the_roller_s_envelope(grooved, outcome, cam
     from dyade.report import cam as report
 
     outer = report.curve(grooved.result, "outer")
-    assert outer is not None and outer.deviation <= cam.chord_tolerance
+    assert outer is not None and outer.deviation <= grooved.result.cam.chord_tolerance
     # every exported point of the outer flank lies r_r from the pitch curve (the roller's
     # centre path, a dense closed-form sampling), on its far side from the working curve
     fine, _ = checks.curves(grooved.result.cam, np.linspace(0, 2 * np.pi, 10_001)[:-1])
