@@ -163,8 +163,8 @@ def checked(cam, step_deg: float = 1.0, budget: Budget | None = None,
                      if result.smallest_base_radius is not None else
                      f"warning: the pressure angle exceeds its limit "
                      f"{math.degrees(cam.limit):g}° at cam angles {_ranges(spans)} "
-                     f"({np.degrees(alpha[k]):.1f}° at most): a longer arm or a bigger base "
-                     f"circle lowers it.")
+                     f"({np.degrees(alpha[k]):.1f}° at most), and no base circle the arm reaches "
+                     f"meets it: a longer arm or another pivot is needed.")
     if cam.follower != "translating-flat":
         rho = geo.pitch_curvature_radius
         convex = np.where(rho > 0, rho, np.inf)
