@@ -59,9 +59,12 @@ def cam(cam_file: Path, fmt, output, points_file, cutter_file, outer_file, dxf_f
     \b
         dyade cam mechanisms/cams/translating-roller.toml
         dyade cam mechanisms/cams/translating-roller.toml --points cam.csv --dxf cam.dxf
+        dyade cam mechanisms/cams/translating-roller.toml -o checks.json
         dyade init cam my-cam.toml
 
-    Exit 1 where the follower can never keep contact; an undercut is a warning.
+    A grooved cam (cam.closure = "groove") says which flank carries the load;
+    --outer-points writes its outer flank. Exit 1 where the follower can never keep
+    contact; an undercut, or a roller larger than the base circle, is a warning.
     """
     from dyade.cli.common import infer_format
     from dyade.report import cam as report
