@@ -120,7 +120,7 @@ def test_the_exported_curve_and_its_dxf(outcome, cam, tmp_path):
 
 
 @pytest.mark.slow  # ezdxf's import alone takes 0.6 s
-def test_the_dxf_reads_back_to_the_same_points(outcome, tmp_path):
+def test_the_dxf_reads_back_to_the_same_points(outcome, grooved, tmp_path):
     from dyade.report import cam as report
 
     ezdxf = pytest.importorskip("ezdxf")
@@ -133,6 +133,14 @@ def test_the_dxf_reads_back_to_the_same_points(outcome, tmp_path):
     assert set(lines) == {"CAM-WORKING", "CAM-CUTTER"} and lines["CAM-WORKING"].closed
     back = np.array([p[:2] for p in lines["CAM-WORKING"].get_points("xy")])
     assert np.allclose(back * 1e-3, made.points, rtol=0, atol=1e-12)
+    # a grooved cam: both flanks, the outer on its own layer
+    report.write_dxf(grooved.result, tmp_path / "groove.dxf", "mm")
+    lines = {e.dxf.layer: e for e in ezdxf.readfile(tmp_path / "groove.dxf").modelspace()
+             .query("LWPOLYLINE")}
+    assert set(lines) == {"CAM-WORKING", "CAM-OUTER"} and lines["CAM-OUTER"].closed
+    back = np.array([p[:2] for p in lines["CAM-OUTER"].get_points("xy")])
+    assert np.allclose(back * 1e-3, report.curve(grooved.result, "outer").points, rtol=0,
+                       atol=1e-12)
 
 
 def test_a_cam_linkage_chain_from_its_file():
