@@ -92,12 +92,17 @@ def test_hostile_options(tmp_path, args, code, message):
     ("stiffness = 2000", "stiffness = 0\nload = -0", 1, "nothing presses it on"),
     ("load = 5 ", "load = -500 ", 1, "the spring and the load pull it off (k·(s + s0) + F = -480 N)"),
     ('closure = "spring"', 'closure = "grove"', 2, '`cam.closure` must be "spring" or "groove"'),
+    ("end = 320\nto = 0", "end = 320\nto = 5", 2,
+     "`profile.segment.5.to` = 5 mm does not come back to where the turn starts"),
+    ("period = 360", "period = 300", 2, "the segments cover 360°, the period is 300°"),
 ])
 def test_hostile_files(tmp_path, old, new, code, message):
     text = FILE.read_text(encoding="utf-8")
     assert old in text
     path = tmp_path / "hostile.toml"
     text = text.replace(old, new, 1)
+    if "to = 5" in new:  # the last dwell stays at 5 mm: the law does not close
+        text = text.replace('kind = "dwell"\nend = 360', 'kind = "dwell"\nend = 360\nto = 5')
     if "load = -0" in new:
         text = text.replace("preload = 10 ", "preload = 0 ").replace("load = 5 ", "# ")
     path.write_text(text, encoding="utf-8")
