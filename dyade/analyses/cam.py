@@ -22,6 +22,17 @@ OPTIONS = (
            help="Cam-angle step of the checks"),
 )
 
+STUDY_OUTPUTS = {
+    "pressure_angle_max_deg": "°", "rho_pitch_convex_min": "m", "rho_working_min": "m",
+    "undercut": "-", "base_radius_min": "m", "lift_off_speed_rpm": "rpm",
+    "contact_speed_min_rpm": "rpm", "contact_force_min": "N", "contact_force_max": "N",
+    "drive_torque_max": "N·m", "hertz_stress_max": "Pa", "guide_margin_min": "-",
+    "outer_flank_share": "-", "face_width": "m", "face_contact_min": "m",
+    "face_contact_max": "m"}
+"""the summary figures a study of a cam file gives (``dyade.study.cam``), SI, angles in
+degrees; a flag 1 or 0"""
+
+
 def units(follower: str) -> dict[str, tuple[str, str]]:
     """column -> (unit, description) for a follower kind (an oscillating follower's
     coordinate is an angle)."""
@@ -46,19 +57,18 @@ def units(follower: str) -> dict[str, tuple[str, str]]:
         "guide_margin": ("-", "the guide's lock margin 1 − μ·p/n_y for a push along the "
                               "guide (≤ 0: a push cannot move the follower)"),
         "jammed": ("flag", "the cam pushes the follower and it jams in its guide here"),
+        "outer_flank": ("flag", "a groove's outer flank carries the load here (the contact "
+                                "force is negative: the outer wall pushes the roller towards "
+                                "the cam centre)"),
     }
 
 
 def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     import dataclasses
-    import math
 
-    import numpy as np
-
-    from dyade.cam import checks, geometry
-    from dyade.errors import DyadeError, InputError
+    from dyade.errors import InputError
     from dyade.model.cam import Cam
-    from dyade.units import DEG, RPM
+    from dyade.units import RPM
 
     if isinstance(source, Cam):
         cam = source
@@ -70,15 +80,40 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         cam = read_cam(source)
     if options.get("speed_rpm") is not None:
         cam = dataclasses.replace(cam, speed=options["speed_rpm"] * RPM)
-    step = options["step_deg"] * DEG
+    return checked(cam, options["step_deg"], budget)
+
+
+def checked(cam, step_deg: float = 1.0, budget: Budget | None = None,
+            make: bool = True) -> Outcome:
+    """The Outcome of a ``dyade.model.cam.Cam``'s checks at the cam-angle step
+    ``step_deg`` [°] (``make``: with the profile to manufacture; a study's variants go
+    without); what ``dyade.run("cam", cam, step_deg=...)`` gives.
+
+    Raises
+    ------
+    InputError
+        A step above 30°.
+    DyadeError
+        The follower can never keep contact with the cam.
+    """
+    import math
+
+    import numpy as np
+
+    from dyade.cam import checks, geometry
+    from dyade.errors import DyadeError, InputError
+    from dyade.units import DEG, RPM
+
+    step = step_deg * DEG
     if not step <= math.radians(30.0):
         raise InputError.parameter("step_deg", f"must be at most 30 [°] (a cam's checks need "
                                                f"the angles between), got "
-                                               f"{options['step_deg']:g}.",
-                                   value=options["step_deg"], unit="°")
+                                               f"{step_deg:g}.",
+                                   value=step_deg, unit="°")
     count = int(math.ceil(2 * math.pi / step))
-    budget.time(count * 2e-6 + 0.05, f"the cam's checks at {count:,} angles")
-    result = checks.check(cam, step)
+    if budget is not None:
+        budget.time(count * 2e-6 + 0.05, f"the cam's checks at {count:,} angles")
+    result = checks.check(cam, step, make=make)
     geo = result.geometry
     theta = geo.theta
     described = units(cam.follower)
@@ -95,6 +130,8 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     if result.guide is not None:
         columns["guide_margin"] = result.guide.margin
         columns["jammed"] = result.jammed
+    if result.outer_flank is not None:
+        columns["outer_flank"] = result.outer_flank
     outcome = Outcome("cam", figures=("cam",),
                       meta={"name": cam.name, "source": None if cam.source is None
                             else os.fspath(cam.source), "follower": cam.follower,
@@ -126,8 +163,8 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
                      if result.smallest_base_radius is not None else
                      f"warning: the pressure angle exceeds its limit "
                      f"{math.degrees(cam.limit):g}° at cam angles {_ranges(spans)} "
-                     f"({np.degrees(alpha[k]):.1f}° at most): a longer arm or a bigger base "
-                     f"circle lowers it.")
+                     f"({np.degrees(alpha[k]):.1f}° at most), and no base circle the arm reaches "
+                     f"meets it: a longer arm or another pivot is needed.")
     if cam.follower != "translating-flat":
         rho = geo.pitch_curvature_radius
         convex = np.where(rho > 0, rho, np.inf)
@@ -144,9 +181,19 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
             "smallest radius of curvature of the working curve where it bulges (negative: "
             "it folds, undercut)")
     add("undercut", bool(geo.undercut.any()), "flag", None, "the working curve undercuts")
+    if cam.follower == "translating-flat":  # the face's contact travels across it: x = s′
+        across = (geo.contact[:, 0] - geo.centre[:, 0])  # from the stem's line, as drawn
+        low, high = int(np.argmin(across)), int(np.argmax(across))
+        add("face_contact_min", float(across[low]), "m", at(low),
+            "the contact's least distance from the stem's line across the face (x, "
+            "negative: left of the stem)")
+        add("face_contact_max", float(across[high]), "m", at(high),
+            "the contact's largest distance from the stem's line across the face")
+        add("face_width", float(across[high] - across[low]), "m", None,
+            "face width the contact's travel needs (the range of s′)")
     if result.smallest_base_radius is not None:
         what = ("smallest base circle for the pressure-angle limit"
-                if cam.follower == "translating-roller" else
+                if cam.follower != "translating-flat" else
                 "smallest base circle without a cusp (r_b + s + s″ > 0)")
         add("base_radius_min", result.smallest_base_radius, "m", None, what)
     if cam.roller_radius > cam.base_radius:
@@ -200,12 +247,21 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     if cam.closure == "spring":
         if highest == 0.0 or lowest > highest:
             where_ = result.contact_speed_angles[1 if highest == 0.0 else 0]
+            why = "no speed keeps it on"
+            if highest == 0.0 and where_ is not None:
+                k = int(np.argmin(np.abs(theta - where_)))
+                pressing = cam.stiffness * (result.s[k] + cam.preload) + cam.load
+                why = ("nothing presses it on (no spring force or load: k·(s + s0) + F = 0)"
+                       if pressing == 0.0 else
+                       f"the spring and the load pull it off (k·(s + s0) + F = "
+                       f"{pressing:.4g} {'N·m' if cam.follower == 'oscillating-roller' else 'N'})")
             raise DyadeError(
-                f"{_label(cam)}: the follower can never keep contact with the cam: "
-                f"{'the spring and the load pull it off' if highest == 0.0 else 'no speed keeps it on'}"
-                f"{'' if where_ is None else f' at cam angle {math.degrees(where_):.1f}°'} "
-                f"(the spring force k·(s + s0) + F must press it on: check `follower."
-                f"preload`, `follower.stiffness` and `follower.load`).")
+                f"{_label(cam)}: the follower can never keep contact with the cam: {why}"
+                f"{'' if where_ is None else f' at cam angle {math.degrees(where_):.1f}°'}. "
+                f"The spring force "
+                f"k·(s + s0) + F must press it on: check `follower.preload`, "
+                f"`follower.stiffness` and `follower.load`, or groove the cam "
+                f"(`cam.closure` = \"groove\").")
         lift_rpm = highest / RPM if math.isfinite(highest) else None
         where_high = result.contact_speed_angles[1]
         add("lift_off_speed_rpm", lift_rpm, "rpm",
@@ -249,12 +305,48 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         notes.append("note: the follower is off the cam at every angle.")
         outcome.notes = notes
         withheld(outcome, given, "no cam angle has its contact force given")
+    if result.outer_flank is not None:
+        flanks(outcome, result, theta, notes)
     for made in result.manufacture:
         add(f"{made.name}_points", int(made.points.shape[0]), "-", None,
-            f"points of the {'working curve' if made.name == 'working' else 'cutter path'} "
-            f"within the chord tolerance {_length(made.tolerance, cam)}")
+            f"points of the {CURVES[made.name]} within the chord tolerance "
+            f"{_length(made.tolerance, cam)}")
     outcome.notes = notes
     return outcome
+
+
+CURVES = {"working": "working curve", "outer": "groove's outer flank",
+          "cutter": "cutter path"}
+"""a curve to manufacture -> its words"""
+
+
+def flanks(outcome, result, theta, notes: list[str]) -> None:
+    """A grooved cam's flanks: which one carries the load over the turn (a share and
+    the cam angles where the contact switches flanks, N changing sign)."""
+    import math
+
+    import numpy as np
+
+    from dyade.cam import geometry
+
+    given = np.isfinite(result.contact_force)
+    outer = np.asarray(result.outer_flank, dtype=bool) & given
+    share = float(np.sum(outer) / max(int(np.sum(given)), 1))
+    outcome.add("outer_flank_share", share, "-", None,
+                "share of the turn over which the groove's outer flank carries the load")
+    if not outer.any():
+        notes.append("note: the groove's inner flank (the working curve) carries the load "
+                     "over the whole turn: a spring would hold this follower on as well.")
+        return
+    inner = ~outer & given
+    words = ", ".join(f"{math.degrees(theta[k]):.1f}°" for k in np.flatnonzero(
+        given & np.roll(given, 1) & (outer != np.roll(outer, 1)))[:8])
+    notes.append(f"note: the contact switches flanks of the groove at cam angles {words}: the "
+                 f"outer flank carries the load at {_ranges(geometry.spans(theta, outer))}, "
+                 f"the inner flank (the working curve) at "
+                 f"{_ranges(geometry.spans(theta, inner)) or 'no angle'}. The roller's spin "
+                 f"reverses at each switch: the groove's clearance is crossed there, with an "
+                 f"impact.")
 
 
 def _label(cam) -> str:

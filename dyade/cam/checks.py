@@ -21,7 +21,8 @@ class Manufacture:
     chord tolerance."""
 
     name: str
-    """"working" (the cam's surface) or "cutter" (the cutter centre's path)"""
+    """"working" (the cam's surface; a groove's inner flank), "outer" (a groove's outer
+    flank) or "cutter" (the cutter centre's path along the working curve)"""
     points: FloatArray
     """[m], shape (k, 2), cam frame, in the order of the cam angle"""
     theta: FloatArray
@@ -62,8 +63,9 @@ class CamResult:
     contact_speed_angles: tuple[float | None, float | None]
     """the cam angles [rad] that set them (None where none does)"""
     smallest_base_radius: float | None
-    """the smallest r_b [m] for the pressure-angle limit (translating roller) or for a
-    cusp-free flat-faced cam; None for an oscillating follower"""
+    """the smallest r_b [m] for the pressure-angle limit (roller followers; None where no
+    pitch circle the oscillating follower's arm reaches meets it) or for a cusp-free
+    flat-faced cam; 0 where any base circle does"""
     manufacture: tuple[Manufacture, ...]
     profile_notes: tuple[str, ...]
     """the motion profile's own notes (allowed acceleration jumps)"""
@@ -74,6 +76,9 @@ class CamResult:
     none)"""
     jammed: FloatArray | None = None
     """bool, shape (n,): the follower jams in its guide here (None: no guide friction)"""
+    outer_flank: FloatArray | None = None
+    """bool, shape (n,): a grooved cam's outer flank carries the load here (N < 0: the
+    outer wall pushes the roller towards the cam centre); None: spring closure"""
 
 
 def motion(cam, theta: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
@@ -112,6 +117,8 @@ def manufacture(cam, coarse: geometry.CamGeometry) -> tuple[Manufacture, ...]:
     theta = np.linspace(0.0, 2.0 * math.pi, n + 1)[:-1]
     dense, _ = curves(cam, theta)
     wanted = [("working", dense.working, dense.working_curvature_radius)]
+    if cam.closure == "groove" and dense.pitch is not None:
+        wanted.append(("outer", *geometry.outer_wall(dense)))
     if cam.cutter_radius is not None:
         wanted.append(("cutter", export.offset_curve(dense.working, dense.normal,
                                                      cam.cutter_radius),
@@ -186,20 +193,29 @@ def check(cam, step: float = math.radians(1.0), make: bool = True) -> CamResult:
               else np.where(np.isfinite(force), driven.drive_torque, np.nan))
     if cam.clockwise and driven is None:  # the mirror image: the torque in the cam's own sense
         torque = -torque
+    outer = None
+    radius = geo.working_curvature_radius
+    if cam.closure == "groove":
+        outer = force < 0.0  # the outer flank pushes the roller towards the cam centre
+        if geo.pitch is not None:  # the roller inside the outer wall: concave there
+            radius = np.where(outer, -(geo.pitch_curvature_radius + geo.roller_radius), radius)
     stress = np.full(theta.size, np.nan)
     if cam.width is not None:
         modulus = forces.effective_modulus(*cam.cam_material, *cam.follower_material)
-        stress = forces.hertz_line_stress(np.abs(force), geo.working_curvature_radius,
-                                          geo.roller_radius or np.inf, cam.width, modulus)
+        stress = forces.hertz_line_stress(np.abs(force), radius, geo.roller_radius or np.inf,
+                                          cam.width, modulus)
     if cam.follower == "translating-roller":
         offset = -cam.offset if cam.clockwise else cam.offset
-        smallest = geometry.smallest_pitch_radius(s, v, cam.limit, offset) - cam.roller_radius
+        smallest = max(geometry.smallest_pitch_radius(s, v, cam.limit, offset)
+                       - cam.roller_radius, 0.0)  # 0: any base circle meets the limit
     elif cam.follower == "translating-flat":
-        smallest = geometry.smallest_flat_base_radius(s, a)
+        smallest = max(geometry.smallest_flat_base_radius(s, a), 0.0)
     else:
-        smallest = None
+        smallest = geometry.smallest_oscillating_base_radius(
+            s, v, cam.limit, roller_radius=cam.roller_radius,
+            pivot_distance=cam.pivot_distance, arm_length=cam.arm_length)
     made = manufacture(cam, geo) if make else ()
     return CamResult(cam, geo, s, v, a, j, force, lifted, stress, torque, (lowest, highest),
                      (float(theta[k_low]) if k_low >= 0 else None,
                       float(theta[k_high]) if k_high >= 0 else None),
-                     smallest, made, tuple(notes), driven, guided, jammed)
+                     smallest, made, tuple(notes), driven, guided, jammed, outer)

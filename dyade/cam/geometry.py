@@ -170,6 +170,25 @@ def translating_roller(theta, s, ds, dds, *, base_radius: float, roller_radius: 
                    base_radius, roller_radius, 1.0, clockwise)
 
 
+def outer_wall(geo: CamGeometry) -> tuple[FloatArray, FloatArray]:
+    """The groove's outer flank of a roller follower's grooved cam (form closure): the
+    pitch curve moved outwards by the roller radius along the cam's normal, and its
+    radius of curvature ρ_p + r_r [m] (convex positive as a curve about the cam centre;
+    the roller touches it from inside, where it is concave).
+
+    Returns
+    -------
+    points : ndarray, shape (n, 2)
+        [m], cam frame (the working curve, ``geo.working``, is the inner flank).
+    radius : ndarray, shape (n,)
+        ρ_p + r_r [m].
+    """
+    if geo.pitch is None:
+        raise ValueError("a flat-faced follower has no groove: the outer flank belongs to a "
+                         "roller follower")
+    return geo.pitch + geo.roller_radius * geo.normal, geo.pitch_curvature_radius + geo.roller_radius
+
+
 def rest_angle(pitch_radius: float, pivot_distance: float, arm_length: float) -> float:
     """ψ0 [rad]: the arm's angle to the line A→O with the roller on the pitch circle,
     cos ψ0 = (a² + l² − r_p²)/(2·a·l)."""
@@ -266,6 +285,88 @@ def smallest_pitch_radius(s, ds, pressure_angle_max: float, offset: float = 0.0)
     s, ds = np.asarray(s, dtype=np.float64), np.asarray(ds, dtype=np.float64)
     d = max(float(np.max(np.abs(ds - offset) / np.tan(pressure_angle_max) - s)), 0.0)
     return float(np.hypot(d, offset))
+
+
+ROOT_RTOL = 1e-12
+"""[-] the relative tolerance in r_p to which ``smallest_oscillating_base_radius``
+brackets its root"""
+SCAN = 512
+"""[-] pitch radii scanned over the reachable range to bracket the first crossing"""
+
+
+def oscillating_pressure_angles(pitch_radius, s, ds, *, pivot_distance: float,
+                                arm_length: float) -> FloatArray:
+    """The pressure angles α [rad] of an oscillating roller follower, from the instant
+    centre of cam and arm (Rothbart, ch. 6): α = atan2(l·(1 + s′) − a·cos ψ, a·sin ψ),
+    ψ = ψ0(r_p) + s, vectorised over pitch radii (shape (m, 1) against angles (n,)).
+    A swing past the line of centres (sin ψ ≤ 0) gives |α| ≥ 90°."""
+    a, length = pivot_distance, arm_length
+    cos = (a ** 2 + length ** 2 - np.asarray(pitch_radius, dtype=np.float64) ** 2) / (
+        2.0 * a * length)
+    psi = np.arccos(np.clip(cos, -1.0, 1.0)) + s
+    return np.arctan2(length * (1.0 + ds) - a * np.cos(psi), a * np.sin(psi))
+
+
+def smallest_oscillating_base_radius(s, ds, pressure_angle_max: float, *,
+                                     roller_radius: float, pivot_distance: float,
+                                     arm_length: float) -> float | None:
+    """The smallest base circle r_b [m] of an oscillating roller follower's cam that
+    keeps |α| ≤ α_max over the cycle (no closed form).
+
+    f(r_p) = max over the cam angles of |α(r_p)| − α_max, r_p = r_b + r_r within the
+    radii the arm reaches (|a − l| < r_p < a + l, ψ0 from 0 to π). ``SCAN`` pitch
+    radii, spaced evenly, are evaluated at once (radii × angles) to bracket the first
+    r_p where f ≤ 0; bisection (every step vectorised over the angles) then narrows the
+    bracket to ``ROOT_RTOL`` relative: the value returned has f ≤ 0 and a pitch radius
+    ``ROOT_RTOL``·r_p smaller has f > 0.
+
+    Parameters
+    ----------
+    s, ds : ndarray, shape (n,)
+        The arm's swing from rest [rad] and s′ = ds/dθ [-] over the cycle.
+    pressure_angle_max : float
+        α_max [rad].
+    roller_radius, pivot_distance, arm_length : float
+        r_r, a = |OA|, l = |AC| [m].
+
+    Returns
+    -------
+    float or None
+        r_b [m] (r_p − r_r; where the limit holds from the smallest reachable pitch
+        circle on, that circle's); None where no pitch circle the arm reaches meets the
+        limit (a longer arm or another pivot is needed).
+    """
+    s, ds = np.asarray(s, dtype=np.float64), np.asarray(ds, dtype=np.float64)
+    a, length = pivot_distance, arm_length
+    low, high = abs(a - length), a + length
+    low = max(low, roller_radius)  # r_b > 0
+
+    def excess(radii):
+        alpha = oscillating_pressure_angles(np.asarray(radii)[..., None], s, ds,
+                                            pivot_distance=a, arm_length=length)
+        return np.max(np.abs(alpha), axis=-1) - pressure_angle_max
+
+    if not high > low:
+        return None
+    radii = low + (high - low) * np.arange(1, SCAN) / SCAN  # open ends: ψ0 = 0, π
+    meets = np.flatnonzero(excess(radii) <= 0.0)
+    if meets.size == 0:
+        return None
+    first = int(meets[0])
+    if first == 0:  # between the smallest reachable circle and the first scanned
+        left = low
+        if excess(low + (radii[0] - low) * 1e-9) <= 0.0:
+            return float(low + (radii[0] - low) * 1e-9 - roller_radius)
+    else:
+        left = float(radii[first - 1])
+    right = float(radii[first])
+    while right - left > ROOT_RTOL * right:
+        middle = 0.5 * (left + right)
+        if excess(middle) <= 0.0:
+            right = middle
+        else:
+            left = middle
+    return right - roller_radius
 
 
 def smallest_flat_base_radius(s, dds, curvature_radius_min: float = 0.0) -> float:

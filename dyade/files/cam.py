@@ -86,7 +86,14 @@ class CamReader(UnitReader):
         return young, poisson
 
 
-def read_cam(path: str | os.PathLike, text: str | None = None):
+def is_cam(data: dict[str, Any]) -> bool:
+    """Whether a file's TOML data are a cam file's (a ``[cam]`` table, no crank or dyads
+    of a mechanism)."""
+    return isinstance(data, dict) and "cam" in data and not ({"crank", "dyad"} & set(data))
+
+
+def read_cam(path: str | os.PathLike, text: str | None = None,
+             data: dict[str, Any] | None = None):
     """The cam of a cam file.
 
     Parameters
@@ -95,6 +102,9 @@ def read_cam(path: str | os.PathLike, text: str | None = None):
         The TOML file (docs/guide/cams.md describes every key).
     text : str, optional
         The file's content when already read.
+    data : dict, optional
+        The file's TOML data when already read (and edited: a study's variant,
+        ``dyade.files.schema.load_data``).
 
     Returns
     -------
@@ -119,7 +129,7 @@ def read_cam(path: str | os.PathLike, text: str | None = None):
 
     path = os.fspath(path)
     label = os.path.basename(path)
-    data = read_toml(path, text)
+    data = read_toml(path, text) if data is None else data
     reader = CamReader(label, path)
     reader.keys(data, "", TOP_KEYS)
     if "cam" not in data:

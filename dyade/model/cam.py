@@ -108,6 +108,10 @@ class Cam:
         if self.closure not in CLOSURES:
             raise fail("closure", f"must be one of {', '.join(CLOSURES)}, got "
                                   f"{self.closure!r}.", self.closure)
+        if self.closure == "groove" and self.follower == "translating-flat":
+            raise fail("closure", "= \"groove\" needs a roller follower: a roller runs in "
+                                  "a groove, a flat face does not (hold it on by a spring, "
+                                  "closure = \"spring\").", self.closure)
         if not self.base_radius > 0.0:
             raise fail("base_radius", f"must be positive [m], got {self.base_radius:g}.")
         if self.follower == "translating-flat":
@@ -138,6 +142,13 @@ class Cam:
             raise fail("chord_tolerance", f"must be at least {CHORD_TOLERANCE_MIN:g} m (0.1 µm, "
                                           f"finer than any machine tool cuts), got "
                                           f"{self.chord_tolerance:g} m.")
+        if self.pressure_angle_max is not None and not (
+                0.0 < self.pressure_angle_max < math.pi / 2):
+            raise fail("pressure_angle_max", f"must lie between 0° and 90° (a limit of |α|; "
+                                             f"30° for a translating follower, 45° for an "
+                                             f"oscillating one are usual), got "
+                                             f"{math.degrees(self.pressure_angle_max):g}°.",
+                       math.degrees(self.pressure_angle_max))
         if self.width is not None and not self.width > 0.0:
             raise fail("width", f"must be positive [m], got {self.width:g}.")
         if not self.guide_friction >= 0.0:

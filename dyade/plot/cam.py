@@ -58,6 +58,12 @@ def draw_cam(ax, result, angles_deg, unit: str) -> None:
         ax.fill(*np.vstack((shape, shape[:1])).T, color="0.93" if first else "none",
                 ec=colour, lw=1.3 if first else 0.8, alpha=alpha,
                 label=f"cam at {math.degrees(theta):g}°")
+        if first and pitch is not None and cam.closure == "groove":  # the groove's far wall
+            from dyade.cam.geometry import outer_wall
+
+            wall = _turned(outer_wall(result.geometry)[0], float(theta), cam.clockwise) * size
+            ax.plot(*np.vstack((wall, wall[:1])).T, color=colour, lw=1.3,
+                    label="groove's outer flank")
         if first and pitch is not None:
             path = _turned(pitch, float(theta), cam.clockwise) * size
             ax.plot(*np.vstack((path, path[:1])).T, color=canvas.GREY, lw=0.7,

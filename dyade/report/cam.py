@@ -13,13 +13,13 @@ from dyade.units import LENGTH_FACTORS
 
 DXF_UNITS = {"m": 6, "cm": 5, "mm": 4, "um": 13}
 """length unit -> DXF $INSUNITS code"""
-LAYERS = {"working": "CAM-WORKING", "cutter": "CAM-CUTTER"}
+LAYERS = {"working": "CAM-WORKING", "outer": "CAM-OUTER", "cutter": "CAM-CUTTER"}
 """curve -> the DXF layer it is drawn on"""
 
 
 COLUMNS = ("angle_deg", "s", "v", "a", "pressure_angle_deg", "rho_pitch", "rho_working",
-           "undercut", "contact_force", "hertz_stress", "drive_torque", "guide_margin",
-           "jammed")
+           "undercut", "contact_force", "outer_flank", "hertz_stress", "drive_torque",
+           "guide_margin", "jammed")
 """the columns of the table over the turn that ``dyade cam`` prints"""
 REPORT_COLUMNS = ("angle_deg", "s", "v", "pressure_angle_deg", "rho_pitch", "undercut",
                   "contact_force", "hertz_stress", "drive_torque", "guide_margin")
@@ -41,8 +41,8 @@ def tables(outcome, columns=COLUMNS):
 
 
 def curve(result, name: str):
-    """The ``Manufacture`` named ``name`` ("working", "cutter") of a CamResult; None if it
-    was not made."""
+    """The ``Manufacture`` named ``name`` ("working", "outer", "cutter") of a CamResult;
+    None if it was not made."""
     for made in result.manufacture:
         if made.name == name:
             return made
@@ -73,7 +73,8 @@ def require_ezdxf():
 
 
 def write_dxf(result, path: str | os.PathLike, length_unit: str) -> None:
-    """The curves to manufacture as closed polylines (layer CAM-WORKING, CAM-CUTTER) of
+    """The curves to manufacture as closed polylines (layer CAM-WORKING, a groove's
+    CAM-OUTER, CAM-CUTTER) of
     a DXF drawing in ``length_unit`` ($INSUNITS set), the cam centre at the origin.
 
     Raises

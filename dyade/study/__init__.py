@@ -185,7 +185,8 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
     params = [p.key for p in spec.parameters]
     nominal = [p.nominal for p in spec.parameters]
     units = {"variant": "", "status": "", "reason": "",
-             **{k: _file_unit(k, evaluator.data.get("units", {})) for k in params}}
+             **{k: evaluator.unit(k) if hasattr(evaluator, "unit")
+                else _file_unit(k, evaluator.data.get("units", {})) for k in params}}
     if spec.plan == "optimise":
         return _optimise(spec, evaluator, params, units, jobs, executor, max_memory, check_time)
     matrix = plans.variants(spec)
@@ -210,8 +211,9 @@ def study(file: str | os.PathLike | Spec, *, jobs: int = 1, executor=None,
         result.sensitivity = questions.sensitivity(table, spec, outputs,
                                                    plans.differences(spec))
         per_unit(result.sensitivity, units)
-        result.notes += questions.crossings(result.sensitivity, evaluator, matrix,
-                                            plans.differences(spec), spec, units)
+        if getattr(evaluator, "crossings", True):  # (a cam file's study: no crank grid)
+            result.notes += questions.crossings(result.sensitivity, evaluator, matrix,
+                                                plans.differences(spec), spec, units)
     if spec.question == "tolerance":
         result.tolerance = questions.tolerance(table, outputs, spec.tolerance)
     if spec.question == "optimise":  # several objectives over a sampled plan
@@ -303,7 +305,7 @@ def bound(evaluator, nominal, variants: int, columns: int, processes: int,
         mechanism = evaluator.mechanism(nominal)
     except InputError:  # a nominal the reader refuses: its row says so
         mechanism = None
-    if mechanism is not None and processes:
+    if mechanism is not None and processes and hasattr(mechanism, "sweep"):
         stack = STACK if evaluator.stacks else 1
         need += processes * SWEEP_BYTES_PER_VALUE * column_count(mechanism) \
             * mechanism.sweep.count * stack + BASE_BYTES

@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from dyade.analyses.cam import STUDY_OUTPUTS as CAM_OUTPUTS
 from dyade.analyses.servo import STUDY_OUTPUTS as SERVO_OUTPUTS
 from dyade.analyses.servo import study_outputs as servo_outputs
 from dyade.units import RAD_PER_S_TO_RPM
@@ -29,6 +30,7 @@ EXTRA_UNITS = {"flywheel_inertia": "kg·m²", "omega_bar": "rad/s",
 """units of the outputs ``[outputs] extra`` adds; the others are summary figures
 (``dyade.linkage.summary.unit``)"""
 EXTRA_UNITS.update(SERVO_OUTPUTS)  # [outputs] extra = ["servo"] (dyade.analyses.servo)
+EXTRA_UNITS.update(CAM_OUTPUTS)  # a cam file's study (dyade.study.cam)
 
 OK, LOCKS, OPEN, REFUSED, FAILED = "ok", "locks", "does not close", "refused", "failed"
 WITHHELD = "withheld"

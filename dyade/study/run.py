@@ -28,6 +28,26 @@ def evaluator_for(spec: Spec) -> Evaluator:
     from dyade.files.mechanism import load_data
 
     data = load_data(spec.mechanism, spec.fixed, f"{spec.label}: set")
+    from dyade.files.cam import is_cam
+
+    if is_cam(data):  # a cam file: its checks per variant (``dyade.study.cam``)
+        from dyade.study.cam import CamEvaluator
+
+        evaluator = CamEvaluator(spec.mechanism, data, tuple(p.key for p in spec.parameters),
+                                 {p.key: p.choices for p in spec.parameters if p.categorical})
+        nominal = [p.nominal for p in spec.parameters]
+        check_choices(spec, evaluator, nominal)
+        try:
+            evaluator.mechanism(nominal)
+        except InputError as err:  # a key path that is not there (a value: the rows')
+            if any(words in str(err) for words in KEY_PROBLEMS):
+                raise InputError(f"{spec.label}: [parameters]: {err}", source=spec.label,
+                                 key=err.key) from None
+        if spec.extras:
+            raise InputError(f"{spec.label}: `outputs.extra` belongs to a mechanism file's "
+                             f"study; a cam file's study gives the cam's checks (leave it "
+                             f"out).", source=spec.label, key="outputs.extra")
+        return evaluator
     evaluator = Evaluator(spec.mechanism, data, tuple(p.key for p in spec.parameters),
                           spec.extras, spec.fluctuation,
                           {p.key: p.choices for p in spec.parameters if p.categorical})

@@ -120,7 +120,7 @@ def test_the_exported_curve_and_its_dxf(outcome, cam, tmp_path):
 
 
 @pytest.mark.slow  # ezdxf's import alone takes 0.6 s
-def test_the_dxf_reads_back_to_the_same_points(outcome, tmp_path):
+def test_the_dxf_reads_back_to_the_same_points(outcome, grooved, tmp_path):
     from dyade.report import cam as report
 
     ezdxf = pytest.importorskip("ezdxf")
@@ -133,6 +133,14 @@ def test_the_dxf_reads_back_to_the_same_points(outcome, tmp_path):
     assert set(lines) == {"CAM-WORKING", "CAM-CUTTER"} and lines["CAM-WORKING"].closed
     back = np.array([p[:2] for p in lines["CAM-WORKING"].get_points("xy")])
     assert np.allclose(back * 1e-3, made.points, rtol=0, atol=1e-12)
+    # a grooved cam: both flanks, the outer on its own layer
+    report.write_dxf(grooved.result, tmp_path / "groove.dxf", "mm")
+    lines = {e.dxf.layer: e for e in ezdxf.readfile(tmp_path / "groove.dxf").modelspace()
+             .query("LWPOLYLINE")}
+    assert set(lines) == {"CAM-WORKING", "CAM-OUTER"} and lines["CAM-OUTER"].closed
+    back = np.array([p[:2] for p in lines["CAM-OUTER"].get_points("xy")])
+    assert np.allclose(back * 1e-3, report.curve(grooved.result, "outer").points, rtol=0,
+                       atol=1e-12)
 
 
 def test_a_cam_linkage_chain_from_its_file():
@@ -149,3 +157,89 @@ def test_a_cam_linkage_chain_from_its_file():
     at = dyade.run("cam", "mechanisms/cams/cam-linkage.toml", speed_rpm=lift, step_deg=1.0)
     force = at.result.chain.contact_force  # as solved (a value a hair below 0 is lifted off)
     assert force.min() == pytest.approx(0.0, abs=1e-9 * force.max())
+
+
+@pytest.fixture(scope="module")
+def grooved(cam):
+    return dyade.run("cam", dataclasses.replace(cam, closure="groove", width=0.012,
+                                                chord_tolerance=2e-5, cutter_radius=None),
+                     speed_rpm=700.0)
+
+
+def test_a_grooved_cam_carries_the_load_on_the_flank_the_force_says(grooved, cam):
+    result, columns = grooved.result, grooved.columns
+    omega = 700.0 * math.pi / 30.0
+    alpha = result.geometry.pressure_angle
+    # the balance along the follower, both signs: N = (m·s″·ω² + k·(s + s0) + F)/cos α
+    expected = (cam.mass * result.a * omega ** 2 + cam.stiffness * (result.s + cam.preload)
+                + cam.load) / np.cos(alpha)
+    assert np.allclose(columns["contact_force"], expected, rtol=1e-12, atol=0)
+    outer = columns["outer_flank"]
+    assert np.array_equal(outer, expected < 0) and 0 < outer.sum() < outer.size
+    assert grooved.value("outer_flank_share") == pytest.approx(outer.mean(), rel=1e-12)
+    assert grooved.summary.get("lift_off_speed_rpm") is None  # a groove never lifts off
+    note = next(n for n in grooved.notes if "switches flanks" in n)
+    switches = np.flatnonzero(outer != np.roll(outer, 1))
+    assert all(f"{columns['angle_deg'][k]:.1f}°" in note for k in switches)
+    # Hertz: the roller inside the outer wall (concave, ρ_p + r_r), outside the inner one
+    modulus = 1 / (2 * (1 - 0.3 ** 2) / 210e9)
+    rho_p, r_r = columns["rho_pitch"], cam.roller_radius
+    curvature = np.where(outer, 1 / r_r - 1 / (rho_p + r_r), 1 / r_r + 1 / (rho_p - r_r))
+    p0 = np.sqrt(np.abs(expected) * modulus * curvature / (np.pi * 0.012))
+    assert np.allclose(columns["hertz_stress"], p0, rtol=1e-12, atol=0)
+
+
+def test_the_groove_s_outer_flank_is_the_roller_s_envelope(grooved, outcome, cam):
+    from dyade.cam import checks
+    from dyade.report import cam as report
+
+    outer = report.curve(grooved.result, "outer")
+    assert outer is not None and outer.deviation <= grooved.result.cam.chord_tolerance
+    # every exported point of the outer flank lies r_r from the pitch curve (the roller's
+    # centre path, a dense closed-form sampling), on its far side from the working curve
+    fine, _ = checks.curves(grooved.result.cam, np.linspace(0, 2 * np.pi, 10_001)[:-1])
+    near = (np.searchsorted(fine.theta, outer.theta)[:, None] + np.arange(-200, 201)) % 10_000
+    distance = np.min(np.hypot(*np.moveaxis(outer.points[:, None, :] - fine.pitch[near], -1, 0)),
+                      axis=1)
+    # (a sampled curve only overestimates the distance: by h²/(8·r_r) ≈ 2e-8 m here)
+    assert cam.roller_radius - 1e-12 < distance.min() and distance.max() < cam.roller_radius + 5e-8
+    assert np.all(np.hypot(*outer.points.T) > np.interp(
+        outer.theta, fine.theta, np.hypot(*fine.pitch.T)) - 1e-12)
+    # the plain spring cam makes no outer flank
+    assert report.curve(outcome.result, "outer") is None
+
+
+@pytest.mark.parametrize("clockwise", [False, True])
+def test_a_flat_face_s_width_and_its_cusp(clockwise):
+    flat = dataclasses.replace(read_cam("mechanisms/cams/flat-faced.toml"), offset=0.003,
+                               clockwise=clockwise, chord_tolerance=1e-4)
+    outcome = dyade.run("cam", flat, step_deg=2.0)
+    v = outcome.result.v
+    # the face touches the cam at x = s′ and the stem runs along x = e; a clockwise cam
+    # is the mirror image of the counter-clockwise one with −e: the contact at x = −s′
+    across = -v - 0.003 if clockwise else v - 0.003
+    assert outcome.value("face_contact_min") == pytest.approx(across.min(), rel=1e-12)
+    assert outcome.value("face_contact_max") == pytest.approx(across.max(), rel=1e-12)
+    assert outcome.value("face_width") == pytest.approx(np.ptp(v), rel=1e-12)
+    # below the smallest base circle r_b + s + s″ > 0 fails: a cusp, named with its angles
+    smallest = outcome.value("base_radius_min")
+    assert smallest == pytest.approx(np.max(-outcome.result.s - outcome.result.a), rel=1e-12)
+    cusped = dyade.run("cam", dataclasses.replace(flat, base_radius=0.8 * smallest),
+                       step_deg=2.0)
+    radius = cusped.columns["rho_working"]
+    assert np.array_equal(cusped.columns["undercut"], radius <= 0) and (radius < 0).any()
+    note = next(n for n in cusped.notes if n.startswith("warning: undercut at cam angles"))
+    assert "cannot follow the motion (cusp)" in note and f"{smallest * 1e3:.4g} mm" in note
+
+
+def test_the_oscillating_follower_s_smallest_base_circle_is_reported():
+    lever = dataclasses.replace(read_cam("mechanisms/cams/oscillating-roller.toml"),
+                                chord_tolerance=1e-4, cutter_radius=None)  # (quick)
+    outcome = dyade.run("cam", lever, step_deg=2.0)
+    smallest = outcome.value("base_radius_min")
+    document = outcome.to_document()["summary"]["base_radius_min"]
+    assert document["unit"] == "m" and document["value"] == pytest.approx(smallest, rel=1e-12)
+    assert 0 < smallest < lever.base_radius and "limit" not in document
+    # that cam meets the 45° of an oscillating follower just: its largest |α| is the limit
+    at = dyade.run("cam", dataclasses.replace(lever, base_radius=smallest), step_deg=2.0)
+    assert at.value("pressure_angle_max_deg") == pytest.approx(45.0, abs=1e-7)

@@ -129,7 +129,8 @@ def test_the_registry_lists_every_entry_and_each_loads():
 WRITERS = {"fmt", "output", "columns", "patterns", "show_all", "units", "save_as", "jobs", "resume",
            "mechanism_files", "mechanism_file", "file", "coupling_file", "gear_file",
            "study_file", "source", "save_path", "what", "plot_file", "synthesis_file", "folder",
-           "figure", "cam_file", "points_file", "cutter_file", "dxf_file"}
+           "figure", "cam_file", "points_file", "cutter_file", "outer_file",
+           "dxf_file"}
 """a command's parameters that choose how its Outcome is written or where it runs (its
 input files, --format, -o, --columns, --all, --units, --save-as, -j, --resume; driveline's
 --analysis chooses the entry; synthesise's --write and --plot): the command's own"""

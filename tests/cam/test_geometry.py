@@ -129,3 +129,44 @@ def test_flat_face_curvature_and_smallest_base_circle():
     assert np.allclose(cam.working_curvature_radius[inner], rho[inner], rtol=2e-3)
     smaller = geometry.translating_flat(THETA, s, ds, dds, base_radius=r_b - 0.01)
     assert smaller.undercut.any()
+
+
+def _rothbart_max_alpha(pitch_radii, s, ds):
+    """max |α| over the cycle of an oscillating follower at each pitch radius, from the
+    instant centre's closed form tan α = (l·(1 + s′) − a·cos ψ)/(a·sin ψ), written
+    here (a swing past the line of centres, sin ψ ≤ 0, counts as 90°)."""
+    r = np.asarray(pitch_radii)[:, None]
+    psi = np.arccos((A ** 2 + L ** 2 - r ** 2) / (2 * A * L)) + s
+    alpha = np.abs(np.arctan((L * (1 + ds) - A * np.cos(psi)) / (A * np.sin(psi))))
+    return np.max(np.where(np.sin(psi) > 0, alpha, np.pi / 2), axis=1)
+
+
+@pytest.mark.parametrize("limit_deg", [30.0, 40.0])
+def test_smallest_base_circle_of_an_oscillating_follower(limit_deg):
+    theta = THETA[::4]  # every degree
+    s, ds, dds = cycle(theta, np.radians(20.0))
+    limit, roller = np.radians(limit_deg), 0.01
+    r_b = geometry.smallest_oscillating_base_radius(s, ds, limit, roller_radius=roller,
+                                                    pivot_distance=A, arm_length=L)
+    r_p = r_b + roller
+    assert A - L < r_p < A + L
+    # at the root the largest |α| of the cam (the engine's own geometry) is the limit
+    at = geometry.oscillating_roller(theta, s, ds, dds, base_radius=r_b, roller_radius=roller,
+                                     pivot_distance=A, arm_length=L)
+    assert np.max(np.abs(at.pressure_angle)) == pytest.approx(limit, abs=1e-9)
+    # an independent dense grid of pitch radii below it, with the closed form: every one
+    # breaks the limit, down to 1e-6 relative below the root; just above, it holds
+    grid = np.linspace(A - L + 1e-9, r_p * (1 - 1e-6), 2001)
+    assert np.all(_rothbart_max_alpha(grid, s, ds) > limit)
+    assert _rothbart_max_alpha([r_p * (1 + 1e-6)], s, ds)[0] <= limit
+    # the clockwise cam is the mirror image: the same circle
+    mirror = geometry.oscillating_roller(theta, s, ds, dds, base_radius=r_b,
+                                         roller_radius=roller, pivot_distance=A, arm_length=L,
+                                         clockwise=True)
+    assert np.max(np.abs(mirror.pressure_angle)) == pytest.approx(limit, abs=1e-9)
+
+
+def test_no_base_circle_the_arm_reaches_meets_a_tight_limit():
+    s, ds, _ = cycle(THETA[::4], np.radians(20.0))
+    assert geometry.smallest_oscillating_base_radius(
+        s, ds, np.radians(2.0), roller_radius=0.01, pivot_distance=A, arm_length=L) is None

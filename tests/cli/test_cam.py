@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
 
 from dyade.cli import main
@@ -57,3 +58,54 @@ def test_exit_codes_of_bad_cams(tmp_path):
     result = run("cam", big)
     assert result.exit_code == 0  # a warning, not a refusal
     assert "is larger than the base circle" in result.stderr
+
+
+@pytest.mark.parametrize("args, code, message", [
+    (["--step", "0"], 2, "'--step': must be positive"),
+    (["--step", "45"], 2, "--step must be at most 30 [°]"),
+    (["--step", "nan"], 2, "must be a finite number"),
+    (["--speed", "-5"], 2, "'--speed': must be positive"),
+    (["-o", "{tmp}/out.png"], 2, "dyade does not write .png files"),
+    (["-o", "{tmp}/out.parquet"], 2, "dyade cam writes .csv, .json or .txt"),
+    (["--points", "{tmp}/p.dxf"], 2, "--points writes CSV points: name the file .csv"),
+    (["--dxf", "{tmp}/d.csv"], 2, "--dxf writes a DXF drawing: name the file .dxf"),
+    (["--points", "-"], 2, "--points writes CSV points"),
+    (["--outer-points", "{tmp}/o.csv"], 2, "is not a grooved cam (`cam.closure`"),
+    (["--cutter-points", "{tmp}/c.txt", "-o", "{tmp}/t.csv"], 0, ""),
+])
+def test_hostile_options(tmp_path, args, code, message):
+    result = run("cam", FILE, *[a.replace("{tmp}", str(tmp_path)) for a in args])
+    assert result.exit_code == code, result.output
+    assert message in result.output and "Traceback" not in result.output
+    if code == 0:  # -o's suffix gives the format: CSV, not a table
+        assert (tmp_path / "t.csv").read_text().startswith("angle_deg,s,v,a,j,")
+    else:
+        assert not list(tmp_path.iterdir())  # nothing written before the refusal
+
+
+@pytest.mark.parametrize("old, new, code, message", [
+    ("pressure_angle_max = 30", "pressure_angle_max = 0", 2,
+     "`cam.pressure_angle_max` must lie between 0° and 90°"),
+    ("pressure_angle_max = 30", "pressure_angle_max = -5", 2,
+     "`cam.pressure_angle_max` must lie between 0° and 90°"),
+    ("speed_rpm = 300", "speed_rpm = -1", 2, "`cam.speed_rpm` must not be negative"),
+    ("stiffness = 2000", "stiffness = 0\nload = -0", 1, "nothing presses it on"),
+    ("load = 5 ", "load = -500 ", 1, "the spring and the load pull it off (k·(s + s0) + F = -480 N)"),
+    ('closure = "spring"', 'closure = "grove"', 2, '`cam.closure` must be "spring" or "groove"'),
+    ("end = 320\nto = 0", "end = 320\nto = 5", 2,
+     "`profile.segment.5.to` = 5 mm does not come back to where the turn starts"),
+    ("period = 360", "period = 300", 2, "the segments cover 360°, the period is 300°"),
+])
+def test_hostile_files(tmp_path, old, new, code, message):
+    text = FILE.read_text(encoding="utf-8")
+    assert old in text
+    path = tmp_path / "hostile.toml"
+    text = text.replace(old, new, 1)
+    if "to = 5" in new:  # the last dwell stays at 5 mm: the law does not close
+        text = text.replace('kind = "dwell"\nend = 360', 'kind = "dwell"\nend = 360\nto = 5')
+    if "load = -0" in new:
+        text = text.replace("preload = 10 ", "preload = 0 ").replace("load = 5 ", "# ")
+    path.write_text(text, encoding="utf-8")
+    result = run("cam", path)
+    assert result.exit_code == code and message in result.output, result.output
+    assert "hostile.toml" in result.output and "Traceback" not in result.output
