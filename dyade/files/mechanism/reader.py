@@ -8,6 +8,7 @@ import math
 import os
 from typing import Any
 
+from dyade.files.mechanism.cam import CamDriveReader
 from dyade.files.mechanism.drive import DriveReader
 from dyade.files.mechanism.drive_line import DriveLineReader
 from dyade.files.mechanism.dyads import DyadReader
@@ -21,7 +22,7 @@ from dyade.model.mechanism import CRANK, FRAME, Link, Mechanism, Sweep, sweep_pr
 SWEEP_KEYS = {"start", "stop", "step", "dead_centre", "transmission_warning"}
 
 
-class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader):
+class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader, CamDriveReader):
     """Walks the parsed TOML of a mechanism file with key paths for the error messages."""
 
     top_keys = TOP_KEYS
@@ -42,7 +43,11 @@ class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader):
             raise self.fail("links", f"must be a table of [links.N] tables, got {show(links_table)}.")
         self.points = {FRAME: self.named_points(
             frame_table.get("points", {}), "frame.points")}
-        crank = self.crank(self.required(data, "crank", ""))
+        cam = None
+        if "cam" in data:  # the cam's follower is link 2
+            crank, cam = self.cam_drive(data)
+        else:
+            crank = self.crank(self.required(data, "crank", ""))
         dyad_tables = data.get("dyad", [])
         if not isinstance(dyad_tables, list) or not dyad_tables:
             raise self.fail("dyad", "must list at least one dyad as [[dyad]] tables "
@@ -101,7 +106,8 @@ class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader):
             servo = self.servo(data["servo"], data, sliders, [n for n in self.placed if n > 1])
         return Mechanism(name, self.source, crank, dyads, links, sweep, gravity, loads, springs,
                          dead_centre, friction_tol, friction_max_iter, warning,
-                         (self.length_unit, self.angle_unit), drive, line, servo=servo)
+                         (self.length_unit, self.angle_unit), drive, line, servo=servo,
+                         cam=cam)
 
     def sweep(self, table: Any) -> tuple[Sweep, float, float]:
         self.keys(table, "sweep", SWEEP_KEYS)
