@@ -78,6 +78,8 @@ def read_cam(path: str | os.PathLike, text: str | None = None):
     path = os.fspath(path)
     label = os.path.basename(path)
     data = read_toml(path, text)
+    if "dyad" in data:  # a mechanism file: its [cam] drives link 2, the chain
+        return _in_mechanism(path, label, data)
     reader = CamReader(label, path)
     reader.keys(data, "", TOP_KEYS)
     if "cam" not in data:
@@ -102,3 +104,20 @@ def read_cam(path: str | os.PathLike, text: str | None = None):
 
         chain = read_mechanism(os.path.join(os.path.dirname(path), file))
     return build_cam(reader, data, label, path, chain, centre)
+
+
+def _in_mechanism(path: str, label: str, data: dict):
+    """The cam of a mechanism file's ``[cam]`` (``dyade.files.mechanism.cam``), its
+    ``chain`` the whole mechanism."""
+    import dataclasses
+
+    from dyade.errors import InputError
+    from dyade.files.mechanism import build
+
+    if "cam" not in data:
+        raise InputError(f"{label}: is a mechanism file without a [cam] table: `dyade cam` "
+                         f"checks a disc cam (a cam file, or a mechanism file whose [cam] "
+                         f"drives link 2; docs/guide/cams.md).", source=path, key="cam")
+    mechanism = build(data, path)
+    drive = mechanism.cam
+    return dataclasses.replace(drive.cam, chain=mechanism, chain_centre=drive.centre)

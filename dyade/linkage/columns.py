@@ -202,7 +202,12 @@ def force_columns(mech: Mechanism, block: Block, machine: bool = True, own: bool
             out[f"FN_{tag}"] = forces.normal[joint.name]
             out[f"M_{tag}"] = forces.moment[joint.name]
     out["M_drive"] = forces.drive_torque
-    out["P_drive"] = forces.drive_torque * block.kinematics.motion.omega[:, CRANK]
+    follower = block.kinematics.follower
+    if follower is None:
+        out["P_drive"] = forces.drive_torque * block.kinematics.motion.omega[:, CRANK]
+    else:  # a cam drives link 2: the cam shaft's torque at the cam's speed
+        out["P_drive"] = forces.drive_torque * mech.crank.speed
+        out["F_cam"] = forces.contact_force
     out["Fx_shake"], out["Fy_shake"], out["M_shake"] = (forces.shaking[:, 0],
                                                         forces.shaking[:, 1],
                                                         forces.shaking[:, 2])

@@ -241,8 +241,8 @@ def _cam_driven(mechanism: Mechanism, kin: Kinematics, wrenches: dict, drive: Fl
     along the normal n at K (``dyade.cam.follower``) supplies the drive −S₁₂·Q₂ of link
     2, N·S₁₂·(n, K × n) = drive, and joint (1,2) takes the rest of −Q₂ (a guide's side
     thrust, a lever pivot's force). The cam shaft's torque is drive·q′ (its power
-    M·θ̇ = drive·q̇); the cam's reaction N·(−n) at K goes to the frame through the cam
-    shaft's bearing, its torque to the motor (``shaking``)."""
+    M·θ̇ = drive·q̇); the cam's reaction −N·n at K goes to the frame through the cam
+    shaft's bearing, and the follower's spring rests on the frame (``shaking``)."""
     follower = kin.follower
     nx, ny = follower.normal[:, 0], follower.normal[:, 1]
     kx, ky = follower.contact[:, 0], follower.contact[:, 1]
@@ -263,6 +263,12 @@ def _cam_driven(mechanism: Mechanism, kin: Kinematics, wrenches: dict, drive: Fl
     frame[0] -= force * nx
     frame[1] -= force * ny
     frame[2] -= force * arm
+    if np.any(follower.spring):  # the follower's spring rests on the frame
+        if mechanism.crank.sliding:
+            along = np.stack((kin.motion.cos[:, CRANK], kin.motion.sin[:, CRANK]), -1)
+            add_force(frame, kin.motion.origin[:, CRANK], follower.spring[:, None] * along)
+        else:
+            frame[2] += follower.sense * follower.spring
     forces = assemble_forces(mechanism, kin, wrenches, torque, frame,
                              None if rub is None else rub.surface, reaction=False)
     forces.input_load = drive

@@ -85,7 +85,8 @@ class Cam:
     """radius of the cutter [m] whose path is exported too (None: none)"""
     chain: Any = None
     """a ``dyade.model.mechanism.Mechanism`` whose crank (link 2) is the follower's lever
-    (oscillating follower): the linkage the cam drives (None: the follower alone)"""
+    (oscillating follower) or, with its own ``cam`` (a mechanism file's ``[cam]``), whose
+    link 2 is this follower: the linkage the cam drives (None: the follower alone)"""
     chain_centre: tuple[float, float] | None = None
     """the cam centre O [m] in the chain's frame"""
     name: str = "cam"
@@ -155,7 +156,7 @@ class Cam:
                                              f"below the guide's near end at zero lift), got "
                                              f"{self.guide_overhang:g}.")
         self.check_profile(fail)
-        if self.chain is not None:
+        if self.chain is not None and self.chain.cam is None:  # a cam file's [chain]
             if self.follower != "oscillating-roller":
                 raise fail("chain", f"needs an oscillating roller follower (its lever is the "
                                     f"chain's crank), got a {self.follower} follower.")
