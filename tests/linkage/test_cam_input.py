@@ -152,3 +152,15 @@ def test_a_sliding_input_without_a_cam_is_driven_by_a_force_along_its_guide(solv
     given = forces.drive_torque * follower.dq * omega
     assert np.max(np.abs(given - taken)) < 1e-9 * np.max(np.abs(taken))
     assert np.array_equal(forces.input_load, forces.drive_torque)
+
+
+def test_friction_in_the_chain_costs_the_cam_its_power():
+    """μ on the chain's joints as usual: the cam shaft's power grows by the friction
+    power at every position (P_drive(μ) − P_drive(0) = P_friction)."""
+    joints = {"dyad.2.A.friction": 0.2, "dyad.2.A.pin_radius": 5, "dyad.2.C.friction": 0.2,
+              "dyad.2.C.pin_radius": 5, "sweep.step": 10}
+    rubbing = dyade.analyse(dyade.read_mechanism(EXAMPLE, joints)).columns()
+    bare = dyade.analyse(dyade.read_mechanism(EXAMPLE, {"sweep.step": 10})).columns()
+    assert np.nanmax(rubbing["P_friction"]) > 0.0
+    assert np.allclose(rubbing["P_drive"] - bare["P_drive"], rubbing["P_friction"], rtol=0,
+                       atol=1e-9 * np.nanmax(np.abs(rubbing["P_friction"])))
