@@ -164,3 +164,18 @@ def test_friction_in_the_chain_costs_the_cam_its_power():
     assert np.nanmax(rubbing["P_friction"]) > 0.0
     assert np.allclose(rubbing["P_drive"] - bare["P_drive"], rubbing["P_friction"], rtol=0,
                        atol=1e-9 * np.nanmax(np.abs(rubbing["P_friction"])))
+
+
+def test_the_chain_reduced_to_the_cam_shaft_gives_the_cam_torque():
+    """The reduced-inertia path sees the cam: J(θ), J′(θ) and M_L(θ) about the cam shaft
+    (the sweep at unit cam speed through the follower's q′, q″) give the cam's torque at
+    constant speed, M = ½·J′·ω² − M_L, the follower's own spring in M_L."""
+    cols = dyade.analyse(dyade.read_mechanism(EXAMPLE, {"sweep.step": 10})).columns()
+    omega = dyade.read_mechanism(EXAMPLE).crank.speed
+    machine = 0.5 * cols["dJ_red"] * omega ** 2 - cols["M_load"]
+    assert np.allclose(cols["M_drive"], machine, rtol=0,
+                       atol=1e-9 * np.max(np.abs(cols["M_drive"])))
+    # in the dwells the chain stands still whatever the cam does: J = 0 there (only a
+    # flywheel on the cam shaft would give the motor's equation of motion an inertia)
+    dwell = (cols["angle_deg"] >= 120) & (cols["angle_deg"] <= 180)
+    assert np.all(cols["J_red"][~dwell] >= 0.0) and np.all(cols["J_red"][dwell] == 0.0)
