@@ -56,6 +56,9 @@ def cam(cam_file: Path, fmt, output, points_file, cutter_file, dxf_file, **optio
         dyade cam mechanisms/cams/translating-roller.toml --points cam.csv --dxf cam.dxf
         dyade init cam my-cam.toml
 
+    A mechanism file whose [cam] drives link 2 (its follower) is checked the same way,
+    the contact force and drive torque from the whole chain (`dyade analyse` sweeps it).
+
     Exit 1 where the follower can never keep contact; an undercut is a warning.
     """
     from dyade.report import cam as report
