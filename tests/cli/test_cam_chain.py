@@ -85,3 +85,32 @@ def test_a_cam_that_does_not_fit_the_chain_is_refused(change, key, fix):
     if name != "crank":
         result = run("analyse", EXAMPLE, "--set", f"{name}={json.dumps(value)}")
         assert result.exit_code == 2 and key in result.output
+
+
+def test_an_oscillating_follower_in_a_mechanism_file_is_the_cam_files_chain():
+    """cam-linkage.toml's lever (a cam file's [chain]) written as a mechanism file's
+    [cam]: link 2 the lever about its pivot 90 mm along `direction = 0` from the cam
+    centre; the same contact force and cam torque by both ways in."""
+    import tomllib
+
+    from dyade.cam import checks
+    from dyade.files.cam import read_cam
+
+    with open("mechanisms/cams/lever-slider.toml", "rb") as handle:
+        data = tomllib.load(handle)
+    with open("mechanisms/cams/cam-linkage.toml", "rb") as handle:
+        cam = tomllib.load(handle)
+    del data["crank"], data["frame"]
+    data["cam"] = {key: value for key, value in cam["cam"].items()} | {"centre": [0, 0],
+                                                                      "direction": 0}
+    data["follower"], data["profile"] = cam["follower"], cam["profile"]
+    data["sweep"] = {"step": 15}
+    mechanism = dyade.build_mechanism(data, "mechanisms/cams/lever-in-file.toml")
+    assert not mechanism.crank.sliding and mechanism.crank.pivot == pytest.approx((0.09, 0.0))
+    swept = dyade.run("sweep", mechanism).columns
+    alone = checks.check(read_cam("mechanisms/cams/cam-linkage.toml"), np.radians(15.0),
+                         make=False)
+    scale = np.max(np.abs(alone.drive_torque))
+    assert np.allclose(np.asarray(swept["M_drive"])[:-1], alone.drive_torque, rtol=0,
+                       atol=1e-12 * scale)
+    assert np.allclose(np.asarray(swept["F_cam"])[:-1], alone.contact_force, rtol=1e-12)
