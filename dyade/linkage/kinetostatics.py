@@ -274,6 +274,8 @@ def _cam_driven(mechanism: Mechanism, kin: Kinematics, wrenches: dict, drive: Fl
     forces.input_load = drive
     forces.contact_force = force
     forces.valid &= np.isfinite(force)
+    if mechanism.cam.cam.closure == "spring":  # it cannot pull: the follower lifts off
+        forces.valid &= ~(force < 0.0)
     return forces
 
 

@@ -114,3 +114,16 @@ def test_an_oscillating_follower_in_a_mechanism_file_is_the_cam_files_chain():
     assert np.allclose(np.asarray(swept["M_drive"])[:-1], alone.drive_torque, rtol=0,
                        atol=1e-12 * scale)
     assert np.allclose(np.asarray(swept["F_cam"])[:-1], alone.contact_force, rtol=1e-12)
+
+
+def test_where_the_follower_lifts_off_no_force_is_given():
+    """Above the lift-off speed a spring-closed follower would need a pull: those cam
+    angles are withheld with a note, the same angles `dyade cam` finds lifted."""
+    fast = dyade.read_mechanism(EXAMPLE, {"cam.speed_rpm": 900, "sweep.step": 10})
+    outcome = dyade.run("sweep", fast)
+    contact = np.asarray(outcome.columns["F_cam"], dtype=float)[:-1]
+    checked = dyade.run("cam", EXAMPLE, speed_rpm=900, step_deg=10)
+    lifted = np.asarray(checked.columns["contact_force"], dtype=float)
+    assert np.isnan(lifted).any() and np.array_equal(np.isnan(contact), np.isnan(lifted))
+    said = [note for note in outcome.notes if "lifts off at cam angles" in note]
+    assert said and "at 900 rpm" in said[0]
