@@ -117,7 +117,7 @@ def _in_mechanism(path: str, label: str, data: dict):
     if "cam" not in data:
         raise InputError(f"{label}: is a mechanism file without a [cam] table: `dyade cam` "
                          f"checks a disc cam (a cam file, or a mechanism file whose [cam] "
-                         f"drives link 2; docs/guide/cams.md).", source=path, key="cam")
+                         f"drives link 2; `dyade help cams`).", source=path, key="cam")
     mechanism = build(data, path)
     drive = mechanism.cam
     return dataclasses.replace(drive.cam, chain=mechanism, chain_centre=drive.centre)
