@@ -27,11 +27,25 @@ def clockwise(mechanism):
                                           "cam.direction": 80.0})
 
 
-@pytest.fixture(scope="module", params=["ccw", "cw-offset"])
+def flat():
+    """The same chain on a flat-faced follower (its contact off link 2's origin)."""
+    import tomllib
+
+    with open(EXAMPLE, "rb") as handle:
+        data = tomllib.load(handle)
+    data["cam"]["follower"] = "translating-flat"
+    del data["follower"]["roller_radius"]
+    data["follower"]["offset"] = 4.0
+    return dyade.build_mechanism(data, EXAMPLE)
+
+
+@pytest.fixture(scope="module", params=["ccw", "cw-offset", "flat"])
 def solved(request):
     mechanism = dyade.read_mechanism(EXAMPLE)
-    if request.param != "ccw":
+    if request.param == "cw-offset":
         mechanism = clockwise(mechanism)
+    elif request.param == "flat":
+        mechanism = flat()
     theta = np.radians(np.arange(0.0, 360.0, 7.5))
     kin = kinematics.sweep(mechanism, theta)
     return mechanism, kin, kinetostatics.solve(mechanism, kin)
@@ -50,7 +64,13 @@ def test_the_follower_slides_as_the_profile_says(solved):
     # origin along the normal
     cam = mechanism.cam.cam
     gap = motion.origin[:, CRANK] - follower.contact
-    assert np.allclose(gap, cam.roller_radius * follower.normal, rtol=0, atol=1e-15)
+    if cam.follower == "translating-roller":
+        assert np.allclose(gap, cam.roller_radius * follower.normal, rtol=0, atol=1e-15)
+    else:  # the face normal to the motion touches the cam s′ across from the stem's line
+        assert np.allclose(follower.normal, d, rtol=0, atol=1e-15)
+        assert np.allclose(gap @ d, 0.0, rtol=0, atol=1e-15)
+        across = gap[:, 0] * d[1] - gap[:, 1] * d[0]
+        assert np.allclose(across, cam.offset - follower.dq, rtol=0, atol=1e-15)
 
 
 def test_velocities_are_the_derivatives_of_the_positions(solved):
