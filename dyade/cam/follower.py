@@ -47,6 +47,10 @@ class FollowerMotion:
     acting against the lift [N] (oscillating: [N·m] against the swing)"""
     sense: float
     """dq/ds: +1 translating; the lever's sense (−1 counter-clockwise cam, +1 clockwise)"""
+    speed: FloatArray | float = 0.0
+    """the cam's speed θ̇ [rad/s] at each angle (its sense of rotation; set by the sweep)"""
+    acceleration: FloatArray | float = 0.0
+    """θ̈ [rad/s²] (0 at a constant speed)"""
 
 
 def curves(cam, theta: FloatArray):

@@ -30,6 +30,7 @@ friction and self-locking stages use its rows).
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -302,6 +303,8 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
         rate = follower.ddq * (master * master)
         if crank_acceleration is not None:
             rate = rate + follower.dq * crank_acceleration
+        follower = dataclasses.replace(follower, speed=master, acceleration=(
+            0.0 if crank_acceleration is None else crank_acceleration))
         crank_speed, crank_acceleration = follower.dq * master, rate
     motion = crank_motion(mechanism, position, tuple(mechanism.moving_links), crank_speed,
                           crank_acceleration, repeat)

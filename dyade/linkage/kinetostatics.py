@@ -260,6 +260,11 @@ def _cam_driven(mechanism: Mechanism, kin: Kinematics, wrenches: dict, drive: Fl
     # bearing of the frame, its motor's stator on the frame) passes −N·n at K on to the
     # frame: the motor's torque and its stator's reaction cancel in the shaking load
     torque = drive * follower.dq
+    flywheel = mechanism.drive.flywheel_inertia if mechanism.drive is not None else 0.0
+    if flywheel and np.any(follower.acceleration):  # the flywheel turns with the cam shaft
+        spin = flywheel * follower.acceleration
+        torque = torque + spin
+        frame[2] -= spin * (-1.0 if mechanism.cam.cam.clockwise else 1.0)
     frame[0] -= force * nx
     frame[1] -= force * ny
     frame[2] -= force * arm

@@ -199,3 +199,32 @@ def test_the_chain_reduced_to_the_cam_shaft_gives_the_cam_torque():
     # flywheel on the cam shaft would give the motor's equation of motion an inertia)
     dwell = (cols["angle_deg"] >= 120) & (cols["angle_deg"] <= 180)
     assert np.all(cols["J_red"][~dwell] >= 0.0) and np.all(cols["J_red"][dwell] == 0.0)
+
+
+MOTOR = {"drive.motor": "asynchronous", "drive.rated_torque": 2.0,
+         "drive.rated_speed_rpm": 115, "drive.synchronous_speed_rpm": 120,
+         "drive.flywheel_inertia": 0.002, "drive.tol": 1e-12, "sweep.step": 10}
+
+
+@pytest.mark.slow  # (1 s: the steady state of the equation of motion)
+def test_the_machine_in_motion_turns_the_cam_at_its_real_speed():
+    """A [drive] motor and flywheel on the cam shaft: the equation of motion over the cam
+    angle (J(θ) of the chain plus J_F) gives the cam's real speed; the chain's
+    kinetostatics at that speed needs the motor's torque at every position, and its
+    power balance holds with the flywheel's J_F·θ̈·θ̇."""
+    mechanism = dyade.read_mechanism(EXAMPLE, MOTOR)
+    cols = dyade.analyse(mechanism).columns()
+    speed = cols["omega_cam"]
+    assert np.ptp(speed) > 0.02 * np.mean(speed)  # the cam slows on the rise
+    assert np.max(np.abs(cols["M_drive"] - cols["M_motor"])) < 1e-9 * np.max(
+        np.abs(cols["M_drive"]))
+    theta = np.radians(cols["angle_deg"])
+    # (any θ̈ will do for the balance: the kinematics and the energy rate share it)
+    kin = kinematics.sweep(mechanism, theta, speed, np.gradient(speed, theta) * speed)
+    forces = kinetostatics.solve(mechanism, kin)
+    follower = kin.follower
+    taken = (kinetic_energy_rate(mechanism, kin.motion)
+             - applied_power(mechanism, kin.motion, kin.crank_angle)
+             + follower.spring * follower.dq * speed
+             + mechanism.drive.flywheel_inertia * follower.acceleration * speed)
+    assert np.max(np.abs(forces.drive_torque * speed - taken)) < 1e-9 * np.max(np.abs(taken))

@@ -45,10 +45,7 @@ class CamDriveReader:
                                    "centre, direction and the follower's geometry); leave "
                                    "out [crank] and give link 2's points and mass in "
                                    "[links.2]."),
-                         ("servo", "and [cam] both drive link 2: keep one of the two."),
-                         ("drive", "with a [cam] is not taken yet: the motor and flywheel "
-                                   "sit on the cam shaft, not on link 2 (`dyade analyse` "
-                                   "sweeps the cam at its constant `cam.speed_rpm`).")):
+                         ("servo", "and [cam] both drive link 2: keep one of the two.")):
             if key in data:
                 raise self.fail(key, why)
         where = table.get("centre", [0.0, 0.0])

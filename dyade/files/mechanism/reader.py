@@ -72,11 +72,12 @@ class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader, 
         springs = tuple(self.spring(t, f"spring.{k}", links)
                         for k, t in enumerate(self.tables(data.get("spring", []), "spring"), 1))
         drive = self.drive(data["drive"]) if "drive" in data else None
-        if drive is not None and drive.flywheel_inertia:
+        if drive is not None and drive.flywheel_inertia and cam is None:
             crank_link = links[CRANK]  # the flywheel turns with the crank, about its pivot
             links[CRANK] = Link(CRANK, crank_link.points, crank_link.mass, crank_link.centre,
                                 crank_link.inertia + drive.flywheel_inertia)
-        if drive is not None and not any(link.has_mass for link in links.values()):
+        if drive is not None and not any(link.has_mass for link in links.values()) and not (
+                cam is not None and drive.flywheel_inertia):  # (a cam's is on its shaft)
             raise self.fail("drive", "needs the machine's inertia for its equation of motion: "
                                      "give the links masses (`links.N.mass`) or a flywheel "
                                      "(`drive.flywheel_inertia`).")
