@@ -228,3 +228,21 @@ def test_the_machine_in_motion_turns_the_cam_at_its_real_speed():
              + follower.spring * follower.dq * speed
              + mechanism.drive.flywheel_inertia * follower.acceleration * speed)
     assert np.max(np.abs(forces.drive_torque * speed - taken)) < 1e-9 * np.max(np.abs(taken))
+
+
+def test_the_shaking_load_is_the_chains_inertia_and_weight(solved):
+    """The frame carries the cam's bearing (−N·n at K) and the follower's spring: with no
+    load from outside, what the machine puts on the frame is Σ m·(g − a_S) and its
+    moment Σ r_S × m·(g − a_S) − J_S·α about the origin."""
+    mechanism, kin, forces = solved
+    motion, g = kin.motion, np.asarray(mechanism.gravity)
+    force, moment = np.zeros((kin.crank_angle.size, 2)), np.zeros(kin.crank_angle.size)
+    for number in mechanism.moving_links:
+        link = mechanism.links[number]
+        at = motion.point(number, link.centre)
+        pull = link.mass * (g - motion.point_acceleration(number, link.centre))
+        force += pull
+        moment += at[:, 0] * pull[:, 1] - at[:, 1] * pull[:, 0] - link.inertia * motion.alpha[:, number]
+    scale = np.max(np.abs(forces.contact_force))
+    assert np.allclose(forces.shaking[:, :2], force, rtol=0, atol=1e-9 * scale)
+    assert np.allclose(forces.shaking[:, 2], moment, rtol=0, atol=1e-9 * scale * 0.1)
