@@ -61,9 +61,20 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     add("mobility", 3 * (links - 1) - 2 * len(mechanism.joints), "-",
         description="mobility (Grübler) F = 3·(n−1) − 2·g")
     crank = mechanism.crank
-    add("crank_length", float(crank.length), "m", description="crank length")
-    add("speed_rpm", float(crank.speed) * RAD_PER_S_TO_RPM, "rpm",
-        description="crank speed (positive: counter-clockwise)")
+    drive = mechanism.cam
+    if drive is not None:  # a cam drives link 2: the sweep runs over the cam angle
+        cam = drive.cam
+        add("input", f"cam-driven: a {cam.follower} follower is link 2 "
+                     f"({'sliding along its guide' if crank.sliding else 'the lever'})", "-",
+            description="the chain's input")
+        add("cam_base_radius", float(cam.base_radius), "m", description="cam base radius")
+        add("speed_rpm", float(crank.speed) * RAD_PER_S_TO_RPM, "rpm",
+            description=f"cam speed ({'clockwise' if cam.clockwise else 'counter-clockwise'}"
+                        f"); the sweep's angles are the cam angle θ")
+    else:
+        add("crank_length", float(crank.length), "m", description="crank length")
+        add("speed_rpm", float(crank.speed) * RAD_PER_S_TO_RPM, "rpm",
+            description="crank speed (positive: counter-clockwise)")
     sweep = mechanism.sweep
     add("start_deg", float(np.rad2deg(sweep.start)), "°", description="sweep: first crank angle")
     add("stop_deg", float(np.rad2deg(sweep.stop)), "°", description="sweep: last crank angle")
@@ -90,6 +101,8 @@ def loop_figures(mechanism) -> dict[str, tuple[Any, str, str]]:
     time ratio; name -> (value, unit, description)."""
     from dyade.model.mechanism import CRANK, FRAME
 
+    if mechanism.cam is not None or mechanism.crank.sliding:
+        return {}  # link 2 is no crank: no four-bar or slider-crank loop on it
     dyad = next((d for d in mechanism.dyads if d.known == (CRANK, FRAME)
                  and d.kind.name in ("RRR", "RRP")), None)
     if dyad is None:

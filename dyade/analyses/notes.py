@@ -62,6 +62,17 @@ def _forces_invalid(note, figures, mechanism) -> str:
             f"force fields empty).")
 
 
+def _lift_off(note, figures, mechanism) -> str:
+    from dyade.units import RAD_PER_S_TO_RPM
+
+    rpm = abs(mechanism.crank.speed) * RAD_PER_S_TO_RPM
+    return (f"the cam's follower lifts off at cam angles {_at(note, figures)}: at {rpm:g} rpm "
+            f"its contact force would have to fall below 0 (a pull), which the spring "
+            f"closure cannot give; the chain's forces are not given there (forces_valid = 0, "
+            f"force fields empty). A stiffer spring, more preload or a lower speed keeps it "
+            f"on (`dyade cam` gives the lift-off speed).")
+
+
 def _near_self_locking(note, figures, mechanism) -> str:
     band = np.sin(figures["band"])
     return (f"{_dyad(mechanism, figures['dyad']).label} is near self-locking at crank angles "
@@ -134,5 +145,5 @@ WORDS = {NoteKind.PARTIAL: _partial, NoteKind.DEAD_CENTRE: _dead_centre,
           NoteKind.SELF_LOCKING: _self_locking,
           NoteKind.RUN_UP_NOT_SETTLED: _run_up_not_settled,
           NoteKind.CLEARANCE_NOT_APPLICABLE: _clearance_not_applicable,
-          NoteKind.DRIVE_LINE_SOFT: _drive_line_soft}
+          NoteKind.DRIVE_LINE_SOFT: _drive_line_soft, NoteKind.LIFT_OFF: _lift_off}
 """every kind of note -> its words (tests/linkage/test_notes.py: none missing)"""

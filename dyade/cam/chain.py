@@ -1,32 +1,32 @@
-"""A cam–linkage chain: a disc cam whose oscillating roller follower is the input link
-(link 2, the "crank") of a dyad chain, assembled and solved by the linkage engine.
+"""A cam–linkage chain: a disc cam whose follower is the input link (link 2) of a dyad
+chain, assembled and solved by the linkage engine itself.
 
-The chain is a mechanism (``dyade.model.mechanism.Mechanism``) whose crank turns about
-the follower's pivot A with the arm length l as its length: the lever. The cam turns at
-a constant speed ω about its centre O (a point of the mechanism's frame); the lever's
-angle φ(θ), its speed φ̇ = φ′·ω and acceleration φ̈ = φ″·ω² follow from the cam's motion
-profile, and the linkage engine sweeps the chain with them (``kinematics.sweep`` with a
-crank speed and acceleration per position) and finds the torque M_d the lever needs
-(``kinetostatics.solve``: inertia, gravity, loads, springs of every link of the chain,
-the lever's own included). The cam supplies it through the contact force N along the
-common normal n at the contact K:
+A mechanism file's ``[cam]`` makes link 2 the follower (``dyade.model.cam.CamDrive``):
+a translating follower slides along its guide, an oscillating one is the lever about
+its pivot. A cam file's ``[chain]`` names a mechanism whose crank is an oscillating
+follower's lever, placed by ``placement``; ``drive_of`` turns it into the same
+cam-driven mechanism. The engine sweeps it over the cam angle θ (``kinematics.sweep``:
+link 2's q, q̇ = q′·ω, q̈ = q″·ω² from the cam's profile, ``dyade.cam.follower``) and
+finds the load −S₁₂·Q₂ that link 2 needs (``kinetostatics.solve``: inertia, gravity,
+loads, springs of every link, the follower's own spring k·(s + s0) + F against its lift
+or swing). The cam supplies it through the contact force N along the common normal n
+at the contact K,
 
-    N·((K − A) × n) = M_d + (k·(s + s0) + F)·dφ/dψ,
+    N·S₁₂·(n, K × n) = −S₁₂·Q₂   (the lever: N·((K − A) × n); the slider: N·(n · d)),
 
-the second term the follower's own torsion spring and load of the cam file (they act
-against the swing ψ); the cam's drive torque is N·(K × n) about O, in its sense of
-rotation. Its power M·ω equals the power the chain takes, M_d·φ̇ plus the spring's.
+and the cam shaft's drive torque is M = −S₁₂·Q₂·q′ in its sense of rotation: its
+power M·ω equals the power the chain takes.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from dyade.arrays import FloatArray
-from dyade.cam import forces as cam_forces
 from dyade.cam.geometry import CamGeometry
 
 PLACE_RTOL = 1e-9  # [-] the lever's pivot and length agree with the cam's to this share
@@ -45,10 +45,12 @@ class ChainResult:
     kinematics: object
     """``dyade.linkage.kinematics.Kinematics`` of the chain"""
     forces: object
-    """``dyade.linkage.kinetostatics.Forces`` of the chain (its ``drive_torque`` is the
-    torque M_d on the lever)"""
+    """``dyade.linkage.kinetostatics.Forces`` of the cam-driven chain (its
+    ``drive_torque`` is the cam shaft's, ``input_load`` the lever's)"""
     lever_torque: FloatArray
-    """the torque the cam must put on the lever [N·m], mechanism frame, CCW positive"""
+    """the load the cam must put on link 2 along its twist: the torque on the lever
+    [N·m], mechanism frame, CCW positive (a translating follower: the force along its
+    guide [N])"""
     contact_force: FloatArray
     """N [N] along the common normal (negative: pulled; a spring-closed follower lifts
     off)"""
@@ -79,45 +81,51 @@ def placement(cam, mechanism) -> tuple[FloatArray, float]:
     return centre, math.atan2(towards[1], towards[0])
 
 
+def drive_of(cam, mechanism):
+    """The mechanism the cam drives, with its ``CamDrive`` (``dyade.model.cam``): a
+    mechanism file's ``[cam]`` has it already; a cam file's ``[chain]`` places the cam by
+    ``placement`` (its follower's own inertia J about the pivot joins the lever's)."""
+    from dyade.model.cam import CamDrive
+    from dyade.model.mechanism import CRANK
+
+    if mechanism.cam is not None:
+        return mechanism
+    centre, beta = placement(cam, mechanism)
+    links = dict(mechanism.links)
+    lever = links[CRANK]
+    links[CRANK] = dataclasses.replace(lever, inertia=lever.inertia + cam.mass)
+    own = dataclasses.replace(cam, chain=None, chain_centre=None, mass=0.0)
+    return dataclasses.replace(mechanism, links=links,
+                               cam=CamDrive(own, tuple(float(v) for v in centre), beta))
+
+
 def solve(cam, mechanism, geometry: CamGeometry, s, v, a, speed: float) -> ChainResult:
-    """The chain driven by the cam at the cam angles of ``geometry``.
+    """The chain driven by the cam at the cam angles of ``geometry``: the linkage
+    engine's own sweep and kinetostatics of the cam-driven mechanism
+    (``dyade.linkage.kinematics.sweep`` over the cam angle, ``Forces.contact_force`` and
+    the cam shaft's ``drive_torque``).
 
     Parameters
     ----------
     cam : dyade.model.cam.Cam
-        An oscillating roller follower's cam (``chain_centre`` set).
+        The cam (a cam file's, ``chain_centre`` set, or a mechanism file's).
     mechanism : dyade.model.mechanism.Mechanism
-        The chain; its crank (link 2) is the lever.
+        The chain; link 2 is the follower (a cam file's chain: its crank is the lever).
     geometry : CamGeometry
-        ``dyade.cam.geometry.oscillating_roller`` at the cam angles.
+        The cam's geometry at the cam angles (``dyade.cam.checks.curves``).
     s, v, a : ndarray, shape (n,)
-        The swing s [rad] and s′, s″ per radian of cam angle.
+        The follower's s and s′, s″ per radian of cam angle (kept for the callers; the
+        engine evaluates the profile itself).
     speed : float
         Cam speed ω [rad/s].
     """
     from dyade.linkage import kinematics, kinetostatics
 
-    centre, beta = placement(cam, mechanism)
-    c, sn = math.cos(beta), math.sin(beta)
-    turn = np.array([[c, -sn], [sn, c]])
-    pivot_fixed = np.array([-cam.pivot_distance if cam.clockwise else cam.pivot_distance, 0.0])
-    arm = geometry.centre - pivot_fixed
-    sense = 1.0 if cam.clockwise else -1.0  # dφ/dψ: the arm angle is ψ (cw) or π − ψ (ccw)
-    phi = beta + np.arctan2(arm[:, 1], arm[:, 0])
-    phi_speed = sense * v * speed
-    phi_acceleration = sense * a * speed ** 2
-    kin = kinematics.sweep(mechanism, phi, phi_speed, phi_acceleration)
-    chain = kinetostatics.solve(mechanism, kin)
-    spring = cam.stiffness * (s + cam.preload) + cam.load
-    needed = chain.drive_torque + cam.mass * phi_acceleration + spring * sense
-    contact = geometry.contact @ turn.T + centre
-    normal = geometry.contact_normal @ turn.T
-    lever = contact - np.asarray(mechanism.crank.pivot)
-    arm_of_force = lever[:, 0] * normal[:, 1] - lever[:, 1] * normal[:, 0]
-    with np.errstate(divide="ignore", invalid="ignore"):  # the normal through the pivot
-        force = needed / arm_of_force
-    torque = cam_forces.drive_torque(geometry.contact, geometry.contact_normal, force)
-    if cam.clockwise:
-        torque = -torque
-    return ChainResult(phi, phi_speed, phi_acceleration, kin, chain, needed, force, torque,
-                       chain.valid & np.isfinite(force))
+    driven = drive_of(cam, mechanism)
+    driven = dataclasses.replace(driven, crank=dataclasses.replace(driven.crank, speed=speed))
+    kin = kinematics.sweep(driven, geometry.theta)
+    chain = kinetostatics.solve(driven, kin)
+    follower = kin.follower
+    return ChainResult(follower.q, follower.dq * speed, follower.ddq * speed ** 2, kin, chain,
+                       chain.input_load, chain.contact_force, chain.drive_torque,
+                       chain.valid & np.isfinite(chain.contact_force))

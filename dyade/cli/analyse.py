@@ -82,6 +82,11 @@ def analyse(mechanism_files: tuple[str, ...], fmt: str | None, output: str | Non
     slider with friction; with clearance data: the clearance peak check; with a [drive]
     table: the crank's real speed from the equation of motion (steady state, or --run-up),
     and everything at that speed. --at DEG: single crank positions instead of a sweep.
+    With a [cam] table the cam drives link 2, its follower: the sweep runs over the cam
+    angle θ at the cam's speed_rpm, and F_cam [N] is the cam's contact force (docs/guide/
+    cams.md):
+
+        dyade analyse mechanisms/cams/cam-rocker.toml --set cam.base_radius=34
 
     Several files in one call (a batch) need -o DIR; a file that fails does not stop the
     others, and the failures are listed at the end (exit status 1).

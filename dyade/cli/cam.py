@@ -63,8 +63,12 @@ def cam(cam_file: Path, fmt, output, points_file, cutter_file, outer_file, dxf_f
         dyade init cam my-cam.toml
 
     A grooved cam (cam.closure = "groove") says which flank carries the load;
-    --outer-points writes its outer flank. Exit 1 where the follower can never keep
-    contact; an undercut, or a roller larger than the base circle, is a warning.
+    --outer-points writes its outer flank. A mechanism file whose [cam] drives link 2 (its
+    follower) is checked the same way, the contact force and drive torque from the whole
+    chain (`dyade analyse` sweeps it).
+
+    Exit 1 where the follower can never keep contact; an undercut, or a roller larger
+    than the base circle, is a warning.
     """
     from dyade.cli.common import infer_format
     from dyade.report import cam as report

@@ -46,6 +46,12 @@ def kinematic_columns(mech: Mechanism, block: Block, phases: dict[int, Continuou
     motion = kin.motion
     every = bool(rows.all())  # (every position reported: no copies by a mask)
     out: Columns = {"angle_deg": np.rad2deg(kin.crank_angle)}
+    follower = kin.follower
+    if follower is not None:  # a cam drives link 2: its speed and pressure angle
+        n = kin.crank_angle.shape[0]
+        out["omega_cam"] = np.broadcast_to(np.asarray(follower.speed, dtype=np.float64),
+                                           (n,)).copy()
+        out["pressure_angle_deg"] = np.rad2deg(follower.pressure_angle)
     for link in mech.moving_links:
         angle = motion.angle[:, link] if every else motion.angle[rows, link]
         out[f"phi_{link}_deg"] = np.rad2deg(phases[link](angle))
@@ -202,7 +208,12 @@ def force_columns(mech: Mechanism, block: Block, machine: bool = True, own: bool
             out[f"FN_{tag}"] = forces.normal[joint.name]
             out[f"M_{tag}"] = forces.moment[joint.name]
     out["M_drive"] = forces.drive_torque
-    out["P_drive"] = forces.drive_torque * block.kinematics.motion.omega[:, CRANK]
+    follower = block.kinematics.follower
+    if follower is None:
+        out["P_drive"] = forces.drive_torque * block.kinematics.motion.omega[:, CRANK]
+    else:  # a cam drives link 2: the cam shaft's torque at the cam's speed
+        out["P_drive"] = forces.drive_torque * follower.speed
+        out["F_cam"] = forces.contact_force
     out["Fx_shake"], out["Fy_shake"], out["M_shake"] = (forces.shaking[:, 0],
                                                         forces.shaking[:, 1],
                                                         forces.shaking[:, 2])

@@ -20,11 +20,12 @@ from dyade.model.mechanism import CRANK, FRAME, Prismatic
 
 def pose(motion: Motion, link: int) -> tuple:
     """cos φ, sin φ and the origin (x, y) of a link; plain numbers for the frame, and
-    for the crank's origin (its fixed pivot, ``dyade.linkage.kinematics.crank_motion``)."""
+    for the crank's origin (its fixed pivot, ``dyade.linkage.kinematics.crank_motion``;
+    not a sliding input's, ``Motion.pivoted``)."""
     if link == FRAME:
         return 1.0, 0.0, 0.0, 0.0
     cos, sin = motion.cos[:, link], motion.sin[:, link]
-    if link == CRANK and motion.origin.shape[0]:
+    if link == CRANK and motion.pivoted and motion.origin.shape[0]:
         return cos, sin, float(motion.origin[0, CRANK, 0]), float(motion.origin[0, CRANK, 1])
     return cos, sin, motion.origin[:, link, 0], motion.origin[:, link, 1]
 

@@ -30,6 +30,7 @@ friction and self-locking stages use its rows).
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -176,6 +177,9 @@ class Kinematics:
     """per dyad, in assembly order: its loop (the force stage reuses it)"""
     valid: FloatArray
     """(n,) bool: every dyad closes and none is singular"""
+    follower: object = None
+    """``dyade.cam.follower.FollowerMotion`` of a cam-driven mechanism (``crank_angle`` is
+    then the cam angle θ, link 2's coordinate its ``q``); None: link 2 is the input"""
 
 
 def crank_motion(mechanism: Mechanism, crank_angle: FloatArray,
@@ -186,9 +190,15 @@ def crank_motion(mechanism: Mechanism, crank_angle: FloatArray,
     mechanism's constant speed unless ``crank_speed`` [rad/s] and ``crank_acceleration``
     [rad/s²] (scalars or one value per position) are given; the ``placed`` links are left
     for the caller to fill (``Motion.at_rest``). ``repeat``: the crank angles are that
-    many copies of the same sweep (a run of variants; its cosines computed once)."""
+    many copies of the same sweep (a run of variants; its cosines computed once).
+
+    A sliding input (``Crank.guide``): ``crank_angle`` is link 2's travel q [m] along the
+    guide, ``crank_speed`` and ``crank_acceleration`` q̇ [m/s] and q̈ [m/s²] (given):
+    link 2's origin is at pivot + q·d, its ξ axis along d, and it does not turn."""
     n = crank_angle.shape[0]
     motion = Motion.at_rest(n, mechanism.max_link + 1, placed)
+    if mechanism.crank.sliding:
+        return _slide(mechanism, motion, crank_angle, crank_speed, crank_acceleration)
     motion.origin[:, CRANK] = mechanism.crank.pivot
     motion.angle[:, CRANK] = crank_angle
     if repeat > 1 and n % repeat == 0:
@@ -202,6 +212,28 @@ def crank_motion(mechanism: Mechanism, crank_angle: FloatArray,
     motion.omega[:, CRANK] = mechanism.crank.speed if crank_speed is None else crank_speed
     motion.acceleration[:, CRANK] = 0.0  # the pivot (the crank frame's origin) stays put
     motion.alpha[:, CRANK] = 0.0 if crank_acceleration is None else crank_acceleration
+    return motion
+
+
+def _slide(mechanism: Mechanism, motion: Motion, travel: FloatArray, speed, acceleration
+           ) -> Motion:
+    """Link 2 sliding along its frame guide (``crank_motion``)."""
+    gamma = mechanism.crank.guide
+    dx, dy = float(np.cos(gamma)), float(np.sin(gamma))
+    px, py = mechanism.crank.pivot
+    speed = 0.0 if speed is None else speed
+    acceleration = 0.0 if acceleration is None else acceleration
+    motion.origin[:, CRANK, 0] = px + travel * dx
+    motion.origin[:, CRANK, 1] = py + travel * dy
+    motion.angle[:, CRANK] = gamma
+    motion.cos[:, CRANK], motion.sin[:, CRANK] = dx, dy
+    motion.velocity[:, CRANK, 0] = speed * dx
+    motion.velocity[:, CRANK, 1] = speed * dy
+    motion.omega[:, CRANK] = 0.0
+    motion.acceleration[:, CRANK, 0] = acceleration * dx
+    motion.acceleration[:, CRANK, 1] = acceleration * dy
+    motion.alpha[:, CRANK] = 0.0
+    motion.pivoted = False
     return motion
 
 
@@ -219,7 +251,11 @@ def cos_sin(angle: FloatArray, cos: FloatArray, sin: FloatArray) -> None:
 
 
 def crank_screw(mechanism: Mechanism) -> Screw:
-    """Unit twist of joint (1,2): the crank turning about its fixed pivot."""
+    """Unit twist S₁₂ of joint (1,2): the crank turning about its fixed pivot, or
+    (``Crank.guide``) link 2 sliding along its frame guide."""
+    if mechanism.crank.sliding:
+        gamma = mechanism.crank.guide
+        return float(np.cos(gamma)), float(np.sin(gamma)), 0.0
     x, y = mechanism.crank.pivot
     return y, -x, 1.0
 
@@ -247,12 +283,30 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
     φ̈21·S₁₂ (S₁₂ is fixed in the frame), and every dyad takes them as its known motion.
     ``repeat``: the crank angles are that many copies of one sweep (variants stacked
     into ``mechanism``, ``dyade.linkage.stack``).
+
+    A cam-driven mechanism (``Mechanism.cam``): ``crank_angle`` is the cam angle θ and
+    ``crank_speed``, ``crank_acceleration`` θ̇ [rad/s], θ̈ [rad/s²] (default: the cam's
+    constant speed); link 2 takes the follower's q, q̇ = q′·θ̇, q̈ = q″·θ̇² + q′·θ̈
+    (``dyade.cam.follower``), and the sweep goes on from link 2 as from any input.
     """
     if crank_angle is None:
         crank_angle = mechanism.sweep.angles()
     crank_angle = np.asarray(crank_angle, dtype=np.float64)
     n = crank_angle.shape[0]
-    motion = crank_motion(mechanism, crank_angle, tuple(mechanism.moving_links), crank_speed,
+    follower, position = None, crank_angle
+    if mechanism.cam is not None:
+        from dyade.cam.follower import follower_motion
+
+        follower = follower_motion(mechanism.cam, crank_angle)
+        master = mechanism.crank.speed if crank_speed is None else crank_speed
+        position = follower.q
+        rate = follower.ddq * (master * master)
+        if crank_acceleration is not None:
+            rate = rate + follower.dq * crank_acceleration
+        follower = dataclasses.replace(follower, speed=master, acceleration=(
+            0.0 if crank_acceleration is None else crank_acceleration))
+        crank_speed, crank_acceleration = follower.dq * master, rate
+    motion = crank_motion(mechanism, position, tuple(mechanism.moving_links), crank_speed,
                           crank_acceleration, repeat)
     count = len(mechanism.dyads)
     # per dyad and position, each dyad's column contiguous (the results are (n, dyads))
@@ -260,13 +314,13 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
     transmission, conditioning = np.empty((count, n)), np.empty((count, n))
     # twists of the moving links and their time derivatives, in components; the frame's
     # are zero (not in the dicts)
-    px, py = (float(v) for v in mechanism.crank.pivot)
+    sx, sy, sw = (float(v) for v in crank_screw(mechanism))
     speed = mechanism.crank.speed if crank_speed is None else np.broadcast_to(crank_speed, (n,))
-    twists = {CRANK: (times(py, speed), times(-px, speed), speed)}
+    twists = {CRANK: (times(sx, speed), times(sy, speed), times(sw, speed))}
     changes = {}  # constant speed about a fixed pivot: zero
     if crank_acceleration is not None and np.any(crank_acceleration):
         rate = np.broadcast_to(crank_acceleration, (n,))
-        changes[CRANK] = (times(py, rate), times(-px, rate), rate)
+        changes[CRANK] = (times(sx, rate), times(sy, rate), times(sw, rate))
     groups = []
     upstream_ok = np.ones(n, dtype=bool)
     for col, dyad in enumerate(mechanism.dyads):
@@ -289,7 +343,7 @@ def sweep(mechanism: Mechanism, crank_angle: FloatArray | None = None,
         groups.append(group)
         upstream_ok = group.usable
     return Kinematics(crank_angle, motion, closes.T, transmission.T, singular.T,
-                      conditioning.T, groups, upstream_ok)
+                      conditioning.T, groups, upstream_ok, follower)
 
 
 def _unit(joint: Joint, motion: Motion, on: int, closure, k: int) -> tuple:

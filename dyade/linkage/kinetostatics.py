@@ -50,12 +50,21 @@ class Forces:
     moment: dict[tuple[int, int], FloatArray]
     """prismatic joint -> (n,) moment M about the slider point, on the higher link [N·m]"""
     drive_torque: FloatArray
-    """(n,) M_drive: torque the drive applies to the crank, counter-clockwise positive [N·m]"""
+    """(n,) M_drive: torque the drive applies to the crank, counter-clockwise positive [N·m]
+    (a cam-driven mechanism: the cam shaft's torque, in the cam's sense of rotation)"""
     shaking: FloatArray
     """(n, 3) force (x, y) [N] and moment about the world origin [N·m] that the mechanism
     exerts on the frame (joints, frame-anchored springs and the drive's reaction)"""
     valid: FloatArray
     """(n,) bool: no dyad within the dead-centre band (forces meaningful)"""
+    input_load: FloatArray | None = None
+    """(n,) the load along link 2's unit twist S₁₂ that drives it, −S₁₂·Q₂ (friction
+    included): a torque [N·m] on a turning input, a force [N] along the guide on a
+    sliding one; equal to ``drive_torque`` for a crank; None where it is"""
+    contact_force: FloatArray | None = None
+    """(n,) a cam-driven mechanism's contact force N [N] between cam and follower along
+    the common normal (negative: the follower would have to be pulled; a spring-closed
+    follower lifts off); None without a cam"""
 
     def on(self, name: tuple[int, int], link: int) -> FloatArray:
         """(3, n) wrench about the world origin that joint ``name`` exerts on ``link``."""
@@ -112,6 +121,14 @@ def add_loads_and_springs(q: FloatArray, mechanism: Mechanism, kin: Kinematics) 
         for link, point, force in spring_forces(spring, motion):
             if link != FRAME:
                 add_force(q[link], point, force)
+    follower = kin.follower
+    if follower is not None and np.any(follower.spring):
+        # the follower's own spring and load k·(s + s0) + F, against its lift or swing
+        if mechanism.crank.sliding:
+            along = np.stack((motion.cos[:, CRANK], motion.sin[:, CRANK]), -1)
+            add_force(q[CRANK], motion.origin[:, CRANK], -follower.spring[:, None] * along)
+        else:
+            q[CRANK, 2] -= follower.sense * follower.spring
 
 
 def load_values(load, crank_angle: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -194,19 +211,82 @@ def backward(mechanism: Mechanism, kin: Kinematics, q: FloatArray, rub=None) -> 
         (frame if g == FRAME else q[g])[...] -= w_a
         (frame if h == FRAME else q[h])[...] += on_h
     joint = mechanism.crank.joint
-    drive = -_power(crank_screw(mechanism), q[CRANK])
+    screw = crank_screw(mechanism)
+    drive = -_power(screw, q[CRANK])
     if rub is not None:
         drive = drive - rub.crank(q[CRANK])
     w_12 = -q[CRANK]
-    w_12[2] -= drive
+    if kin.follower is not None:  # the cam drives link 2 through the contact force
+        return _cam_driven(mechanism, kin, wrenches, drive, w_12, frame, screw, rub)
+    if mechanism.crank.sliding:  # a force along the guide, through link 2's origin
+        dx, dy, _ = screw
+        ox, oy = kin.motion.origin[:, CRANK, 0], kin.motion.origin[:, CRANK, 1]
+        w_12[0] -= drive * dx
+        w_12[1] -= drive * dy
+        w_12[2] -= drive * (ox * dy - oy * dx)
+    else:
+        w_12[2] -= drive
     wrenches[joint.name] = (CRANK, w_12)
     frame -= w_12
-    return assemble_forces(mechanism, kin, wrenches, drive, frame,
-                           None if rub is None else rub.surface)
+    forces = assemble_forces(mechanism, kin, wrenches, drive, frame,
+                             None if rub is None else rub.surface)
+    if mechanism.crank.sliding:
+        forces.input_load = drive
+    return forces
+
+
+def _cam_driven(mechanism: Mechanism, kin: Kinematics, wrenches: dict, drive: FloatArray,
+                w_12: FloatArray, frame: FloatArray, screw, rub) -> Forces:
+    """The end of the backward pass of a cam-driven mechanism: the cam's contact force N
+    along the normal n at K (``dyade.cam.follower``) supplies the drive −S₁₂·Q₂ of link
+    2, N·S₁₂·(n, K × n) = drive, and joint (1,2) takes the rest of −Q₂ (a guide's side
+    thrust, a lever pivot's force). The cam shaft's torque is drive·q′ (its power
+    M·θ̇ = drive·q̇); the cam's reaction −N·n at K goes to the frame through the cam
+    shaft's bearing, and the follower's spring rests on the frame (``shaking``)."""
+    follower = kin.follower
+    nx, ny = follower.normal[:, 0], follower.normal[:, 1]
+    kx, ky = follower.contact[:, 0], follower.contact[:, 1]
+    arm = kx * ny - ky * nx
+    pairing = plus(plus(times(screw[0], nx), times(screw[1], ny)), times(screw[2], arm))
+    with np.errstate(divide="ignore", invalid="ignore"):  # the normal across the freedom
+        force = drive / pairing
+    w_12[0] -= force * nx
+    w_12[1] -= force * ny
+    w_12[2] -= force * arm
+    joint = mechanism.crank.joint
+    wrenches[joint.name] = (CRANK, w_12)
+    frame -= w_12
+    # the cam pushes link 2 with N·n at K; the cam itself (massless, its shaft in a
+    # bearing of the frame, its motor's stator on the frame) passes −N·n at K on to the
+    # frame: the motor's torque and its stator's reaction cancel in the shaking load
+    torque = drive * follower.dq
+    flywheel = mechanism.drive.flywheel_inertia if mechanism.drive is not None else 0.0
+    if flywheel and np.any(follower.acceleration):  # the flywheel turns with the cam shaft
+        spin = flywheel * follower.acceleration
+        torque = torque + spin
+        frame[2] -= spin * (-1.0 if mechanism.cam.cam.clockwise else 1.0)
+    frame[0] -= force * nx
+    frame[1] -= force * ny
+    frame[2] -= force * arm
+    if np.any(follower.spring):  # the follower's spring rests on the frame
+        if mechanism.crank.sliding:
+            along = np.stack((kin.motion.cos[:, CRANK], kin.motion.sin[:, CRANK]), -1)
+            add_force(frame, kin.motion.origin[:, CRANK], follower.spring[:, None] * along)
+        else:
+            frame[2] += follower.sense * follower.spring
+    forces = assemble_forces(mechanism, kin, wrenches, torque, frame,
+                             None if rub is None else rub.surface, reaction=False)
+    forces.input_load = drive
+    forces.contact_force = force
+    forces.valid &= np.isfinite(force)
+    if mechanism.cam.cam.closure == "spring":  # it cannot pull: the follower lifts off
+        forces.valid &= ~(force < 0.0)
+    return forces
 
 
 def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
-                    drive: FloatArray, frame: FloatArray, surface: dict | None = None) -> Forces:
+                    drive: FloatArray, frame: FloatArray, surface: dict | None = None,
+                    reaction: bool = True) -> Forces:
     """Physical joint forces (the paper's sign rule) from the joint wrenches; the shaking
     load gets the frame-anchored springs and the drive's reaction. ``surface``: slider
     -> the part of its friction force (on the slider, along the guide) that acts at the
@@ -216,7 +296,8 @@ def assemble_forces(mechanism: Mechanism, kin: Kinematics, wrenches: dict,
         for link, point, force in spring_forces(spring, motion):
             if link == FRAME:
                 add_force(frame, point, force)
-    frame[2] -= drive  # the stator takes the reaction of the drive torque
+    if reaction:
+        frame[2] -= drive  # the stator takes the reaction of the drive torque
     band = np.sin(mechanism.dead_centre_angle)
     valid = kin.valid.copy()
     for column in kin.conditioning.T:  # (an axis-1 reduction is slow on a few columns)

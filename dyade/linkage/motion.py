@@ -51,6 +51,9 @@ class Motion:
     """(n, links) cos φ, kept with the angle (see ``set_angle``)"""
     sin: FloatArray
     """(n, links) sin φ"""
+    pivoted: bool = True
+    """link 2's origin stays put (a crank about its pivot); False: it moves (a sliding
+    input, ``dyade.linkage.kinematics.crank_motion``)"""
 
     @classmethod
     def at_rest(cls, positions: int, links: int, placed: tuple[int, ...] = ()) -> Motion:

@@ -51,6 +51,9 @@ class NoteKind(enum.StrEnum):
     """the clearance check does not apply to a joint, or not on a run-up"""
     DRIVE_LINE_SOFT = "drive_line_soft"
     """the drive line's ratio Ω/ω̄ exceeds VDI 2149's 0.1: the rigid model does not hold"""
+    LIFT_OFF = "lift_off"
+    """a spring-closed cam follower would need a pull (contact force below 0): it lifts
+    off, and the chain's forces are not given there"""
 
     def __repr__(self) -> str:
         return repr(self.value)  # as the plain string it equals

@@ -348,6 +348,8 @@ class Keep:
             "kinematics": {}, "forces": {}}
         """a run of variants: the columns of each variant that held such a value"""
         self.forces_valid = np.zeros(n, dtype=bool) if the_plan.kinetostatics else None
+        self.lifted = np.zeros(n, dtype=bool)
+        """a cam's spring-closed follower would need a pull here (it lifts off)"""
         self.rubbing = Rubbing.empty(n) if the_plan.friction else None
         run_up = setup.motion is not None and setup.motion.state == "run-up"
         self.joints = (the_plan.clearance if the_plan.clearance and not run_up
@@ -366,6 +368,9 @@ class Keep:
         self.well[first:last] = block.valid
         if block.forces is not None:
             self.forces_valid[first:last] = block.forces.valid
+            contact = block.forces.contact_force
+            if contact is not None and self.setup.mechanism.cam.cam.closure == "spring":
+                self.lifted[first:last] = block.valid & (contact < 0.0)
             for name in self.joints:
                 self.forces[name][first:last] = block.forces.revolute[name]
         if block.friction is not None:
@@ -398,6 +403,12 @@ class Keep:
                         {"part": part, "limit": columns_.PLAUSIBLE, "digits": digits,
                          "columns": tuple(self.implausible_columns[part]) if variants == 1
                          else self.implausible_variants[part][variant]}))
+        if self.lifted.any():
+            invalid &= ~self.lifted  # (a note of their own)
+            for variant, where in each(self.lifted, variants):
+                each_notes[variant].append(Note(
+                    NoteKind.LIFT_OFF, "", tuple(ranges(angle[where], self.lifted[where])),
+                    {"digits": digits}))
         if invalid is not None and invalid.any():
             for variant, where in each(invalid, variants):
                 each_notes[variant].append(Note(

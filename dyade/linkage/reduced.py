@@ -11,7 +11,8 @@ With the crank angle φ as the generalised coordinate every velocity is proporti
 of gravity, the applied loads and the springs (positive where they drive the machine).
 The kinetic energy is ½·J·φ̇², and at constant speed without friction the drive torque
 is M_drive = ½·J′·Ω² − M_L: its power feeds the kinetic energy and the loads.
-The crank's own inertia is included, and with it a flywheel of the ``[drive]`` table.
+The crank's own inertia is included, and with it a flywheel of the ``[drive]`` table
+(a cam-driven mechanism: the flywheel on the cam shaft, added to J; φ is the cam angle).
 """
 
 from __future__ import annotations
@@ -53,7 +54,8 @@ def reduced(mechanism: Mechanism, kin: kinematics.Kinematics) -> Reduced:
     """
     motion = kin.motion
     speed = motion.omega[:, CRANK]
-    constant = (speed.size > 0 and speed[0] != 0.0 and np.all(speed == speed[0])
+    constant = (mechanism.cam is None  # (a cam's speed is not link 2's)
+                and speed.size > 0 and speed[0] != 0.0 and np.all(speed == speed[0])
                 and not np.any(motion.alpha[:, CRANK]))
     if constant:
         omega = float(speed[0])
@@ -91,4 +93,7 @@ def reduced(mechanism: Mechanism, kin: kinematics.Kinematics) -> Reduced:
         fx, fy, moment = external[number]
         (x, y), (vx, vy), w = origin[:, number], velocity[:, number], spins[number]
         power += fx * (vx + w * y) + fy * (vy - w * x) + moment * w  # wrench · twist
-    return Reduced(energy / omega ** 2, 2.0 * rate / omega ** 3, power / omega)
+    inertia = energy / omega ** 2
+    if mechanism.cam is not None and mechanism.drive is not None:  # on the cam shaft
+        inertia = inertia + mechanism.drive.flywheel_inertia
+    return Reduced(inertia, 2.0 * rate / omega ** 3, power / omega)

@@ -40,6 +40,10 @@ def _stack(values: list, positions: int, where: str):
     first = values[0]
     if all(v is first for v in values):
         return first
+    if where == "mechanism.cam":  # a cam's curves come from its profile, one cam a sweep
+        if all(v == first for v in values):
+            return first
+        raise NotStackable(f"{where}: the cam differs between variants")
     if dataclasses.is_dataclass(first) and not isinstance(first, type):
         if any(type(v) is not type(first) for v in values):
             raise NotStackable(f"{where}: of different types")

@@ -152,6 +152,8 @@ FIXED = {
     "M_drive_abs_max": ("N·m", "drive torque max |M_drive|"),
     "P_drive_mean": ("W", "mean drive power"),
     "F_shake_max": ("N", "shaking force max |F_S|"),
+    "F_cam_min": ("N", "cam contact force min (below 0: lifts off)"),
+    "F_cam_max": ("N", "cam contact force max"),
     "F_shake_rms": ("N", "shaking force RMS"),
     "M_shake_abs_max": ("N·m", "shaking moment max |M_S|"),
     "P_friction_mean": ("W", "mean friction power"),
@@ -304,6 +306,11 @@ def key_figures(mechanism, angle_deg: np.ndarray, cols: Mapping[str, np.ndarray]
         given(f"{name}_peak", peak, where)
     out.update(F_shake_max=np.fmax.reduce(force, axis=1), F_shake_rms=shake_rms,
                M_shake_abs_max=np.fmax.reduce(moment, axis=1))
+    if "F_cam" in cols:  # a cam drives link 2: its contact force's least (lift-off) and peak
+        contact = cols["F_cam"]
+        given("F_cam_min", np.fmin.reduce(contact, axis=1),
+              np.argmin(np.where(np.isnan(contact), np.inf, contact), axis=1))
+        given("F_cam_max", np.fmax.reduce(contact, axis=1), _largest(contact))
     if at is not None:
         low = np.where(np.isnan(torque), np.inf, torque)
         at.update(M_drive_max=_largest(torque), M_drive_min=np.argmin(low, axis=1),

@@ -85,7 +85,8 @@ class Cam:
     """radius of the cutter [m] whose path is exported too (None: none)"""
     chain: Any = None
     """a ``dyade.model.mechanism.Mechanism`` whose crank (link 2) is the follower's lever
-    (oscillating follower): the linkage the cam drives (None: the follower alone)"""
+    (oscillating follower) or, with its own ``cam`` (a mechanism file's ``[cam]``), whose
+    link 2 is this follower: the linkage the cam drives (None: the follower alone)"""
     chain_centre: tuple[float, float] | None = None
     """the cam centre O [m] in the chain's frame"""
     name: str = "cam"
@@ -166,7 +167,7 @@ class Cam:
                                              f"below the guide's near end at zero lift), got "
                                              f"{self.guide_overhang:g}.")
         self.check_profile(fail)
-        if self.chain is not None:
+        if self.chain is not None and self.chain.cam is None:  # a cam file's [chain]
             if self.follower != "oscillating-roller":
                 raise fail("chain", f"needs an oscillating roller follower (its lever is the "
                                     f"chain's crank), got a {self.follower} follower.")
@@ -235,3 +236,60 @@ class Cam:
     def lever(self) -> float:
         """The follower's lever h [m]: 1 translating, the arm length oscillating."""
         return self.arm_length if self.follower == "oscillating-roller" else 1.0
+
+
+@dataclass(frozen=True)
+class CamDrive:
+    """A disc cam that drives link 2 of a mechanism (a mechanism file's ``[cam]``): the
+    follower is link 2, the chain's input (``dyade.model.mechanism.Crank``).
+
+    The cam's fixed frame (``dyade.cam.geometry``: a translating follower moving along
+    +y on the line x = e, an oscillating one's pivot at (a, 0), (−a, 0) for a clockwise
+    cam) is turned by ``angle`` β about the cam centre ``centre`` into the mechanism's
+    frame. A translating follower slides (link 2's origin is the roller centre, the flat
+    face's point on its line of motion; its ξ axis along the motion); an oscillating one
+    turns about its pivot (link 2 the lever, its ``tip`` the roller centre). The sweep
+    runs over the cam angle θ, the cam turning at ``cam.speed`` in its own sense.
+    """
+
+    cam: Cam
+    """the cam and its follower (``follower.mass`` is link 2's, in its ``[links.2]``)"""
+    centre: tuple[float, float]
+    """the cam centre O [m] in the mechanism's frame"""
+    angle: float = 0.0
+    """β [rad]: the cam's fixed frame in the mechanism's frame"""
+
+    @property
+    def sliding(self) -> bool:
+        """The follower translates: link 2 slides along a frame guide."""
+        return self.cam.follower != "oscillating-roller"
+
+    def turn(self, v) -> tuple[float, float]:
+        """A vector (x, y) of the cam's fixed frame in the mechanism's frame: R(β)·v."""
+        c, s = math.cos(self.angle), math.sin(self.angle)
+        return (c * v[0] - s * v[1], s * v[0] + c * v[1])
+
+    def place(self, v) -> tuple[float, float]:
+        """A point of the cam's fixed frame in the mechanism's frame: O + R(β)·v [m]."""
+        x, y = self.turn(v)
+        return (self.centre[0] + x, self.centre[1] + y)
+
+    @property
+    def pivot(self) -> tuple[float, float]:
+        """Link 2's pivot [m] in the mechanism's frame: the lever's pivot A, or the
+        follower's origin (roller centre, face point) at zero lift."""
+        cam, sense = self.cam, -1.0 if self.cam.clockwise else 1.0
+        if cam.follower == "oscillating-roller":
+            return self.place((sense * cam.pivot_distance, 0.0))
+        # the line of motion is x = e for either sense (a clockwise cam mirrors the cam,
+        # e -> −e, and then every curve, x -> −x)
+        if cam.follower == "translating-roller":
+            pitch = cam.pitch_radius
+            return self.place((cam.offset, math.sqrt(pitch ** 2 - cam.offset ** 2)))
+        return self.place((cam.offset, cam.base_radius))
+
+    @property
+    def guide(self) -> float | None:
+        """The follower's guide angle γ [rad] in the mechanism's frame (translating), or
+        None (oscillating)."""
+        return self.angle + 0.5 * math.pi if self.sliding else None

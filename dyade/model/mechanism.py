@@ -21,6 +21,7 @@ from dyade.arrays import FloatArray, Vec
 from dyade.model.dyad_kinds import DyadKind
 
 if TYPE_CHECKING:
+    from dyade.model.cam import CamDrive
     from dyade.model.drive import Drive
     from dyade.model.drive_line import DriveLineData
     from dyade.model.servo import Servo
@@ -208,17 +209,36 @@ class Dyad:
 
 @dataclass(frozen=True, slots=True, eq=False)  # identity, not value, equality
 class Crank:
-    """Link 2, turning about a frame point at constant speed (or, with a drive, at the
-    speed the equation of motion gives; ``speed`` is then its nominal speed)."""
+    """Link 2, the chain's input: turning about a frame point at constant speed (or,
+    with a drive, at the speed the equation of motion gives; ``speed`` is then its
+    nominal speed), or, with ``guide`` set, sliding along a frame guide (a cam's
+    translating follower: ``Mechanism.cam`` gives its travel over the cam angle).
+
+    The input's coordinate q is the crank angle φ21 [rad] (turning) or the travel s [m]
+    of link 2's origin from ``pivot`` along the guide (sliding); its unit twist S₁₂ is
+    (y_p, −x_p, 1) about the pivot or (cos γ, sin γ, 0) along the guide at angle γ
+    (``dyade.linkage.kinematics.crank_screw``), and the drive is the load along it: a
+    torque about the pivot, or a force along the guide.
+    """
 
     pivot: Vec
-    """Frame point of joint (1,2) [m]."""
+    """Frame point of joint (1,2) [m] (sliding: link 2's origin at zero travel)."""
     length: float
-    """[m]; the point ``tip`` of the crank is (length, 0) in its frame."""
+    """[m]; the point ``tip`` of the crank is (length, 0) in its frame (sliding: the
+    follower's stroke, the length scale of its speeds)."""
     speed: float
-    """Ω [rad/s], counter-clockwise positive."""
-    joint: Revolute
-    """Joint (1,2)."""
+    """Ω [rad/s], counter-clockwise positive (with a cam: the cam's speed, in its own
+    sense of rotation)."""
+    joint: Joint
+    """Joint (1,2): a revolute joint, or (sliding) a prismatic one on the frame."""
+    guide: float | None = None
+    """The guide's angle γ [rad] of a sliding input (link 2's ξ axis along it); None:
+    link 2 turns about ``pivot``."""
+
+    @property
+    def sliding(self) -> bool:
+        """Link 2 slides along a frame guide (its drive a force)."""
+        return self.guide is not None
 
 
 MAX_SWEEP_ANGLE = 2.0 * math.pi * 1e4  # [rad] 10 000 revolutions: beyond, steps blur
@@ -306,6 +326,10 @@ class Mechanism:
     """The servo of a ``[servo]`` table: the crank follows a motion profile over the cycle
     time (``dyade.model.servo``; ``dyade servo`` sizes it); None: no servo. ``analyse``
     sweeps such a mechanism at its constant ``crank.speed_rpm``."""
+    cam: CamDrive | None = None
+    """The disc cam of a ``[cam]`` table that drives link 2 (its follower): the sweep
+    runs over the cam angle θ (``crank_angle``) at the cam's speed, link 2 follows the
+    cam's motion profile (``dyade.model.cam.CamDrive``); None: link 2 is driven itself."""
 
     @property
     def joints(self) -> list[Joint]:

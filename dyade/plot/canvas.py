@@ -73,6 +73,7 @@ NOTE_LOOK = {
     "run_up_not_settled": ("run-up not settled", "**", "0.88"),
     "clearance_not_applicable": ("clearance check not applicable", "O", "0.93"),
     "drive_line_soft": ("drive line too soft for the rigid model", "xx", "0.82"),
+    "lift_off": ("cam follower lifts off", "\\\\\\", "0.87"),
 }
 """note kind -> (label, hatch, face grey) of its shaded crank-angle ranges"""
 

@@ -453,6 +453,14 @@ def figure(result, *, at_deg=None, fig: Figure | None = None, **renamed) -> Figu
             at = angle[np.unique(np.round(k).astype(int))]
     at = np.atleast_1d(np.asarray(at, dtype=float))
     placed = geometry(result, analyse_si(result.mechanism, crank_angle=at, plan=Plan()))
+    cams = None
+    if result.mechanism.cam is not None:  # the cam that drives link 2, at each angle
+        cams = cam_outlines(result.mechanism.cam, at)
+        low, high = np.nanmin(cams[0].reshape(-1, 2), 0), np.nanmax(cams[0].reshape(-1, 2), 0)
+        x0, x1, y0, y1 = placed.limits
+        margin = 0.04 * placed.size
+        placed.limits = (min(x0, low[0] - margin), max(x1, high[0] + margin),
+                         min(y0, low[1] - margin), max(y1, high[1] + margin))
     width = panel_width(placed)
     rows, columns = canvas.grid(len(at), 1 if width > 1.5 * PANEL else 3 if len(at) == 3 else 2)
     with canvas.style():
@@ -464,13 +472,51 @@ def figure(result, *, at_deg=None, fig: Figure | None = None, **renamed) -> Figu
         for k, ax in enumerate(axes[:len(at)]):
             scenes.append(Scene(ax, placed))
             scenes[-1].update(k)
-            ax.set_title(f"φ21 = {np.rad2deg(at[k]):.4g}°")
+            if cams is not None:
+                draw_cam(ax, result.mechanism.cam, cams[0][k], cams[1][k])
+            ax.set_title(f"{'θ' if cams is not None else 'φ21'} = {np.rad2deg(at[k]):.4g}°")
         fig.suptitle(result.mechanism.name)
         fig.draw_without_rendering()  # the panels' final place: labels are placed in it
         for k, scene in enumerate(scenes):
             scene.place(k)
         fig.set_layout_engine("none")  # keep the places the labels were fitted to
     return fig
+
+
+CAM_POINTS = 720  # points of a cam's drawn outline over the turn
+
+
+def cam_outlines(drive, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The cam's working curve [m] in the mechanism's frame at the cam angles ``theta``
+    [rad], shape (angles, ``CAM_POINTS``, 2), and the roller centre there, (angles, 2)
+    (``dyade.model.cam.CamDrive``: the cam's frame turned by θ, by −θ for a clockwise
+    cam, then by β about its centre)."""
+    from dyade.cam.follower import curves, follower_motion
+
+    cam = drive.cam
+    turn = np.linspace(0.0, 2.0 * np.pi, CAM_POINTS)
+    working = curves(cam, turn)[0].working  # (the cam's own frame)
+    sense = -1.0 if cam.clockwise else 1.0
+    angle = sense * np.asarray(theta, dtype=float)[:, None] + drive.angle
+    c, s = np.cos(angle)[..., None], np.sin(angle)[..., None]
+    x, y = working[None, :, 0:1], working[None, :, 1:2]
+    outline = np.concatenate((c * x - s * y, s * x + c * y), axis=-1) + np.asarray(drive.centre)
+    motion = follower_motion(drive, np.asarray(theta, dtype=float))
+    roller = motion.contact + cam.roller_radius * motion.normal
+    return outline, roller
+
+
+def draw_cam(ax, drive, outline: np.ndarray, roller: np.ndarray) -> None:
+    """The cam (its working curve, filled), its centre and the roller on link 2."""
+    from matplotlib.patches import Circle, Polygon
+
+    ax.add_patch(Polygon(outline, closed=True, facecolor="0.9", edgecolor="black",
+                         linewidth=1.2, zorder=2.5, gid="cam"))  # over the guide
+    ax.plot(*drive.centre, marker="+", color="black", markersize=8, zorder=6,
+            gid="cam-centre")
+    if drive.cam.roller_radius:
+        ax.add_patch(Circle(tuple(roller), drive.cam.roller_radius, facecolor="white",
+                            edgecolor="black", linewidth=1.0, zorder=4.5, gid="roller"))
 
 
 def panel_width(geo: Geometry) -> float:

@@ -53,8 +53,26 @@ def describe(outcome) -> Tree:
     crank = mechanism.crank
     rpm = abs(crank.speed) * RAD_PER_S_TO_RPM
     sense = "counter-clockwise" if crank.speed > 0 else "clockwise"
-    node = tree.add(f"dyad 1: link 2 crank, length {length(crank.length)}, {rpm:g} rpm {sense}")
-    node.add(f"joint (1,2) revolute at {length.point(crank.pivot)}{_joint_data(crank.joint, length)}")
+    drive = mechanism.cam
+    if drive is not None:  # a cam drives link 2, its follower: the sweep is over the cam angle
+        cam = drive.cam
+        turning = "clockwise" if cam.clockwise else "counter-clockwise"
+        node = tree.add(f"cam-driven: a disc cam (base radius {length(cam.base_radius)}) at "
+                        f"{length.point(drive.centre)}, {rpm:g} rpm {turning}, drives link 2, "
+                        f"its {cam.follower} follower; the sweep runs over the cam angle θ "
+                        f"(the φ21 of every table)")
+        if crank.sliding:
+            node.add(f"joint (1,2) prismatic: link 2 slides along its guide at "
+                     f"{np.rad2deg(crank.guide):g}° through {length.point(crank.pivot)} (the "
+                     f"roller centre at zero lift), driven by the cam's contact force")
+        else:
+            node.add(f"joint (1,2) revolute at {length.point(crank.pivot)}: link 2 is the "
+                     f"lever, length {length(crank.length)}, swung by the cam")
+    else:
+        node = tree.add(f"dyad 1: link 2 crank, length {length(crank.length)}, {rpm:g} rpm "
+                        f"{sense}")
+        node.add(f"joint (1,2) revolute at {length.point(crank.pivot)}"
+                 f"{_joint_data(crank.joint, length)}")
     _link(node, mechanism, CRANK, length)
     for k, dyad in enumerate(mechanism.dyads, 1):
         i, j = dyad.links

@@ -162,7 +162,8 @@ def key_results(outcome, length_unit: str = "m") -> Table:
         if "P_friction_mean" in value:
             row("P_friction_mean", number(value["P_friction_mean"],
                                           scale(summary, "P_friction")))
-        for name in ("F_shake_max", "F_shake_rms", "M_shake_abs_max"):
+        for name in ("F_shake_max", "F_shake_rms", "M_shake_abs_max", "F_cam_min",
+                     "F_cam_max"):
             if name in value:
                 row(name)
         peaks = [name for name in summary if name.endswith("_peak")]

@@ -53,7 +53,7 @@ def unit(name: str) -> str:
 
 STUDIED = re.compile(r"mu_\d+_min_deg|stroke_\d+_\d+|time_ratio_\d+(_\d+)?|swing_\d+_deg"
                      r"|M_drive_(max|min|rms|abs_max)|P_drive_mean|FN?_\d+_\d+_peak|F_shake_(max|rms)"
-                     r"|M_shake_abs_max|P_friction_mean|locks_\d+_\d+"
+                     r"|M_shake_abs_max|F_cam_(min|max)|P_friction_mean|locks_\d+_\d+"
                      r"|lock_(start|stop)_\d+_\d+_deg|lock_margin_\d+_\d+_min"
                      r"|speed_mean_rpm|fluctuation")
 """the summary figures a study's row gives (``dyade.linkage.summary``): the key figures

@@ -62,9 +62,8 @@ def test_equals_an_independent_global_solve(solved):
     cam, mechanism, result, s, v = solved
     reference = global_forces(mechanism, result.kinematics, crank_speed=result.lever_speed,
                               crank_acceleration=result.lever_acceleration)["drive"]
-    scale = np.max(np.abs(reference))
-    assert np.max(np.abs(result.forces.drive_torque - reference)) < 1e-9 * scale
-    # the cam's torque from the global solve: the lever's torque through the contact
+    # the lever's torque from the global solve of the bare chain: its own inertia J·φ̈
+    # and the torsion spring join it
     sense = 1.0 if cam.clockwise else -1.0
     needed = (reference + cam.mass * result.lever_acceleration
               + (cam.stiffness * (s + cam.preload) + cam.load) * sense)

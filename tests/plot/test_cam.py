@@ -28,3 +28,20 @@ def test_the_cam_touches_its_roller_at_the_angle_asked():
     pressure = next(ax for ax in fig.axes if ax.get_ylabel() == "pressure angle α [°]")
     assert np.allclose(pressure.lines[0].get_ydata(), outcome.columns["pressure_angle_deg"])
     assert math.isclose(abs(pressure.lines[1].get_ydata()[0]), 30.0)
+
+
+@pytest.mark.slow  # two panels of the linkage: about 1 s
+def test_the_mechanism_figure_draws_the_cam_under_its_follower():
+    """A cam-driven mechanism (`dyade plot mechanism`): at each cam angle the cam turned
+    to it touches the roller on link 2, whose centre is the follower's at that angle."""
+    from dyade.plot import mechanism as mechanism_plot
+
+    result = dyade.analyse(dyade.read_mechanism("mechanisms/cams/cam-rocker.toml"))
+    fig = mechanism_plot.figure(result, at_deg=[0.0, 60.0])
+    for ax, lift in zip(fig.axes, (0.0, 0.0125)):  # the cycloid's lift at 60°: half of 25 mm
+        cam = next(p for p in ax.patches if p.get_gid() == "cam").get_xy()
+        roller = next(p for p in ax.patches if p.get_gid() == "roller")
+        assert roller.center == pytest.approx((0.0, 0.038 + lift), abs=1e-12)
+        gap = np.hypot(*(cam - np.asarray(roller.center)).T).min() - roller.radius
+        assert abs(gap) < 2e-5  # the outline at 0.5°: within 20 µm
+    assert [ax.get_title() for ax in fig.axes] == ["θ = 0°", "θ = 60°"]

@@ -5,4 +5,5 @@ mechanism reader reads a [servo]'s profile with it."""
 from __future__ import annotations
 
 TOP_KEYS = {"name", "description", "units", "sweep", "frame", "crank", "dyad", "links",
-            "gravity", "load", "spring", "friction", "drive", "drive_line", "servo", "profile"}
+            "gravity", "load", "spring", "friction", "drive", "drive_line", "servo", "profile",
+            "cam", "follower", "manufacture"}

@@ -8,6 +8,7 @@ import math
 import os
 from typing import Any
 
+from dyade.files.mechanism.cam import CamDriveReader
 from dyade.files.mechanism.drive import DriveReader
 from dyade.files.mechanism.drive_line import DriveLineReader
 from dyade.files.mechanism.dyads import DyadReader
@@ -21,7 +22,7 @@ from dyade.model.mechanism import CRANK, FRAME, Link, Mechanism, Sweep, sweep_pr
 SWEEP_KEYS = {"start", "stop", "step", "dead_centre", "transmission_warning"}
 
 
-class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader):
+class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader, CamDriveReader):
     """Walks the parsed TOML of a mechanism file with key paths for the error messages."""
 
     top_keys = TOP_KEYS
@@ -42,7 +43,11 @@ class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader):
             raise self.fail("links", f"must be a table of [links.N] tables, got {show(links_table)}.")
         self.points = {FRAME: self.named_points(
             frame_table.get("points", {}), "frame.points")}
-        crank = self.crank(self.required(data, "crank", ""))
+        cam = None
+        if "cam" in data:  # the cam's follower is link 2
+            crank, cam = self.cam_drive(data)
+        else:
+            crank = self.crank(self.required(data, "crank", ""))
         dyad_tables = data.get("dyad", [])
         if not isinstance(dyad_tables, list) or not dyad_tables:
             raise self.fail("dyad", "must list at least one dyad as [[dyad]] tables "
@@ -67,11 +72,12 @@ class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader):
         springs = tuple(self.spring(t, f"spring.{k}", links)
                         for k, t in enumerate(self.tables(data.get("spring", []), "spring"), 1))
         drive = self.drive(data["drive"]) if "drive" in data else None
-        if drive is not None and drive.flywheel_inertia:
+        if drive is not None and drive.flywheel_inertia and cam is None:
             crank_link = links[CRANK]  # the flywheel turns with the crank, about its pivot
             links[CRANK] = Link(CRANK, crank_link.points, crank_link.mass, crank_link.centre,
                                 crank_link.inertia + drive.flywheel_inertia)
-        if drive is not None and not any(link.has_mass for link in links.values()):
+        if drive is not None and not any(link.has_mass for link in links.values()) and not (
+                cam is not None and drive.flywheel_inertia):  # (a cam's is on its shaft)
             raise self.fail("drive", "needs the machine's inertia for its equation of motion: "
                                      "give the links masses (`links.N.mass`) or a flywheel "
                                      "(`drive.flywheel_inertia`).")
@@ -101,7 +107,8 @@ class Reader(DyadReader, LoadReader, DriveReader, DriveLineReader, ServoReader):
             servo = self.servo(data["servo"], data, sliders, [n for n in self.placed if n > 1])
         return Mechanism(name, self.source, crank, dyads, links, sweep, gravity, loads, springs,
                          dead_centre, friction_tol, friction_max_iter, warning,
-                         (self.length_unit, self.angle_unit), drive, line, servo=servo)
+                         (self.length_unit, self.angle_unit), drive, line, servo=servo,
+                         cam=cam)
 
     def sweep(self, table: Any) -> tuple[Sweep, float, float]:
         self.keys(table, "sweep", SWEEP_KEYS)
