@@ -111,10 +111,25 @@ def swings(phi_deg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The swing [°] of each row of link angles (variants, positions) [°] and the angles
     turned (unwrapped); NaN where the link turns round, does not move or a value is
     missing."""
-    turned = np.rad2deg(np.unwrap(np.deg2rad(phi_deg), axis=1))
+    turned = _unwrap(np.deg2rad(phi_deg))
+    np.rad2deg(turned, out=turned)
     swing = turned.max(axis=1) - turned.min(axis=1)
     moves = np.isfinite(phi_deg).all(axis=1) & (swing > 1e-9) & (swing < 359.0)
     return np.where(moves, swing, np.nan), turned
+
+
+def _unwrap(rows: np.ndarray) -> np.ndarray:
+    """``np.unwrap(rows, axis=1)`` to the bit, in place (``rows``: the caller's own):
+    where no step between neighbours reaches π, its corrections are all 0 and only its
+    ``+ 0`` is left to do."""
+    if rows.ndim != 2 or rows.shape[1] < 2:
+        return np.unwrap(rows, axis=-1)
+    step = np.diff(rows, axis=1)
+    np.abs(step, out=step)
+    if not (step < np.pi).all():  # (a NaN too: numpy's carries it on)
+        return np.unwrap(rows, axis=1)
+    rows[:, 1:] += 0.0
+    return rows
 
 
 def peaks(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
