@@ -94,7 +94,10 @@ def least_transmission(mu: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     [°] from a dead centre (0° or 180°) per row, and the position where it lies (NaN,
     0 where a row has none)."""
     off = np.minimum(mu, 180.0 - mu)  # the angle to the nearer dead centre
-    k = np.argmin(np.where(np.isnan(off), np.inf, off), axis=1)
+    if np.isnan(np.add.reduce(off, axis=None)):  # (NaN only where one is: off ≥ 0 or NaN)
+        k = np.argmin(np.where(np.isnan(off), np.inf, off), axis=1)
+    else:
+        k = np.argmin(off, axis=1)
     return np.take_along_axis(off, k[:, None], axis=1)[:, 0], k
 
 
@@ -135,7 +138,10 @@ def _unwrap(rows: np.ndarray) -> np.ndarray:
 def peaks(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The value of largest magnitude of each row (variants, positions), signed, and its
     position (NaN, 0 where a row has none)."""
-    k = np.argmax(np.where(np.isnan(values), -np.inf, np.abs(values)), axis=1)
+    magnitude = np.abs(values)
+    if np.isnan(np.add.reduce(magnitude, axis=None)):  # (a sum of magnitudes is NaN only
+        magnitude[np.isnan(magnitude)] = -np.inf       # where one of them is)
+    k = np.argmax(magnitude, axis=1)
     return np.take_along_axis(values, k[:, None], axis=1)[:, 0], k
 
 
