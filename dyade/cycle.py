@@ -47,13 +47,24 @@ def revolution(angle: FloatArray, values: FloatArray) -> tuple[FloatArray, Float
     return angle, values, span < TURN and TURN - span <= GAP_STEPS * float(np.max(steps))
 
 
-def segments(angle: FloatArray, values: FloatArray) -> tuple[FloatArray, FloatArray]:
+def segments(angle: FloatArray, values: FloatArray, ahead: FloatArray | None = None
+             ) -> tuple[FloatArray, FloatArray]:
     """Interval lengths h_i of a periodic curve's distinct positions (the last one
-    closing the revolution) and its three-point slopes."""
+    closing the revolution) and its three-point slopes (``ahead``: ``_ahead(values)``
+    if the caller has it)."""
     h = np.diff(np.append(angle, angle[0] + TURN))
     left = np.roll(h, 1)
-    step = _ahead(values) - values  # (each difference once: the next's is this one's)
-    slope = (left * left * step + h * h * _behind(step)) / (left * h * (left + h))
+    if ahead is None:  # (each difference once: the next's is this one's)
+        step = _ahead(values)
+        step -= values
+    else:
+        step = np.subtract(ahead, values)
+    # (left²·step + h²·step_behind) / (left·h·(left + h)), in place
+    slope = _behind(step)
+    slope *= h * h
+    step *= left * left
+    slope += step
+    slope /= left * h * (left + h)
     return h, slope
 
 
@@ -77,9 +88,16 @@ def integrals(angle: FloatArray, values: FloatArray) -> FloatArray:
     """∫ over each interval of a periodic curve's cubic Hermite interpolant (the last
     interval closes the revolution), at its distinct positions (``values``: one curve,
     or one per row, all at ``angle``)."""
-    h, slope = segments(angle, values)
-    return (0.5 * h * (values + _ahead(values))
-            + h * h / 12.0 * (slope - _ahead(slope)))
+    ahead = _ahead(values)
+    h, slope = segments(angle, values, ahead)
+    # 0.5·h·(y_i + y_i+1) + h²/12·(s_i − s_i+1), in place (the same operations)
+    ahead += values
+    ahead *= 0.5 * h
+    change = _ahead(slope)
+    np.subtract(slope, change, out=change)
+    change *= h * h / 12.0
+    ahead += change
+    return ahead
 
 
 def mean(angle: FloatArray, values: FloatArray) -> float:
@@ -122,11 +140,16 @@ def means(angle: FloatArray, values: FloatArray) -> FloatArray:
     values = np.asarray(values, dtype=np.float64)
     out = np.empty(values.shape[0])
     distinct, _, periodic = revolution(angle, angle)
-    whole = np.isfinite(values).all(axis=1) if periodic else np.zeros(len(out), dtype=bool)
+    whole = np.zeros(len(out), dtype=bool)
+    if periodic and values.size:  # a row's largest and least: finite where all its
+        high, low = np.max(values, axis=1), np.min(values, axis=1)  # values are (NaN
+        whole = np.isfinite(high) & np.isfinite(low)  # propagates)
     if whole.any():
         rows = values if whole.all() else values[whole]
         totals = np.sum(integrals(distinct, rows[:, :distinct.size]), axis=-1) / TURN
-        scale = np.maximum(np.max(rows, axis=1), -np.min(rows, axis=1))  # max |row|
+        scale = np.maximum(high, -low)  # max |row|
+        if not whole.all():
+            scale = scale[whole]
         out[whole] = np.where(np.abs(totals) <= ROUNDOFF * scale, 0.0, totals + 0.0)
     for k in np.flatnonzero(~whole):
         out[k] = _one(angle, values[k])

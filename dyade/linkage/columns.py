@@ -349,8 +349,11 @@ def implausible(cols: Columns, names) -> FloatArray:
     for name in names:
         values = cols[name]
         # the extremes first (NaN left aside): a mask only for a column that has one
-        if values.size and (np.fmax.reduce(values) > PLAUSIBLE
-                            or np.fmin.reduce(values) < -PLAUSIBLE):
+        # (a column that is a view across a wider array, as a joint's Fx of its (n, 2)
+        # forces, copied first: numpy reduces a strided array several times slower)
+        whole = values if values.flags.c_contiguous else np.ascontiguousarray(values)
+        if values.size and (np.fmax.reduce(whole) > PLAUSIBLE
+                            or np.fmin.reduce(whole) < -PLAUSIBLE):
             big = np.abs(values) > PLAUSIBLE  # NaN compares False
             out = big if out is None else out | big
     if out is None:

@@ -210,8 +210,9 @@ def _orient(wx, wy, arm, length, px, py, local) -> tuple:
     return cos, sin, px - rx, py - ry
 
 
-def _rrr(dyad, poses: dict, grid: _Grid) -> tuple:
-    """``dyads.rrr.close`` on the grid: (closes, conditioning)."""
+def _rrr(dyad, poses: dict, grid: _Grid, out) -> FloatArray:
+    """``dyads.rrr.close`` on the grid: closes; the conditioning into ``out`` (a
+    (variants, positions) view)."""
     i, j = dyad.links
     joint_a, joint_b, joint_c = dyad.joints
     (ax, ay), a_i = _pin(joint_a, i, poses, grid)
@@ -237,29 +238,29 @@ def _rrr(dyad, poses: dict, grid: _Grid) -> tuple:
         height = np.multiply(along, along, out=work)
         np.subtract(l_i * l_i, height, out=height)
         closes = height >= -1e-12 * l_i * l_i
-        ux, uy = dx, dy
-        ux *= inverse
-        uy *= inverse
+        ux, uy = dx * inverse, np.multiply(dy, inverse, out=inverse)
     np.maximum(height, 0.0, out=height)
     np.sqrt(height, out=height)
     if not closes.all():
         height[~closes] = np.nan
     side = height if dyad.variant > 0 else np.negative(height, out=height)
     bax, bay = along * ux, along * uy
-    np.multiply(side, uy, out=inverse)
-    bax -= inverse
-    np.multiply(side, ux, out=inverse)
-    bay += inverse
-    bcx, bcy = np.subtract(ax, cx), np.subtract(ay, cy)
-    bcx += bax
-    bcy += bay
+    np.multiply(side, uy, out=uy)
+    bax -= uy
+    np.multiply(side, ux, out=ux)
+    bay += ux
+    # B − C = (A − C) + (B − A) = (B − A) − (C − A): the generic closure's sum to the
+    # bit (A − C = −(C − A) exactly; a zero's sign aside, which no point or conditioning
+    # below keeps), without taking A − C again
+    bcx, bcy = np.subtract(bax, dx, out=dx), np.subtract(bay, dy, out=dy)
     # a link's pose is worked out when first wanted (a rocker no point is asked on: never)
     poses[i] = lambda: _orient(bax, bay, arm_i, l_i, ax, ay, a_i)
     poses[j] = lambda: _orient(bcx, bcy, arm_j, l_j, cx, cy, c_j)
-    sin = bax * bcy - bay * bcx
+    sin = np.multiply(bax, bcy, out=out)
+    sin -= np.multiply(bay, bcx, out=ux)
     np.abs(sin, out=sin)
     sin /= l_i * l_j
-    return closes, sin
+    return closes
 
 
 CACHE_ELEMENTS = 32_768
@@ -295,7 +296,7 @@ def _chunk(mechanism: Mechanism, grid: _Grid, crank: tuple, points, ok, conditio
     px, py = grid.point(mechanism.crank.pivot)
     poses = {FRAME: (1.0, 0.0, 0.0, 0.0), CRANK: (crank[0], crank[1], px, py)}
     for col, dyad in enumerate(mechanism.dyads):
-        closes, conditioning[:, :, col] = _FAST[dyad.kind.name](dyad, poses, grid)
+        closes = _FAST[dyad.kind.name](dyad, poses, grid, conditioning[:, :, col])
         ok &= closes
         if not ok.all():
             bad = ~ok
@@ -346,8 +347,8 @@ def _guide_line(joint, unknown: int, poses: dict, grid: _Grid, cos, sin) -> tupl
     return (dx, dy), -dy * minus(plus(ox, px), wx) + dx * minus(plus(oy, py), wy)
 
 
-def _rrp(dyad, poses: dict, grid: _Grid) -> tuple:
-    """``dyads.rrp.close`` on the grid: (closes, conditioning)."""
+def _rrp(dyad, poses: dict, grid: _Grid, out) -> FloatArray:
+    """``dyads.rrp.close`` on the grid: closes; the conditioning into ``out``."""
     i, j = dyad.links
     _, h = dyad.known
     joint_a, joint_b, joint_c = dyad.joints
@@ -383,9 +384,9 @@ def _rrp(dyad, poses: dict, grid: _Grid) -> tuple:
     poses[i] = lambda: _orient(abx, aby, arm_i, l_i, ax, ay, a_i)
     rx, ry = rotate_xy(c_j, s_j, b_j)  # closure.place_origin
     poses[j] = (c_j, s_j, minus(bx, rx), minus(by, ry))
-    sin = np.abs(minus(times(abx, ny), times(aby, nx)))
+    sin = np.abs(minus(times(abx, ny), times(aby, nx)), out=out)
     sin /= l_i
-    return closes, sin
+    return closes
 
 
 _FAST = {"RRR": _rrr, "RRP": _rrp}

@@ -94,7 +94,10 @@ def least_transmission(mu: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     [°] from a dead centre (0° or 180°) per row, and the position where it lies (NaN,
     0 where a row has none)."""
     off = np.minimum(mu, 180.0 - mu)  # the angle to the nearer dead centre
-    k = np.argmin(np.where(np.isnan(off), np.inf, off), axis=1)
+    if np.isnan(np.add.reduce(off, axis=None)):  # (NaN only where one is: off ≥ 0 or NaN)
+        k = np.argmin(np.where(np.isnan(off), np.inf, off), axis=1)
+    else:
+        k = np.argmin(off, axis=1)
     return np.take_along_axis(off, k[:, None], axis=1)[:, 0], k
 
 
@@ -111,16 +114,34 @@ def swings(phi_deg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The swing [°] of each row of link angles (variants, positions) [°] and the angles
     turned (unwrapped); NaN where the link turns round, does not move or a value is
     missing."""
-    turned = np.rad2deg(np.unwrap(np.deg2rad(phi_deg), axis=1))
+    turned = _unwrap(np.deg2rad(phi_deg))
+    np.rad2deg(turned, out=turned)
     swing = turned.max(axis=1) - turned.min(axis=1)
     moves = np.isfinite(phi_deg).all(axis=1) & (swing > 1e-9) & (swing < 359.0)
     return np.where(moves, swing, np.nan), turned
 
 
+def _unwrap(rows: np.ndarray) -> np.ndarray:
+    """``np.unwrap(rows, axis=1)`` to the bit, in place (``rows``: the caller's own):
+    where no step between neighbours reaches π, its corrections are all 0 and only its
+    ``+ 0`` is left to do."""
+    if rows.ndim != 2 or rows.shape[1] < 2:
+        return np.unwrap(rows, axis=-1)
+    step = np.diff(rows, axis=1)
+    np.abs(step, out=step)
+    if not (step < np.pi).all():  # (a NaN too: numpy's carries it on)
+        return np.unwrap(rows, axis=1)
+    rows[:, 1:] += 0.0
+    return rows
+
+
 def peaks(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The value of largest magnitude of each row (variants, positions), signed, and its
     position (NaN, 0 where a row has none)."""
-    k = np.argmax(np.where(np.isnan(values), -np.inf, np.abs(values)), axis=1)
+    magnitude = np.abs(values)
+    if np.isnan(np.add.reduce(magnitude, axis=None)):  # (a sum of magnitudes is NaN only
+        magnitude[np.isnan(magnitude)] = -np.inf       # where one of them is)
+    k = np.argmax(magnitude, axis=1)
     return np.take_along_axis(values, k[:, None], axis=1)[:, 0], k
 
 

@@ -150,7 +150,8 @@ def traced(topology: Topology, values: FloatArray, variant: int, crank: FloatArr
     point = mechanism.links[topology.coupler].points["P"]
     found = positions(mechanism, crank, [(topology.coupler, point)], repeat=count,
                       angles=False)
-    z = found.points[:, 0, 0] + 1j * found.points[:, 0, 1]
+    # the (x, y) pairs read as complex numbers where they lie: x + iy without a copy
+    z = np.ascontiguousarray(found.points[:, 0, :]).view(np.complex128)
     z = z.reshape(count, crank.size)
     closes = found.closes.reshape(count, crank.size).all(axis=1)
     with np.errstate(invalid="ignore"):
