@@ -26,9 +26,13 @@ FUNCTION_DIMS = ("a", "b", "c", "ex", "ey", "gx", "gy", "f", "g")
 POSE_TOLERANCE = 1e-9
 """[-] a pose counts as reached within this times the poses' size (and this in rad)"""
 STARTS = 6
-MAX_STEPS = 1000
-"""least-squares steps of a refinement at most"""
+POSE_STEPS = 600
+"""least-squares steps of a pose fit at most"""
+FIT_STAGES = ((60, STARTS), (1000, 2))
+"""(least-squares steps, starts): every start a few steps, then the best two on"""
 """candidates of the search refined by least squares"""
+EXACT = 1e-13
+"""[rad] a fit this close at every row ends the refinement of further starts"""
 LENGTHS = ("a", "b", "c", "d", "f", "g")
 """the dimensions that are lengths (positive)"""
 
@@ -184,17 +188,9 @@ def function(problem, progress=None):
         raise DyadeError(f"{problem.name}: none of the {evaluated:,} {topology.title} six-bars "
                          f"drawn closes over the table's crank range on one branch: widen "
                          f"the [bounds].")
-    fits = []
-    for start, variant in zip(values[:STARTS], variants[:STARTS]):
-        full = start.copy()
-        low = np.array([1e-6 * frame if names[k] in LENGTHS else -np.inf for k in index])
-
-        def unpack(x, full=full):
-            trial = full.copy()
-            trial[index] = x[:len(index)]
-            return trial
-
-        def residuals(xs, variant=int(variant)):  # (trials, unknowns) -> (trials, rows)
+    def problem_of(full, variant):
+        """(residual, its Jacobian, unpack) of a start's fit."""
+        def residuals(xs):  # (trials, unknowns) -> (trials, rows)
             trial = np.tile(full, (len(xs), 1))
             trial[:, index] = xs[:, :len(index)]
             psi = angle_of(trial, variant, where)
@@ -204,22 +200,42 @@ def function(problem, progress=None):
             lost = ~np.isfinite(psi[:, crank.size:])  # held on the branch over the range
             return np.concatenate([np.where(np.isfinite(miss), miss, 1.0), lost * 1.0], axis=1)
 
-        def residual(x, residuals=residuals):
-            return residuals(x[None, :])[0]
+        def unpack(x):
+            trial = full.copy()
+            trial[index] = x[:len(index)]
+            return trial
 
+        return (lambda x: residuals(x[None, :])[0]), jacobian(residuals), unpack
+
+    fits = []  # (largest miss, x, variant, converged, the start's dimensions)
+    for start, variant in zip(values[:STARTS], variants[:STARTS]):
         x0 = list(start[index])
         if free_zero:
             x0.append(float(np.angle(np.mean(np.exp(1j * misses(
                 angle_of(start, int(variant), crank)[0], 0.0))))))
-        x0 = np.clip(x0, np.append(low, [-np.inf] * free_zero) + 1e-12, np.inf)
-        solution = least_squares(residual, x0, jac=jacobian(residuals), method="lm",
-                                 xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=MAX_STEPS,
-                                 x_scale="jac")
-        fits.append((float(np.max(np.abs(residual(solution.x)))), unpack(solution.x),
-                     int(variant), float(solution.x[-1]) if free_zero else 0.0,
-                     solution.status > 0))
-    fits.sort(key=lambda f: f[0])
-    _, dims, variant, zero, converged = fits[0]
+        fits.append((math.inf, np.array(x0), int(variant), False, start))
+    for steps, going in FIT_STAGES:  # every start a few steps, the best ones on
+        for k, (_, x0, variant, _, start) in enumerate(fits[:going]):
+            residual, jac, unpack = problem_of(start, variant)
+            solution = least_squares(residual, x0, jac=jac, method="trf", xtol=1e-15,
+                                     ftol=1e-15, gtol=1e-15, max_nfev=steps)
+            bad = np.any(unpack(solution.x)[[names.index(n) for n in LENGTHS]] <= 0.0)
+            fits[k] = (math.inf if bad else float(np.max(np.abs(residual(solution.x)))),
+                       solution.x, variant, solution.status > 0 or bool(
+                           np.max(np.abs(residual(solution.x))) <= EXACT), start)
+            if fits[k][0] <= EXACT:
+                break
+        fits.sort(key=lambda f: f[0])
+        if fits[0][0] <= EXACT:
+            break
+    fits = [f for f in fits if np.isfinite(f[0])]
+    if not fits:
+        raise DyadeError(f"{problem.name}: every least-squares fit of the best {STARTS} "
+                         f"{topology.title} six-bars drove a length through zero: widen the "
+                         f"[bounds] or draw more candidates (search.candidates).")
+    _, x, variant, converged, start = fits[0]
+    dims = problem_of(start, variant)[2](x)
+    zero = float(x[-1]) if free_zero else 0.0
     sweep = (float(np.rad2deg(crank.min())), float(np.rad2deg(crank.max())))
     step = (sweep[1] - sweep[0]) / max(1, round(sweep[1] - sweep[0]))
     data = topology.data(dims, variant, speed_rpm=speed_rpm(problem), masses=problem.masses,
@@ -241,7 +257,7 @@ def function(problem, progress=None):
         made.error).any() else math.inf
     converged = converged and bool(np.isfinite(made.error).all())
     if not converged:
-        notes.append(f"the least squares stopped after {MAX_STEPS} steps, not converged to its "
+        notes.append(f"the least squares stopped after {FIT_STAGES[-1][0]} steps, not converged to its "
                      f"tolerance (1e-15): the structural error is that of where it stopped")
     design = Design(problem.name, data, error, converged, crank, made.traced, notes=notes)
     result = Result(problem, [design], evaluated, assembled)
@@ -335,7 +351,7 @@ def poses(problem, progress=None):
         lows = np.concatenate([low, [-np.inf] * (3 + n)])
         solution = least_squares(residual, np.maximum(x0, lows + 1e-12), method="trf",
                                  jac=jacobian(residuals), bounds=(lows, np.inf), xtol=1e-15,
-                                 ftol=1e-15, gtol=1e-15, max_nfev=MAX_STEPS)
+                                 ftol=1e-15, gtol=1e-15, max_nfev=POSE_STEPS)
         fits.append((float(np.max(np.abs(residual(solution.x)))), solution.x, variant))
         if fits[-1][0] < 1e-12:
             break
