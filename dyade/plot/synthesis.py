@@ -98,9 +98,11 @@ def figure(result, *, fig: Figure | None = None) -> Figure:
         if target.kind == "poses":
             z = target.poses[:, 0] + 1j * target.poses[:, 1]
             size = np.ptp(np.concatenate([z.real, z.imag])) or 1.0
-            for x, y, theta in target.poses:
-                left.annotate("", (x + 0.15 * size * np.cos(theta), y + 0.15 * size * np.sin(theta)),
-                              (x, y), arrowprops={"arrowstyle": "->", "color": "0.3"})
+            for x, y, theta in target.poses:  # each pose's angle, its tip within the limits
+                tip = (x + 0.15 * size * np.cos(theta), y + 0.15 * size * np.sin(theta))
+                left.annotate("", tip, (x, y), arrowprops={"arrowstyle": "->", "color": "0.3"},
+                              annotation_clip=False)
+                left.update_datalim([tip])
             left.plot(z.real, z.imag, "o", color="0.3", label="poses")
         elif target.points is not None:
             left.plot(target.points.real, target.points.imag, "o", ms=3, color="0.3",

@@ -8,7 +8,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dyade.errors import InputError
 from dyade.files.mechanism import read_mechanism
 from dyade.files.synthesis import parse
 from dyade.linkage.positions import positions
