@@ -382,6 +382,11 @@ def poses(problem, progress=None):
                          "another sequence over its turn)")
         if not converged:
             notes.append(f"the local fit stopped {miss:.3g} m from the poses: not reached")
+        opened = int(np.count_nonzero(~np.isfinite(between[:, 0])))
+        if opened:
+            notes.append(f"the six-bar does not close at {opened} of 361 crank angles over "
+                         f"its turn (its crank does not turn fully): sweep it between the "
+                         f"poses")
         design = Design(f"design {rank}", data, miss, converged, dense,
                         between[:, 0] + 1j * between[:, 1], notes=notes)
         designs.append(design)
