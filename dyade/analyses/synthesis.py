@@ -134,7 +134,8 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
         units = {name: "°" for name in columns}
         descriptions = {"crank_deg": "the table's crank angle φ",
                         "output_deg": "the target's output angle ψ",
-                        "traced_deg": "the output angle the four-bar gives (through dyade)",
+                        "traced_deg": "the output angle the mechanism gives (through dyade; "
+                                      "a six-bar's link 6)",
                         "error_deg": "the structural error ψ_traced − ψ_target"}
         offsets = getattr(result, "offsets", None)
         if offsets is not None:  # a motion profile: its own master beside the crank angle

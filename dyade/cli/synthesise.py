@@ -51,8 +51,10 @@ def synthesise(synthesis_file: Path, folder: Path | None, figure: Path | None, f
     table or of a motion profile), motion generation (three poses in closed form, four by
     the Burmester curves) or path generation (a closed coupler curve, a part of one
     without crank angles, or a straight-line or circular-arc stretch over a crank range)
-    with a four-bar or a slider-crank; paths and stretches also with the Watt I/II and
-    Stephenson I/III six-bars.
+    with a four-bar or a slider-crank; all of these also with the Watt I/II and
+    Stephenson I/III six-bars (topology = "stephenson-sixbar", ...): a function is link
+    6's angle (a table of at least nine rows), poses are link 5's (three to seven, [x,
+    y, angle]), both found by a search and least squares.
 
     A path search traces many candidates in blocks through dyade's positions-only stage
     (seeded: the same result on any -j or cluster), matches them by a start-point-free

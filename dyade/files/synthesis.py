@@ -22,6 +22,10 @@ TOPOLOGIES = {"fourbar": ("a", "b", "c", "d", "p", "q"),
               "watt-sixbar": SIXBAR, "stephenson-sixbar": SIXBAR, "watt1-sixbar": SIXBAR,
               "stephenson1-sixbar": SIXBAR}
 """topology -> its canonical dimensions (``dyade.synthesis.topology``)"""
+SIXBAR_FUNCTION = 9
+"""a six-bar's function unknowns: a, b, c, ex, ey, gx, gy, f, g (d is the frame)"""
+SIXBAR_POSES = 7
+"""the most poses a six-bar passes through: 3N equations for 15 + N unknowns"""
 TARGET_KEYS = {"kind", "points", "closed", "crank", "output", "method", "poses", "stretch",
                "moving", "profile", "range", "rows", "crank_zero", "output_zero", "radius"}
 SEARCH_KEYS = {"candidates", "block", "method", "seed", "positions", "rounds",
@@ -55,10 +59,6 @@ def parse(data: dict[str, Any], label: str = "synthesis", source: str | None = N
         raise reader.fail("topology", f"must be one of {', '.join(TOPOLOGIES)}, got "
                                       f"{topology!r}.{suggest(str(topology), TOPOLOGIES)}")
     target = _target(reader, reader.required(data, "target", ""), topology)
-    if topology.endswith("sixbar") and target.kind not in ("path", "line", "arc"):
-        raise reader.fail("topology", f"a six-bar is sized for paths (kind = \"path\", "
-                                      f"\"line\" or \"arc\"), not yet for a {target.kind} "
-                                      f"target: use topology = \"fourbar\".")
     names = TOPOLOGIES[topology]
     bounds = {}
     for key, value in reader.keys(data.get("bounds", {}), "bounds", set(names)).items():
@@ -146,13 +146,21 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
 
     crank = angles("crank")
     if kind == "function":
-        if topology not in ("fourbar", "slider-crank"):
-            raise reader.fail("topology", "function generation sizes a four-bar (the output "
-                                          "angle) or a slider-crank (the slider's position): "
-                                          "give topology = \"fourbar\" or \"slider-crank\".")
         slider = topology == "slider-crank"
+        six = topology.endswith("sixbar")
+        if six and table.get("method", "fit") != "fit":
+            raise reader.fail("target.method", "a six-bar's function has no closed form: it "
+                                               "is found by a search and least squares "
+                                               "(method = \"fit\", the default); remove the "
+                                               "key or use topology = \"fourbar\".")
         if "profile" in table:
-            return _profile_target(reader, table, crank, slider)
+            made = _profile_target(reader, table, crank, slider)
+            unknowns = SIXBAR_FUNCTION + (made.zeros[1] is None)
+            if six and made.rows < unknowns:
+                raise reader.fail("target.rows", f"a six-bar's function has {unknowns} "
+                                                 f"unknowns: give at least {unknowns} rows, "
+                                                 f"got {made.rows}.", made.rows)
+            return made
         if slider:
             values = table.get("output")
             if values is not None and not (isinstance(values, list) and values):
@@ -169,7 +177,13 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
         if crank.size != output.size:
             raise reader.fail("target.output", f"has {output.size} angles for {crank.size} "
                                                "crank angles.")
-        method = table.get("method", "precision" if crank.size == 3 else "chebyshev")
+        if six and crank.size < SIXBAR_FUNCTION:
+            raise reader.fail("target.crank", f"a six-bar's function has {SIXBAR_FUNCTION} "
+                                              f"unknowns (a, b, c, E, G, f, g; d is the "
+                                              f"frame): give at least {SIXBAR_FUNCTION} rows, "
+                                              f"got {crank.size}.")
+        method = table.get("method", "fit" if six else
+                           "precision" if crank.size == 3 else "chebyshev")
         if method not in METHODS:
             raise reader.fail("target.method", f"must be one of {', '.join(METHODS)}, got "
                                                f"{method!r}.")
@@ -183,6 +197,17 @@ def _target(reader: UnitReader, table: Any, topology: str) -> Target:
         poses = np.array([[reader.length_of(p[0], "target.poses"),
                            reader.length_of(p[1], "target.poses"),
                            reader.angle_of(p[2], "target.poses")] for p in raw])
+        if topology.endswith("sixbar"):
+            if not 3 <= len(poses) <= SIXBAR_POSES:
+                raise reader.fail("target.poses", f"a six-bar's link 5 passes through 3 to "
+                                                  f"{SIXBAR_POSES} poses (each adds three "
+                                                  f"equations and one crank angle to its 15 "
+                                                  f"free numbers), got {len(poses)}.")
+            if "moving" in table:
+                raise reader.fail("target.moving", "gives a four-bar's moving pivots: a "
+                                                   "six-bar's are found by the search; remove "
+                                                   "the key.")
+            return Target(kind, poses=poses)
         if len(poses) not in (3, 4, 5):
             raise reader.fail("target.poses", f"motion generation takes three poses (the "
                                               f"fixed pivots in closed form), four (the "

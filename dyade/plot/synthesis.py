@@ -75,9 +75,14 @@ def figure(result, *, fig: Figure | None = None) -> Figure:
                   label="target")
         from dyade.synthesis.function import traced
 
-        dense = np.linspace(made.crank[0], made.crank[-1], 241)
-        left.plot(np.rad2deg(dense), np.rad2deg(np.unwrap(traced(made.linkage, dense))), "-",
-                  color=colours[0], label="four-bar (dyade)")
+        if hasattr(made, "dense"):  # a six-bar: link 6's angle through dyade
+            dense, psi = made.dense
+            label = "six-bar, link 6 (dyade)"
+        else:
+            dense = np.linspace(made.crank[0], made.crank[-1], 241)
+            psi, label = traced(made.linkage, dense), "four-bar (dyade)"
+        left.plot(np.rad2deg(dense), np.rad2deg(np.unwrap(psi)), "-", color=colours[0],
+                  label=label)
         if made.precision.size:
             left.plot(np.rad2deg(made.precision), np.rad2deg(np.interp(
                 made.precision, made.crank, np.unwrap(made.target))), "s", mfc="none",
@@ -87,14 +92,17 @@ def figure(result, *, fig: Figure | None = None) -> Figure:
         twin.set_ylabel("structural error [°]", color=colours[1])
         left.set_xlabel("crank angle φ [°]")
         left.set_ylabel("output angle ψ [°]")
-        left.set_title("Function: target and four-bar")
+        left.set_title("Function: target and " + ("six-bar" if hasattr(made, "dense")
+                                                    else "four-bar"))
     else:
         if target.kind == "poses":
             z = target.poses[:, 0] + 1j * target.poses[:, 1]
             size = np.ptp(np.concatenate([z.real, z.imag])) or 1.0
-            for x, y, theta in target.poses:
-                left.annotate("", (x + 0.15 * size * np.cos(theta), y + 0.15 * size * np.sin(theta)),
-                              (x, y), arrowprops={"arrowstyle": "->", "color": "0.3"})
+            for x, y, theta in target.poses:  # each pose's angle, its tip within the limits
+                tip = (x + 0.15 * size * np.cos(theta), y + 0.15 * size * np.sin(theta))
+                left.annotate("", tip, (x, y), arrowprops={"arrowstyle": "->", "color": "0.3"},
+                              annotation_clip=False)
+                left.update_datalim([tip])
             left.plot(z.real, z.imag, "o", color="0.3", label="poses")
         elif target.points is not None:
             left.plot(target.points.real, target.points.imag, "o", ms=3, color="0.3",

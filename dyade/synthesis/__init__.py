@@ -71,7 +71,11 @@ def synthesise(problem: Synthesis, jobs: int = 1, executor=None, progress=None) 
     """
     started = time.perf_counter()
     kind = problem.target.kind
-    if kind == "function":
+    if kind in ("function", "poses") and problem.topology.endswith("sixbar"):
+        from dyade.synthesis import sixbar
+
+        result = (sixbar.function if kind == "function" else sixbar.poses)(problem, progress)
+    elif kind == "function":
         result = _function(problem)
     elif kind == "poses":
         from dyade.synthesis.motion import poses

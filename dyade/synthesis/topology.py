@@ -273,6 +273,13 @@ class SixBar(Topology):
         return four
 
     def path(self, values, variant, crank):
+        return self.joints(values, variant, crank)[3]
+
+    def joints(self, values, variant, crank):
+        """(E, F, G, P), each (candidates, positions) complex [m] in the canonical frame at
+        the crank angles ``crank`` [rad], in closed form (NaN where it does not close):
+        the second dyad's joints (E on link 5, F joining links 5 and 6, G on link 6) and
+        the coupler point P. Link 5's angle is that of F − E, link 6's that of F − G."""
         values = np.atleast_2d(values)
         a, b, c, d, ex, ey, gx, gy, f, g, p, q = (values[:, k, None] for k in range(12))
         first, second = self.dyad_variants(variant)
@@ -292,7 +299,8 @@ class SixBar(Topology):
         hx, hy = at(self.anchor, gx, gy)
         fx, fy = rrr(px, py, hx, hy, f, g, second)
         vx, vy = (fx - px) / f, (fy - py) / f
-        return (px + vx * p - vy * q) + 1j * (py + vy * p + vx * q)
+        return (px + 1j * py, fx + 1j * fy, hx + 1j * hy,
+                (px + vx * p - vy * q) + 1j * (py + vy * p + vx * q))
 
     def turns(self, values):
         return FourBar().turns(values[:, :4])
