@@ -421,7 +421,13 @@ class ResonanceCurve:
     """why a continuation stopped before the end of the range (worded), if one did"""
     start: FloatArray | None = None
     """(r, d) each row's state at u = 0 (δv [rad/s], twist [rad]; NaN where not
-    converged)"""
+    converged); at the motor's angle s = 0 where the row is ``in_time``"""
+    in_time: FloatArray | None = None
+    """(r,) bool: the solution was found in time (``engine.problem_in_time``): the crank
+    nearly stops or turns back for a moment, where its angle is no variable"""
+    slowest: FloatArray | None = None
+    """(r,) the crank's slowest speed over the cycle over Ω [-] (negative: it turns
+    back for a moment); NaN where not converged"""
 
     @property
     def unstable(self) -> FloatArray:
@@ -594,6 +600,7 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                    for branch in followed if branch.stopped and branch.parameter.size]
     if follow and speeds.size > 1:
         _fill(problem, p, speeds, records, found, n, tol, tick)
+        _fill_in_time(line, shaft, problem, p, speeds, records, found, n, tol, tick)
     rows = []  # (record, speed index)
     for j in range(speeds.size):
         rows += [(r, j) for r in found[j]] or [(j, j)]
@@ -605,7 +612,7 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     mult = np.array(records["mult"])[record]
     meshes = [records["mesh"][r] for r in record]
     values = _orbit_values(line, shaft, speeds[where], start, used, converged, meshes)
-    twist_amplitude, twist_max, peak, fluctuation, balance = values
+    twist_amplitude, twist_max, peak, fluctuation, balance, slowest = values
     bad = converged & ~(balance <= BALANCE_TOL)
     reason = [records["reason"][r] for r in record]
     for k in np.flatnonzero(bad):
@@ -630,7 +637,62 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                           reason, omega_bar,
                           resonances(mechanism, omega_bar, speeds.min(), speeds.max(),
                                      shaft=shaft), n, sorted(folds), branches, tol, stopped,
-                          np.where(converged[:, None], start, np.nan))
+                          np.where(converged[:, None], start, np.nan),
+                          np.array([isinstance(mesh, str) for mesh in meshes], dtype=bool),
+                          slowest * nan)
+
+
+IN_TIME = "time"
+"""a record's "mesh" where its solution is in time (``engine.problem_in_time``)"""
+
+
+def _fill_in_time(line, shaft, problem, p, speeds, records, found, steps, tol, tick) -> None:
+    """Speeds still without a converged solution, shot in time (``engine.
+    problem_in_time``: where the crank nearly stops or turns back for a moment the path u
+    is no variable), from a converged neighbour's solution (one in u carried to the
+    section s = 0 first), inwards from both sides of every gap, all fronts at once."""
+    from dyade.machine import periodic
+
+    in_time = engine.problem_in_time(line, shaft.tables_at, steps)
+    gap = {j for j in range(speeds.size) if not found[j]}  # a front may cross another's
+    scale = in_time.scale(p)
+    tried = set()
+    while True:
+        pairs = []  # (speed j, record of its neighbour)
+        for j in sorted(gap):
+            for k in (j - 1, j + 1):
+                if 0 <= k < speeds.size:
+                    pairs += [(j, r) for r in found[k] if (j, r) not in tried]
+        if not pairs:
+            return
+        tried.update(pairs)
+        js = np.array([j for j, _ in pairs])
+        x = np.empty((len(pairs), line.dimension))
+        for i, (_, r) in enumerate(pairs):
+            source = records["mesh"][r]
+            if isinstance(source, str):
+                x[i] = records["start"][r]
+                continue
+            p_from = p[int(np.argmin(np.abs(speeds - records["speed"][r])))][None, :]
+            n = int(records["steps"][r])
+            mesh = None if source is None else source[None, :]
+            path = periodic.trajectory(problem, n, np.asarray(records["start"][r])[None, :],
+                                       p_from, mesh=mesh)
+            nodes = (np.linspace(0.0, 2.0 * math.pi, n + 1) if source is None
+                     else source)[:, None]
+            x[i] = engine.section_in_time(path, nodes)[0]
+        shot = periodic.shoot(in_time, p[js], x, tol=tol, progress=tick)
+        for i, j in enumerate(js):
+            if not shot.converged[i] or any(  # the gap's speeds: every distinct solution
+                    np.max(np.abs(shot.start[i] - records["start"][r]) / scale[j]) <= 1e-3
+                    for r in found[j]):
+                continue
+            found[j].append(len(records["start"]))
+            for key, value in (("start", shot.start[i]), ("steps", shot.steps[i]),
+                               ("accuracy", shot.accuracy[i]), ("mult", shot.multipliers[i]),
+                               ("converged", True), ("reason", ""), ("speed", speeds[j]),
+                               ("mesh", IN_TIME)):
+                records[key].append(value)
 
 
 def _fill(problem, p, speeds, records, found, nodes, tol, tick) -> None:
@@ -655,6 +717,8 @@ def _fill(problem, p, speeds, records, found, nodes, tol, tick) -> None:
         groups: dict = {}
         for j, r in pairs:
             source = records["mesh"][r]
+            if isinstance(source, str):  # in time: for ``_fill_in_time``
+                continue
             key = ("mesh", source.size) if source is not None else ("steps",
                                                                      int(records["steps"][r]))
             groups.setdefault(key, []).append((j, r))
@@ -681,18 +745,22 @@ def _fill(problem, p, speeds, records, found, nodes, tol, tick) -> None:
 
 def _orbit_values(line, shaft, speed, start, steps, converged, meshes=None):
     """Twist amplitude and largest |twist| [rad], peak shaft torque [N·m], speed
-    fluctuation [-] and the energy balance [-] of each row's orbit (NaN where not
+    fluctuation [-], the energy balance [-] and the crank's slowest speed over Ω [-]
+    (negative: it turns back for a moment) of each row's orbit (NaN where not
     converged), one integration per step count (or per size of the rows' own
-    ``meshes``) (the scans' line: an ideal motor, one shaft)."""
+    ``meshes``, or in time where a row's mesh is ``IN_TIME``) (the scans' line: an
+    ideal motor, one shaft)."""
     from dyade.machine import periodic
 
     rows = speed.size
-    out = [np.full(rows, np.nan) for _ in range(5)]
+    out = [np.full(rows, np.nan) for _ in range(6)]
     meshes = meshes or [None] * rows
-    sizes = np.array([-1 if mesh is None else mesh.size for mesh in meshes])
+    sizes = np.array([-2 if isinstance(mesh, str) else -1 if mesh is None else mesh.size
+                      for mesh in meshes])
     for n, size in {(int(n), int(z)) for n, z, ok in zip(steps, sizes, converged) if ok}:
         idx = np.flatnonzero(converged & (steps == n) & (sizes == size))
-        problem = engine.problem(line, shaft.tables_at, int(n), works=True)
+        problem = (engine.problem_in_time if size == -2 else engine.problem)(
+            line, shaft.tables_at, int(n), works=True)
         p = engine.parameters(line, speed[idx])
         x0 = np.pad(start[idx], ((0, 0), (0, 3)))
         mesh = None if size < 0 else np.array([meshes[i] for i in idx])
@@ -707,6 +775,7 @@ def _orbit_values(line, shaft, speed, start, steps, converged, meshes=None):
         work = path[-1, :, 2:]  # motor, damping, loads (∫ s·M_L du: what they give) [J]
         out[4][idx] = (np.abs(work[:, 0] + work[:, 2] - work[:, 1])
                        / np.maximum(np.max(np.abs(work), axis=1), 1e-300))
+        out[5][idx] = crank.min(axis=0) / speed[idx]
     return out
 
 
