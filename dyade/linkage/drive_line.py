@@ -992,3 +992,116 @@ def forces(mechanism: Mechanism, state: SteadyState, **options):
                    crank_speed=sense * state.crank_speed[:-1],
                    crank_acceleration=sense * state.crank_acceleration[:-1],
                    constant_speed=True, **options)
+
+
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class PeriodTwo:
+    """The period-2 motions of the line (an ideal motor, one shaft) where the period-1
+    motion loses its stability by period doubling (a multiplier below −1): shot over
+    two revolutions in time (``engine.problem_in_time``)."""
+
+    speed: FloatArray
+    """(s,) Ω [rad/s]"""
+    eta: FloatArray
+    """(s,) Ω/ω̄ [-]"""
+    found: FloatArray
+    """(s,) bool: a period-2 orbit, periodic to the tolerance and distinct from the
+    period-1 orbit"""
+    start: FloatArray
+    """(s, d) its state at the motor's angle s = 0 (δv [rad/s], twist [rad]); NaN where
+    not found"""
+    multipliers: FloatArray
+    """(s, d) its Floquet multipliers over two revolutions, largest modulus first"""
+    single: FloatArray
+    """(s, d) the multipliers of the period-1 orbit it bifurcated from"""
+    reason: list
+    """(s,) why none was found ("" where one was)"""
+
+    @property
+    def stability(self) -> FloatArray:
+        """(s,) the largest |μ| over two revolutions (NaN where not found)."""
+        return np.where(self.found, np.abs(self.multipliers[:, 0]), np.nan)
+
+
+PERIOD_TWO_SEEDS = (0.05, -0.05, 0.3, -0.3, 1.0, -1.0)
+"""[-] the displacements from the period-1 orbit along the eigenvector of its multiplier
+below −1 (the largest component, of the state's scale) that seed the period-2 shooting"""
+
+
+def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
+               tolerance: float | None = None, shaft: CrankShaft | None = None) -> PeriodTwo:
+    """The period-2 motions at the ideal motor's speeds ``speeds_rpm`` [rpm]: where the
+    period-1 orbit (shot in time from the linear response) has a multiplier below −1,
+    shot over two revolutions from it displaced along that multiplier's eigenvector
+    (``PERIOD_TWO_SEEDS``, all speeds and seeds at once), the steps doubled by accuracy;
+    a solution that is the period-1 orbit again does not count.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        With a ``[drive_line]`` shaft.
+    speeds_rpm : array_like
+        Crank speeds [rpm], all of one sign, none zero.
+    steps : int, optional
+        RK4 steps per revolution to start with (default as for ``resonance_curve``).
+    tolerance : float, optional
+        The change with twice the steps that counts as converged [-].
+    shaft : CrankShaft, optional
+        The mechanism's crank shaft, when the caller has it.
+
+    Returns
+    -------
+    PeriodTwo
+    """
+    from dyade.machine import periodic
+
+    tol = periodic.ACCURACY if tolerance is None else float(tolerance)
+    speeds = _speeds(speeds_rpm)
+    shaft = shaft or crank_shaft(mechanism)
+    line = shaft.ideal_line
+    if line.elements != 1:
+        raise InputError.parameter("speeds_rpm", "period-2 motions are for a shaft, not a "
+                                                 "coupling.")
+    n, tables = (steps, shaft.tables_at(steps)) if steps else _steps(
+        shaft, line, float(speeds.min()))
+    problem = engine.problem_in_time(line, shaft.tables_at, n)
+    p = engine.parameters(line, speeds)
+    guess = engine.linear_guess(line, tables, engine.Lanes.of(line, speeds))
+    one = periodic.shoot(problem, p, guess, tol=tol)
+    d = line.dimension
+    found = np.zeros(speeds.size, dtype=bool)
+    start = np.full((speeds.size, d), np.nan)
+    mult = np.full((speeds.size, d), np.nan, dtype=complex)
+    reason = [""] * speeds.size
+    flip = np.zeros(speeds.size, dtype=bool)
+    vectors = np.zeros((speeds.size, d))
+    for j in range(speeds.size):
+        if not one.converged[j]:
+            reason[j] = f"no period-1 orbit to start from: {one.reason[j]}"
+            continue
+        values, vecs = np.linalg.eig(one.monodromy[j])
+        k = int(np.argmin(values.real))
+        if not (abs(values[k].imag) <= periodic.REAL * abs(values[k])
+                and values[k].real < -1.0 - periodic.UNSTABLE_MARGIN):
+            reason[j] = "the period-1 orbit has no multiplier below −1 (no period doubling)"
+            continue
+        flip[j] = True
+        vectors[j] = vecs[:, k].real / np.max(np.abs(vecs[:, k].real))
+    scale = problem.scale(p)
+    todo = np.flatnonzero(flip)
+    for amount in PERIOD_TWO_SEEDS:
+        todo = todo[~found[todo]]
+        if not todo.size:
+            break
+        seed = one.start[todo] + amount * vectors[todo] * scale[todo]
+        shot = periodic.shoot(problem, p[todo], seed, tol=tol, periods=2)
+        apart = np.max(np.abs(shot.start - one.start[todo]) / scale[todo], axis=1) > 1e-3
+        good = shot.converged & apart
+        found[todo[good]] = True
+        start[todo[good]] = shot.start[good]
+        mult[todo[good]] = shot.multipliers[good]
+    for j in np.flatnonzero(flip & ~found):
+        reason[j] = ("no period-2 orbit found beside the period-1 orbit (the shooting from "
+                     "its flip direction converged to nothing else)")
+    return PeriodTwo(speeds, speeds / shaft.frequency.omega_bar, found, start, mult,
+                     one.multipliers, reason)

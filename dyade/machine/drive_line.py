@@ -845,11 +845,9 @@ def problem_in_time(line: Line, tables_at: Callable[[int], Tables], steps: int,
     weights = np.zeros((orders.size, 3), dtype=complex)
     for column, table in enumerate(series):
         weights[np.searchsorted(orders, table.orders), column] = table.coefficients
-    cos_w, sin_w = weights.real, -weights.imag
-
     def field_at(s: FloatArray, x: FloatArray, p: FloatArray) -> FloatArray:
-        angle = np.multiply.outer(np.broadcast_to(s, x.shape[:1]) - x[:, 1], orders)
-        inertia, slope, drive = (np.cos(angle) @ cos_w + np.sin(angle) @ sin_w).T
+        turn = np.exp(1j * np.multiply.outer(s - x[:, 1], orders))
+        inertia, slope, drive = (turn @ weights).real.T
         omega = p[:, 0]
         dv = x[:, 0]
         v = omega + dv
@@ -867,7 +865,7 @@ def problem_in_time(line: Line, tables_at: Callable[[int], Tables], steps: int,
         h = math.pi / n
 
         def f(k: int, x: FloatArray, p: FloatArray) -> FloatArray:
-            return field_at(np.full(x.shape[0], k * h), x, p)
+            return field_at(k * h, x, p)
         return f
 
     def scale(p: FloatArray) -> FloatArray:

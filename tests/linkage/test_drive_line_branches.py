@@ -283,3 +283,43 @@ def test_where_the_crank_turns_back_the_line_is_solved_in_time():
     runs = independent_in_time(shaft, speed, start + 1e-3 * scale, periods=30, every=True)
     distance = np.max(np.abs(runs - start) / scale, axis=1)
     assert (distance[-1] / distance[9]) ** (1.0 / 20.0) == pytest.approx(mu, rel=0.02)
+
+
+@pytest.mark.slow
+def test_the_period_two_motion_where_the_period_one_orbit_flips():
+    """J_c = 0.01, d = 0.7526, η = 0.8 (the flip region η ≈ 0.67–0.92): the only period-1
+    orbit is unstable, a multiplier below −1. ``period_two`` finds the period-2 orbit
+    from it; scipy's DOP853 started on the unstable period-1 orbit (displaced by 1e-2 of
+    the scale) leaves it and settles on that period-2 motion, and the period-2
+    multipliers by central differences of DOP853 runs over two revolutions agree."""
+    from dyade.linkage import drive_line as api
+
+    shaft = slider(0.01, 0.7526)
+    speed = 0.8 * shaft.frequency.omega_bar
+    two = api.period_two(shaft.mechanism, [speed * 30.0 / math.pi], shaft=shaft)
+    assert two.found[0], two.reason
+    assert np.real(two.single[0, 0]) < -1.0  # the period-1 orbit flips
+    mu = float(two.stability[0])
+    assert mu < 1.0  # the period-2 motion is stable
+    start = two.start[0]
+    problem = engine.problem_in_time(shaft.ideal_line, shaft.tables_at, 720)
+    scale = problem.scale(engine.parameters(shaft.ideal_line, [speed]))[0]
+    after_one = independent_in_time(shaft, speed, start)
+    assert np.all(np.abs(independent_in_time(shaft, speed, after_one) - start) <= 1e-6 * scale)
+    assert np.max(np.abs(after_one - start) / scale) > 1e-2  # not the period-1 orbit
+    delta = scale * 1e-4
+    columns = [(independent_in_time(shaft, speed, start + delta[i] * np.eye(2)[i], 2)
+                - independent_in_time(shaft, speed, start - delta[i] * np.eye(2)[i], 2))
+               / (2 * delta[i]) for i in range(2)]
+    assert np.max(np.abs(np.linalg.eigvals(np.column_stack(columns)))) == pytest.approx(
+        mu, abs=1e-5)
+    # the unstable period-1 orbit: from the linear response, in time
+    line = shaft.ideal_line
+    p = engine.parameters(line, [speed])
+    guess = engine.linear_guess(line, shaft.tables_at(720), engine.Lanes.of(line, p[:, 0]))
+    single = periodic.shoot(problem, p, guess).start[0]
+    runs = independent_in_time(shaft, speed, single + 1e-2 * scale, periods=100, every=True)
+    settled = runs[-2:]  # the last two revolutions: the two points of the period-2 motion
+    miss = min(np.max(np.abs(settled[0] - a) / scale) + np.max(np.abs(settled[1] - b) / scale)
+               for a, b in ((start, after_one), (after_one, start)))
+    assert miss < 1e-4
