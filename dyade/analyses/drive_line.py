@@ -462,7 +462,8 @@ def curve(name: str):
                 f"at {len(alone)} speeds ({number_range(alone)} rpm) every periodic solution "
                 f"found is unstable: the machine does not settle on it (a perturbation grows "
                 f"as |μ| per revolution); a period-2 or quasi-periodic motion, or a jump to "
-                f"another branch, follows — not computed here (integrate in time to see it).")
+                f"another branch, follows (a flip region's period-2 motion: the API's "
+                f"dyade.linkage.drive_line.period_two).")
         set_columns(outcome, {"speed_rpm": speed, "eta": found.eta,
                               "solution": found.solution,
                               "peak_torque": found.peak_torque,
