@@ -191,7 +191,7 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
         reached = _reached(shaft, speed, n)
         if reached is None:
             raise
-        n, solution = reached
+        n, solution, before = reached
         tables = shaft.tables_at(n)
         orbit = engine.integrate(line, tables, lanes, solution.start)
         passes = {"reached_from_rpm": REACH * speed * RAD_PER_S_TO_RPM}
@@ -199,8 +199,11 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
     out.figures.update(passes)
     if accuracy:
         coarse_tables = shaft.tables_at(max(n // 2, 36))
-        coarse, _, _ = _with_friction(shaft, coarse_tables, lanes, strict=False,
-                                      progress=progress)
+        if "reached_from_rpm" in passes:  # the solution at half the steps: _reached's last
+            coarse = before
+        else:
+            coarse, _, _ = _with_friction(shaft, coarse_tables, lanes, strict=False,
+                                          progress=progress)
         if coarse.converged[0]:
             coarse_orbit = engine.integrate(line, coarse_tables, lanes, coarse.start)
             fine = orbit.torque[::2, 0, -1] if n % 2 == 0 else None
@@ -216,13 +219,13 @@ REACH_SPEEDS = 11  # [-] of its speed in this many speeds (``resonance_curve``)
 
 
 def _reached(shaft: CrankShaft, speed: float, steps: int
-             ) -> tuple[int, engine.Periodic] | None:
+             ) -> tuple[int, engine.Periodic, engine.Periodic] | None:
     """The steady state at ``speed`` [rad/s] where the shooting from the linear response
     misses it (a crank that nearly stops in a resonance): the branch followed up from
     ``REACH``·speed (``resonance_curve``: continuation, meshes where the crank is slow),
     its stable solution at the speed (the smallest |μ| where several coexist) shot again
     on a uniform grid, the steps doubled until its multipliers change by less than
-    ``periodic.ACCURACY``: (steps, solution), or None."""
+    ``periodic.ACCURACY``: (steps, solution, the solution on half the steps), or None."""
     from dyade.machine import periodic
 
     line = shaft.line
@@ -240,7 +243,7 @@ def _reached(shaft: CrankShaft, speed: float, steps: int
         if solution.converged[0]:
             if (before is not None and periodic.multiplier_change(
                     solution.multipliers, before.multipliers)[0] <= periodic.ACCURACY):
-                return n, solution
+                return n, solution, before
             start, before = solution.start, solution
         n *= 2
     return None
