@@ -280,6 +280,15 @@ def test_where_the_crank_turns_back_the_line_is_solved_in_time():
     assert np.max(np.abs(np.linalg.eigvals(np.column_stack(columns)))) == pytest.approx(
         mu, abs=1e-5)
     assert mu < 1.0
+    # Liouville: det M = exp(∮ trace) = exp(−b·∫ dt/J(φ)) (J′·φ̇/J integrates to zero over
+    # the period), the integral by DOP853 along the orbit: a closed form of μ1·μ2
+    integrate = pytest.importorskip("scipy.integrate")
+    inertia = engine.Periodic1D(shaft.tables_at(720).inertia[0::2])
+    twist = engine.Periodic1D(path[:-1, 0, 1])  # the orbit's twist as its Fourier series
+    dwell = integrate.quad(lambda s: 1.0 / (inertia(s - twist(s)) * speed), 0.0, 2 * math.pi,
+                           limit=400, epsabs=1e-13, epsrel=1e-12)[0]
+    assert np.prod(found.multipliers[1]).real == pytest.approx(
+        math.exp(-line.damping[0] * dwell), rel=1e-7)
     runs = independent_in_time(shaft, speed, start + 1e-3 * scale, periods=30, every=True)
     distance = np.max(np.abs(runs - start) / scale, axis=1)
     assert (distance[-1] / distance[9]) ** (1.0 / 20.0) == pytest.approx(mu, rel=0.02)
