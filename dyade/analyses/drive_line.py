@@ -107,6 +107,10 @@ COLUMNS = {
                       "steps"),
     "balance": ("-", "energy balance over the period: |motor − loads − friction − damping| "
                      "of the largest work"),
+    "slowest": ("-", "the crank's slowest speed over the cycle over Ω (negative: it turns "
+                     "back for a moment)"),
+    "in_time": ("1/0", "solved in time, not in crank angle (the crank nearly stops or turns "
+                       "back; its angle is then no variable): steps per motor revolution"),
     "stiffness": ("N·m/rad", "the shaft's torsional stiffness"),
     "damping": ("N·m·s/rad", "the shaft's damping"),
     "time": ("s", "time from rest"),
@@ -434,6 +438,13 @@ def curve(name: str):
             outcome.notes.append(f"the branch was not followed over the whole range ({words}): "
                                  f"further solutions beyond may be missed.")
         speed = rpm(found.speed)
+        if found.in_time.any():
+            back = found.in_time & (np.nan_to_num(found.slowest, nan=1.0) < 0.0)
+            outcome.notes.append(
+                f"at {int(found.in_time.sum())} solutions ({number_range(speed[found.in_time])}"
+                f" rpm) the crank nearly stops or turns back for a moment (at {int(back.sum())}; "
+                f"slowest {np.nanmin(found.slowest[found.in_time]):.3g} of Ω): solved in time, "
+                f"not in crank angle (column in_time).")
         several = np.unique(speed[found.solution > 1])
         if several.size:
             stable_many = [s for s in several
@@ -451,7 +462,8 @@ def curve(name: str):
                 f"at {len(alone)} speeds ({number_range(alone)} rpm) every periodic solution "
                 f"found is unstable: the machine does not settle on it (a perturbation grows "
                 f"as |μ| per revolution); a period-2 or quasi-periodic motion, or a jump to "
-                f"another branch, follows — not computed here (integrate in time to see it).")
+                f"another branch, follows (a flip region's period-2 motion: the API's "
+                f"dyade.linkage.drive_line.period_two).")
         set_columns(outcome, {"speed_rpm": speed, "eta": found.eta,
                               "solution": found.solution,
                               "peak_torque": found.peak_torque,
@@ -463,7 +475,8 @@ def curve(name: str):
                               "instability": np.array(found.kind, dtype=object),
                               "converged": found.converged,
                               "steps": found.steps_used, "accuracy": found.accuracy,
-                              "balance": found.balance})
+                              "balance": found.balance, "slowest": found.slowest,
+                              "in_time": found.in_time})
         add = outcome.add
         for k, at, kind in found.resonances:
             add(f"{kind}_k{k}_rpm", rpm(at), "rpm", {"eta": at / found.omega_bar},

@@ -191,7 +191,7 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
         reached = _reached(shaft, speed, n)
         if reached is None:
             raise
-        n, solution = reached
+        n, solution, before = reached
         tables = shaft.tables_at(n)
         orbit = engine.integrate(line, tables, lanes, solution.start)
         passes = {"reached_from_rpm": REACH * speed * RAD_PER_S_TO_RPM}
@@ -199,8 +199,11 @@ def steady_state(mechanism: Mechanism, *, speed_rpm: float | None = None,
     out.figures.update(passes)
     if accuracy:
         coarse_tables = shaft.tables_at(max(n // 2, 36))
-        coarse, _, _ = _with_friction(shaft, coarse_tables, lanes, strict=False,
-                                      progress=progress)
+        if "reached_from_rpm" in passes:  # the solution at half the steps: _reached's last
+            coarse = before
+        else:
+            coarse, _, _ = _with_friction(shaft, coarse_tables, lanes, strict=False,
+                                          progress=progress)
         if coarse.converged[0]:
             coarse_orbit = engine.integrate(line, coarse_tables, lanes, coarse.start)
             fine = orbit.torque[::2, 0, -1] if n % 2 == 0 else None
@@ -216,13 +219,13 @@ REACH_SPEEDS = 11  # [-] of its speed in this many speeds (``resonance_curve``)
 
 
 def _reached(shaft: CrankShaft, speed: float, steps: int
-             ) -> tuple[int, engine.Periodic] | None:
+             ) -> tuple[int, engine.Periodic, engine.Periodic] | None:
     """The steady state at ``speed`` [rad/s] where the shooting from the linear response
     misses it (a crank that nearly stops in a resonance): the branch followed up from
     ``REACH``·speed (``resonance_curve``: continuation, meshes where the crank is slow),
     its stable solution at the speed (the smallest |μ| where several coexist) shot again
     on a uniform grid, the steps doubled until its multipliers change by less than
-    ``periodic.ACCURACY``: (steps, solution), or None."""
+    ``periodic.ACCURACY``: (steps, solution, the solution on half the steps), or None."""
     from dyade.machine import periodic
 
     line = shaft.line
@@ -240,7 +243,7 @@ def _reached(shaft: CrankShaft, speed: float, steps: int
         if solution.converged[0]:
             if (before is not None and periodic.multiplier_change(
                     solution.multipliers, before.multipliers)[0] <= periodic.ACCURACY):
-                return n, solution
+                return n, solution, before
             start, before = solution.start, solution
         n *= 2
     return None
@@ -421,7 +424,13 @@ class ResonanceCurve:
     """why a continuation stopped before the end of the range (worded), if one did"""
     start: FloatArray | None = None
     """(r, d) each row's state at u = 0 (δv [rad/s], twist [rad]; NaN where not
-    converged)"""
+    converged); at the motor's angle s = 0 where the row is ``in_time``"""
+    in_time: FloatArray | None = None
+    """(r,) bool: the solution was found in time (``engine.problem_in_time``): the crank
+    nearly stops or turns back for a moment, where its angle is no variable"""
+    slowest: FloatArray | None = None
+    """(r,) the crank's slowest speed over the cycle over Ω [-] (negative: it turns
+    back for a moment); NaN where not converged"""
 
     @property
     def unstable(self) -> FloatArray:
@@ -594,6 +603,7 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                    for branch in followed if branch.stopped and branch.parameter.size]
     if follow and speeds.size > 1:
         _fill(problem, p, speeds, records, found, n, tol, tick)
+        _fill_in_time(line, shaft, problem, p, speeds, records, found, n, tol, tick)
     rows = []  # (record, speed index)
     for j in range(speeds.size):
         rows += [(r, j) for r in found[j]] or [(j, j)]
@@ -605,7 +615,7 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     mult = np.array(records["mult"])[record]
     meshes = [records["mesh"][r] for r in record]
     values = _orbit_values(line, shaft, speeds[where], start, used, converged, meshes)
-    twist_amplitude, twist_max, peak, fluctuation, balance = values
+    twist_amplitude, twist_max, peak, fluctuation, balance, slowest = values
     bad = converged & ~(balance <= BALANCE_TOL)
     reason = [records["reason"][r] for r in record]
     for k in np.flatnonzero(bad):
@@ -630,7 +640,62 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
                           reason, omega_bar,
                           resonances(mechanism, omega_bar, speeds.min(), speeds.max(),
                                      shaft=shaft), n, sorted(folds), branches, tol, stopped,
-                          np.where(converged[:, None], start, np.nan))
+                          np.where(converged[:, None], start, np.nan),
+                          np.array([isinstance(mesh, str) for mesh in meshes], dtype=bool),
+                          slowest * nan)
+
+
+IN_TIME = "time"
+"""a record's "mesh" where its solution is in time (``engine.problem_in_time``)"""
+
+
+def _fill_in_time(line, shaft, problem, p, speeds, records, found, steps, tol, tick) -> None:
+    """Speeds still without a converged solution, shot in time (``engine.
+    problem_in_time``: where the crank nearly stops or turns back for a moment the path u
+    is no variable), from a converged neighbour's solution (one in u carried to the
+    section s = 0 first), inwards from both sides of every gap, all fronts at once."""
+    from dyade.machine import periodic
+
+    in_time = engine.problem_in_time(line, shaft.tables_at, steps)
+    gap = {j for j in range(speeds.size) if not found[j]}  # a front may cross another's
+    scale = in_time.scale(p)
+    tried = set()
+    while True:
+        pairs = []  # (speed j, record of its neighbour)
+        for j in sorted(gap):
+            for k in (j - 1, j + 1):
+                if 0 <= k < speeds.size:
+                    pairs += [(j, r) for r in found[k] if (j, r) not in tried]
+        if not pairs:
+            return
+        tried.update(pairs)
+        js = np.array([j for j, _ in pairs])
+        x = np.empty((len(pairs), line.dimension))
+        for i, (_, r) in enumerate(pairs):
+            source = records["mesh"][r]
+            if isinstance(source, str):
+                x[i] = records["start"][r]
+                continue
+            p_from = p[int(np.argmin(np.abs(speeds - records["speed"][r])))][None, :]
+            n = int(records["steps"][r])
+            mesh = None if source is None else source[None, :]
+            path = periodic.trajectory(problem, n, np.asarray(records["start"][r])[None, :],
+                                       p_from, mesh=mesh)
+            nodes = (np.linspace(0.0, 2.0 * math.pi, n + 1) if source is None
+                     else source)[:, None]
+            x[i] = engine.section_in_time(path, nodes)[0]
+        shot = periodic.shoot(in_time, p[js], x, tol=tol, progress=tick)
+        for i, j in enumerate(js):
+            if not shot.converged[i] or any(  # the gap's speeds: every distinct solution
+                    np.max(np.abs(shot.start[i] - records["start"][r]) / scale[j]) <= 1e-3
+                    for r in found[j]):
+                continue
+            found[j].append(len(records["start"]))
+            for key, value in (("start", shot.start[i]), ("steps", shot.steps[i]),
+                               ("accuracy", shot.accuracy[i]), ("mult", shot.multipliers[i]),
+                               ("converged", True), ("reason", ""), ("speed", speeds[j]),
+                               ("mesh", IN_TIME)):
+                records[key].append(value)
 
 
 def _fill(problem, p, speeds, records, found, nodes, tol, tick) -> None:
@@ -655,6 +720,8 @@ def _fill(problem, p, speeds, records, found, nodes, tol, tick) -> None:
         groups: dict = {}
         for j, r in pairs:
             source = records["mesh"][r]
+            if isinstance(source, str):  # in time: for ``_fill_in_time``
+                continue
             key = ("mesh", source.size) if source is not None else ("steps",
                                                                      int(records["steps"][r]))
             groups.setdefault(key, []).append((j, r))
@@ -681,18 +748,22 @@ def _fill(problem, p, speeds, records, found, nodes, tol, tick) -> None:
 
 def _orbit_values(line, shaft, speed, start, steps, converged, meshes=None):
     """Twist amplitude and largest |twist| [rad], peak shaft torque [N·m], speed
-    fluctuation [-] and the energy balance [-] of each row's orbit (NaN where not
+    fluctuation [-], the energy balance [-] and the crank's slowest speed over Ω [-]
+    (negative: it turns back for a moment) of each row's orbit (NaN where not
     converged), one integration per step count (or per size of the rows' own
-    ``meshes``) (the scans' line: an ideal motor, one shaft)."""
+    ``meshes``, or in time where a row's mesh is ``IN_TIME``) (the scans' line: an
+    ideal motor, one shaft)."""
     from dyade.machine import periodic
 
     rows = speed.size
-    out = [np.full(rows, np.nan) for _ in range(5)]
+    out = [np.full(rows, np.nan) for _ in range(6)]
     meshes = meshes or [None] * rows
-    sizes = np.array([-1 if mesh is None else mesh.size for mesh in meshes])
+    sizes = np.array([-2 if isinstance(mesh, str) else -1 if mesh is None else mesh.size
+                      for mesh in meshes])
     for n, size in {(int(n), int(z)) for n, z, ok in zip(steps, sizes, converged) if ok}:
         idx = np.flatnonzero(converged & (steps == n) & (sizes == size))
-        problem = engine.problem(line, shaft.tables_at, int(n), works=True)
+        problem = (engine.problem_in_time if size == -2 else engine.problem)(
+            line, shaft.tables_at, int(n), works=True)
         p = engine.parameters(line, speed[idx])
         x0 = np.pad(start[idx], ((0, 0), (0, 3)))
         mesh = None if size < 0 else np.array([meshes[i] for i in idx])
@@ -707,6 +778,7 @@ def _orbit_values(line, shaft, speed, start, steps, converged, meshes=None):
         work = path[-1, :, 2:]  # motor, damping, loads (∫ s·M_L du: what they give) [J]
         out[4][idx] = (np.abs(work[:, 0] + work[:, 2] - work[:, 1])
                        / np.maximum(np.max(np.abs(work), axis=1), 1e-300))
+        out[5][idx] = crank.min(axis=0) / speed[idx]
     return out
 
 
@@ -923,3 +995,116 @@ def forces(mechanism: Mechanism, state: SteadyState, **options):
                    crank_speed=sense * state.crank_speed[:-1],
                    crank_acceleration=sense * state.crank_acceleration[:-1],
                    constant_speed=True, **options)
+
+
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class PeriodTwo:
+    """The period-2 motions of the line (an ideal motor, one shaft) where the period-1
+    motion loses its stability by period doubling (a multiplier below −1): shot over
+    two revolutions in time (``engine.problem_in_time``)."""
+
+    speed: FloatArray
+    """(s,) Ω [rad/s]"""
+    eta: FloatArray
+    """(s,) Ω/ω̄ [-]"""
+    found: FloatArray
+    """(s,) bool: a period-2 orbit, periodic to the tolerance and distinct from the
+    period-1 orbit"""
+    start: FloatArray
+    """(s, d) its state at the motor's angle s = 0 (δv [rad/s], twist [rad]); NaN where
+    not found"""
+    multipliers: FloatArray
+    """(s, d) its Floquet multipliers over two revolutions, largest modulus first"""
+    single: FloatArray
+    """(s, d) the multipliers of the period-1 orbit it bifurcated from"""
+    reason: list
+    """(s,) why none was found ("" where one was)"""
+
+    @property
+    def stability(self) -> FloatArray:
+        """(s,) the largest |μ| over two revolutions (NaN where not found)."""
+        return np.where(self.found, np.abs(self.multipliers[:, 0]), np.nan)
+
+
+PERIOD_TWO_SEEDS = (0.05, -0.05, 0.3, -0.3, 1.0, -1.0)
+"""[-] the displacements from the period-1 orbit along the eigenvector of its multiplier
+below −1 (the largest component, of the state's scale) that seed the period-2 shooting"""
+
+
+def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
+               tolerance: float | None = None, shaft: CrankShaft | None = None) -> PeriodTwo:
+    """The period-2 motions at the ideal motor's speeds ``speeds_rpm`` [rpm]: where the
+    period-1 orbit (shot in time from the linear response) has a multiplier below −1,
+    shot over two revolutions from it displaced along that multiplier's eigenvector
+    (``PERIOD_TWO_SEEDS``, all speeds and seeds at once), the steps doubled by accuracy;
+    a solution that is the period-1 orbit again does not count.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        With a ``[drive_line]`` shaft.
+    speeds_rpm : array_like
+        Crank speeds [rpm], all of one sign, none zero.
+    steps : int, optional
+        RK4 steps per revolution to start with (default as for ``resonance_curve``).
+    tolerance : float, optional
+        The change with twice the steps that counts as converged [-].
+    shaft : CrankShaft, optional
+        The mechanism's crank shaft, when the caller has it.
+
+    Returns
+    -------
+    PeriodTwo
+    """
+    from dyade.machine import periodic
+
+    tol = periodic.ACCURACY if tolerance is None else float(tolerance)
+    speeds = _speeds(speeds_rpm)
+    shaft = shaft or crank_shaft(mechanism)
+    line = shaft.ideal_line
+    if line.elements != 1:
+        raise InputError.parameter("speeds_rpm", "period-2 motions are for a shaft, not a "
+                                                 "coupling.")
+    n, tables = (steps, shaft.tables_at(steps)) if steps else _steps(
+        shaft, line, float(speeds.min()))
+    problem = engine.problem_in_time(line, shaft.tables_at, n)
+    p = engine.parameters(line, speeds)
+    guess = engine.linear_guess(line, tables, engine.Lanes.of(line, speeds))
+    one = periodic.shoot(problem, p, guess, tol=tol)
+    d = line.dimension
+    found = np.zeros(speeds.size, dtype=bool)
+    start = np.full((speeds.size, d), np.nan)
+    mult = np.full((speeds.size, d), np.nan, dtype=complex)
+    reason = [""] * speeds.size
+    flip = np.zeros(speeds.size, dtype=bool)
+    vectors = np.zeros((speeds.size, d))
+    for j in range(speeds.size):
+        if not one.converged[j]:
+            reason[j] = f"no period-1 orbit to start from: {one.reason[j]}"
+            continue
+        values, vecs = np.linalg.eig(one.monodromy[j])
+        k = int(np.argmin(values.real))
+        if not (abs(values[k].imag) <= periodic.REAL * abs(values[k])
+                and values[k].real < -1.0 - periodic.UNSTABLE_MARGIN):
+            reason[j] = "the period-1 orbit has no multiplier below −1 (no period doubling)"
+            continue
+        flip[j] = True
+        vectors[j] = vecs[:, k].real / np.max(np.abs(vecs[:, k].real))
+    scale = problem.scale(p)
+    todo = np.flatnonzero(flip)
+    for amount in PERIOD_TWO_SEEDS:
+        todo = todo[~found[todo]]
+        if not todo.size:
+            break
+        seed = one.start[todo] + amount * vectors[todo] * scale[todo]
+        shot = periodic.shoot(problem, p[todo], seed, tol=tol, periods=2)
+        apart = np.max(np.abs(shot.start - one.start[todo]) / scale[todo], axis=1) > 1e-3
+        good = shot.converged & apart
+        found[todo[good]] = True
+        start[todo[good]] = shot.start[good]
+        mult[todo[good]] = shot.multipliers[good]
+    for j in np.flatnonzero(flip & ~found):
+        reason[j] = ("no period-2 orbit found beside the period-1 orbit (the shooting from "
+                     "its flip direction converged to nothing else)")
+    return PeriodTwo(speeds, speeds / shaft.frequency.omega_bar, found, start, mult,
+                     one.multipliers, reason)

@@ -821,3 +821,73 @@ def problem(line: Line, tables_at: Callable[[int], Tables], steps: int, works: b
 
 
 SPAN = 0.1  # [-] a branch's step is measured against this share of Ω and of a radian
+
+
+def problem_in_time(line: Line, tables_at: Callable[[int], Tables], steps: int,
+                    works: bool = False):
+    """The scans' line (an ideal motor, one shaft) as a ``periodic.Problem`` in time:
+    the independent variable s = Ω·t, the motor's angle (period 2π), the state the
+    same (δv [rad/s], the twist [rad]) and the crank at φ = s − twist, the crank
+    shaft's tables as Fourier series at φ. Where the crank nearly stops (or turns back
+    for a moment) its path u is a poor variable (``problem``: the steps in u are long
+    steps in time); in time the steps stay as fine as the vibration asks. The periodic
+    solution's section is s = 0 (not u = 0); its Floquet multipliers are the same (the
+    two period maps are conjugate). With ``works`` the state carries the three works
+    of ``problem`` (motor, damping, loads' ∫ M_L dφ) [J]."""
+    if not (line.ideal and line.elements == 1):
+        raise ValueError("the line in time is the scans' line: an ideal motor, one shaft")
+    from dyade.machine.periodic import Problem
+
+    coarse = tables_at(steps)
+    series = [Periodic1D(values[0::2]) for values in (coarse.inertia, coarse.slope,
+                                                       coarse.load - coarse.friction)]
+    orders = np.unique(np.concatenate([table.orders for table in series]))
+    weights = np.zeros((orders.size, 3), dtype=complex)
+    for column, table in enumerate(series):
+        weights[np.searchsorted(orders, table.orders), column] = table.coefficients
+    def field_at(s: FloatArray, x: FloatArray, p: FloatArray) -> FloatArray:
+        turn = np.exp(1j * np.multiply.outer(s - x[:, 1], orders))
+        inertia, slope, drive = (turn @ weights).real.T
+        omega = p[:, 0]
+        dv = x[:, 0]
+        v = omega + dv
+        torque = p[:, 1] * x[:, 1] - p[:, 2] * dv
+        out = np.empty_like(x)
+        out[:, 0] = (torque + drive - 0.5 * slope * v * v) / (inertia * omega)
+        out[:, 1] = -dv / omega
+        if works:
+            out[:, 2] = torque
+            out[:, 3] = p[:, 2] * dv * dv / omega
+            out[:, 4] = drive * v / omega
+        return out
+
+    def field(n: int):
+        h = math.pi / n
+
+        def f(k: int, x: FloatArray, p: FloatArray) -> FloatArray:
+            return field_at(k * h, x, p)
+        return f
+
+    def scale(p: FloatArray) -> FloatArray:
+        return scales(line, coarse, lanes_of(line, p))
+
+    if works:
+        def wide(p: FloatArray) -> FloatArray:
+            return np.pad(scale(p), ((0, 0), (0, 3)), constant_values=1.0)
+        return Problem(line.dimension + 3, field, wide, 2.0 * math.pi, steps, field_at=field_at)
+    return Problem(line.dimension, field, scale, 2.0 * math.pi, steps, field_at=field_at)
+
+
+def section_in_time(path: FloatArray, nodes: FloatArray) -> FloatArray:
+    """The states (L, d) where each lane's orbit in u (``path`` (K + 1, L, d) at the
+    nodes ``nodes`` (K + 1, L) of one revolution, the twist second) passes the motor's
+    angle s = u + twist ≡ 0 (mod 2π): the section of ``problem_in_time``, by linear
+    interpolation between the nodes."""
+    s = nodes + path[:, :, 1]
+    target = np.where(s[0] > 0.0, 2.0 * math.pi, 0.0)  # s rises by 2π over the revolution
+    past = s >= target[None, :]
+    i = np.clip(np.argmax(past, axis=0) - 1, 0, s.shape[0] - 2)
+    lanes = np.arange(s.shape[1])
+    s0, s1 = s[i, lanes], s[i + 1, lanes]
+    frac = np.clip((target - s0) / np.where(s1 > s0, s1 - s0, 1.0), 0.0, 1.0)
+    return path[i, lanes] + frac[:, None] * (path[i + 1, lanes] - path[i, lanes])

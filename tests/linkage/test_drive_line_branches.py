@@ -214,3 +214,121 @@ def test_a_near_stop_speed_on_a_mesh_of_its_own_against_an_independent_integrati
                for i in range(2)]
     seen = np.max(np.abs(np.linalg.eigvals(np.column_stack(columns))))
     assert seen == pytest.approx(found.stability[0], abs=1e-5)
+
+
+def independent_in_time(shaft, speed: float, start, periods: int = 1, every: bool = False):
+    """x(2π·periods) of the line in time (s = Ω·t, the crank at φ = s − twist) by
+    scipy's DOP853 at rtol 1e-11, the tables as Fourier series (``engine.Periodic1D``):
+    shares nothing with ``engine.problem_in_time``'s RK4. ``every``: x at each period."""
+    integrate = pytest.importorskip("scipy.integrate")
+    tables = shaft.tables_at(720)
+    inertia = engine.Periodic1D(tables.inertia[0::2])
+    slope = engine.Periodic1D(tables.slope[0::2])
+    load = engine.Periodic1D(tables.load[0::2])
+    k, b = shaft.line.stiffness[0], shaft.line.damping[0]
+
+    def rates(s, x):
+        phi = s - x[1]
+        v = speed + x[0]
+        torque = k * x[1] - b * x[0]
+        return [(torque + load(phi) - 0.5 * slope(phi) * v * v) / (inertia(phi) * speed),
+                -x[0] / speed]
+
+    ends = 2 * math.pi * np.arange(1, periods + 1)
+    out = integrate.solve_ivp(rates, (0.0, ends[-1]), start, method="DOP853", rtol=1e-11,
+                              atol=1e-13, t_eval=ends if every else None)
+    return out.y.T if every else out.y[:, -1]
+
+
+@pytest.mark.slow
+def test_where_the_crank_turns_back_the_line_is_solved_in_time():
+    """J_c = 0.01 kg·m², d = 0.7526 N·m·s/rad (issue 37: 12 of 141 speeds at η 0.965–1.02
+    were "not converged"). At η = 1 the crank turns back for a moment in the stable
+    periodic motion (its slowest speed below zero): its angle is no variable there, time
+    is. In time (``engine.problem_in_time``) the shooting converges (steps by accuracy);
+    scipy's DOP853 in time finds the orbit periodic, the same |μ| (central differences of
+    its runs), and a perturbation integrated for 30 periods decays as |μ| per period. At
+    η = 0.6 (the crank never slow) the multipliers in time are those in crank angle (the
+    two period maps are conjugate)."""
+    shaft = slider(0.01, 0.7526)
+    line = shaft.ideal_line
+    omega_bar = shaft.frequency.omega_bar
+    eta = np.array([0.6, 1.0])
+    p = engine.parameters(line, eta * omega_bar)
+    guess = engine.linear_guess(line, shaft.tables_at(720), engine.Lanes.of(line, p[:, 0]))
+    in_time = engine.problem_in_time(line, shaft.tables_at, 720)
+    found = periodic.shoot(in_time, p, guess)
+    assert found.converged.all(), found.reason
+    # η = 0.6 in crank angle: the same multipliers
+    in_angle = engine.problem(line, shaft.tables_at, 720)
+    angle = periodic.shoot(in_angle, p[:1], guess[:1])
+    assert angle.converged[0]
+    assert np.allclose(np.sort_complex(angle.multipliers[0]),
+                       np.sort_complex(found.multipliers[0]), atol=2e-6)
+    # η = 1: the crank turns back; DOP853 in time agrees
+    path = periodic.trajectory(in_time, int(found.steps[1]), found.start[1:], p[1:])
+    speed = float(p[1, 0])
+    assert np.min(speed + path[:, 0, 0]) < -0.05 * speed
+    start = found.start[1]
+    scale = in_time.scale(p[1:])[0]
+    assert np.all(np.abs(independent_in_time(shaft, speed, start) - start) <= 1e-6 * scale)
+    delta = scale * 1e-4
+    columns = [(independent_in_time(shaft, speed, start + delta[i] * np.eye(2)[i])
+                - independent_in_time(shaft, speed, start - delta[i] * np.eye(2)[i]))
+               / (2 * delta[i]) for i in range(2)]
+    mu = float(found.stability[1])
+    assert np.max(np.abs(np.linalg.eigvals(np.column_stack(columns)))) == pytest.approx(
+        mu, abs=1e-5)
+    assert mu < 1.0
+    # Liouville: det M = exp(∮ trace) = exp(−b·∫ dt/J(φ)) (J′·φ̇/J integrates to zero over
+    # the period), the integral by DOP853 along the orbit: a closed form of μ1·μ2
+    integrate = pytest.importorskip("scipy.integrate")
+    inertia = engine.Periodic1D(shaft.tables_at(720).inertia[0::2])
+    twist = engine.Periodic1D(path[:-1, 0, 1])  # the orbit's twist as its Fourier series
+    dwell = integrate.quad(lambda s: 1.0 / (inertia(s - twist(s)) * speed), 0.0, 2 * math.pi,
+                           limit=400, epsabs=1e-13, epsrel=1e-12)[0]
+    assert np.prod(found.multipliers[1]).real == pytest.approx(
+        math.exp(-line.damping[0] * dwell), rel=1e-7)
+    runs = independent_in_time(shaft, speed, start + 1e-3 * scale, periods=30, every=True)
+    distance = np.max(np.abs(runs - start) / scale, axis=1)
+    assert (distance[-1] / distance[9]) ** (1.0 / 20.0) == pytest.approx(mu, rel=0.02)
+
+
+@pytest.mark.slow
+def test_the_period_two_motion_where_the_period_one_orbit_flips():
+    """J_c = 0.01, d = 0.7526, η = 0.8 (the flip region η ≈ 0.67–0.92): the only period-1
+    orbit is unstable, a multiplier below −1. ``period_two`` finds the period-2 orbit
+    from it; scipy's DOP853 started on the unstable period-1 orbit (displaced by 1e-2 of
+    the scale) leaves it and settles on that period-2 motion, and the period-2
+    multipliers by central differences of DOP853 runs over two revolutions agree."""
+    from dyade.linkage import drive_line as api
+
+    shaft = slider(0.01, 0.7526)
+    speed = 0.8 * shaft.frequency.omega_bar
+    two = api.period_two(shaft.mechanism, [speed * 30.0 / math.pi], shaft=shaft)
+    assert two.found[0], two.reason
+    assert np.real(two.single[0, 0]) < -1.0  # the period-1 orbit flips
+    mu = float(two.stability[0])
+    assert mu < 1.0  # the period-2 motion is stable
+    start = two.start[0]
+    problem = engine.problem_in_time(shaft.ideal_line, shaft.tables_at, 720)
+    scale = problem.scale(engine.parameters(shaft.ideal_line, [speed]))[0]
+    after_one = independent_in_time(shaft, speed, start)
+    assert np.all(np.abs(independent_in_time(shaft, speed, after_one) - start) <= 1e-6 * scale)
+    assert np.max(np.abs(after_one - start) / scale) > 1e-2  # not the period-1 orbit
+    delta = scale * 1e-4
+    columns = [(independent_in_time(shaft, speed, start + delta[i] * np.eye(2)[i], 2)
+                - independent_in_time(shaft, speed, start - delta[i] * np.eye(2)[i], 2))
+               / (2 * delta[i]) for i in range(2)]
+    assert np.max(np.abs(np.linalg.eigvals(np.column_stack(columns)))) == pytest.approx(
+        mu, abs=1e-5)
+    # the unstable period-1 orbit: from the linear response, in time
+    line = shaft.ideal_line
+    p = engine.parameters(line, [speed])
+    guess = engine.linear_guess(line, shaft.tables_at(720), engine.Lanes.of(line, p[:, 0]))
+    single = periodic.shoot(problem, p, guess).start[0]
+    runs = independent_in_time(shaft, speed, single + 1e-2 * scale, periods=100, every=True)
+    settled = runs[-2:]  # the last two revolutions: the two points of the period-2 motion
+    miss = min(np.max(np.abs(settled[0] - a) / scale) + np.max(np.abs(settled[1] - b) / scale)
+               for a, b in ((start, after_one), (after_one, start)))
+    assert miss < 1e-4
