@@ -36,3 +36,32 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if BENCHMARKS in Path(str(item.fspath)).parents:
             item.add_marker(pytest.mark.benchmark)
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_auto_num_workers(config):
+    """``-n auto`` (pyproject.toml's addopts: the tests on every core) is one process
+    when the benchmarks are timed (``--benchmark-enable``): pytest-benchmark times
+    nothing under xdist, and a timing beside other tests' load would mean little.
+    ``-n 0`` runs any selection in one process."""
+    if config.getoption("benchmark_enable", default=False):
+        return 0
+    return None
+
+
+TERMINAL = ("COLUMNS", "LINES")
+"""what the tables' width comes from (dyade.cli.output.console); xdist's workers start
+with COLUMNS=80 and LINES=24 of their own: given back the values of the pytest run"""
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_configure_node(node):
+    node.workerinput["terminal"] = {name: os.environ.get(name) for name in TERMINAL}
+
+
+def pytest_configure(config):
+    for name, value in getattr(config, "workerinput", {}).get("terminal", {}).items():
+        if value is None:
+            os.environ.pop(name, None)
+        else:
+            os.environ[name] = value

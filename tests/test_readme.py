@@ -133,3 +133,19 @@ def test_the_readmes_test_command_installs_what_every_default_test_needs():
     assert not unknown, f"name the distribution of {unknown} in IMPORTED_BY_TESTS"
     lacking = {IMPORTED_BY_TESTS[module] for module in needed - SITE_ONLY} - installed
     assert not lacking, f"the README's test command does not install {lacking}"
+
+
+def test_the_test_extra_brings_the_plugins_the_pytest_options_need():
+    """``pytest`` as the README runs it takes its options from pyproject.toml: ``-n`` (the
+    tests on every core) needs pytest-xdist, ``--benchmark-disable`` pytest-benchmark,
+    both in the test extra the quick start installs."""
+    import tomllib
+
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())
+    addopts = project["tool"]["pytest"]["ini_options"]["addopts"].split()
+    test = {re.split(r"[<>=\[ ]", requirement)[0].lower()
+            for requirement in project["project"]["optional-dependencies"]["test"]}
+    assert "test" in re.search(r'pip install "\.\[([\w,]+)\]"', QUICK_START[1])[1].split(",")
+    needs = {"-n": "pytest-xdist", "--dist": "pytest-xdist",
+             "--benchmark-disable": "pytest-benchmark"}
+    assert {needs[option] for option in addopts if option in needs} <= test

@@ -228,7 +228,10 @@ def test_sigterm_leaves_no_partial_file(tmp_path):
     target = tmp_path / "big.csv"
     process = subprocess.Popen([sys.executable, "-m", "dyade", "analyse", FOUR, "--step",
                                 "0.0005", "-o", str(target)], stderr=subprocess.PIPE, text=True)
-    time.sleep(1.0)
+    deadline = time.monotonic() + 60.0  # the partial file there: the handler is set (a
+    while not any(tmp_path.iterdir()) and time.monotonic() < deadline:  # fixed second was
+        time.sleep(0.05)  # too short for a loaded machine: killed before its handler)
+    assert any(tmp_path.iterdir()) and process.poll() is None
     process.send_signal(signal.SIGTERM)
     _, err = process.communicate(timeout=60)
     assert process.returncode == 143, err

@@ -10,6 +10,9 @@ the figures that were unreadable before issue 29 run by default.
 
 from __future__ import annotations
 
+import tempfile
+from pathlib import Path
+
 import numpy as np
 import pytest
 from click.testing import CliRunner
@@ -51,8 +54,10 @@ def drawn(kind: str, args: list, monkeypatch) -> list:
 
     monkeypatch.setattr(canvas, "save_frames", frames)
     suffix = "gif" if kind == "animate" else "png"
-    out = CliRunner().invoke(main, ["plot", kind, *map(str, args), "-o", f"/tmp/unused.{suffix}"],
-                             catch_exceptions=False)
+    with tempfile.TemporaryDirectory() as folder:  # a folder of its own (tests run in parallel)
+        out = CliRunner().invoke(main, ["plot", kind, *map(str, args), "-o",
+                                        str(Path(folder) / f"unused.{suffix}")],
+                                 catch_exceptions=False)
     assert out.exit_code == 0, out.output
     return kept
 
