@@ -851,9 +851,11 @@ def _secant(problem: Problem, steps: int, p: FloatArray, guess: FloatArray, scal
 
 def boundary(problem: Problem, p: FloatArray, guess: FloatArray, *, crossing: float = -1.0,
              block: int = 8, steps: int | None = None, tol: float = ACCURACY,
-             doublings: int = MOST_DOUBLINGS, reach: float | None = None, periods: int = 1,
+             doublings: int = MOST_DOUBLINGS, reach: float | FloatArray | None = None,
+             periods: int = 1, along: int = 1, follow: bool = True,
              progress: Callable[[], None] | None = None) -> Boundary:
-    """Trace a stability boundary in the plane of p[0] (solved) and p[1] (given): the
+    """Trace a stability boundary in the plane of p[0] (solved) and p[1] (given; or
+    p[``along``]): the
     p[0] at each row of ``p`` where a Floquet multiplier of the periodic solution is
     ``crossing`` (+1: a fold, −1: period doubling, e.g. the edges of a Mathieu tongue).
 
@@ -885,11 +887,16 @@ def boundary(problem: Problem, p: FloatArray, guess: FloatArray, *, crossing: fl
         The largest change of p[0] with twice the steps, per max(|p[0]|, 1) [-].
     doublings : int
         How often the steps may be doubled.
-    reach : float, optional
+    reach : float or array_like (n,), optional
         The largest secant step in p[0] (default a tenth of max(|p[0]|, 1e-3) of the
-        first row): keeps a point on its own edge when two edges are near.
+        first row), per row: keeps a point on its own edge when two edges are near.
     periods : int
         Periods of the map.
+    along : int
+        The column of ``p`` that is the second parameter (default 1).
+    follow : bool
+        False: every row starts from its own p[0] and ``guess`` (e.g. crossings
+        bracketed on a sampled grid, several curves at once), no extrapolation.
     progress : callable, optional
         ``progress()`` hears each Newton iteration of the shootings.
 
@@ -901,12 +908,16 @@ def boundary(problem: Problem, p: FloatArray, guess: FloatArray, *, crossing: fl
     n, q = p.shape
     if q < 2:
         raise ValueError("a boundary in a plane needs two parameters per row")
+    if not 0 < along < q:
+        raise ValueError("the second parameter is a column of p other than p[0]")
     if crossing not in (1.0, -1.0):
         raise ValueError("crossing is +1 (fold) or -1 (period doubling)")
     guess = np.broadcast_to(np.asarray(guess, dtype=np.float64),
                             (n, problem.dimension)).copy()
     first = steps or problem.steps
-    limit = reach if reach is not None else 0.1 * max(abs(p[0, 0]), 1e-3)
+    limit = np.broadcast_to(np.asarray(reach if reach is not None
+                                       else 0.1 * max(abs(p[0, 0]), 1e-3), dtype=np.float64),
+                            (n,))
     out_p = np.full(n, np.nan)
     start = np.full((n, problem.dimension), np.nan)
     monodromy = np.full((n, problem.dimension, problem.dimension), np.nan)
@@ -916,19 +927,19 @@ def boundary(problem: Problem, p: FloatArray, guess: FloatArray, *, crossing: fl
     reason = ["" for _ in range(n)]
     for low in range(0, n, block):
         rows = np.arange(low, min(low + block, n))
-        known = np.flatnonzero(converged[:low])[-3:]
+        known = np.flatnonzero(converged[:low])[-3:] if follow else np.empty(0, int)
         trial = p[rows].copy()
         x0 = guess[rows].copy()
         if known.size:
             degree = min(known.size - 1, 2)
-            along = p[known, 1]
             if degree:
-                trial[:, 0] = np.polyval(np.polyfit(along, out_p[known], degree), trial[:, 1])
+                fit = np.polyfit(p[known, along], out_p[known], degree)
+                trial[:, 0] = np.polyval(fit, trial[:, along])
             else:
                 trial[:, 0] = out_p[known[-1]]
             x0[:] = start[known[-1]]
         scale = problem.scale(trial)
-        width = np.full(rows.size, limit)
+        width = limit[rows].copy()
         count = first
         value, x, jac, ok, why = _secant(problem, count, trial, x0, scale, crossing, width,
                                          periods, progress)
