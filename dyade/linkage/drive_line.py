@@ -14,7 +14,8 @@ over speed and the run-up leave it out (the command line notes that).
 - ``steady_state``: the periodic motion at the operating speed next to the rigid drive's;
 - ``resonance_curve``: peak shaft torque, twist amplitude, speed fluctuation and the
   largest Floquet multiplier over a range of speeds of an ideal motor;
-- ``stability_map``: the largest Floquet multiplier over speed × stiffness or damping;
+- ``stability_map``: the largest Floquet multiplier over speed × stiffness or damping,
+  and the boundary of its unstable regions traced between the cells (``trace_edges``);
 - ``run_up``: from rest under the motor's characteristic, in time.
 """
 

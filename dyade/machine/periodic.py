@@ -26,6 +26,11 @@ frequency). Everything is vectorised over lanes: ``x`` is (L, d), ``p`` is (L, q
   each point's multipliers kept and the loss of stability classified: a real multiplier
   through +1 (fold, saddle-node), through −1 (period doubling), a complex pair through the
   unit circle (Neimark–Sacker).
+- ``boundary``: a stability boundary in a plane of two parameters (p[0] solved, p[1]
+  given): where a multiplier is +1 (fold) or −1 (period doubling), det(M − σI) = 0 by
+  the secant method in p[0] at fixed p[1], many p[1] at once (lanes, in blocks), each
+  converged to ``BOUNDARY_TOL`` and by accuracy with twice the steps; block to block
+  the curve is predicted from its last points.
 
 References: Seydel, *Practical Bifurcation and Stability Analysis* (shooting, the
 monodromy matrix, pseudo-arclength continuation, test functions of the bifurcations);
