@@ -606,7 +606,8 @@ def edge_notes(edges: Any, parameter: str, unit: str) -> list[str]:
     """The traced boundary of a map in words: per value of the parameter, the speeds
     [rpm] where a multiplier is −1 (period doubling) or +1 (fold); the crossings not
     traced and why."""
-    from dyade.report.format import number
+    def number(value: float) -> str:
+        return f"{value:.6g}"
 
     notes = []
     for kind in sorted(set(edges.kind)):
