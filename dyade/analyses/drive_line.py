@@ -545,6 +545,9 @@ def unstable_ranges(speed_rpm, unstable) -> list[list[float]]:
     return out
 
 
+TRACE_ITERATIONS = 30  # [-] Newton iterations (on the map's steps) of a traced boundary point
+
+
 def stability_map(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     """The largest Floquet multiplier over speed × the shaft's stiffness or damping."""
     import numpy as np
@@ -569,8 +572,12 @@ def stability_map(source: Any, options: dict[str, Any], budget: Budget) -> Outco
         steps = (steps_of(shaft, line, low, np.array([max(values)]) if parameter == "stiffness"
                           else None) if low > 0 and line.elements == 1 else 0)
         lanes = len(speeds) * len(values)
-        budget.time(shooting_seconds(steps, lanes, line.dimension),
-                    f"the stability map of {lanes:,} cells ({steps:,} steps per revolution)")
+        # the traced boundary: about two crossings per row, some 30 shootings each
+        # (secant iterations, on the steps and twice the steps)
+        trace = shooting_seconds(steps, 2 * len(values), line.dimension, TRACE_ITERATIONS)
+        budget.time(shooting_seconds(steps, lanes, line.dimension) + trace,
+                    f"the stability map of {lanes:,} cells ({steps:,} steps per revolution) "
+                    f"and its traced boundary")
         found = api.stability_map(shaft.mechanism, speeds, **{parameter: values}, shaft=shaft,
                                   progress=ticker(budget, ITERATIONS))
     except InputError as err:
