@@ -545,6 +545,9 @@ def unstable_ranges(speed_rpm, unstable) -> list[list[float]]:
     return out
 
 
+TRACE_ITERATIONS = 30  # [-] Newton iterations (on the map's steps) of a traced boundary point
+
+
 def stability_map(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     """The largest Floquet multiplier over speed × the shaft's stiffness or damping."""
     import numpy as np
@@ -569,8 +572,12 @@ def stability_map(source: Any, options: dict[str, Any], budget: Budget) -> Outco
         steps = (steps_of(shaft, line, low, np.array([max(values)]) if parameter == "stiffness"
                           else None) if low > 0 and line.elements == 1 else 0)
         lanes = len(speeds) * len(values)
-        budget.time(shooting_seconds(steps, lanes, line.dimension),
-                    f"the stability map of {lanes:,} cells ({steps:,} steps per revolution)")
+        # the traced boundary: about two crossings per row, some 30 shootings each
+        # (secant iterations, on the steps and twice the steps)
+        trace = shooting_seconds(steps, 2 * len(values), line.dimension, TRACE_ITERATIONS)
+        budget.time(shooting_seconds(steps, lanes, line.dimension) + trace,
+                    f"the stability map of {lanes:,} cells ({steps:,} steps per revolution) "
+                    f"and its traced boundary")
         found = api.stability_map(shaft.mechanism, speeds, **{parameter: values}, shaft=shaft,
                                   progress=ticker(budget, ITERATIONS))
     except InputError as err:
@@ -592,8 +599,39 @@ def stability_map(source: Any, options: dict[str, Any], budget: Budget) -> Outco
                 "largest |Floquet multiplier| over the map")
     outcome.add("unstable_cells", int(found.unstable.sum()), "-",
                 description="cells where the periodic motion is unstable (|μ| > 1)")
+    edges = found.edges
+    if edges is not None:
+        outcome.add("boundary_points", int(edges.speed.size), "-",
+                    description="points of the stability boundary traced between the cells "
+                                "(a multiplier at −1 or +1, converged to 1e-6)")
+        outcome.notes += edge_notes(edges, parameter, unit)
     outcome.result = found
     return outcome
+
+
+def edge_notes(edges: Any, parameter: str, unit: str) -> list[str]:
+    """The traced boundary of a map in words: per value of the parameter, the speeds
+    [rpm] where a multiplier is −1 (period doubling) or +1 (fold); the crossings not
+    traced and why."""
+    def number(value: float) -> str:
+        return f"{value:.6g}"
+
+    notes = []
+    for kind in sorted(set(edges.kind)):
+        rows = {}
+        for speed, value, k in zip(rpm(edges.speed), edges.values, edges.kind):
+            if k == kind:
+                rows.setdefault(float(value), []).append(number(float(speed)))
+        sigma = "−1" if kind == "period doubling" else "+1"
+        listed = "; ".join(f"{number(value)} {unit}: {', '.join(speeds)} rpm"
+                           for value, speeds in rows.items())
+        notes.append(f"stability boundary traced (a multiplier at {sigma}, {kind}), "
+                     f"{parameter} -> speed: {listed}.")
+    for value, low, high, reason in edges.missed:
+        notes.append(f"the boundary between {number(float(rpm(low)))} and "
+                     f"{number(float(rpm(high)))} rpm at {parameter} {number(float(value))} "
+                     f"{unit} is not traced: {reason}.")
+    return notes
 
 
 def run_up(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:

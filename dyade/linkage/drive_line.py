@@ -14,7 +14,8 @@ over speed and the run-up leave it out (the command line notes that).
 - ``steady_state``: the periodic motion at the operating speed next to the rigid drive's;
 - ``resonance_curve``: peak shaft torque, twist amplitude, speed fluctuation and the
   largest Floquet multiplier over a range of speeds of an ideal motor;
-- ``stability_map``: the largest Floquet multiplier over speed × stiffness or damping;
+- ``stability_map``: the largest Floquet multiplier over speed × stiffness or damping,
+  and the boundary of its unstable regions traced between the cells (``trace_edges``);
 - ``run_up``: from rest under the motor's characteristic, in time.
 """
 
@@ -811,14 +812,96 @@ class StabilityMap:
     """(p,) the parameter's values"""
     stability: FloatArray
     """(p, s) the largest ``|μ|`` [-]; NaN where no periodic state was found"""
+    edges: Edges | None = None
+    """the boundaries of the unstable regions traced between the cells (``trace_edges``);
+    None when not traced"""
 
     @property
     def unstable(self) -> FloatArray:
         return self.stability > 1.0 + engine.UNSTABLE_MARGIN
 
 
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class Edges:
+    """Points of the stability boundary of a map, each solved in speed at its row's
+    parameter value (``periodic.boundary``: a multiplier at −1 or +1 to its tolerance)."""
+
+    speed: FloatArray
+    """(e,) Ω at the boundary [rad/s] (converged points only)"""
+    values: FloatArray
+    """(e,) the parameter's value of each point (the row of the map)"""
+    kind: list
+    """(e,) ``periodic.FLIP`` (a multiplier through −1) or ``periodic.FOLD`` (+1)"""
+    missed: list = field(default_factory=list)
+    """why a crossing between two cells was not traced: (value, speed low, speed high,
+    reason) — a complex pair leaving the unit circle (not traced), or a point that did
+    not converge"""
+
+
+def trace_edges(shaft: CrankShaft, line: engine.Line, name: str, values: FloatArray,
+                speeds: FloatArray, solution: engine.Periodic, steps: int,
+                progress: Callable[[], None] | None = None) -> Edges:
+    """The boundary |μ| = 1 of a sampled map traced: between every two neighbouring
+    cells of a row (a value of ``name``) of which one is stable and one unstable, the
+    speed where the multiplier leaving the unit circle is −1 (period doubling) or +1
+    (fold), solved by ``periodic.boundary`` from the linear interpolation of the cells
+    (all crossings of a kind in one integration), converged to ``periodic.ACCURACY``
+    with twice the steps. ``solution`` is the map's (values × speeds, row by row)."""
+    from dyade.machine import periodic
+
+    s, v = speeds.size, values.size
+    mult = solution.multipliers.reshape(v, s, -1)
+    stab = np.where(solution.converged, np.abs(solution.multipliers[:, 0]),
+                    np.nan).reshape(v, s)
+    bad = stab > 1.0 + engine.UNSTABLE_MARGIN
+    given = np.isfinite(stab)
+    row, col = np.nonzero(given[:, :-1] & given[:, 1:] & (bad[:, :-1] != bad[:, 1:]))
+    missed, todo = [], {1.0: [], -1.0: []}
+    for j, i in zip(row, col):
+        top = mult[j, i + 1 if bad[j, i + 1] else i, 0]
+        if abs(top.imag) > periodic.REAL * abs(top):
+            missed.append((values[j], speeds[i], speeds[i + 1],
+                           "a complex pair leaves the unit circle (not traced)"))
+            continue
+        todo[1.0 if top.real > 0.0 else -1.0].append((j, i))
+    problem = engine.problem(line, shaft.tables_at, steps)
+    column = 1 if name == "stiffness" else 2
+    found_speed, found_value, kinds = [], [], []
+    for sigma, pairs in todo.items():
+        if not pairs:
+            continue
+        j, i = np.array(pairs).T
+        g0 = np.prod(mult[j, i] - sigma, axis=1).real
+        g1 = np.prod(mult[j, i + 1] - sigma, axis=1).real
+        share = np.clip(np.where(g0 != g1, g0 / np.where(g0 != g1, g0 - g1, 1.0), 0.5), 0, 1)
+        guess_speed = speeds[i] + share * (speeds[i + 1] - speeds[i])
+        k = np.full(j.size, line.stiffness[0]) if name != "stiffness" else values[j]
+        b = np.full(j.size, line.damping[0]) if name != "damping" else values[j]
+        rows = engine.parameters(line, guess_speed, k[:, None], b[:, None])
+        stable_cell = np.where(bad[j, i], i + 1, i)
+        start = solution.start.reshape(v, s, -1)[j, stable_cell]
+        edge = periodic.boundary(problem, rows, start, crossing=sigma, block=j.size,
+                                 steps=steps, doublings=1, along=column, follow=False,
+                                 reach=speeds[i + 1] - speeds[i], progress=progress)
+        for n in range(j.size):
+            ok = (edge.converged[n] and
+                  speeds[i[n]] - 1e-9 <= edge.parameter[n, 0] <= speeds[i[n] + 1] + 1e-9)
+            if ok:
+                found_speed.append(edge.parameter[n, 0])
+                found_value.append(values[j[n]])
+                kinds.append(edge.kind)
+            else:
+                missed.append((values[j[n]], speeds[i[n]], speeds[i[n] + 1], edge.reason[n]
+                               or "the boundary point left its two cells"))
+    order = np.lexsort((np.array(found_speed), np.array(found_value))) if found_speed else []
+    return Edges(np.array(found_speed)[order] if found_speed else np.empty(0),
+                 np.array(found_value)[order] if found_speed else np.empty(0),
+                 [kinds[n] for n in order], missed)
+
+
 def stability_map(mechanism: Mechanism, speeds_rpm, *, stiffness=None, damping=None,
                   steps: int | None = None, shaft: CrankShaft | None = None,
+                  edges_too: bool = True,
                   progress: Callable[[int], None] | None = None) -> StabilityMap:
     """The largest Floquet multiplier over the ideal motor's speeds ``speeds_rpm`` [rpm]
     and the shaft's ``stiffness`` [N·m/rad] or ``damping`` [N·m·s/rad] values (one of
@@ -836,13 +919,17 @@ def stability_map(mechanism: Mechanism, speeds_rpm, *, stiffness=None, damping=N
         RK4 steps per revolution.
     shaft : CrankShaft, optional
         The mechanism's crank shaft (``crank_shaft``), when the caller has it.
+    edges_too : bool
+        Trace the boundaries of the unstable regions between the cells
+        (``trace_edges``; default True).
     progress : callable, optional
         ``progress(iteration)`` hears each Newton iteration of the shooting.
 
     Returns
     -------
     StabilityMap
-        ``stability`` (values, speeds): the largest ``|μ|``.
+        ``stability`` (values, speeds): the largest ``|μ|``; ``edges``: the traced
+        boundary.
 
     Examples
     --------
@@ -875,7 +962,12 @@ def stability_map(mechanism: Mechanism, speeds_rpm, *, stiffness=None, damping=N
         shaft, line, float(speeds.min()), np.array([k.max()]))
     lanes = engine.Lanes.of(line, grid_speed, k[:, None], b[:, None])
     solution = _solve(line, tables, lanes, progress)
-    return StabilityMap(speeds, name, values, solution.stability.reshape(values.size, -1))
+    edges = None
+    if edges_too and speeds.size > 1:
+        tick = None if progress is None else (lambda: progress(0))
+        edges = trace_edges(shaft, line, name, values, speeds, solution, n, tick)
+    return StabilityMap(speeds, name, values, solution.stability.reshape(values.size, -1),
+                        edges)
 
 
 RUN_UP_TOL = 1e-5  # [-] change of the mean speed from one revolution to the next: at speed

@@ -26,6 +26,11 @@ frequency). Everything is vectorised over lanes: ``x`` is (L, d), ``p`` is (L, q
   each point's multipliers kept and the loss of stability classified: a real multiplier
   through +1 (fold, saddle-node), through −1 (period doubling), a complex pair through the
   unit circle (Neimark–Sacker).
+- ``boundary``: a stability boundary in a plane of two parameters (p[0] solved, p[1]
+  given): where a multiplier is +1 (fold) or −1 (period doubling), det(M − σI) = 0 by
+  the secant method in p[0] at fixed p[1], many p[1] at once (lanes, in blocks), each
+  converged to ``BOUNDARY_TOL`` and by accuracy with twice the steps; block to block
+  the curve is predicted from its last points.
 
 References: Seydel, *Practical Bifurcation and Stability Analysis* (shooting, the
 monodromy matrix, pseudo-arclength continuation, test functions of the bifurcations);
@@ -747,3 +752,232 @@ def branch_guesses(branch: Branch, value: float) -> list[FloatArray]:
     interpolation between the points (a Newton start)."""
     return [branch.start[i] + frac * (branch.start[i + 1] - branch.start[i])
             for i, frac in branch.crossings(value)]
+
+
+# -- stability boundaries in a plane of two parameters ----------------------------------
+BOUNDARY_TOL = 1e-9  # [-] the secant's last step in p[0], per max(|p[0]|, 1), that counts
+SECANT_MAX_ITER = 30  # most secant iterations of a boundary point on one step count
+
+
+@dataclass(slots=True, eq=False)  # holds arrays: no meaningful ==
+class Boundary:
+    """A stability boundary traced in the plane (p[0], p[1]) (``boundary``): at each of
+    its points a Floquet multiplier of the periodic solution is ``crossing`` (+1: a fold,
+    −1: period doubling)."""
+
+    parameter: FloatArray
+    """(n, q) the parameters of the points: p[0] solved (NaN where not converged), the
+    others as given"""
+    start: FloatArray
+    """(n, d) the periodic solution's state at s = 0 there"""
+    multipliers: FloatArray
+    """(n, d) complex, largest modulus first (NaN where not converged)"""
+    converged: FloatArray
+    """(n,) bool: the secant converged to ``BOUNDARY_TOL`` and p[0] changed by at most the
+    tolerance with twice the steps"""
+    steps: FloatArray
+    """(n,) int: steps per period of each point (the finer of the last two)"""
+    accuracy: FloatArray
+    """(n,) the change of p[0] with twice the steps, per max(|p[0]|, 1) [-]"""
+    crossing: float
+    """+1.0 (FOLD) or −1.0 (FLIP)"""
+    reason: list = field(default_factory=list)
+    """(n,) str: why a point is not converged ("" where it is)"""
+
+    @property
+    def kind(self) -> str:
+        return FOLD if self.crossing > 0.0 else FLIP
+
+
+def crossing_measure(monodromy: FloatArray, crossing: float) -> FloatArray:
+    """(B,) det(M − σI) = Π(μᵢ − σ) of monodromy matrices (B, d, d): zero where a
+    multiplier is σ = ``crossing`` (+1 or −1), of one sign on each side of it."""
+    d = monodromy.shape[-1]
+    return np.linalg.det(monodromy - crossing * np.eye(d))
+
+
+def _secant(problem: Problem, steps: int, p: FloatArray, guess: FloatArray, scale: FloatArray,
+            crossing: float, reach: FloatArray, periods: int,
+            progress: Callable[[], None] | None) -> tuple:
+    """p[0] of all lanes where ``crossing_measure`` vanishes, by the secant method in
+    p[0] (each evaluation: the periodic solution shot at that p[0], its monodromy
+    matrix), each step at most ``reach`` (L,). Returns p[0] (L,), the states, the
+    monodromy matrices, converged (L,) and the reason of each lane that is not."""
+    p = np.array(p, dtype=np.float64)
+    lanes = p.shape[0]
+    x = np.array(guess, dtype=np.float64)
+
+    def measure(values, idx):
+        q = p[idx].copy()
+        q[:, 0] = values
+        state, ok, _, jac, _ = newton(problem, steps, q, x[idx], scale[idx], periods, progress)
+        g = np.where(ok, crossing_measure(np.where(np.isfinite(jac), jac, 0.0), crossing),
+                     np.nan)
+        return g, state, jac, ok
+
+    a = p[:, 0].copy()
+    ga, state, jac, ok = measure(a, np.arange(lanes))
+    x = np.where(ok[:, None], state, x)
+    b = a + 1e-4 * np.maximum(np.abs(a), 1e-3)  # the secant's first second point
+    monodromy = jac.copy()
+    done = np.zeros(lanes, dtype=bool)
+    reason = ["" for _ in range(lanes)]
+    lost = ~np.isfinite(ga)
+    for j in np.flatnonzero(lost):
+        reason[j] = f"no periodic solution found at p[0] = {a[j]:.9g}"
+    active = ~lost
+    for _ in range(SECANT_MAX_ITER):
+        idx = np.flatnonzero(active)
+        if not idx.size:
+            break
+        gb, state, jac, ok = measure(b[idx], idx)
+        bad = ~np.isfinite(gb)
+        for n in np.flatnonzero(bad):
+            reason[idx[n]] = f"no periodic solution found at p[0] = {b[idx[n]]:.9g}"
+        x[idx[~bad]] = state[~bad]
+        monodromy[idx] = jac
+        slope = (gb - ga[idx]) / (b[idx] - a[idx])
+        step = np.where(slope != 0.0, -gb / np.where(slope != 0.0, slope, 1.0), np.nan)
+        step = np.clip(step, -reach[idx], reach[idx])
+        flat = ~np.isfinite(step) & ~bad
+        for n in np.flatnonzero(flat):
+            reason[idx[n]] = "the measure det(M − σI) does not change with p[0] there"
+        tol = BOUNDARY_TOL * np.maximum(np.abs(b[idx]), 1.0)
+        finished = ~bad & ~flat & ((np.abs(b[idx] - a[idx]) <= tol) | (gb == 0.0))
+        done[idx[finished]] = True
+        active[idx[finished | bad | flat]] = False
+        go = ~finished & ~bad & ~flat
+        a[idx[go]], ga[idx[go]] = b[idx[go]], gb[go]
+        b[idx[go]] = b[idx[go]] + step[go]
+    for j in np.flatnonzero(active):
+        reason[j] = f"the secant did not converge in {SECANT_MAX_ITER} iterations"
+    return b, x, monodromy, done, reason
+
+
+def boundary(problem: Problem, p: FloatArray, guess: FloatArray, *, crossing: float = -1.0,
+             block: int = 8, steps: int | None = None, tol: float = ACCURACY,
+             doublings: int = MOST_DOUBLINGS, reach: float | FloatArray | None = None,
+             periods: int = 1, along: int = 1, follow: bool = True,
+             progress: Callable[[], None] | None = None) -> Boundary:
+    """Trace a stability boundary in the plane of p[0] (solved) and p[1] (given; or
+    p[``along``]): the
+    p[0] at each row of ``p`` where a Floquet multiplier of the periodic solution is
+    ``crossing`` (+1: a fold, −1: period doubling, e.g. the edges of a Mathieu tongue).
+
+    Each point is solved by the secant method in p[0] at its fixed p[1] on the
+    condition det(M − σI) = 0 (``crossing_measure``; M the monodromy matrix of the
+    solution shot at that p[0]) to ``BOUNDARY_TOL``, then again with twice the steps
+    until p[0] changes by at most ``tol`` (per max(|p[0]|, 1)); a point is ``converged``
+    only then. The rows are solved ``block`` at a time, all lanes of a block in one
+    integration; the curve is followed block to block: each block's first guesses of
+    p[0] (and of the state) are extrapolated from the last (up to three) converged
+    points in p[1] (a polynomial through them), so the rows should go along the curve
+    (p[1] monotone). The first block starts from the rows' own p[0].
+
+    Parameters
+    ----------
+    problem : Problem
+    p : array_like, shape (n, q)
+        The rows: p[1] the given second parameter (monotone along the rows), p[0] the
+        first guesses (used for the first block, and where too few points converged).
+    guess : array_like, shape (n, d) or (d,)
+        Starting states of the periodic solutions.
+    crossing : float
+        +1.0 (fold) or −1.0 (period doubling).
+    block : int
+        Rows solved together.
+    steps : int, optional
+        The first step count (default ``problem.steps``).
+    tol : float
+        The largest change of p[0] with twice the steps, per max(|p[0]|, 1) [-].
+    doublings : int
+        How often the steps may be doubled.
+    reach : float or array_like (n,), optional
+        The largest secant step in p[0] (default a tenth of max(|p[0]|, 1e-3) of the
+        first row), per row: keeps a point on its own edge when two edges are near.
+    periods : int
+        Periods of the map.
+    along : int
+        The column of ``p`` that is the second parameter (default 1).
+    follow : bool
+        False: every row starts from its own p[0] and ``guess`` (e.g. crossings
+        bracketed on a sampled grid, several curves at once), no extrapolation.
+    progress : callable, optional
+        ``progress()`` hears each Newton iteration of the shootings.
+
+    Returns
+    -------
+    Boundary
+    """
+    p = np.atleast_2d(np.asarray(p, dtype=np.float64)).copy()
+    n, q = p.shape
+    if q < 2:
+        raise ValueError("a boundary in a plane needs two parameters per row")
+    if not 0 < along < q:
+        raise ValueError("the second parameter is a column of p other than p[0]")
+    if crossing not in (1.0, -1.0):
+        raise ValueError("crossing is +1 (fold) or -1 (period doubling)")
+    guess = np.broadcast_to(np.asarray(guess, dtype=np.float64),
+                            (n, problem.dimension)).copy()
+    first = steps or problem.steps
+    limit = np.broadcast_to(np.asarray(reach if reach is not None
+                                       else 0.1 * max(abs(p[0, 0]), 1e-3), dtype=np.float64),
+                            (n,))
+    out_p = np.full(n, np.nan)
+    start = np.full((n, problem.dimension), np.nan)
+    monodromy = np.full((n, problem.dimension, problem.dimension), np.nan)
+    converged = np.zeros(n, dtype=bool)
+    used = np.full(n, first)
+    accuracy = np.full(n, np.nan)
+    reason = ["" for _ in range(n)]
+    for low in range(0, n, block):
+        rows = np.arange(low, min(low + block, n))
+        known = np.flatnonzero(converged[:low])[-3:] if follow else np.empty(0, int)
+        trial = p[rows].copy()
+        x0 = guess[rows].copy()
+        if known.size:
+            degree = min(known.size - 1, 2)
+            if degree:
+                fit = np.polyfit(p[known, along], out_p[known], degree)
+                trial[:, 0] = np.polyval(fit, trial[:, along])
+            else:
+                trial[:, 0] = out_p[known[-1]]
+            x0[:] = start[known[-1]]
+        scale = problem.scale(trial)
+        width = limit[rows].copy()
+        count = first
+        value, x, jac, ok, why = _secant(problem, count, trial, x0, scale, crossing, width,
+                                         periods, progress)
+        settled = np.zeros(rows.size, dtype=bool)
+        change = np.full(rows.size, np.nan)
+        for _ in range(doublings):
+            todo = np.flatnonzero(ok & ~settled)
+            if not todo.size:
+                break
+            count *= 2
+            again = trial[todo].copy()
+            again[:, 0] = value[todo]
+            v2, x2, j2, ok2, why2 = _secant(problem, count, again, x[todo], scale[todo],
+                                            crossing, width[todo], periods, progress)
+            moved = np.abs(v2 - value[todo]) / np.maximum(np.abs(v2), 1.0)
+            change[todo] = np.where(ok2, moved, np.nan)
+            settled[todo] = ok2 & (moved <= tol)
+            value[todo], x[todo], jac[todo], ok[todo] = v2, x2, j2, ok2
+            for m, j in enumerate(todo):
+                why[j] = why2[m]
+                used[rows[j]] = count
+        for m, j in enumerate(rows):
+            if settled[m]:
+                continue
+            reason[j] = why[m] or (f"the boundary still moves by {change[m]:.2g} with "
+                                   f"{used[j]:,} steps per period (tolerance {tol:.2g})")
+        converged[rows] = settled
+        out_p[rows] = np.where(settled, value, np.nan)
+        start[rows] = np.where(settled[:, None], x, np.nan)
+        monodromy[rows] = jac
+        accuracy[rows] = change
+    params = p.copy()
+    params[:, 0] = out_p
+    mult = ordered(np.linalg.eigvals(np.where(np.isfinite(monodromy), monodromy, 0.0)))
+    mult = np.where(converged[:, None], mult, np.nan)
+    return Boundary(params, start, mult, converged, used, accuracy, crossing, reason)

@@ -178,7 +178,8 @@ def stability(curve, fig: Figure | None = None) -> Figure:
 
 def stability_map(result, fig: Figure | None = None) -> Figure:
     """The largest |Floquet multiplier| over speed × stiffness or damping, the unstable
-    cells hatched and the boundary |μ| = 1 drawn."""
+    cells hatched, the contour |μ| = 1 of the cells drawn and the traced boundary points
+    (``StabilityMap.edges``: a multiplier at −1 or +1, solved between the cells) marked."""
     speed = result.speed * RAD_PER_S_TO_RPM
     unit = "N·m/rad" if result.parameter == "stiffness" else "N·m·s/rad"
     with canvas.style():
@@ -194,6 +195,16 @@ def stability_map(result, fig: Figure | None = None) -> Figure:
                        colors="k", linewidths=1.0)
         ax.contourf(speed, result.values, result.unstable.astype(float), levels=[0.5, 1.5],
                     hatches=["////"], colors="none")
+        edges = getattr(result, "edges", None)
+        if edges is not None and edges.speed.size:
+            for n, kind in enumerate(sorted(set(edges.kind))):
+                pick = np.array([k == kind for k in edges.kind])
+                sigma = "−1" if kind == "period doubling" else "+1"
+                ax.plot(edges.speed[pick] * RAD_PER_S_TO_RPM, edges.values[pick],
+                        linestyle="none", marker="o" if n == 0 else "s", markersize=5,
+                        markerfacecolor="white", markeredgecolor=f"C{n + 1}",
+                        label=f"traced boundary (μ = {sigma}, {kind})")
+            ax.legend(loc="upper right", fontsize=7)
         fig.colorbar(mesh, ax=ax, label="largest |μ| [-]")
         ax.set_xlabel("crank speed Ω [rpm]")
         ax.set_ylabel(f"{result.parameter} [{unit}]")

@@ -401,3 +401,45 @@ def test_a_coupling_file_in_the_line():
     low = (-b - math.sqrt(b * b - 4 * a * c)) / (2 * a)
     assert freq.omega_bar == pytest.approx(math.sqrt(low), rel=1e-12)
     assert api.line_of(mechanism).elements == 2
+
+
+@pytest.mark.slow
+def test_the_maps_traced_boundary_separates_its_cells(tmp_path):
+    """dyade-16 on a shaft of 1000 N·m/rad (unstable near 2ω̄ = 3571 rpm, the principal
+    parametric region): between the cells the boundary is traced in speed at each
+    damping; just below and just above each traced point (±1e-4 of Ω) the shooting of
+    the same line gives opposite verdicts, and the multiplier there is −1 (period
+    doubling). The region narrows with damping; the figure marks the points."""
+    from dyade.analyses.drive_line import edge_notes
+    from dyade.linkage.drive import crank_shaft
+
+    mechanism = dyade.read_mechanism(shipped("dyade-16.toml"), {
+        "drive_line.stiffness": 1000.0, "drive_line.steps": 360})
+    damping = np.array([0.02, 0.1])
+    chart = api.stability_map(mechanism, [3480.0, 3560.0, 3660.0], damping=damping)
+    edges = chart.edges
+    assert chart.unstable[:, 1].all() and not chart.unstable[:, [0, 2]].any()
+    assert edges.missed == [] and edges.kind == ["period doubling"] * 4
+    np.testing.assert_array_equal(edges.values, np.repeat(damping, 2))
+    width = np.diff(edges.speed.reshape(2, 2), axis=1)[:, 0]
+    assert width[1] < 0.9 * width[0]
+    shaft = crank_shaft(mechanism)
+    line = shaft.ideal_line
+    tables = shaft.tables_at(360)
+    for speed, b in zip(edges.speed, edges.values):
+        near = speed * np.array([1.0 - 1e-4, 1.0, 1.0 + 1e-4])
+        lanes = engine.Lanes.of(line, near, None, np.full((3, 1), b))
+        solution = engine.periodic(line, tables, lanes, engine.linear_guess(line, tables, lanes))
+        assert solution.converged.all()
+        assert solution.unstable[0] != solution.unstable[2]
+        mu = solution.multipliers[1]
+        assert np.min(np.abs(mu + 1.0)) < 1e-4, mu
+    notes = edge_notes(edges, "damping", "N·m·s/rad")
+    assert notes[0].startswith("stability boundary traced (a multiplier at −1")
+    pytest.importorskip("matplotlib")
+    from dyade.plot import drive_line as figures
+
+    fig = figures.stability_map(chart)
+    marks = [line for line in fig.axes[0].get_lines() if "traced" in line.get_label()]
+    assert len(marks) == 1
+    np.testing.assert_allclose(marks[0].get_xdata(), edges.speed * RAD_PER_S_TO_RPM)

@@ -169,3 +169,87 @@ def test_fold_speeds_against_a_slow_ramp():
         jumps.append((slow - r * fast) / (1.0 - r))
     assert jumps[0] == pytest.approx(upper[0], rel=1e-3)
     assert jumps[1] == pytest.approx(lower[0], rel=1e-3)
+
+
+# -- stability boundaries traced in a plane of two parameters ---------------------------
+def mathieu(steps: int = 64) -> P.Problem:
+    """Mathieu's equation x'' + (δ + ε·cos s)·x = 0, p = (δ, ε), over one period 2π."""
+    def field(n):
+        cos = np.cos(math.pi / n * np.arange(2 * n + 1))
+
+        def f(k, x, p):
+            return np.column_stack((x[:, 1], -(p[:, 0] + p[:, 1] * cos[k]) * x[:, 0]))
+        return f
+    return P.Problem(2, field, lambda p: np.ones((p.shape[0], 2)), steps=steps)
+
+
+TONGUE_EPSILON = np.linspace(0.05, 0.01, 6)
+
+
+@pytest.fixture(scope="module")
+def first_tongue():
+    """Both edges of Mathieu's first tongue traced from ε = 0.05 down to 0.01 (multiplier
+    −1), each from a rough first guess δ = 1/4 ∓ 0.02."""
+    problem = mathieu()
+    return [P.boundary(problem, np.column_stack((np.full(TONGUE_EPSILON.size, guess),
+                                                 TONGUE_EPSILON)),
+                       np.zeros(2), crossing=-1.0, block=3)
+            for guess in (0.23, 0.27)]
+
+
+def test_the_traced_tongue_is_mathieus(first_tongue):
+    """The edges of the first tongue: δ = 1/4 ± ε/2 to first order, the neglected term
+    −ε²/8; with it, δ = 1/4 ± ε/2 − ε²/8 ∓ ε³/32 (Abramowitz & Stegun 20.2.25 with
+    a = 4δ, q = −2ε)."""
+    eps = TONGUE_EPSILON
+    for edge, sign in zip(first_tongue, (-1.0, 1.0)):
+        assert edge.converged.all(), edge.reason
+        assert edge.kind == P.FLIP
+        assert np.all(edge.accuracy <= P.ACCURACY)
+        assert np.allclose(edge.multipliers, -1.0, atol=1e-6)
+        delta = edge.parameter[:, 0]
+        first = 0.25 + sign * eps / 2.0
+        # to first order: off by the neglected term, −ε²/8 (not more, not less)
+        assert np.all(np.abs((delta - first) / eps ** 2 + 0.125) <= 0.005)
+        # to second order: off by the third-order term ∓ε³/32
+        second = first - eps ** 2 / 8.0
+        assert np.all(np.abs(delta - second) <= eps ** 3 / 32.0 * 1.1)
+        third = second - sign * eps ** 3 / 32.0
+        assert np.all(np.abs(delta - third) <= 1e-7)
+
+
+def test_a_sampled_grid_agrees_with_the_traced_boundary(first_tongue):
+    """Cells of a (δ, ε) grid shot one by one: unstable (a multiplier beyond −1) exactly
+    inside the traced edges."""
+    lower, upper = (edge.parameter[:, 0] for edge in first_tongue)
+    delta = np.linspace(0.2013, 0.2987, 40)  # no cell on an edge
+    eps = TONGUE_EPSILON[[0, 2, 5]]
+    grid = np.array([(d, e) for e in eps for d in delta])
+    cells = P.shoot(mathieu(), grid, np.zeros((grid.shape[0], 2)), doublings=1)
+    assert cells.converged.all()
+    inside = np.concatenate([(delta > lo) & (delta < hi) for lo, hi in
+                             zip(lower[[0, 2, 5]], upper[[0, 2, 5]])])
+    assert inside.any() and not inside.all()
+    np.testing.assert_array_equal(cells.unstable, inside)
+    assert set(k for k, i in zip(cells.kind, inside) if i) == {P.FLIP}
+
+
+@pytest.mark.slow
+def test_the_second_tongue_is_bounded_by_folds():
+    """Mathieu's second tongue (multiplier +1): δ = 1 − ε²/12 + 5ε⁴/3456 and
+    δ = 1 + 5ε²/12 − 763ε⁴/3456 to fourth order, off by the neglected terms
+    −289ε⁶/4976640 and +1002401ε⁶/4976640 (A&S 20.2.25, b₂ and a₂ with a = 4δ,
+    q = −2ε); with them, to O(ε⁸)."""
+    problem = mathieu()
+    eps = np.linspace(0.3, 0.1, 8)
+    for guess, exact, sixth in ((0.99, 1 - eps ** 2 / 12 + 5 * eps ** 4 / 3456, -289.0),
+                                (1.04, 1 + 5 * eps ** 2 / 12 - 763 * eps ** 4 / 3456,
+                                 1002401.0)):
+        edge = P.boundary(problem, np.column_stack((np.full(eps.size, guess), eps)),
+                          np.zeros(2), crossing=1.0, block=4, reach=0.005)
+        assert edge.converged.all(), edge.reason
+        assert edge.kind == P.FOLD
+        miss = edge.parameter[:, 0] - exact
+        assert np.all(np.abs(miss - sixth / 4976640.0 * eps ** 6) <= 0.3 * eps ** 8 + 2e-8)
+    # the upper edge's sixth-order term (2e-7 … 1.5e-4) is what the fourth order misses
+    assert np.all(np.abs(miss / (sixth / 4976640.0 * eps ** 6) - 1.0) <= 0.1)
