@@ -293,7 +293,14 @@ class TableReader:
         without ``floor`` only its top (tiny link masses are the force floor's business)."""
         from dyade.limits import PLAUSIBLE, implausible
 
-        if isinstance(value, Variants):  # each variant's own check
+        if isinstance(value, Variants):  # each variant's own check (all at once; one
+            import numpy as np                  # by one for the message of one that fails)
+
+            low, high, _ = PLAUSIBLE[quantity]
+            v = np.asarray(value)
+            if (np.isfinite(v) & (low <= v) & (v <= high) | (v == 0.0)
+                    | (not floor and v <= high)).all():
+                return value
             for one in value:
                 self.within(float(one), key, quantity, unit, floor)
             return value
@@ -308,9 +315,16 @@ class TableReader:
                non_negative: bool = False) -> float:
         if not is_number(value):
             raise self.fail(key, f"must be a number [{unit}], got {show(value)}.", value, unit)
-        if isinstance(value, Variants):  # each variant's own check
-            for one in value:
-                self.number(float(one), key, unit, positive, non_negative)
+        if isinstance(value, Variants):  # each variant's own check (all at once; one
+            import numpy as np               # by one for the message of one that fails)
+
+            v = np.asarray(value)
+            if not (np.isfinite(v).all() and (not positive or (v > 0.0).all())
+                    and (not non_negative or (v >= 0.0).all())):
+                for one in value:
+                    self.number(float(one), key, unit, positive, non_negative)
+            if self.ceiling and key not in self.unbounded:
+                self.below_top(value, key, CEILINGS.get(unit), unit)
             return value
         value = float(value)
         if not math.isfinite(value):
@@ -332,7 +346,11 @@ class TableReader:
             return
         from dyade.limits import PLAUSIBLE
 
-        if isinstance(value, Variants):  # each variant's own check
+        if isinstance(value, Variants):  # each variant's own check (all at once; one
+            import numpy as np               # by one for the message of one that fails)
+
+            if not (np.abs(np.asarray(value) * scale) > PLAUSIBLE[quantity][1]).any():
+                return
             for one in value:
                 self.below_top(float(one), key, quantity, unit, scale)
             return

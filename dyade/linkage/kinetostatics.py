@@ -77,8 +77,12 @@ def applied_loads(mechanism: Mechanism, kin: Kinematics) -> FloatArray:
     d'Alembert inertia, gravity, applied forces and moments, springs."""
     motion = kin.motion
     n = kin.crank_angle.shape[0]
-    q = np.zeros((mechanism.max_link + 1, 3, n))
-    gx, gy = mechanism.gravity
+    q = np.empty((mechanism.max_link + 1, 3, n))  # every row written below: no zero fill
+    gx, gy = mechanism.gravity                     # of the rows the inertia loads overwrite
+    for number in range(mechanism.max_link + 1):
+        link = mechanism.links.get(number)
+        if number == FRAME or link is None or not link.has_mass:
+            q[number] = 0.0
     for number, link in mechanism.links.items():
         if number == FRAME or not link.has_mass:
             continue

@@ -82,11 +82,13 @@ def _stack(values: list, positions: int, where: str):
     raise NotStackable(f"{where}: {type(first).__name__} differs between variants")
 
 
-def spread(mechanism: Mechanism, positions: int) -> Mechanism:
+def spread(mechanism: Mechanism, positions: int, first: int = 0, last: int | None = None
+           ) -> Mechanism:
     """The mechanism of a block of variants read at once (``Variants`` for the numbers
     that differ) as ``stack`` gives it: each ``Variants`` an array of one value per
-    (variant, position), variant-major."""
-    return _map(mechanism, lambda v: np.repeat(np.asarray(v), positions))
+    (variant, position), variant-major; of variants first..last−1 only where given
+    (``spread(part(m, first, last), positions)`` in one walk)."""
+    return _map(mechanism, lambda v: np.repeat(np.asarray(v)[first:last], positions))
 
 
 def part(mechanism: Mechanism, first: int, last: int) -> Mechanism:

@@ -271,13 +271,14 @@ class Evaluator:
         except NotStackable:
             return [], None
 
-    def swept_together(self, values: np.ndarray, together=None
+    def swept_together(self, values: np.ndarray, together=None, first: int = 0
                        ) -> dict[int, tuple[str, str, dict]]:
         """Variant (row of ``values``) -> its row, for every variant of one run of them
         all through the sweep pipeline (``pipeline.prepare_variants``: its validity
         policy, bands and plausibility decide per variant, as in a sweep of each alone);
         empty where the block is not stacked. The variants are read at once
-        (``read_together``; ``together``: so read already), else one by one; a variant
+        (``read_together``; ``together``: so read already, ``values`` its variants from
+        ``first`` on), else one by one; a variant
         that does not close has the status "does not close" and the pipeline's
         reason."""
         from dyade.errors import DyadeError
@@ -288,9 +289,10 @@ class Evaluator:
         if not self.stacks or len(values) < 2 or not self.stages_stack(values):
             return {}
         if together is None:
-            together = self.read_together(values)
+            together, first = self.read_together(values), 0
         if together is not None:
-            read, stacked = list(range(len(values))), spread(together, together.sweep.count)
+            read = list(range(len(values)))
+            stacked = spread(together, together.sweep.count, first, first + len(values))
         else:
             read, stacked = self.read_each(values)
             if stacked is None:
@@ -347,8 +349,6 @@ class Evaluator:
         return rows
 
     def __call__(self, block: tuple[int, np.ndarray]) -> list[tuple[int, str, str, dict]]:
-        from dyade.linkage.stack import part as variants
-
         first, values = block
         rows = []
         parts = -(-len(values) // STACK)  # as many sweeps as needed, of equal size
@@ -357,8 +357,7 @@ class Evaluator:
             together = self.read_together(values)
         for indices in np.array_split(np.arange(len(values)), max(parts, 1)):
             start, part = int(indices[0]) if indices.size else 0, values[indices]
-            done = self.swept_together(part, None if together is None or not indices.size
-                                       else variants(together, start, start + indices.size))
+            done = self.swept_together(part, None if not indices.size else together, start)
             rows += [(first + start + i, *(done[i] if i in done else self.one(row)))
                      for i, row in enumerate(part)]
         return rows

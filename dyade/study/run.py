@@ -184,9 +184,10 @@ def execute(spec: Spec, evaluator: Evaluator, matrix: np.ndarray, outputs: list[
         if progress is not None:
             progress(done, len(matrix))
         for block in results:
-            lines = [[index, *spec.shown(matrix[index]), status, reason,
+            shown = spec.shown_rows(matrix[[index for index, *_ in block]])
+            lines = [[index, *values, status, reason,
                       *[out.get(name, math.nan) for name in outputs]]
-                     for index, status, reason, out in block]
+                     for (index, status, reason, out), values in zip(block, shown)]
             journal.write(lines)
             for line in lines:
                 rows[line[0]] = line

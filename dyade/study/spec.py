@@ -120,6 +120,13 @@ class Spec:
         it: the names of the choices, the numbers as floats."""
         return [p.shown(v) for p, v in zip(self.parameters, row)]
 
+    def shown_rows(self, rows) -> list[list]:
+        """``shown`` of each row of ``rows`` (a (variants, parameters) float array): the
+        numbers all at once where no parameter is a choice."""
+        if any(p.categorical for p in self.parameters):
+            return [self.shown(row) for row in rows]
+        return rows.tolist()  # (float64 -> the same floats as float(value))
+
     def numeric(self, row) -> list[float]:
         """``shown``'s inverse: a row with the choices' names as the matrix's numbers."""
         return [float(p.choices.index(v)) if p.categorical and isinstance(v, str) else

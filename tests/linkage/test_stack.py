@@ -106,3 +106,24 @@ def test_means_of_rows_are_each_rows_mean(stop):
     if stop == 360.0:
         assert cycle.means(angle, rows)[2] == 0.0
         assert abs(cycle.means(angle, rows)[0] - np.mean(rows[0, :-1])) < 1e-12
+
+
+def test_spread_of_a_run_of_variants_is_spread_of_their_part():
+    """``spread(m, n, first, last)`` (one walk, issue 41) = ``spread(part(m, first,
+    last), n)`` = the stack of those variants taken out one by one (``pick``)."""
+    import tomllib
+
+    from dyade.arrays import Variants
+    from dyade.files.mechanism import NUMBERING, build, set_dotted
+    from dyade.linkage.stack import part, pick, same, spread
+
+    path = shipped("fourbar.toml")
+    with open(path, "rb") as file:
+        data = tomllib.load(file)
+    set_dotted(data, "dyad.2.lengths.1", Variants([196.0, 200.0, 203.0, 205.0]),
+               "fourbar.toml", "parameter", NUMBERING)
+    block = build(data, path)
+    one_walk = spread(block, 3, 1, 3)
+    assert not same(one_walk, spread(part(block, 1, 3), 3))
+    assert not same(one_walk, stack([pick(block, 1), pick(block, 2)], 3))
+    assert same(one_walk, spread(block, 3, 0, 2))  # (the test can fail)
