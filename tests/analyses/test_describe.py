@@ -121,28 +121,3 @@ def test_the_frame_shows_at_most_50_points_like_a_link(tmp_path):
     assert "point P47 =" in result.output and "point P48 =" not in result.output
     assert "link 1: 1,952 more named points (P48 … P1999)" in result.output
     assert len(result.output.splitlines()) < 80
-
-
-@pytest.mark.slow
-def test_describe_costs_little_beside_reading_and_scales_linearly(tmp_path):
-    """describe's own cost (the whole command less reading the file) at most 1.5 × the
-    reading, and linear in the number of points: 4 × the points, at most 6 × the time
-    (quadratic would be 16 ×)."""
-    import time
-
-    def best(call, times: int = 2) -> float:
-        out = []
-        for _ in range(times):
-            start = time.perf_counter()
-            call()
-            out.append(time.perf_counter() - start)
-        return min(out)
-
-    own = {}
-    for count in (3_000, 12_000):
-        path = _with_frame_points(tmp_path, count)
-        read = best(lambda: dyade.read_mechanism(path))
-        whole = best(lambda: run(path))
-        own[count] = max(whole - read, 1e-3)
-        assert own[count] <= 1.5 * read, (count, whole, read)
-    assert own[12_000] <= 6 * own[3_000], own
