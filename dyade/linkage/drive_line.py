@@ -432,6 +432,9 @@ class ResonanceCurve:
     slowest: FloatArray | None = None
     """(r,) the crank's slowest speed over the cycle over Ω [-] (negative: it turns
     back for a moment); NaN where not converged"""
+    period_two: PeriodTwo | None = None
+    """the period-2 motions at the speeds of a flip region (``period_two``), where the
+    caller asked for them (``dyade.analyses.drive_line``: ``period_two=True``)"""
 
     @property
     def unstable(self) -> FloatArray:
@@ -1111,6 +1114,23 @@ class PeriodTwo:
     """(s, d) the multipliers of the period-1 orbit it bifurcated from"""
     reason: list
     """(s,) why none was found ("" where one was)"""
+    steps: FloatArray | None = None
+    """(s,) RK4 steps per revolution of the period-2 orbit (0 where not found)"""
+    twist_amplitude: FloatArray | None = None
+    """(s,) (max − min)/2 of the twist over the two revolutions [rad]; NaN where not
+    found"""
+    twist_max: FloatArray | None = None
+    """(s,) the largest |twist| over the two revolutions [rad]"""
+    peak_torque: FloatArray | None = None
+    """(s,) the largest |shaft torque| over the two revolutions [N·m]"""
+    fluctuation: FloatArray | None = None
+    """(s,) (max − min)/Ω of the crank speed over the two revolutions [-]"""
+    accuracy: FloatArray | None = None
+    """(s,) the change of the orbit and its multipliers with twice the steps [-]"""
+    balance: FloatArray | None = None
+    """(s,) the energy balance over the two revolutions, of the largest work [-]"""
+    slowest: FloatArray | None = None
+    """(s,) the crank's slowest speed over Ω [-] (negative: it turns back)"""
 
     @property
     def stability(self) -> FloatArray:
@@ -1184,6 +1204,8 @@ def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
         vectors[j] = vecs[:, k].real / np.max(np.abs(vecs[:, k].real))
     scale = problem.scale(p)
     todo = np.flatnonzero(flip)
+    used = np.zeros(speeds.size, dtype=int)
+    accuracy = np.full(speeds.size, np.nan)
     for amount in PERIOD_TWO_SEEDS:
         todo = todo[~found[todo]]
         if not todo.size:
@@ -1195,8 +1217,32 @@ def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
         found[todo[good]] = True
         start[todo[good]] = shot.start[good]
         mult[todo[good]] = shot.multipliers[good]
+        used[todo[good]] = shot.steps[good]
+        accuracy[todo[good]] = shot.accuracy[good]
     for j in np.flatnonzero(flip & ~found):
         reason[j] = ("no period-2 orbit found beside the period-1 orbit (the shooting from "
                      "its flip direction converged to nothing else)")
+    values = [np.full(speeds.size, np.nan) for _ in range(6)]
+    for level in np.unique(used[found]):  # the orbit over its two revolutions, with works
+        idx = np.flatnonzero(found & (used == level))
+        path = periodic.trajectory(engine.problem_in_time(line, shaft.tables_at, int(level),
+                                                          works=True),
+                                   int(level), np.pad(start[idx], ((0, 0), (0, 3))), p[idx],
+                                   periods=2)
+        twist = path[:, :, 1]
+        crank = speeds[idx][None, :] + path[:, :, 0]
+        torque = p[idx, 1] * twist - p[idx, 2] * path[:, :, 0]
+        values[0][idx] = 0.5 * (twist.max(axis=0) - twist.min(axis=0))
+        values[1][idx] = np.max(np.abs(twist), axis=0)
+        values[2][idx] = np.max(np.abs(torque), axis=0)
+        values[3][idx] = np.ptp(crank, axis=0) / speeds[idx]
+        work = path[-1, :, 2:]  # motor, damping, loads [J] (as ``_orbit_values``)
+        values[4][idx] = (np.abs(work[:, 0] + work[:, 2] - work[:, 1])
+                          / np.maximum(np.max(np.abs(work), axis=1), 1e-300))
+        values[5][idx] = crank.min(axis=0) / speeds[idx]
+    for j in np.flatnonzero(found & ~(values[4] <= BALANCE_TOL)):
+        found[j] = False
+        reason[j] = (f"the energy balance over the two revolutions is off by {values[4][j]:.2g} "
+                     f"of the largest work (tolerance {BALANCE_TOL:g})")
     return PeriodTwo(speeds, speeds / shaft.frequency.omega_bar, found, start, mult,
-                     one.multipliers, reason)
+                     one.multipliers, reason, used, *values[:4], accuracy, *values[4:])
