@@ -543,7 +543,8 @@ def period_two_rows(shaft, found, alone, rows: dict, outcome: Outcome, budget: B
         return rows
     seconds = PERIOD_TWO_SECONDS * len(flips) * max(steps, 1) / 720.0
     try:
-        budget.time(seconds, f"the period-2 motions at {len(flips)} speeds")
+        budget.time(seconds, f"the period-2 motions at {len(flips)} "
+                             f"speed{'s' if len(flips) > 1 else ''} that flip")
     except InputError as err:
         outcome.notes.append(f"the period-2 motions were not computed: {err}")
         return rows

@@ -124,10 +124,11 @@ def branches(ax, curve) -> None:
         found = two.found
         stable = found & ~(two.stability > 1.0 + UNSTABLE_MARGIN)
         x, y = two.speed * RAD_PER_S_TO_RPM, np.degrees(two.twist_max)
-        ax.plot(x[stable], y[stable], "D", color="C4", markersize=4.0,
-                label="period-2 motion (over two revolutions), stable")
-        ax.plot(x[found & ~stable], y[found & ~stable], "D", markerfacecolor="none",
-                color="C4", markersize=4.0, label="period-2 motion, unstable")
+        for which, words, face in ((stable, "stable", "C4"), (found & ~stable, "unstable",
+                                                               "none")):
+            if which.any():
+                ax.plot(x[which], y[which], "D", color="C4", markerfacecolor=face,
+                        markersize=4.0, label=f"period-2 motion, {words}")
     for fold, upper in curve.folds:
         ax.axvline(fold * RAD_PER_S_TO_RPM, color="0.4", linewidth=0.8, linestyle=":")
         ax.annotate("jump ↑ sweep" if upper else "jump ↓ sweep", (fold * RAD_PER_S_TO_RPM,
@@ -184,15 +185,15 @@ def stability(curve, fig: Figure | None = None) -> Figure:
         two = _period_two(curve)
         if two is not None:
             ax.plot(two.speed[two.found] * RAD_PER_S_TO_RPM, two.stability[two.found], "D",
-                    color="C4", markersize=4.0, label="largest |μ|, period-2 motion (over "
-                                                      "two revolutions)")
+                    color="C4", markersize=4.0, label="largest |μ| over two revolutions, "
+                                                      "period-2 motion")
         ax.axhline(1.0, color="0.3", linewidth=0.8)
         _shade_unstable(ax, speed[first], curve.unstable[first])
         _resonance_marks(ax, curve)
         ax.set_xlim(speed.min(), speed.max())
         ax.set_xlabel("crank speed Ω [rpm]")
         ax.set_ylabel("largest |Floquet multiplier| [-]")
-        canvas.legend_above(axes[0], fontsize=7)
+        canvas.legend_above(axes[0], most=3, fontsize=7)
         ax.legend(loc="best", fontsize=7)
         fig.suptitle("Periodic solutions and their stability (linearised about each)")
     return fig
