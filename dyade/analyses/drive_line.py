@@ -525,7 +525,8 @@ def period_two_rows(shaft, found, alone, rows: dict, outcome: Outcome, budget: B
                     steps: int) -> dict:
     """The scan's ``rows`` with a row of ``period`` 2 at each speed [rpm] of ``alone``
     (every periodic solution unstable) where a solution flips (period doubling) and the
-    period-2 motion is found (``linkage.drive_line.period_two``), after its speed's rows;
+    period-2 motion is found (``linkage.drive_line.period_two``, from the scan's own
+    flipping orbit), after its speed's rows;
     the speeds without one in a note. The time it takes is checked against the budget
     first: beyond it, a note instead."""
     import numpy as np
@@ -548,7 +549,7 @@ def period_two_rows(shaft, found, alone, rows: dict, outcome: Outcome, budget: B
     except InputError as err:
         outcome.notes.append(f"the period-2 motions were not computed: {err}")
         return rows
-    two = api.period_two(shaft.mechanism, flips, shaft=shaft)
+    two = api.period_two(shaft.mechanism, flips, shaft=shaft, curve=found)
     found.period_two = two
     missed = [f"{s:.6g}" for s, ok in zip(flips, two.found) if not ok]
     if missed:

@@ -75,6 +75,7 @@ def driveline(mechanism_file: str, what: str, fmt: str | None, output: str | Non
         dyade driveline mech.toml                       # steady state vs rigid
         dyade driveline mech.toml --analysis resonance --speed-range 300:6000:50
         dyade driveline mech.toml --analysis stability --eta-range 0.2:1.6:0.01
+        dyade driveline mech.toml --analysis stability --eta-range 0.6:0.9:0.1 --period-two
         dyade driveline mech.toml --analysis map --speed-range 300:6000:50 \\
             --map stiffness=500:2000:100
         dyade driveline mech.toml --analysis run-up

@@ -1144,7 +1144,8 @@ below −1 (the largest component, of the state's scale) that seed the period-2 
 
 
 def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
-               tolerance: float | None = None, shaft: CrankShaft | None = None) -> PeriodTwo:
+               tolerance: float | None = None, shaft: CrankShaft | None = None,
+               curve: ResonanceCurve | None = None) -> PeriodTwo:
     """The period-2 motions at the ideal motor's speeds ``speeds_rpm`` [rpm]: where the
     period-1 orbit (shot in time from the linear response) has a multiplier below −1,
     shot over two revolutions from it displaced along that multiplier's eigenvector
@@ -1163,6 +1164,10 @@ def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
         The change with twice the steps that counts as converged [-].
     shaft : CrankShaft, optional
         The mechanism's crank shaft, when the caller has it.
+    curve : ResonanceCurve, optional
+        A scan of these speeds (``resonance_curve``): its flipping period-1 orbit at a
+        speed (carried to the section s = 0 where it was found in crank angle) is the
+        guess of the period-1 shooting in time there, not the linear response.
 
     Returns
     -------
@@ -1182,6 +1187,8 @@ def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
     problem = engine.problem_in_time(line, shaft.tables_at, n)
     p = engine.parameters(line, speeds)
     guess = engine.linear_guess(line, tables, engine.Lanes.of(line, speeds))
+    if curve is not None:
+        guess = _scan_guess(line, shaft, curve, speeds, p, guess)
     one = periodic.shoot(problem, p, guess, tol=tol)
     d = line.dimension
     found = np.zeros(speeds.size, dtype=bool)
@@ -1246,3 +1253,31 @@ def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
                      f"of the largest work (tolerance {BALANCE_TOL:g})")
     return PeriodTwo(speeds, speeds / shaft.frequency.omega_bar, found, start, mult,
                      one.multipliers, reason, used, *values[:4], accuracy, *values[4:])
+
+
+def _scan_guess(line, shaft, curve: ResonanceCurve, speeds, p, guess) -> FloatArray:
+    """``guess`` (s, d) with the scan's own flipping period-1 orbit at each speed it has
+    one (a converged row with a multiplier below −1), at the section s = 0 of
+    ``engine.problem_in_time``: as it is where the row was found in time, else its orbit
+    in crank angle integrated over one revolution and cut there."""
+    from dyade.machine import periodic
+
+    guess = np.array(guess, dtype=np.float64)
+    in_time = np.zeros(len(curve.speed), dtype=bool) if curve.in_time is None else curve.in_time
+    pick = []  # (speed index, row)
+    for j, speed in enumerate(speeds):
+        rows = np.flatnonzero(np.isclose(curve.speed, speed, rtol=1e-9) & curve.converged
+                              & np.array([k == periodic.FLIP for k in curve.kind], dtype=bool))
+        if rows.size:
+            pick.append((j, int(rows[0])))
+    for j, r in pick:
+        if in_time[r]:
+            guess[j] = curve.start[r]
+    for n in {int(curve.steps_used[r]) for j, r in pick if not in_time[r]}:
+        chosen = [(j, r) for j, r in pick if not in_time[r] and int(curve.steps_used[r]) == n]
+        js = np.array([j for j, _ in chosen])
+        x0 = np.array([curve.start[r] for _, r in chosen])
+        path = periodic.trajectory(engine.problem(line, shaft.tables_at, n), n, x0, p[js])
+        nodes = np.repeat(np.linspace(0.0, 2.0 * math.pi, n + 1)[:, None], js.size, axis=1)
+        guess[js] = engine.section_in_time(path, nodes)
+    return guess
