@@ -6,6 +6,7 @@ section runs its entry once."""
 
 from __future__ import annotations
 
+import io
 import json
 import re
 
@@ -270,17 +271,18 @@ def test_the_report_runs_the_entry_once(monkeypatch):
 
 def test_period_two_rows_follow_their_speed_in_table_json_and_csv(monkeypatch):
     """``--period-two``: at 3575 rpm (dyade-16 near 2ω̄) the only periodic motion flips
-    (period doubling), so the scan asks ``period_two`` for that speed alone and lists
-    its motion as a row with ``period`` 2 after the speed's row (its twist, |μ| over two
-    revolutions, verdict), the other rows ``period`` 1; in the table, the JSON and the
-    CSV. (``period_two`` itself, 10–20 s a speed, is replaced here by a stand-in: its
+    (period doubling), so the scan asks ``period_two`` for that speed and lists its
+    motion as a row with ``period`` 2 after the speed's row (its twist, |μ| over two
+    revolutions, verdict), the speed's own row ``period`` 1; in the table, the JSON and
+    the CSV. (``period_two`` itself, 10–20 s a speed, is replaced here by a stand-in: its
     physics is tests/linkage/test_drive_line_branches.py's.)"""
     from dyade.linkage import drive_line as api
+    from dyade.units import RAD_PER_S_TO_RPM
 
     asked = []
 
     def stand_in(mechanism, speeds_rpm, **_):
-        speeds = np.asarray(speeds_rpm, dtype=float) / 9.549296585513721
+        speeds = np.asarray(speeds_rpm, dtype=float) / RAD_PER_S_TO_RPM
         asked.append(list(speeds_rpm))
         n = speeds.size
         one = np.ones(n)
@@ -292,21 +294,26 @@ def test_period_two_rows_follow_their_speed_in_table_json_and_csv(monkeypatch):
 
     monkeypatch.setattr(api, "period_two", stand_in)
     args = ["driveline", DYADE_16, "--set", PARAMETRIC[0], "--set", PARAMETRIC[1],
-            "--analysis", "stability", "--speed-range", "3450:3575:125", "--period-two"]
-    output = invoke([*args, "--format", "json"]).output  # (the estimate's words first)
-    document = json.loads(output[output.index("{"):])
+            "--analysis", "stability", "--speed-range", "3575:3575:1", "--period-two"]
+    outcome = REGISTRY["driveline-stability"](DYADE_16, set=PARAMETRIC,
+                                              speed_range_rpm="3575:3575:1", period_two=True)
+    document = json.loads(json.dumps(jsonable(outcome.to_document())))
     columns = document["columns"]
-    assert asked == [[3575.0]]  # the flipping speed alone
-    assert columns["speed_rpm"] == [3450.0, 3575.0, 3575.0]
-    assert columns["period"] == [1, 1, 2]
-    assert columns["unstable"] == [False, True, False]
-    assert columns["floquet"][2] == pytest.approx(0.5)
-    assert columns["twist_max_deg"][2] == pytest.approx(np.degrees(0.02))
+    assert asked == [[3575.0]]  # the flipping speed
+    assert columns["speed_rpm"] == [3575.0, 3575.0]
+    assert columns["period"] == [1, 2]
+    assert columns["solution"] == [1, 2]
+    assert columns["unstable"] == [True, False]
+    assert columns["instability"] == ["period doubling", ""]
+    assert columns["floquet"][1] == pytest.approx(0.5)
+    assert columns["twist_max_deg"][1] == pytest.approx(np.degrees(0.02))
     assert document["units"]["period"] == "-"
     assert any("period-2 motions" in note for note in document["notes"])
-    csv = invoke([*args, "--format", "csv"]).output
-    header = next(line for line in csv.splitlines() if "speed_rpm" in line)
+    from dyade.report.outcome import write_csv
+
+    csv = io.StringIO()
+    write_csv(outcome, csv)
+    header = next(line for line in csv.getvalue().splitlines() if "speed_rpm" in line)
     assert "period" in header.split(",")
-    table = invoke(args)
-    assert table.exit_code == 0, table.output
+    table = invoke(args)  # the command line: the table
     assert "period" in table.stdout and not REPR.search(table.stdout), REPR.search(table.stdout)
