@@ -38,7 +38,12 @@ SPEED_RPM = Option("speed", float, "rpm", positive=True, metavar="RPM", old=("--
 MAP = Option("map", str, metavar="stiffness|damping=START:STOP:STEP",
              help="The shaft's parameter to map against speed and its values [N·m/rad or "
                   "N·m·s/rad]")
-OPTIONS = (SET, SPEED_RANGE, ETA_RANGE, SPEED_RPM, MAP)
+PERIOD_TWO = Option("period-two", bool,
+                    help="Where a speed's only periodic motions are unstable by period "
+                         "doubling (a multiplier below −1), shoot the period-2 motion over two "
+                         "revolutions and list it as a row with period 2 (about 10–20 s per "
+                         "such speed; counted in the time estimate and --max-time)")
+OPTIONS = (SET, SPEED_RANGE, ETA_RANGE, SPEED_RPM, MAP, PERIOD_TWO)
 """every option of the drive line's entries (``dyade driveline`` declares them all)"""
 
 MOST_SPEEDS = 2000  # the most speeds (or map values) one run takes
@@ -50,6 +55,8 @@ NO_STATE = ("the crank would stop or turn back within the cycle, the shooting di
             "balance did not close)")
 """why a speed has no periodic state"""
 
+PERIOD_TWO_SECONDS = 15.0  # [s] the period-2 motion of one speed on 720 steps per
+# revolution (measured on a 2-core machine under load: 10 s for one speed, 49 s for three)
 # the time estimate of a run (measured on a 2-core machine, issue 36): the shooting's
 # RK4 step costs about SECONDS_PER_STEP, plus SECONDS_PER_LANE_STEP for each lane (a
 # speed or map cell, times 2d + 1 for the monodromy matrix); a run takes ITERATIONS
@@ -95,6 +102,8 @@ COLUMNS = {
     "floquet": ("-", "largest |Floquet multiplier| (empty: no periodic state)"),
     "unstable": ("1/0", "a Floquet multiplier outside the unit circle (|μ| > 1); empty: "
                         "not converged, no verdict"),
+    "period": ("-", "revolutions of the periodic motion: 1, or 2 where the period-1 motion "
+                    "flips (a multiplier below −1; --period-two)"),
     "solution": ("-", "the periodic solution's number at its speed (several where a "
                       "resonance folds over), by twist amplitude"),
     "twist_max_deg": ("°", "largest |twist| over the period"),
@@ -457,26 +466,29 @@ def curve(name: str):
                 f"{_list(f for f, up in found.folds if not up)} rpm).")
         alone = [s for s in np.unique(speed[found.converged])
                  if not np.any((speed == s) & found.converged & ~found.unstable)]
+        rows = {"speed_rpm": speed, "eta": found.eta, "period": np.ones(speed.size, dtype=int),
+                "solution": found.solution,
+                "peak_torque": found.peak_torque,
+                "rigid_peak_torque": found.rigid_peak_torque,
+                "twist_amplitude_deg": np.degrees(found.twist_amplitude),
+                "twist_max_deg": np.degrees(found.twist_max),
+                "fluctuation": found.fluctuation, "floquet": found.stability,
+                "unstable": found.verdict,
+                "instability": np.array(found.kind, dtype=object),
+                "converged": found.converged,
+                "steps": found.steps_used, "accuracy": found.accuracy,
+                "balance": found.balance, "slowest": found.slowest,
+                "in_time": found.in_time}
+        if options.get(PERIOD_TWO.api):
+            rows = period_two_rows(shaft, found, alone, rows, outcome, budget, steps)
         if alone:
             outcome.notes.append(
                 f"at {len(alone)} speeds ({number_range(alone)} rpm) every periodic solution "
                 f"found is unstable: the machine does not settle on it (a perturbation grows "
                 f"as |μ| per revolution); a period-2 or quasi-periodic motion, or a jump to "
-                f"another branch, follows (a flip region's period-2 motion: the API's "
-                f"dyade.linkage.drive_line.period_two).")
-        set_columns(outcome, {"speed_rpm": speed, "eta": found.eta,
-                              "solution": found.solution,
-                              "peak_torque": found.peak_torque,
-                              "rigid_peak_torque": found.rigid_peak_torque,
-                              "twist_amplitude_deg": np.degrees(found.twist_amplitude),
-                              "twist_max_deg": np.degrees(found.twist_max),
-                              "fluctuation": found.fluctuation, "floquet": found.stability,
-                              "unstable": found.verdict,
-                              "instability": np.array(found.kind, dtype=object),
-                              "converged": found.converged,
-                              "steps": found.steps_used, "accuracy": found.accuracy,
-                              "balance": found.balance, "slowest": found.slowest,
-                              "in_time": found.in_time})
+                f"another branch, follows (a flip region's period-2 motion: "
+                f"{PERIOD_TWO.flag}).")
+        set_columns(outcome, rows)
         add = outcome.add
         for k, at, kind in found.resonances:
             add(f"{kind}_k{k}_rpm", rpm(at), "rpm", {"eta": at / found.omega_bar},
@@ -507,6 +519,75 @@ def curve(name: str):
         return outcome
 
     return run
+
+
+def period_two_rows(shaft, found, alone, rows: dict, outcome: Outcome, budget: Budget,
+                    steps: int) -> dict:
+    """The scan's ``rows`` with a row of ``period`` 2 at each speed [rpm] of ``alone``
+    (every periodic solution unstable) where a solution flips (period doubling) and the
+    period-2 motion is found (``linkage.drive_line.period_two``, from the scan's own
+    flipping orbit), after its speed's rows;
+    the speeds without one in a note. The time it takes is checked against the budget
+    first: beyond it, a note instead."""
+    import numpy as np
+
+    from dyade.errors import InputError
+    from dyade.linkage import drive_line as api
+    from dyade.machine import periodic
+
+    speed = rows["speed_rpm"]
+    flips = [s for s in alone if any(k == "period doubling" for k, at, ok in
+                                     zip(found.kind, speed, found.converged) if ok and at == s)]
+    if not flips:
+        outcome.notes.append(f"{PERIOD_TWO.flag}: no speed of the range has only unstable "
+                             f"periodic motions with a multiplier below −1: no period-2 rows.")
+        return rows
+    seconds = PERIOD_TWO_SECONDS * len(flips) * max(steps, 1) / 720.0
+    try:
+        budget.time(seconds, f"the period-2 motions at {len(flips)} "
+                             f"speed{'s' if len(flips) > 1 else ''} that flip")
+    except InputError as err:
+        outcome.notes.append(f"the period-2 motions were not computed: {err}")
+        return rows
+    two = api.period_two(shaft.mechanism, flips, shaft=shaft, curve=found)
+    found.period_two = two
+    missed = [f"{s:.6g}" for s, ok in zip(flips, two.found) if not ok]
+    if missed:
+        outcome.notes.append(f"no period-2 motion found at {len(missed)} of the {len(flips)} "
+                             f"speeds that flip ({', '.join(missed[:6])}"
+                             f"{' …' if len(missed) > 6 else ''} rpm): "
+                             f"{sorted(set(r for r in two.reason if r))[0]}.")
+    if not two.found.any():
+        return rows
+    kinds = [periodic.kind_of(mu) for mu in two.multipliers]
+    stable = ~(two.stability > 1.0 + periodic.UNSTABLE_MARGIN)
+    extra = {"speed_rpm": np.asarray(flips), "eta": two.eta,
+             "period": np.full(len(flips), 2),
+             "solution": np.array([int(np.sum(speed == s)) + 1 for s in flips]),
+             "peak_torque": two.peak_torque,
+             "rigid_peak_torque": np.array([rows["rigid_peak_torque"][speed == s][0]
+                                            for s in flips]),
+             "twist_amplitude_deg": np.degrees(two.twist_amplitude),
+             "twist_max_deg": np.degrees(two.twist_max),
+             "fluctuation": two.fluctuation, "floquet": two.stability,
+             "unstable": np.array([bool(not ok) for ok in stable], dtype=object),
+             "instability": np.array(["" if ok else k for ok, k in zip(stable, kinds)],
+                                     dtype=object),
+             "converged": np.ones(len(flips), dtype=bool), "steps": two.steps,
+             "accuracy": two.accuracy, "balance": two.balance, "slowest": two.slowest,
+             "in_time": np.ones(len(flips), dtype=bool)}
+    keep = np.flatnonzero(two.found)
+    merged = {name: np.concatenate([np.asarray(values, dtype=extra[name].dtype
+                                               if extra[name].dtype == object else None),
+                                    extra[name][keep]])
+              for name, values in rows.items()}
+    order = np.argsort(merged["speed_rpm"], kind="stable")
+    outcome.notes.append(
+        f"period-2 motions (rows with period 2: over two revolutions, their multipliers "
+        f"over two revolutions) at {keep.size} speeds ({number_range(np.asarray(flips)[keep])}"
+        f" rpm; {int(stable[keep].sum())} stable): where the period-1 motion flips, the "
+        f"machine settles on its period-2 motion where that is stable.")
+    return {name: values[order] for name, values in merged.items()}
 
 
 def _list(values) -> str:
@@ -685,11 +766,13 @@ ENTRIES = {
         command="dyade driveline --analysis steady"),
     "driveline-resonance": Analysis(
         "driveline-resonance", "Resonance curve of the drive line (ideal motor)",
-        curve("driveline-resonance"), (SET, SPEED_RANGE, ETA_RANGE), figures=("driveline",),
+        curve("driveline-resonance"), (SET, SPEED_RANGE, ETA_RANGE, PERIOD_TWO),
+        figures=("driveline",),
         command="dyade driveline --analysis resonance"),
     "driveline-stability": Analysis(
         "driveline-stability", "Floquet multipliers of the drive line over speed (ideal motor)",
-        curve("driveline-stability"), (SET, SPEED_RANGE, ETA_RANGE), figures=("driveline",),
+        curve("driveline-stability"), (SET, SPEED_RANGE, ETA_RANGE, PERIOD_TWO),
+        figures=("driveline",),
         command="dyade driveline --analysis stability"),
     "driveline-map": Analysis(
         "driveline-map", "Largest Floquet multiplier over speed × stiffness or damping",

@@ -6,7 +6,8 @@ from __future__ import annotations
 import click
 
 from dyade.analyses.base import COMMON
-from dyade.analyses.drive_line import ENTRIES, ETA_RANGE, MAP, SPEED_RANGE, SPEED_RPM
+from dyade.analyses.drive_line import (ENTRIES, ETA_RANGE, MAP, PERIOD_TWO, SPEED_RANGE,
+                                       SPEED_RPM)
 from dyade.analyses.inputs import SET
 from dyade.cli import contract, main
 from dyade.cli.options import MECHANISM_FILE, Renamed, as_given
@@ -18,7 +19,8 @@ ANALYSES = ("frequency", "steady", "resonance", "stability", "map", "run-up")
 def driveline_options(command):
     """Decorate a command with the options of every drive-line entry, each declared once
     (``--speed-range`` keeps its old name ``--speeds-rpm`` as a hidden alias)."""
-    for option in reversed((SET, SPEED_RANGE, ETA_RANGE, SPEED_RPM, MAP, *COMMON)):
+    for option in reversed((SET, SPEED_RANGE, ETA_RANGE, SPEED_RPM, MAP, PERIOD_TWO,
+                             *COMMON)):
         if option is SPEED_RANGE:
             command = click.option(option.flag, option.api, cls=Renamed, old=("--speeds-rpm",),
                                    metavar=option.metavar, help=option.text)(command)
@@ -36,8 +38,8 @@ def solve(what: str, mechanism_file: str, params: dict):
 
     entry = ENTRIES[f"driveline-{what}"]
     own = {option.api for option in entry.every_option}
-    for option in (SPEED_RANGE, ETA_RANGE, SPEED_RPM, MAP):
-        if params.get(option.api) is not None and option.api not in own:
+    for option in (SPEED_RANGE, ETA_RANGE, SPEED_RPM, MAP, PERIOD_TWO):
+        if params.get(option.api) not in (None, False) and option.api not in own:
             users = [name.removeprefix("driveline-") for name, other in ENTRIES.items()
                      if option in other.options]
             raise click.UsageError(f"{as_given(option.flag)} is for --analysis "
@@ -73,6 +75,7 @@ def driveline(mechanism_file: str, what: str, fmt: str | None, output: str | Non
         dyade driveline mech.toml                       # steady state vs rigid
         dyade driveline mech.toml --analysis resonance --speed-range 300:6000:50
         dyade driveline mech.toml --analysis stability --eta-range 0.2:1.6:0.01
+        dyade driveline mech.toml --analysis stability --eta-range 0.6:0.9:0.1 --period-two
         dyade driveline mech.toml --analysis map --speed-range 300:6000:50 \\
             --map stiffness=500:2000:100
         dyade driveline mech.toml --analysis run-up

@@ -432,6 +432,9 @@ class ResonanceCurve:
     slowest: FloatArray | None = None
     """(r,) the crank's slowest speed over the cycle over Ω [-] (negative: it turns
     back for a moment); NaN where not converged"""
+    period_two: PeriodTwo | None = None
+    """the period-2 motions at the speeds of a flip region (``period_two``), where the
+    caller asked for them (``dyade.analyses.drive_line``: ``period_two=True``)"""
 
     @property
     def unstable(self) -> FloatArray:
@@ -1111,6 +1114,23 @@ class PeriodTwo:
     """(s, d) the multipliers of the period-1 orbit it bifurcated from"""
     reason: list
     """(s,) why none was found ("" where one was)"""
+    steps: FloatArray | None = None
+    """(s,) RK4 steps per revolution of the period-2 orbit (0 where not found)"""
+    twist_amplitude: FloatArray | None = None
+    """(s,) (max − min)/2 of the twist over the two revolutions [rad]; NaN where not
+    found"""
+    twist_max: FloatArray | None = None
+    """(s,) the largest |twist| over the two revolutions [rad]"""
+    peak_torque: FloatArray | None = None
+    """(s,) the largest |shaft torque| over the two revolutions [N·m]"""
+    fluctuation: FloatArray | None = None
+    """(s,) (max − min)/Ω of the crank speed over the two revolutions [-]"""
+    accuracy: FloatArray | None = None
+    """(s,) the change of the orbit and its multipliers with twice the steps [-]"""
+    balance: FloatArray | None = None
+    """(s,) the energy balance over the two revolutions, of the largest work [-]"""
+    slowest: FloatArray | None = None
+    """(s,) the crank's slowest speed over Ω [-] (negative: it turns back)"""
 
     @property
     def stability(self) -> FloatArray:
@@ -1124,7 +1144,8 @@ below −1 (the largest component, of the state's scale) that seed the period-2 
 
 
 def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
-               tolerance: float | None = None, shaft: CrankShaft | None = None) -> PeriodTwo:
+               tolerance: float | None = None, shaft: CrankShaft | None = None,
+               curve: ResonanceCurve | None = None) -> PeriodTwo:
     """The period-2 motions at the ideal motor's speeds ``speeds_rpm`` [rpm]: where the
     period-1 orbit (shot in time from the linear response) has a multiplier below −1,
     shot over two revolutions from it displaced along that multiplier's eigenvector
@@ -1143,6 +1164,10 @@ def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
         The change with twice the steps that counts as converged [-].
     shaft : CrankShaft, optional
         The mechanism's crank shaft, when the caller has it.
+    curve : ResonanceCurve, optional
+        A scan of these speeds (``resonance_curve``): its flipping period-1 orbit at a
+        speed (carried to the section s = 0 where it was found in crank angle) is the
+        guess of the period-1 shooting in time there, not the linear response.
 
     Returns
     -------
@@ -1162,6 +1187,8 @@ def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
     problem = engine.problem_in_time(line, shaft.tables_at, n)
     p = engine.parameters(line, speeds)
     guess = engine.linear_guess(line, tables, engine.Lanes.of(line, speeds))
+    if curve is not None:
+        guess = _scan_guess(line, shaft, curve, speeds, p, guess)
     one = periodic.shoot(problem, p, guess, tol=tol)
     d = line.dimension
     found = np.zeros(speeds.size, dtype=bool)
@@ -1184,6 +1211,8 @@ def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
         vectors[j] = vecs[:, k].real / np.max(np.abs(vecs[:, k].real))
     scale = problem.scale(p)
     todo = np.flatnonzero(flip)
+    used = np.zeros(speeds.size, dtype=int)
+    accuracy = np.full(speeds.size, np.nan)
     for amount in PERIOD_TWO_SEEDS:
         todo = todo[~found[todo]]
         if not todo.size:
@@ -1195,8 +1224,60 @@ def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
         found[todo[good]] = True
         start[todo[good]] = shot.start[good]
         mult[todo[good]] = shot.multipliers[good]
+        used[todo[good]] = shot.steps[good]
+        accuracy[todo[good]] = shot.accuracy[good]
     for j in np.flatnonzero(flip & ~found):
         reason[j] = ("no period-2 orbit found beside the period-1 orbit (the shooting from "
                      "its flip direction converged to nothing else)")
+    values = [np.full(speeds.size, np.nan) for _ in range(6)]
+    for level in np.unique(used[found]):  # the orbit over its two revolutions, with works
+        idx = np.flatnonzero(found & (used == level))
+        path = periodic.trajectory(engine.problem_in_time(line, shaft.tables_at, int(level),
+                                                          works=True),
+                                   int(level), np.pad(start[idx], ((0, 0), (0, 3))), p[idx],
+                                   periods=2)
+        twist = path[:, :, 1]
+        crank = speeds[idx][None, :] + path[:, :, 0]
+        torque = p[idx, 1] * twist - p[idx, 2] * path[:, :, 0]
+        values[0][idx] = 0.5 * (twist.max(axis=0) - twist.min(axis=0))
+        values[1][idx] = np.max(np.abs(twist), axis=0)
+        values[2][idx] = np.max(np.abs(torque), axis=0)
+        values[3][idx] = np.ptp(crank, axis=0) / speeds[idx]
+        work = path[-1, :, 2:]  # motor, damping, loads [J] (as ``_orbit_values``)
+        values[4][idx] = (np.abs(work[:, 0] + work[:, 2] - work[:, 1])
+                          / np.maximum(np.max(np.abs(work), axis=1), 1e-300))
+        values[5][idx] = crank.min(axis=0) / speeds[idx]
+    for j in np.flatnonzero(found & ~(values[4] <= BALANCE_TOL)):
+        found[j] = False
+        reason[j] = (f"the energy balance over the two revolutions is off by {values[4][j]:.2g} "
+                     f"of the largest work (tolerance {BALANCE_TOL:g})")
     return PeriodTwo(speeds, speeds / shaft.frequency.omega_bar, found, start, mult,
-                     one.multipliers, reason)
+                     one.multipliers, reason, used, *values[:4], accuracy, *values[4:])
+
+
+def _scan_guess(line, shaft, curve: ResonanceCurve, speeds, p, guess) -> FloatArray:
+    """``guess`` (s, d) with the scan's own flipping period-1 orbit at each speed it has
+    one (a converged row with a multiplier below −1), at the section s = 0 of
+    ``engine.problem_in_time``: as it is where the row was found in time, else its orbit
+    in crank angle integrated over one revolution and cut there."""
+    from dyade.machine import periodic
+
+    guess = np.array(guess, dtype=np.float64)
+    in_time = np.zeros(len(curve.speed), dtype=bool) if curve.in_time is None else curve.in_time
+    pick = []  # (speed index, row)
+    for j, speed in enumerate(speeds):
+        rows = np.flatnonzero(np.isclose(curve.speed, speed, rtol=1e-9) & curve.converged
+                              & np.array([k == periodic.FLIP for k in curve.kind], dtype=bool))
+        if rows.size:
+            pick.append((j, int(rows[0])))
+    for j, r in pick:
+        if in_time[r]:
+            guess[j] = curve.start[r]
+    for n in {int(curve.steps_used[r]) for j, r in pick if not in_time[r]}:
+        chosen = [(j, r) for j, r in pick if not in_time[r] and int(curve.steps_used[r]) == n]
+        js = np.array([j for j, _ in chosen])
+        x0 = np.array([curve.start[r] for _, r in chosen])
+        path = periodic.trajectory(engine.problem(line, shaft.tables_at, n), n, x0, p[js])
+        nodes = np.repeat(np.linspace(0.0, 2.0 * math.pi, n + 1)[:, None], js.size, axis=1)
+        guess[js] = engine.section_in_time(path, nodes)
+    return guess

@@ -119,11 +119,13 @@ def new(width: float, height: float, fig: Figure | None = None,
     return fig
 
 
-def legend_above(ax, **kwargs):
-    """The axes' legend in one row above them, right-aligned, off the curves (a legend
-    inside the axes hides whatever runs under it); constrained layout makes room."""
+def legend_above(ax, most: int | None = None, **kwargs):
+    """The axes' legend in one row above them (``most`` entries a row, where given),
+    right-aligned, off the curves (a legend inside the axes hides whatever runs under
+    it); constrained layout makes room."""
     handles, _ = ax.get_legend_handles_labels()
-    return ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), ncols=max(1, len(handles)),
+    columns = max(1, len(handles) if most is None else min(most, len(handles)))
+    return ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), ncols=columns,
                      frameon=False, borderaxespad=0.2, **kwargs)
 
 

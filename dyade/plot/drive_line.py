@@ -87,7 +87,8 @@ def resonance(curve, fig: Figure | None = None) -> Figure:
 def branches(ax, curve) -> None:
     """The largest twist over the period against speed along the followed branches,
     stable solid, unstable dashed, the folds (jump speeds) marked; the solutions at the
-    scan's speeds as dots (a cross where not converged: no verdict)."""
+    scan's speeds as dots (a cross where not converged: no verdict), the period-2
+    motions (``--period-two``) as diamonds, filled where stable."""
     labelled = set()
     styles = {False: ("stable branch", dict(linestyle="-", color="C0", linewidth=1.4)),
               True: ("unstable branch", dict(linestyle="--", color="C3", linewidth=1.2))}
@@ -118,6 +119,16 @@ def branches(ax, curve) -> None:
         ax.plot(speed[~ok], np.full(int((~ok).sum()), 0.02), "x", color="C1", markersize=5,
                 transform=ax.get_xaxis_transform(), clip_on=False,
                 label="not converged (no verdict)")
+    two = _period_two(curve)
+    if two is not None:
+        found = two.found
+        stable = found & ~(two.stability > 1.0 + UNSTABLE_MARGIN)
+        x, y = two.speed * RAD_PER_S_TO_RPM, np.degrees(two.twist_max)
+        for which, words, face in ((stable, "stable", "C4"), (found & ~stable, "unstable",
+                                                               "none")):
+            if which.any():
+                ax.plot(x[which], y[which], "D", color="C4", markerfacecolor=face,
+                        markersize=4.0, label=f"period-2 motion, {words}")
     for fold, upper in curve.folds:
         ax.axvline(fold * RAD_PER_S_TO_RPM, color="0.4", linewidth=0.8, linestyle=":")
         ax.annotate("jump ↑ sweep" if upper else "jump ↓ sweep", (fold * RAD_PER_S_TO_RPM,
@@ -125,6 +136,13 @@ def branches(ax, curve) -> None:
                     xycoords=("data", "axes fraction"), rotation=90, fontsize=7,
                     ha="right", va="bottom", color="0.3")
     ax.set_ylabel("largest twist [°]")
+
+
+def _period_two(curve):
+    """The scan's period-2 motions where it has found any (``--period-two``), else
+    None."""
+    two = getattr(curve, "period_two", None)
+    return two if two is not None and two.found.any() else None
 
 
 def stability(curve, fig: Figure | None = None) -> Figure:
@@ -164,13 +182,18 @@ def stability(curve, fig: Figure | None = None) -> Figure:
         if more.any():
             ax.plot(speed[more], curve.stability[more], "s", color="C2", markersize=3,
                     label="largest |μ|, further solutions")
+        two = _period_two(curve)
+        if two is not None:
+            ax.plot(two.speed[two.found] * RAD_PER_S_TO_RPM, two.stability[two.found], "D",
+                    color="C4", markersize=4.0, label="largest |μ| over two revolutions, "
+                                                      "period-2 motion")
         ax.axhline(1.0, color="0.3", linewidth=0.8)
         _shade_unstable(ax, speed[first], curve.unstable[first])
         _resonance_marks(ax, curve)
         ax.set_xlim(speed.min(), speed.max())
         ax.set_xlabel("crank speed Ω [rpm]")
         ax.set_ylabel("largest |Floquet multiplier| [-]")
-        canvas.legend_above(axes[0], fontsize=7)
+        canvas.legend_above(axes[0], most=3, fontsize=7)
         ax.legend(loc="best", fontsize=7)
         fig.suptitle("Periodic solutions and their stability (linearised about each)")
     return fig

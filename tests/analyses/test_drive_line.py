@@ -6,6 +6,7 @@ section runs its entry once."""
 
 from __future__ import annotations
 
+import io
 import json
 import re
 
@@ -266,3 +267,53 @@ def test_the_report_runs_the_entry_once(monkeypatch):
     assert "exceeds 0.1 (VDI 2149 Part 1)" in section and "Natural frequency, VDI 2149" in section
     assert "speed_mean_rpm" in section and '<figure id="figure-driveline">' in section
     assert not REPR.search(re.sub(r"<[^>]*>", " ", section.split("<figure")[0]))
+
+
+def test_period_two_rows_follow_their_speed_in_table_json_and_csv(monkeypatch):
+    """``--period-two``: at 3575 rpm (dyade-16 near 2ω̄) the only periodic motion flips
+    (period doubling), so the scan asks ``period_two`` for that speed and lists its
+    motion as a row with ``period`` 2 after the speed's row (its twist, |μ| over two
+    revolutions, verdict), the speed's own row ``period`` 1; in the table, the JSON and
+    the CSV. (``period_two`` itself, 10–20 s a speed, is replaced here by a stand-in: its
+    physics is tests/linkage/test_drive_line_branches.py's.)"""
+    from dyade.linkage import drive_line as api
+    from dyade.units import RAD_PER_S_TO_RPM
+
+    asked = []
+
+    def stand_in(mechanism, speeds_rpm, **_):
+        speeds = np.asarray(speeds_rpm, dtype=float) / RAD_PER_S_TO_RPM
+        asked.append(list(speeds_rpm))
+        n = speeds.size
+        one = np.ones(n)
+        return api.PeriodTwo(speeds, speeds / 187.0, np.ones(n, dtype=bool),
+                             np.zeros((n, 2)), np.tile([0.5 + 0j, 0.1 + 0j], (n, 1)),
+                             np.tile([-1.04 + 0j, 0.9 + 0j], (n, 1)), [""] * n,
+                             np.full(n, 720), 0.01 * one, 0.02 * one, 3.0 * one, 0.1 * one,
+                             1e-9 * one, 1e-9 * one, 0.5 * one)
+
+    monkeypatch.setattr(api, "period_two", stand_in)
+    args = ["driveline", DYADE_16, "--set", PARAMETRIC[0], "--set", PARAMETRIC[1],
+            "--analysis", "stability", "--speed-range", "3575:3575:1", "--period-two"]
+    outcome = REGISTRY["driveline-stability"](DYADE_16, set=PARAMETRIC,
+                                              speed_range_rpm="3575:3575:1", period_two=True)
+    document = json.loads(json.dumps(jsonable(outcome.to_document())))
+    columns = document["columns"]
+    assert asked == [[3575.0]]  # the flipping speed
+    assert columns["speed_rpm"] == [3575.0, 3575.0]
+    assert columns["period"] == [1, 2]
+    assert columns["solution"] == [1, 2]
+    assert columns["unstable"] == [True, False]
+    assert columns["instability"] == ["period doubling", ""]
+    assert columns["floquet"][1] == pytest.approx(0.5)
+    assert columns["twist_max_deg"][1] == pytest.approx(np.degrees(0.02))
+    assert document["units"]["period"] == "-"
+    assert any("period-2 motions" in note for note in document["notes"])
+    from dyade.report.outcome import write_csv
+
+    csv = io.StringIO()
+    write_csv(outcome, csv)
+    header = next(line for line in csv.getvalue().splitlines() if "speed_rpm" in line)
+    assert "period" in header.split(",")
+    table = invoke(args)  # the command line: the table
+    assert "period" in table.stdout and not REPR.search(table.stdout), REPR.search(table.stdout)
