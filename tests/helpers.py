@@ -35,3 +35,13 @@ def read_csv(text: str) -> dict[str, np.ndarray]:
 
 def shipped(name: str) -> Path:
     return ROOT / "mechanisms" / name
+
+
+def with_frame_points(folder: Path, count: int) -> Path:
+    """The shipped four-bar with ``count`` more named frame points (P0 … P{count-1}),
+    written into ``folder``."""
+    points = "".join(f"P{k} = [{k % 1000}, {k % 37}]\n" for k in range(count))
+    path = folder / f"frame-{count}.toml"
+    path.write_text(shipped("fourbar.toml").read_text().replace("B0 = [250, 0]\n",
+                                                                "B0 = [250, 0]\n" + points))
+    return path

@@ -13,6 +13,7 @@ import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.cam import export, forces, geometry
+from dyade.cam.follower import curves
 
 
 @dataclass(frozen=True)
@@ -79,32 +80,6 @@ class CamResult:
     outer_flank: FloatArray | None = None
     """bool, shape (n,): a grooved cam's outer flank carries the load here (N < 0: the
     outer wall pushes the roller towards the cam centre); None: spring closure"""
-
-
-def motion(cam, theta: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """s, s′, s″, s‴ of the cam's profile at the cam angles ``theta`` [rad] (SI)."""
-    from dyade.motion.profile import evaluate
-
-    m = evaluate(cam.profile, theta)
-    return m.s, m.v, m.a, m.j
-
-
-def curves(cam, theta: FloatArray) -> tuple[geometry.CamGeometry, tuple]:
-    """The cam's geometry at ``theta`` and the motion it came from."""
-    s, v, a, j = motion(cam, theta)
-    if cam.follower == "translating-roller":
-        geo = geometry.translating_roller(theta, s, v, a, base_radius=cam.base_radius,
-                                          roller_radius=cam.roller_radius, offset=cam.offset,
-                                          clockwise=cam.clockwise)
-    elif cam.follower == "oscillating-roller":
-        geo = geometry.oscillating_roller(theta, s, v, a, base_radius=cam.base_radius,
-                                          roller_radius=cam.roller_radius,
-                                          pivot_distance=cam.pivot_distance,
-                                          arm_length=cam.arm_length, clockwise=cam.clockwise)
-    else:
-        geo = geometry.translating_flat(theta, s, v, a, base_radius=cam.base_radius,
-                                        offset=cam.offset, clockwise=cam.clockwise)
-    return geo, (s, v, a, j)
 
 
 def manufacture(cam, coarse: geometry.CamGeometry) -> tuple[Manufacture, ...]:

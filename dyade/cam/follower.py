@@ -54,8 +54,8 @@ class FollowerMotion:
 
 
 def curves(cam, theta: FloatArray):
-    """The cam's geometry (``dyade.cam.geometry.CamGeometry``) at ``theta`` and s, s′, s″
-    of its profile."""
+    """The cam's geometry (``dyade.cam.geometry.CamGeometry``) at ``theta`` [rad] and s,
+    s′, s″, s‴ of its profile (SI): the one place that picks the follower's curves."""
     from dyade.cam import geometry
     from dyade.motion.profile import evaluate
 
@@ -73,7 +73,7 @@ def curves(cam, theta: FloatArray):
     else:
         geo = geometry.translating_flat(theta, s, v, a, base_radius=cam.base_radius,
                                         offset=cam.offset, clockwise=cam.clockwise)
-    return geo, (s, v, a)
+    return geo, (s, v, a, m.j)
 
 
 def follower_motion(drive, theta: FloatArray) -> FollowerMotion:
@@ -88,7 +88,7 @@ def follower_motion(drive, theta: FloatArray) -> FollowerMotion:
     """
     cam = drive.cam
     theta = np.asarray(theta, dtype=np.float64)
-    geo, (s, v, a) = curves(cam, theta)
+    geo, (s, v, a, _) = curves(cam, theta)
     c, sn = math.cos(drive.angle), math.sin(drive.angle)
     turn = np.array([[c, -sn], [sn, c]])
     contact = geo.contact @ turn.T + np.asarray(drive.centre, dtype=np.float64)

@@ -115,17 +115,7 @@ def flow(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, periods: i
     0 = s_0 < … < s_N = T of its steps (``problem.field_at``)."""
     if mesh is not None:
         return _on_mesh(problem, mesh, x0, p, periods, False)
-    f = problem.at(steps)
-    h = problem.period / steps
-    x = np.array(x0, dtype=np.float64)
-    for n in range(steps * periods):
-        k = 2 * (n % steps)
-        k1 = f(k, x, p)
-        k2 = f(k + 1, x + 0.5 * h * k1, p)
-        k3 = f(k + 1, x + 0.5 * h * k2, p)
-        k4 = f(k + 2, x + h * k3, p)
-        x = x + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
-    return x
+    return _uniform(problem, steps, x0, p, periods, False)
 
 
 def trajectory(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, periods: int = 1,
@@ -134,11 +124,19 @@ def trajectory(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, peri
     each lane's ``mesh``): (K + 1, L, d)."""
     if mesh is not None:
         return _on_mesh(problem, mesh, x0, p, periods, True)
+    return _uniform(problem, steps, x0, p, periods, True)
+
+
+def _uniform(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, periods: int,
+             keep: bool) -> FloatArray:
+    """RK4 on ``steps`` equal steps per period, the field tabulated at the half steps;
+    the last state, or (``keep``) every node's."""
     f = problem.at(steps)
     h = problem.period / steps
     x = np.array(x0, dtype=np.float64)
-    out = np.empty((steps * periods + 1,) + x.shape)
-    out[0] = x
+    out = np.empty((steps * periods + 1,) + x.shape) if keep else None
+    if keep:
+        out[0] = x
     for n in range(steps * periods):
         k = 2 * (n % steps)
         k1 = f(k, x, p)
@@ -146,8 +144,9 @@ def trajectory(problem: Problem, steps: int, x0: FloatArray, p: FloatArray, peri
         k3 = f(k + 1, x + 0.5 * h * k2, p)
         k4 = f(k + 2, x + h * k3, p)
         x = x + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
-        out[n + 1] = x
-    return out
+        if keep:
+            out[n + 1] = x
+    return out if keep else x
 
 
 def _on_mesh(problem: Problem, mesh: FloatArray, x0: FloatArray, p: FloatArray, periods: int,

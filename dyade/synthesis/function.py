@@ -92,6 +92,27 @@ class Generated:
         return wrap(self.traced - self.target)
 
 
+def three_points(phi: FloatArray, output: FloatArray, method: str,
+                 equation: str) -> tuple[FloatArray, FloatArray]:
+    """The three crank angles [rad] and outputs a closed form is solved through: the
+    table's own three rows (``method`` "precision"), else three Chebyshev-spaced angles of
+    the table's range with the output interpolated; refused with an ``InputError`` on the
+    file's key where the table cannot give them."""
+    if method == "precision":
+        if phi.size != 3:
+            raise InputError(f"precision points: {equation} needs exactly three, got "
+                             f"{phi.size} (for more, use method = \"chebyshev\" or "
+                             f"\"fit\").", key="target.method")
+        return phi, output
+    if phi.size < 3:
+        raise InputError(f"a function table needs at least three rows, got {phi.size}.",
+                         key="target.crank")
+    if np.any(np.diff(phi) <= 0):
+        raise InputError("the table's crank angles must ascend.", key="target.crank")
+    chosen = closed.chebyshev(phi[0], phi[-1], 3)
+    return chosen, np.interp(chosen, phi, output)
+
+
 def generate(crank: FloatArray, output: FloatArray, method: str = "chebyshev",
              frame: float = 1.0) -> Generated:
     """Synthesise a four-bar function generator.
@@ -108,20 +129,7 @@ def generate(crank: FloatArray, output: FloatArray, method: str = "chebyshev",
         d [m].
     """
     phi, psi = np.asarray(crank, dtype=float), np.asarray(output, dtype=float)
-    if method == "precision":
-        if phi.size != 3:
-            raise InputError(f"precision points: Freudenstein's equation needs exactly "
-                             f"three, got {phi.size} (for more, use method = \"chebyshev\" "
-                             f"or \"fit\").", key="target.method")
-        chosen, values = phi, psi
-    else:
-        if phi.size < 3:
-            raise InputError(f"a function table needs at least three rows, got {phi.size}.",
-                             key="target.crank_deg")
-        if np.any(np.diff(phi) <= 0):
-            raise InputError("the table's crank angles must ascend.", key="target.crank_deg")
-        chosen = closed.chebyshev(phi[0], phi[-1], 3)
-        values = np.interp(chosen, phi, np.unwrap(psi))
+    chosen, values = three_points(phi, np.unwrap(psi), method, "Freudenstein's equation")
     linkage = closed.freudenstein(chosen, values, frame)
     miss = np.abs(wrap(traced(linkage, chosen) - values))
     if not np.all(miss < 1e-9):  # (NaN: it does not close there)

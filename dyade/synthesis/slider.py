@@ -161,23 +161,10 @@ def generate(crank: FloatArray, output: FloatArray, method: str = "chebyshev") -
         squares of the structural error over every row, from the linear least squares
         of the loop equation.
     """
-    from dyade.synthesis import closed
+    from dyade.synthesis.function import three_points
 
     phi, s = np.asarray(crank, dtype=float), np.asarray(output, dtype=float)
-    if method == "precision":
-        if phi.size != 3:
-            raise InputError(f"precision points: the slider-crank's equation needs exactly "
-                             f"three, got {phi.size} (for more, use method = \"chebyshev\" "
-                             f"or \"fit\").", key="target.method")
-        chosen, values = phi, s
-    else:
-        if phi.size < 3:
-            raise InputError(f"a function table needs at least three rows, got {phi.size}.",
-                             key="target.crank")
-        if np.any(np.diff(phi) <= 0):
-            raise InputError("the table's crank angles must ascend.", key="target.crank")
-        chosen = closed.chebyshev(phi[0], phi[-1], 3)
-        values = np.interp(chosen, phi, s)
+    chosen, values = three_points(phi, s, method, "the slider-crank's equation")
     if method == "fit":
         linkage = _fit(_linear(phi, s), phi, s)
         chosen = np.zeros(0)

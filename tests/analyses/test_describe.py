@@ -14,7 +14,7 @@ from dyade.registry import REGISTRY
 from dyade.analyses.base import jsonable
 from dyade.cli import main
 from tests.analyses.test_registry import REPR, check_document
-from tests.helpers import shipped
+from tests.helpers import shipped, with_frame_points
 
 
 def run(*args):
@@ -104,19 +104,10 @@ def test_the_tree_is_the_one_it_was():
     assert "mobility (Grübler) F = 3·(4−1) − 2·4 = 1" in text
 
 
-def _with_frame_points(tmp_path, count: int):
-    """The four-bar with ``count`` more named frame points (P0 … P{count-1})."""
-    points = "".join(f"P{k} = [{k % 1000}, {k % 37}]\n" for k in range(count))
-    path = tmp_path / f"frame-{count}.toml"
-    path.write_text(shipped("fourbar.toml").read_text().replace("B0 = [250, 0]\n",
-                                                                "B0 = [250, 0]\n" + points))
-    return path
-
-
 def test_the_frame_shows_at_most_50_points_like_a_link(tmp_path):
     """Issue 42: 200 000 frame points took 130 s, each printed (rich's tree grows
     quadratically); now 50 and how many more, as a link's."""
-    result = run(_with_frame_points(tmp_path, 2000))
+    result = run(with_frame_points(tmp_path, 2000))
     assert result.exit_code == 0, result.output
     assert "point P47 =" in result.output and "point P48 =" not in result.output
     assert "link 1: 1,952 more named points (P48 … P1999)" in result.output

@@ -17,17 +17,9 @@ from click.testing import CliRunner
 
 import dyade
 from dyade.cli import main
-from tests.helpers import shipped
+from tests.helpers import with_frame_points
 
 COUNTS = (3_000, 12_000)
-
-
-def _with_frame_points(folder, count: int):
-    points = "".join(f"P{k} = [{k % 1000}, {k % 37}]\n" for k in range(count))
-    path = folder / f"frame-{count}.toml"
-    path.write_text(shipped("fourbar.toml").read_text().replace("B0 = [250, 0]\n",
-                                                                "B0 = [250, 0]\n" + points))
-    return path
 
 
 def _describe(path) -> None:
@@ -37,11 +29,11 @@ def _describe(path) -> None:
 
 @pytest.mark.parametrize("count", COUNTS)
 def test_reading_yardstick(benchmark, tmp_path, count):
-    path = _with_frame_points(tmp_path, count)
+    path = with_frame_points(tmp_path, count)
     benchmark.pedantic(dyade.read_mechanism, args=(path,), rounds=3, warmup_rounds=0)
 
 
 @pytest.mark.parametrize("count", COUNTS)
 def test_describe(benchmark, tmp_path, count):
-    path = _with_frame_points(tmp_path, count)
+    path = with_frame_points(tmp_path, count)
     benchmark.pedantic(_describe, args=(path,), rounds=3, warmup_rounds=0)
