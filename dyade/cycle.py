@@ -29,6 +29,7 @@ from dyade.roundoff import ROUNDOFF, clean
 
 TURN = 2.0 * math.pi
 CLOSE_RTOL = 1e-9  # [-] a last angle this close to the first plus 2π repeats it
+EQUAL_RTOL = 1e-12  # [-] steps that differ by no more than this share are equal
 GAP_STEPS = 1.5  # a sweep this many steps short of 2π still covers the revolution
 
 
@@ -146,7 +147,9 @@ def means(angle: FloatArray, values: FloatArray) -> FloatArray:
         whole = np.isfinite(high) & np.isfinite(low)  # propagates)
     if whole.any():
         rows = values if whole.all() else values[whole]
-        totals = np.sum(integrals(distinct, rows[:, :distinct.size]), axis=-1) / TURN
+        totals = (np.sum(rows[:, :distinct.size], axis=-1) / distinct.size
+                  if equal_steps(distinct) else
+                  np.sum(integrals(distinct, rows[:, :distinct.size]), axis=-1) / TURN)
         scale = np.maximum(high, -low)  # max |row|
         if not whole.all():
             scale = scale[whole]
@@ -154,6 +157,14 @@ def means(angle: FloatArray, values: FloatArray) -> FloatArray:
     for k in np.flatnonzero(~whole):
         out[k] = _one(angle, values[k])
     return out
+
+
+def equal_steps(distinct: FloatArray) -> bool:
+    """Whether the distinct positions of a revolution (``revolution``) are equally
+    spaced, the closing interval included (to ``EQUAL_RTOL``): their mean is then the
+    plain mean of the values (what ``integrals`` sum to, without its slopes)."""
+    h = np.diff(np.append(distinct, distinct[0] + TURN))
+    return bool(np.ptp(h) <= EQUAL_RTOL * np.mean(h))
 
 
 def rmss(angle: FloatArray, values: FloatArray) -> FloatArray:

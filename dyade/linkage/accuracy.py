@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from dyade.linkage.components import magnitude
 from dyade.linkage.plan import plan
 from dyade.linkage.sweep import Result, analyse, analyse_si
 from dyade.model.mechanism import Mechanism, Revolute
@@ -58,7 +59,7 @@ def _peaks(mechanism: Mechanism, forces, rows, clearance=None) -> dict[str, floa
     for joint in mechanism.joints:
         a, b = joint.name
         if isinstance(joint, Revolute):
-            size = np.hypot(*forces.revolute[joint.name][valid].T)
+            size = magnitude(*forces.revolute[joint.name][valid].T)
             out[f"F_{a}_{b} max"] = float(np.max(size, initial=0.0))
         else:
             out[f"FN_{a}_{b} max"] = float(np.max(np.abs(forces.normal[joint.name][valid]),

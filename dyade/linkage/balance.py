@@ -32,6 +32,7 @@ from dyade.arrays import FloatArray, Vec
 from dyade.errors import DyadeError, InputError
 from dyade.limits import PLAUSIBLE, check_plausible, implausible, plausible_range
 from dyade.linkage import kinematics
+from dyade.linkage.components import magnitude
 from dyade.linkage.options import check_size
 from dyade.model.mechanism import CRANK, FRAME, Link, Mechanism, Revolute
 
@@ -87,7 +88,7 @@ class Balance:
         shaking = {}
         angle, valid = self.crank_angle, self.before.kinematics.valid
         for when, force in (("before", self.shaking_before), ("after", self.shaking_after)):
-            size = np.where(valid, np.hypot(force[:, 0], force[:, 1]), np.nan)
+            size = np.where(valid, magnitude(force[:, 0], force[:, 1]), np.nan)
             shaking[f"{when}_max"] = float(np.nanmax(size))
             shaking[f"{when}_rms"] = cycle.rms(angle, size)
         shaking["residual"] = (shaking["after_rms"] / shaking["before_rms"]

@@ -12,6 +12,7 @@ import numpy as np
 
 from dyade.arrays import FloatArray
 from dyade.linkage.block import Block, Columns
+from dyade.linkage.components import magnitude
 from dyade.linkage.kinematics import joint_anchor
 from dyade.linkage.motion import travel
 from dyade.linkage.reduced import reduced
@@ -203,7 +204,7 @@ def force_columns(mech: Mechanism, block: Block, machine: bool = True, own: bool
         if isinstance(joint, Revolute):
             f = forces.revolute[joint.name]
             out[f"Fx_{tag}"], out[f"Fy_{tag}"] = f[:, 0], f[:, 1]
-            out[f"F_{tag}"] = np.hypot(f[:, 0], f[:, 1])
+            out[f"F_{tag}"] = magnitude(f[:, 0], f[:, 1])
         else:
             out[f"FN_{tag}"] = forces.normal[joint.name]
             out[f"M_{tag}"] = forces.moment[joint.name]

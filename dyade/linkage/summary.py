@@ -33,6 +33,7 @@ from dyade import cycle
 from dyade.units import RAD_PER_S_TO_RPM
 from dyade.arrays import resolution
 from dyade.linkage.columns import Columns, unit_of
+from dyade.linkage.components import magnitude
 from dyade.model.mechanism import Revolute
 from dyade.linkage.verdicts import Outcome
 
@@ -315,7 +316,7 @@ def key_figures(mechanism, angle_deg: np.ndarray, cols: Mapping[str, np.ndarray]
         return out
     radians = np.deg2rad(angle_deg)
     torque = cols["M_drive"]
-    force = np.hypot(cols["Fx_shake"], cols["Fy_shake"])
+    force = magnitude(cols["Fx_shake"], cols["Fy_shake"])
     moment = np.abs(cols["M_shake"])
     (rms,), (shake_rms,) = each([torque, force], lambda rows: cycle.rmss(radians, rows))
     out.update(M_drive_max=np.fmax.reduce(torque, axis=1),

@@ -60,7 +60,9 @@ def test_peaks_and_least_transmission_as_with_the_mask():
                                    np.r_[0:180:3.0, 180:360:5.0]])
 def test_cycle_integrals_as_written_out(angle):
     """The Hermite integrals over each interval: the formula written out, with its
-    temporaries, against the in-place one."""
+    temporaries, against the in-place one; the mean over a revolution their sum over
+    2π, or for equal steps (the first sweep) the plain mean of the distinct positions
+    (what the Hermite sum is up to round-off: the slopes' terms cancel)."""
     angle = np.deg2rad(angle)
     rng = np.random.default_rng(3)
     values = rng.normal(size=(9, angle.size)) * 10.0 ** rng.integers(-6, 6, (9, 1))
@@ -74,5 +76,10 @@ def test_cycle_integrals_as_written_out(angle):
     assert np.array_equal(cycle.integrals(angle, values), expected, equal_nan=True)
     means = cycle.means(np.append(angle, 2.0 * np.pi), np.column_stack([values, values[:, 0]]))
     assert np.isnan(means[4]) == np.isnan(values[4]).all()  # a gap: the rows it has
-    assert np.allclose(means[[0, 1, 2]], np.sum(expected[[0, 1, 2]], axis=1) / (2 * np.pi),
-                       rtol=0, atol=0)
+    hermite = np.sum(expected[[0, 1, 2]], axis=1) / (2 * np.pi)
+    if cycle.equal_steps(angle):
+        assert np.array_equal(means[[0, 1, 2]], np.sum(values[[0, 1, 2]], axis=1) / angle.size)
+        assert np.allclose(means[[0, 1, 2]], hermite, rtol=1e-12, atol=0)
+    else:
+        assert np.array_equal(means[[0, 1, 2]], hermite)
+    assert cycle.equal_steps(angle) == (angle.size == 72)

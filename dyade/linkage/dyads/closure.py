@@ -67,13 +67,17 @@ def pin(joint: Revolute, unknown: int, motion: Motion) -> tuple[tuple, Vec]:
 
 
 def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: FloatArray,
-           length: float, px, py, local: Vec) -> None:
+           length: float, px, py, local: Vec, direction: FloatArray | None = None) -> None:
     """Place a link whose local vector ``arm`` (of ``length``) lies along the world
     vector (wx, wy) of the same length, with its local point ``local`` on (px, py):
-    the cosine and sine of its angle come without trigonometric functions."""
+    the cosine and sine of its angle come without trigonometric functions
+    (``direction``: the angle of (wx, wy) [rad], where the caller has it)."""
     beta = arm_angle(arm)
     cos, sin, angle = motion.cos[:, link], motion.sin[:, link], motion.angle[:, link]
-    np.arctan2(wy, wx, out=angle)
+    if direction is None:
+        np.arctan2(wy, wx, out=angle)
+    else:
+        angle[:] = direction
     if is_nought(beta):
         np.divide(wx, length, out=cos)
         np.divide(wy, length, out=sin)
@@ -90,6 +94,13 @@ def orient(motion: Motion, link: int, wx: FloatArray, wy: FloatArray, arm: Float
         rx, ry = motion.rotated_xy(link, local)
         motion.origin[:, link, 0] = px - rx
         motion.origin[:, link, 1] = py - ry
+
+
+def between(first: FloatArray, second: FloatArray) -> FloatArray:
+    """The angle [rad] in [0, π] between two directions given by their angles [rad]
+    (each in [−π, π], as ``np.arctan2`` gives them)."""
+    turned = np.abs(first - second)
+    return np.where(turned > np.pi, 2.0 * np.pi - turned, turned)
 
 
 def arm_angle(arm) -> float | FloatArray:

@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from dyade.linkage.dyads.closure import Closure, difference, ends, length, orient, pin_xy
+from dyade.linkage.dyads.closure import (Closure, between, difference, ends, length, orient,
+                                         pin_xy)
 from dyade.linkage.motion import Motion
 from dyade.model.mechanism import Dyad
 
@@ -38,9 +39,12 @@ def close(dyad: Dyad, motion: Motion) -> Closure:
     # B − A = along·u + side·E·u and B − C
     bax, bay = along * ux - side * uy, along * uy + side * ux
     bcx, bcy = (ax - cx) + bax, (ay - cy) + bay
-    orient(motion, i, bax, bay, arm_i, l_i, ax, ay, a_i)
-    orient(motion, j, bcx, bcy, arm_j, l_j, cx, cy, c_j)
+    # the arms' directions B − A and B − C: the links' angles, and the transmission
+    # angle between them
+    to_b_i, to_b_j = np.arctan2(bay, bax), np.arctan2(bcy, bcx)
+    orient(motion, i, bax, bay, arm_i, l_i, ax, ay, a_i, to_b_i)
+    orient(motion, j, bcx, bcy, arm_j, l_j, cx, cy, c_j, to_b_j)
     sin = bax * bcy - bay * bcx
-    transmission = np.arctan2(np.abs(sin), bax * bcx + bay * bcy)
+    transmission = between(to_b_i, to_b_j)
     pins = {0: (ax, ay), 1: (ax + bax, ay + bay), 2: (cx, cy)}
     return Closure(closes, transmission, np.abs(sin) / (l_i * l_j), pins)
