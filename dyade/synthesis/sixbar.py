@@ -231,14 +231,14 @@ def function(problem, progress=None, check_time=None):
         def residuals(xs):  # (trials, unknowns) -> (trials, rows)
             trial = np.tile(full, (len(xs), 1))
             trial[:, index] = xs[:, :len(index)]
-            psi = angle_of(trial, variant, where)
+            psi, mu = angle_of(trial, variant, where, True) if least > 0.0 else (
+                angle_of(trial, variant, where), None)
             miss = wrap(psi[:, :crank.size] - output)
             if free_zero:
                 miss = wrap(miss - xs[:, -1:])
             lost = ~np.isfinite(psi[:, crank.size:])  # held on the branch over the range
             parts = [np.where(np.isfinite(miss), miss, 1.0), lost * 1.0]
-            if least > 0.0:  # held above the transmission angle's limit over the range
-                mu = topology.transmission(trial, variant, where)
+            if mu is not None:  # held above the transmission angle's limit over the range
                 parts.append(np.where(np.isfinite(mu), np.maximum(least - mu, 0.0), 0.0))
             return np.concatenate(parts, axis=1)
 
