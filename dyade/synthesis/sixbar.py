@@ -34,6 +34,12 @@ EXACT = 1e-13
 """[rad] a fit this close at every row ends the refinement of further starts"""
 LENGTHS = ("a", "b", "c", "d", "f", "g")
 """the dimensions that are lengths (positive)"""
+PENALTY = 10.0
+"""[-] the weight of a fit's residual that holds the transmission angle above its limit
+(the share below the limit, in rad)"""
+MARGIN = 1e-3
+"""[-] the penalty acts from (1 + MARGIN) times the limit: where a fit leans on it, its
+balance with the misses stays above the limit itself (checked exactly afterwards)"""
 TRIAL = 64
 """candidates of the timed trial that estimates a run before it starts"""
 FIT_SHARE = 0.75
@@ -239,7 +245,8 @@ def function(problem, progress=None, check_time=None):
             lost = ~np.isfinite(psi[:, crank.size:])  # held on the branch over the range
             parts = [np.where(np.isfinite(miss), miss, 1.0), lost * 1.0]
             if mu is not None:  # held above the transmission angle's limit over the range
-                parts.append(np.where(np.isfinite(mu), np.maximum(least - mu, 0.0), 0.0))
+                parts.append(PENALTY * np.where(np.isfinite(mu), np.maximum(
+                    least * (1.0 + MARGIN) - mu, 0.0), 0.0))
             return np.concatenate(parts, axis=1)
 
         def unpack(x):
@@ -263,10 +270,9 @@ def function(problem, progress=None, check_time=None):
                                      ftol=1e-15, gtol=1e-15, max_nfev=steps)
             dims = unpack(solution.x)
             bad = np.any(dims[[names.index(n) for n in LENGTHS]] <= 0.0)
-            if least > 0.0:  # the penalty may leave it a hair below: not within the limit
+            if least > 0.0:  # within the limit itself (the penalty holds it above a margin)
                 with np.errstate(invalid="ignore"):
-                    bad |= not np.min(topology.transmission(dims, variant, where)) >= least \
-                        * (1.0 - 1e-9)
+                    bad |= not np.min(topology.transmission(dims, variant, where)) >= least
             fits[k] = (math.inf if bad else float(np.max(np.abs(residual(solution.x)))),
                        solution.x, variant, solution.status > 0 or bool(
                            np.max(np.abs(residual(solution.x))) <= EXACT), start)
@@ -426,7 +432,8 @@ def poses(problem, progress=None, check_time=None):
             out = np.concatenate([miss.real, miss.imag, wrap(aa + turn - theta)], axis=1)
             if least > 0.0:  # held above the transmission angle's limit over the turn
                 mu = topology.transmission(xs[:, :dims], variant, grid)
-                out = np.concatenate([out, np.maximum(least - mu, 0.0)], axis=1)
+                out = np.concatenate([out, PENALTY * np.maximum(least * (1.0 + MARGIN) - mu,
+                                                                0.0)], axis=1)
             return np.where(np.isfinite(out), out, 10.0)
 
         def residual(x, residuals=residuals):
@@ -462,7 +469,7 @@ def poses(problem, progress=None, check_time=None):
         converged = miss <= POSE_TOLERANCE * size and off <= POSE_TOLERANCE
         with np.errstate(invalid="ignore"):  # dyade's own transmission angles, both dyads
             mu = float(np.arcsin(np.clip(np.nanmin(swept.conditioning), 0.0, 1.0)))
-        if least > 0.0 and not mu >= least * (1.0 - 1e-9):
+        if least > 0.0 and not mu >= least:
             continue  # the fit left the limit
         at = np.rad2deg(np.mod(world, 2.0 * np.pi))
         notes = [f"the poses are reached at crank angles "
