@@ -226,12 +226,12 @@ def function(problem, progress=None, check_time=None):
                                         score(v[:2 * unknowns], 1)), steps),
                    f"{problem.name}: {max(problem.candidates, 10) * problem.rounds:,} "
                    f"{topology.title} six-bars and the least squares of the best {STARTS}")
-    least_squares = scipy_least_squares()  # after the estimate: importing scipy takes a while
     values, variants, _, evaluated, assembled = _search(problem, names, bounds, score,
                                                         progress)
     if not len(values):
         raise _none_assembled(problem, topology, evaluated, "closes over the table's crank "
                                                             "range on one branch")
+    least_squares = scipy_least_squares()  # only now: importing scipy takes a while
     def problem_of(full, variant):
         """(residual, its Jacobian, unpack) of a start's fit."""
         def residuals(xs):  # (trials, unknowns) -> (trials, rows)
@@ -399,11 +399,11 @@ def poses(problem, progress=None, check_time=None):
         check_time(_estimate(problem, names, bounds, score, step, STARTS * POSE_STEPS),
                    f"{problem.name}: {max(problem.candidates, 10) * problem.rounds:,} "
                    f"{topology.title} six-bars and the least squares of the best {STARTS}")
-    least_squares = scipy_least_squares()  # after the estimate: importing scipy takes a while
     values, variants, _, evaluated, assembled = _search(problem, names, bounds, score,
                                                         progress)
     if not len(values):
         raise _none_assembled(problem, topology, evaluated, "turns its crank fully")
+    least_squares = scipy_least_squares()  # only now: importing scipy takes a while
     low = np.array([1e-6 * size if k in LENGTHS else -np.inf for k in names])
     fits = []
     for start, variant in zip(values[:STARTS], variants[:STARTS]):
@@ -499,7 +499,10 @@ def poses(problem, progress=None, check_time=None):
         raise DyadeError(f"{problem.name}: no {topology.title} six-bar within the bounds "
                          f"passes through the {n} poses: the best of {evaluated:,} candidates "
                          f"misses them by {designs[0].error:.3g} m after the local fit (at "
-                         f"most {POSE_TOLERANCE:g} of their size counts). Draw more "
-                         f"candidates, widen the bounds, or try another topology.")
+                         f"most {POSE_TOLERANCE:g} of their size counts): {n} poses are "
+                         f"{3 * n} equations for its {15 + n} unknowns (12 dimensions, the "
+                         f"placement, a crank angle per pose), and the search found no start "
+                         f"from which the fit closes them. Draw more candidates, widen the "
+                         f"bounds, give fewer poses, or try another topology.")
     designs = [d for d in designs if d.converged]
     return Result(problem, designs, evaluated, assembled)
