@@ -2,7 +2,7 @@
 ``check_time``, the contract's ``Budget.time``: ``--max-time``).
 
 - path, line and arc searches: a cost per candidate and position traced (and per
-  window matched), over the workers;
+  window matched), over the workers; a stretch's refinement of its best;
 - the six-bars' function and pose searches: a timed trial of their own scores and of
   one least-squares step (``dyade.synthesis.sixbar``);
 - the closed forms and fits of four-bars and slider-cranks (function, poses): a timed
@@ -24,6 +24,9 @@ PATH_SECONDS = 4e-7
 """[s] per candidate and crank position of a path search's first pass"""
 WINDOW_SECONDS = 3e-4
 """[s] per candidate of a part of a curve (every window's match)"""
+REFINE_SECONDS = 1.0
+"""[s] per refined design of a line or arc stretch (Nelder–Mead, at most 2500 steps:
+measured 0.9-1.4 s), in one process"""
 TRACES = {("fourbar", "precision"): 20, ("fourbar", "chebyshev"): 20,
           ("fourbar", "fit"): 2500, ("fourbar", "profile"): 1500,
           ("slider-crank", "precision"): 20, ("slider-crank", "chebyshev"): 20,
@@ -45,7 +48,10 @@ def estimate(problem: Synthesis, workers: int = 1) -> tuple[float, str] | None:
         seconds = PATH_SECONDS * problem.positions * problem.candidates * problem.rounds
         if not problem.target.closed and problem.target.crank is None:
             seconds += WINDOW_SECONDS * problem.candidates * problem.rounds
-        return (seconds / max(1, workers),
+        seconds /= max(1, workers)
+        if kind in ("line", "arc"):  # the best keep + 1 refined one after another
+            seconds += REFINE_SECONDS * (problem.keep + 1)
+        return (seconds,
                 f"{problem.name}: {problem.candidates * problem.rounds:,} candidates")
     if problem.topology.endswith("sixbar"):
         return None
