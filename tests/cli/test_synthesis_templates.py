@@ -5,6 +5,8 @@ target estimates its time before the work, so that `--max-time` refuses an over-
 
 from __future__ import annotations
 
+import json
+import re
 import tomllib
 
 import pytest
@@ -78,5 +80,11 @@ def test_every_template_runs_as_written(tmp_path, kind):
     assert out.exit_code == 0, out.output
     assert "nan" not in out.output and "Traceback" not in out.output
     analysed = CliRunner().invoke(main, ["analyse", str(tmp_path / "designs" /
-                                                         "design-1.toml")])
+                                                         "design-1.toml"), "--format", "json",
+                                         "-o", str(tmp_path / "a.json")])
     assert analysed.exit_code == 0, analysed.output
+    least = tomllib.loads(TEMPLATES_TEXT[kind]).get("search", {}).get("min_transmission")
+    if least is not None:  # the design obeys the file's limit through dyade's engine
+        summary = json.loads((tmp_path / "a.json").read_text(encoding="utf-8"))["summary"]
+        angles = [v["value"] for k, v in summary.items() if re.fullmatch(r"mu_\d+_min_deg", k)]
+        assert len(angles) == (2 if "sixbar" in kind else 1) and min(angles) >= least
