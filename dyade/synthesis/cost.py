@@ -2,7 +2,8 @@
 ``check_time``, the contract's ``Budget.time``: ``--max-time``).
 
 - path, line and arc searches: a cost per candidate and position traced (and per
-  window matched), over the workers; a stretch's refinement of its best;
+  window matched), over the workers; the least squares of the best (a stretch's
+  refinement);
 - the six-bars' function and pose searches: a timed trial of their own scores and of
   one least-squares step (``dyade.synthesis.sixbar``);
 - the closed forms and fits of four-bars and slider-cranks (function, poses): a timed
@@ -24,6 +25,9 @@ PATH_SECONDS = 4e-7
 """[s] per candidate and crank position of a path search's first pass"""
 WINDOW_SECONDS = 3e-4
 """[s] per candidate of a part of a curve (every window's match)"""
+FIT_SECONDS = 0.03
+"""[s] per target point of each path design's least-squares fit, in one process
+(measured: the closed-curve template's 24 points 0.6-0.8 s a fit)"""
 REFINE_SECONDS = 1.0
 """[s] per refined design of a line or arc stretch (Nelder–Mead, at most 2500 steps:
 measured 0.9-1.4 s), in one process"""
@@ -51,6 +55,8 @@ def estimate(problem: Synthesis, workers: int = 1) -> tuple[float, str] | None:
         seconds /= max(1, workers)
         if kind in ("line", "arc"):  # the best keep + 1 refined one after another
             seconds += REFINE_SECONDS * (problem.keep + 1)
+        else:  # the best keep fitted one after another
+            seconds += FIT_SECONDS * problem.target.points.size * problem.keep
         return (seconds,
                 f"{problem.name}: {problem.candidates * problem.rounds:,} candidates")
     if problem.topology.endswith("sixbar"):

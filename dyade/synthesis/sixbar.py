@@ -42,9 +42,10 @@ MARGIN = 1e-3
 balance with the misses stays above the limit itself (checked exactly afterwards)"""
 TRIAL = 64
 """candidates of the timed trial that estimates a run before it starts"""
-FIT_SHARE = 0.75
-"""[-] the share of its step cap a least-squares fit takes, about (measured: the six-bar
-function fit of the guide's table 0.6-0.8 of ``FIT_STAGES``' steps)"""
+FIT_SHARE = {"function": 1.0, "poses": 0.5}
+"""[-] the time of a target's least-squares fits over that of their step cap's worth of
+timed trial steps, about (measured on the guide's and the templates' targets: a function
+fit takes 0.6-0.8 of its steps, each dearer than the trial's; the pose fits end early)"""
 STEP_OVERHEAD = 3e-4
 """[s] scipy's own work per least-squares step (trust region, its small SVD), about"""
 
@@ -99,13 +100,14 @@ def _estimate(problem, names, bounds, score, step, steps: int) -> float:
     """The time of a six-bar search and its fits [s], from a timed trial: ``score`` of
     ``TRIAL`` candidates (per candidate, times the candidates of every round) and
     ``step(values)`` (one least-squares step of a fit: its residual and Jacobian)
-    times about ``FIT_SHARE`` of its cap ``steps``."""
+    times its cap ``steps`` and the target's ``FIT_SHARE``."""
     from dyade.synthesis.cost import timed
 
     values, _ = _draw(problem, names, bounds, TRIAL, 0)
     per = timed(lambda: score(values, 1)) / TRIAL
     count = max(problem.candidates, 10) * problem.rounds
-    return per * count + (timed(lambda: step(values)) + STEP_OVERHEAD) * steps * FIT_SHARE
+    share = FIT_SHARE[problem.target.kind]
+    return per * count + (timed(lambda: step(values)) + STEP_OVERHEAD) * steps * share
 
 
 def _search(problem, names, bounds, score, progress=None):
