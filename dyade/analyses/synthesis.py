@@ -62,12 +62,6 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     if jobs < 0:
         raise InputError.parameter("jobs", f"must be 0 (every core) or more, got {jobs}.",
                                    value=jobs)
-    if problem.target.kind in ("path", "line", "arc"):
-        cost = 4e-7 * problem.positions * problem.candidates * problem.rounds
-        if not problem.target.closed and problem.target.crank is None:
-            cost += 3e-4 * problem.candidates * problem.rounds  # every window's match
-        budget.time(cost / max(1, jobs or (os.cpu_count() or 1)),
-                    f"{problem.name}: {problem.candidates * problem.rounds:,} candidates")
     client = None
     if options.get("scheduler"):
         from dyade.parallel import connect
@@ -84,7 +78,7 @@ def run(source: Any, options: dict[str, Any], budget: Budget) -> Outcome:
     try:
         result = synthesise(problem, jobs=jobs if jobs > 0 else (os.cpu_count() or 1),
                             executor=None if client is None else client.get_executor(),
-                            progress=progress)
+                            progress=progress, check_time=budget.time)
     finally:
         if client is not None:
             client.close()

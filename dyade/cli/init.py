@@ -12,11 +12,27 @@ from dyade.cli.output import atomic, console
 
 TEMPLATES = {"fourbar": "RRR", "slider-crank": "RRP", "slotted-lever": "RPR",
              "tangent-drive": "PRP", "scotch-yoke": "PPR", "study": "", "profile": "",
-             "servo": "RRP", "synthesis": "", "cam": ""}
+             "servo": "RRP", "synthesis": "", "cam": "",
+             **{f"synthesis-{target}": "" for target in (
+                 "function", "slider", "poses", "open-path", "line", "sixbar-function",
+                 "sixbar-poses")}}
 NEXT = {"study": ("a design study", "dyade study"),
         "profile": ("a motion profile", "dyade profile"),
         "servo": ("a servo press", "dyade servo"),
-        "synthesis": ("a synthesis file", "dyade synthesise"),
+        "synthesis": ("a synthesis file: a closed coupler curve", "dyade synthesise"),
+        "synthesis-function": ("a synthesis file: a four-bar's function through three "
+                               "precision points", "dyade synthesise"),
+        "synthesis-slider": ("a synthesis file: a slider's position table",
+                             "dyade synthesise"),
+        "synthesis-poses": ("a synthesis file: a four-bar through four poses",
+                            "dyade synthesise"),
+        "synthesis-open-path": ("a synthesis file: an open path with its crank angles",
+                                "dyade synthesise"),
+        "synthesis-line": ("a synthesis file: a straight-line stretch", "dyade synthesise"),
+        "synthesis-sixbar-function": ("a synthesis file: a six-bar's function",
+                                      "dyade synthesise"),
+        "synthesis-sixbar-poses": ("a synthesis file: a six-bar through five poses",
+                                   "dyade synthesise"),
         "cam": ("a disc cam", "dyade cam")}
 """a template that is not a plain mechanism -> (what it is, the command that runs it)"""
 KIND_ALIASES = {"rrr": "fourbar", "four-bar": "fourbar", "rrp": "slider-crank",
@@ -35,9 +51,20 @@ def init(kind: str, file: str, force: bool) -> None:
     KIND study writes a design study of fourbar.toml (`dyade study FILE`); KIND profile
     a motion profile of VDI 2143 laws over a machine cycle (`dyade profile FILE`); KIND
     servo a servo press, a slider-crank whose ram follows a motion profile (`dyade servo
-    FILE`); KIND synthesis a synthesis file (`dyade synthesise FILE`); KIND cam a disc
-    cam with its follower and motion profile (`dyade cam FILE`).
-    FILE "-" prints the template."""
+    FILE`); KIND cam a disc cam with its follower and motion profile (`dyade cam FILE`).
+    KIND synthesis writes a synthesis file (`dyade synthesise FILE`), a four-bar through
+    a closed coupler curve; one per target: synthesis-function (a four-bar's output
+    angle, three precision points), synthesis-slider (a slider-crank's slider position
+    table), synthesis-poses (a four-bar through four poses), synthesis-open-path (an
+    open path with its crank angles), synthesis-line (a straight-line stretch over 120°
+    of crank), synthesis-sixbar-function and synthesis-sixbar-poses (a Stephenson III
+    six-bar's output angle table, its link 5 through five poses). Each runs as written,
+    in seconds.
+    FILE "-" prints the template.
+
+    \b
+        dyade init synthesis-line line.toml
+        dyade synthesise line.toml --write designs"""
     from importlib.resources import files
 
     name = KIND_ALIASES.get(kind.lower(), kind.lower())

@@ -62,14 +62,23 @@ def synthesise(synthesis_file: Path, folder: Path | None, figure: Path | None, f
     install "dyade[study]"). With masses ([scores] mass_per_length or mass_each, kg/m or
     kg) every design gets the sweep's figures at the operating speed and the Pareto
     front of error against one of them. `dyade init synthesis FILE` writes a commented
-    file; `dyade help synthesis` documents every key.
+    file (a closed coupler curve; synthesis-function, -slider, -poses, -open-path,
+    -line, -sixbar-function and -sixbar-poses the other targets); `dyade help synthesis`
+    documents every key. Every target estimates its time before the work (a timed
+    trial): --max-time S refuses a longer run with exit 2 and the estimate, and a run
+    above a few seconds says it. search.min_transmission [angle unit] drops the
+    candidates (and holds the fits) whose least transmission angle falls below it: over
+    the turn for paths, stretches and a six-bar's poses, over the range for a motion-law
+    function and a six-bar's function; a six-bar's two dyads both count (a four-bar's
+    closed forms through three points have no other solution to choose).
 
     \b
         dyade synthesise coupler-curve.toml -j 0 --write designs --plot designs.png
         dyade analyse designs/design-1.toml
 
     Exit status 1 when the topology cannot reach the target (the message gives the best
-    error found), 2 for a bad file or bounds that let no linkage assemble.
+    error found), 2 for a bad file, too few points, bounds that let no linkage assemble
+    or an estimate over --max-time.
     """
     outcome = solve(synthesis_file, options)
     if folder is not None:

@@ -43,7 +43,8 @@ __all__ = ["ERROR_UNITS", "ERROR_WORDS", "FIGURES", "Design", "Result", "error_u
            "score", "synthesise", "trace"]
 
 
-def synthesise(problem: Synthesis, jobs: int = 1, executor=None, progress=None) -> Result:
+def synthesise(problem: Synthesis, jobs: int = 1, executor=None, progress=None,
+               check_time=None) -> Result:
     """Solve a synthesis problem.
 
     Parameters
@@ -57,6 +58,11 @@ def synthesise(problem: Synthesis, jobs: int = 1, executor=None, progress=None) 
         Runs the blocks instead (a Dask cluster's ``Client.get_executor()``).
     progress : callable, optional
         ``progress(evaluated, total, best_error)`` as the blocks come.
+    check_time : callable, optional
+        ``check_time(seconds, what)`` hears the run's estimate [s] before the work
+        (``dyade.synthesis.cost``; a six-bar's function or poses: from a timed trial of
+        its own score), e.g. the contract's ``Budget.time``, which refuses a run over
+        ``--max-time``.
 
     Returns
     -------
@@ -71,10 +77,17 @@ def synthesise(problem: Synthesis, jobs: int = 1, executor=None, progress=None) 
     """
     started = time.perf_counter()
     kind = problem.target.kind
+    if check_time is not None:
+        from dyade.synthesis.cost import estimate
+
+        told = estimate(problem, jobs)
+        if told is not None:
+            check_time(*told)
     if kind in ("function", "poses") and problem.topology.endswith("sixbar"):
         from dyade.synthesis import sixbar
 
-        result = (sixbar.function if kind == "function" else sixbar.poses)(problem, progress)
+        result = (sixbar.function if kind == "function" else sixbar.poses)(problem, progress,
+                                                                            check_time)
     elif kind == "function":
         result = _function(problem)
     elif kind == "poses":

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from dyade.errors import DyadeError
+from dyade.errors import DyadeError, InputError
 from dyade.synthesis.function import wrap
 
 FUNCTION_DIMS = ("a", "b", "c", "ex", "ey", "gx", "gy", "f", "g")
@@ -30,11 +30,24 @@ POSE_STEPS = 600
 """least-squares steps of a pose fit at most"""
 FIT_STAGES = ((60, STARTS), (1000, 2))
 """(least-squares steps, starts): every start a few steps, then the best two on"""
-"""candidates of the search refined by least squares"""
 EXACT = 1e-13
 """[rad] a fit this close at every row ends the refinement of further starts"""
 LENGTHS = ("a", "b", "c", "d", "f", "g")
 """the dimensions that are lengths (positive)"""
+PENALTY = 10.0
+"""[-] the weight of a fit's residual that holds the transmission angle above its limit
+(the share below the limit, in rad)"""
+MARGIN = 1e-3
+"""[-] the penalty acts from (1 + MARGIN) times the limit: where a fit leans on it, its
+balance with the misses stays above the limit itself (checked exactly afterwards)"""
+TRIAL = 64
+"""candidates of the timed trial that estimates a run before it starts"""
+FIT_SHARE = {"function": 1.0, "poses": 0.5}
+"""[-] the time of a target's least-squares fits over that of their step cap's worth of
+timed trial steps, about (measured on the guide's and the templates' targets: a function
+fit takes 0.6-0.8 of its steps, each dearer than the trial's; the pose fits end early)"""
+STEP_OVERHEAD = 3e-4
+"""[s] scipy's own work per least-squares step (trust region, its small SVD), about"""
 
 
 @dataclass(eq=False)
@@ -81,6 +94,20 @@ def _draw(problem, names, bounds, count: int, round_: int, around=None, spread=0
     unit = (rng.permuted(np.tile(np.arange(count), (len(names), 1)), axis=1).T
             + rng.random((count, len(names)))) / count
     return lows + unit * (highs - lows), rng.choice(np.array(SixBar.variants), count)
+
+
+def _estimate(problem, names, bounds, score, step, steps: int) -> float:
+    """The time of a six-bar search and its fits [s], from a timed trial: ``score`` of
+    ``TRIAL`` candidates (per candidate, times the candidates of every round) and
+    ``step(values)`` (one least-squares step of a fit: its residual and Jacobian)
+    times its cap ``steps`` and the target's ``FIT_SHARE``."""
+    from dyade.synthesis.cost import timed
+
+    values, _ = _draw(problem, names, bounds, TRIAL, 0)
+    per = timed(lambda: score(values, 1)) / TRIAL
+    count = max(problem.candidates, 10) * problem.rounds
+    share = FIT_SHARE[problem.target.kind]
+    return per * count + (timed(lambda: step(values)) + STEP_OVERHEAD) * steps * share
 
 
 def _search(problem, names, bounds, score, progress=None):
@@ -134,15 +161,18 @@ def jacobian(residuals):
 
 
 # -- function generation ---------------------------------------------------------------
-def function(problem, progress=None):
-    """The function target of a six-bar problem as its result (``dyade.synthesis``)."""
+def function(problem, progress=None, check_time=None):
+    """The function target of a six-bar problem as its result (``dyade.synthesis``).
+
+    ``check_time(seconds, what)`` hears the run's estimate (a timed trial) before the
+    search; a candidate or fit whose smaller transmission angle (of both dyads) over the
+    table's crank range falls below ``problem.min_transmission`` is rejected."""
     from dyade.files.mechanism import build
     from dyade.linkage.positions import positions
     from dyade.synthesis.designs import Design, Result, speed_rpm
     from dyade.synthesis.search import scipy_least_squares
     from dyade.synthesis.topology import TOPOLOGIES
 
-    least_squares = scipy_least_squares()
     topology = TOPOLOGIES[problem.topology]
     target = problem.target
     free_zero = False
@@ -163,10 +193,14 @@ def function(problem, progress=None):
     names = topology.names
     index = [names.index(k) for k in FUNCTION_DIMS]
 
-    def angle_of(values, variant, at):
+    least = problem.min_transmission
+
+    def angle_of(values, variant, at, mu=False):
+        """link 6's angle ψ (and with ``mu`` the smaller transmission angle) at ``at``."""
         with np.errstate(invalid="ignore", divide="ignore"):
-            _, f, g, _ = topology.joints(values, variant, at)
-        return np.angle(f - g)
+            loops = topology.loops(values, variant, at)
+        psi = np.angle(loops[3] - loops[4])
+        return (psi, topology.transmission(values, variant, at, loops)) if mu else psi
 
     def misses(psi, zero=None):
         miss = wrap(psi - output)
@@ -177,28 +211,45 @@ def function(problem, progress=None):
         return miss
 
     def score(values, variant):
-        psi = angle_of(values, variant, where)
+        psi, mu = angle_of(values, variant, where, True) if least > 0.0 else (
+            angle_of(values, variant, where), None)
         ok = np.isfinite(psi).all(axis=1)
+        if mu is not None:
+            with np.errstate(invalid="ignore"):
+                ok &= np.min(mu, axis=1) >= least  # NaN: rejected
         miss = misses(psi[:, :crank.size])
         return np.where(ok, np.sqrt(np.mean(miss ** 2, axis=1)), np.inf)
 
+    unknowns = len(index) + free_zero
+    if check_time is not None:
+        steps = sum(cap * going for cap, going in FIT_STAGES)
+        check_time(_estimate(problem, names, bounds, score,
+                             lambda v: (score(v[:1], 1), score(v[:1], 1),  # ~2 residuals a step
+                                        score(v[:2 * unknowns], 1)), steps),
+                   f"{problem.name}: {max(problem.candidates, 10) * problem.rounds:,} "
+                   f"{topology.title} six-bars and the least squares of the best {STARTS}")
     values, variants, _, evaluated, assembled = _search(problem, names, bounds, score,
                                                         progress)
     if not len(values):
-        raise DyadeError(f"{problem.name}: none of the {evaluated:,} {topology.title} six-bars "
-                         f"drawn closes over the table's crank range on one branch: widen "
-                         f"the [bounds].")
+        raise _none_assembled(problem, topology, evaluated, "closes over the table's crank "
+                                                            "range on one branch")
+    least_squares = scipy_least_squares()  # only now: importing scipy takes a while
     def problem_of(full, variant):
         """(residual, its Jacobian, unpack) of a start's fit."""
         def residuals(xs):  # (trials, unknowns) -> (trials, rows)
             trial = np.tile(full, (len(xs), 1))
             trial[:, index] = xs[:, :len(index)]
-            psi = angle_of(trial, variant, where)
+            psi, mu = angle_of(trial, variant, where, True) if least > 0.0 else (
+                angle_of(trial, variant, where), None)
             miss = wrap(psi[:, :crank.size] - output)
             if free_zero:
                 miss = wrap(miss - xs[:, -1:])
             lost = ~np.isfinite(psi[:, crank.size:])  # held on the branch over the range
-            return np.concatenate([np.where(np.isfinite(miss), miss, 1.0), lost * 1.0], axis=1)
+            parts = [np.where(np.isfinite(miss), miss, 1.0), lost * 1.0]
+            if mu is not None:  # held above the transmission angle's limit over the range
+                parts.append(PENALTY * np.where(np.isfinite(mu), np.maximum(
+                    least * (1.0 + MARGIN) - mu, 0.0), 0.0))
+            return np.concatenate(parts, axis=1)
 
         def unpack(x):
             trial = full.copy()
@@ -219,7 +270,11 @@ def function(problem, progress=None):
             residual, jac, unpack = problem_of(start, variant)
             solution = least_squares(residual, x0, jac=jac, method="trf", xtol=1e-15,
                                      ftol=1e-15, gtol=1e-15, max_nfev=steps)
-            bad = np.any(unpack(solution.x)[[names.index(n) for n in LENGTHS]] <= 0.0)
+            dims = unpack(solution.x)
+            bad = np.any(dims[[names.index(n) for n in LENGTHS]] <= 0.0)
+            if least > 0.0:  # within the limit itself (the penalty holds it above a margin)
+                with np.errstate(invalid="ignore"):
+                    bad |= not np.min(topology.transmission(dims, variant, where)) >= least
             fits[k] = (math.inf if bad else float(np.max(np.abs(residual(solution.x)))),
                        solution.x, variant, solution.status > 0 or bool(
                            np.max(np.abs(residual(solution.x))) <= EXACT), start)
@@ -230,9 +285,12 @@ def function(problem, progress=None):
             break
     fits = [f for f in fits if np.isfinite(f[0])]
     if not fits:
+        limit = (f" or its transmission angle below search.min_transmission = "
+                 f"{np.rad2deg(least):.3g}°" if least > 0.0 else "")
         raise DyadeError(f"{problem.name}: every least-squares fit of the best {STARTS} "
-                         f"{topology.title} six-bars drove a length through zero: widen the "
-                         f"[bounds] or draw more candidates (search.candidates).")
+                         f"{topology.title} six-bars drove a length through zero{limit}: "
+                         f"widen the [bounds], draw more candidates (search.candidates)"
+                         + (" or lower search.min_transmission." if limit else "."))
     _, x, variant, converged, start = fits[0]
     dims = problem_of(start, variant)[2](x)
     zero = float(x[-1]) if free_zero else 0.0
@@ -265,16 +323,30 @@ def function(problem, progress=None):
     return result
 
 
+def _none_assembled(problem, topology, evaluated: int, what: str) -> InputError:
+    """No candidate of the bounds assembles (or keeps the transmission angle's limit): the
+    bounds' fault, exit 2."""
+    limit = (f" with a transmission angle of at least {np.rad2deg(problem.min_transmission):.3g}° "
+             f"(both dyads)" if problem.min_transmission > 0.0 else "")
+    return InputError(f"{problem.name}: none of the {evaluated:,} {topology.title} six-bars drawn "
+                      f"{what}{limit}: widen the [bounds]"
+                      + (" or lower search.min_transmission." if limit else "."),
+                      source=problem.source, key="bounds")
+
+
 # -- motion generation -----------------------------------------------------------------
-def poses(problem, progress=None):
-    """The poses target of a six-bar problem (link 5 through them) as its result."""
+def poses(problem, progress=None, check_time=None):
+    """The poses target of a six-bar problem (link 5 through them) as its result.
+
+    ``check_time(seconds, what)`` hears the run's estimate (a timed trial) before the
+    search; a candidate or fit whose smaller transmission angle (of both dyads) over the
+    crank's turn falls below ``problem.min_transmission`` is rejected."""
     from dyade.files.mechanism import build
     from dyade.linkage.positions import positions
     from dyade.synthesis.designs import Design, Result, speed_rpm
     from dyade.synthesis.search import scipy_least_squares
     from dyade.synthesis.topology import TOPOLOGIES, Placement
 
-    least_squares = scipy_least_squares()
     topology = TOPOLOGIES[problem.topology]
     given = problem.target.poses
     z = given[:, 0] + 1j * given[:, 1]
@@ -293,9 +365,14 @@ def poses(problem, progress=None):
             e, f, _, p = topology.joints(values, variant, at)
         return p, np.angle(f - e)
 
+    least = problem.min_transmission
+
     def score(values, variant):
         p, angle = links(values, variant, grid)
         ok = np.isfinite(p).all(axis=1) & topology.turns(values)
+        if least > 0.0:
+            with np.errstate(invalid="ignore"):
+                ok &= np.min(topology.transmission(values, variant, grid), axis=1) >= least
         cost = np.full(len(values), np.inf)
         for rows in np.array_split(np.flatnonzero(ok), max(1, ok.sum() // 256)):
             if not rows.size:
@@ -311,12 +388,24 @@ def poses(problem, progress=None):
             cost[rows] = np.sqrt(np.min(total, axis=1) / max(1, n - 1))
         return cost
 
+    dims = len(names)
+    if check_time is not None:
+        width = 2 * (dims + 3 + n) + 1  # a Jacobian's trials, each at the n poses' angles
+
+        def step(values):
+            trials = np.repeat(values[:1], width * n, axis=0)
+            links(trials, 1, np.resize(grid, (width * n, 1)))
+            if least > 0.0:
+                topology.transmission(values[:1], 1, grid)
+
+        check_time(_estimate(problem, names, bounds, score, step, STARTS * POSE_STEPS),
+                   f"{problem.name}: {max(problem.candidates, 10) * problem.rounds:,} "
+                   f"{topology.title} six-bars and the least squares of the best {STARTS}")
     values, variants, _, evaluated, assembled = _search(problem, names, bounds, score,
                                                         progress)
     if not len(values):
-        raise DyadeError(f"{problem.name}: none of the {evaluated:,} {topology.title} six-bars "
-                         f"drawn turns its crank fully: widen the [bounds].")
-    dims = len(names)
+        raise _none_assembled(problem, topology, evaluated, "turns its crank fully")
+    least_squares = scipy_least_squares()  # only now: importing scipy takes a while
     low = np.array([1e-6 * size if k in LENGTHS else -np.inf for k in names])
     fits = []
     for start, variant in zip(values[:STARTS], variants[:STARTS]):
@@ -343,6 +432,10 @@ def poses(problem, progress=None):
                       + np.exp(1j * turn) * pp)
             miss = (placed - z) / size
             out = np.concatenate([miss.real, miss.imag, wrap(aa + turn - theta)], axis=1)
+            if least > 0.0:  # held above the transmission angle's limit over the turn
+                mu = topology.transmission(xs[:, :dims], variant, grid)
+                out = np.concatenate([out, PENALTY * np.maximum(least * (1.0 + MARGIN) - mu,
+                                                                0.0)], axis=1)
             return np.where(np.isfinite(out), out, 10.0)
 
         def residual(x, residuals=residuals):
@@ -357,7 +450,10 @@ def poses(problem, progress=None):
             break
     fits.sort(key=lambda f: f[0])
     designs = []
-    for rank, (_, x, variant) in enumerate(fits[:problem.keep], start=1):
+    for _, x, variant in fits:
+        if len(designs) >= problem.keep:
+            break
+        rank = len(designs) + 1
         placement = Placement(complex(x[dims], x[dims + 1]), 1.0, float(x[dims + 2]))
         phi = x[dims + 3:]
         data = topology.data(x[:dims], variant, placement, speed_rpm(problem), problem.masses,
@@ -370,8 +466,13 @@ def poses(problem, progress=None):
         miss = float(np.max(np.abs(reached - z)))
         off = float(np.max(np.abs(wrap(found.angles[:, 5] - theta))))
         dense = np.linspace(0.0, 2.0 * np.pi, 361) + placement.angle
-        between = positions(mechanism, dense, [(5, point)]).points[:, 0]
+        swept = positions(mechanism, dense, [(5, point)])
+        between = swept.points[:, 0]
         converged = miss <= POSE_TOLERANCE * size and off <= POSE_TOLERANCE
+        with np.errstate(invalid="ignore"):  # dyade's own transmission angles, both dyads
+            mu = float(np.arcsin(np.clip(np.nanmin(swept.conditioning), 0.0, 1.0)))
+        if least > 0.0 and not mu >= least:
+            continue  # the fit left the limit
         at = np.rad2deg(np.mod(world, 2.0 * np.pi))
         notes = [f"the poses are reached at crank angles "
                  f"{', '.join(f'{v:.2f}°' for v in at)}; link 5's angle misses by at most "
@@ -390,11 +491,20 @@ def poses(problem, progress=None):
         design = Design(f"design {rank}", data, miss, converged, dense,
                         between[:, 0] + 1j * between[:, 1], notes=notes)
         designs.append(design)
+    if not designs:
+        raise DyadeError(f"{problem.name}: every least-squares fit of the best {len(fits)} "
+                         f"{topology.title} six-bars through the {n} poses ends with a "
+                         f"transmission angle below search.min_transmission = "
+                         f"{np.rad2deg(least):.3g}° over the crank's turn: lower it, widen "
+                         f"the [bounds] or draw more candidates.")
     if not designs[0].converged:
         raise DyadeError(f"{problem.name}: no {topology.title} six-bar within the bounds "
                          f"passes through the {n} poses: the best of {evaluated:,} candidates "
                          f"misses them by {designs[0].error:.3g} m after the local fit (at "
-                         f"most {POSE_TOLERANCE:g} of their size counts). Draw more "
-                         f"candidates, widen the bounds, or try another topology.")
+                         f"most {POSE_TOLERANCE:g} of their size counts): {n} poses are "
+                         f"{3 * n} equations for its {15 + n} unknowns (12 dimensions, the "
+                         f"placement, a crank angle per pose), and the search found no start "
+                         f"from which the fit closes them. Draw more candidates, widen the "
+                         f"bounds, give fewer poses, or try another topology.")
     designs = [d for d in designs if d.converged]
     return Result(problem, designs, evaluated, assembled)

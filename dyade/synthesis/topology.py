@@ -280,6 +280,27 @@ class SixBar(Topology):
         the crank angles ``crank`` [rad], in closed form (NaN where it does not close):
         the second dyad's joints (E on link 5, F joining links 5 and 6, G on link 6) and
         the coupler point P. Link 5's angle is that of F − E, link 6's that of F − G."""
+        return self.loops(values, variant, crank)[2:]
+
+    def transmission(self, values, variant, crank, loops=None):
+        """(candidates, positions) the smaller of the two dyads' transmission angles μ
+        [rad], each folded to [0, π/2] (dyade's ``mu_N_min_deg``): the first dyad's at B
+        (between the coupler A–B and the rocker B0–B), the second's at F (between E–F and
+        G–F); NaN where the six-bar does not close. ``loops``: the six-bar's ``loops``
+        there, where the caller has them."""
+        a, b, e, f, g, _ = self.loops(values, variant, crank) if loops is None else loops
+        values = np.atleast_2d(values)
+        lengths = values[:, [1, 2, 8, 9], None]
+        first = np.abs(((b - a).conjugate() * (b - values[:, 3, None])).imag)
+        second = np.abs(((f - e).conjugate() * (f - g)).imag)
+        with np.errstate(invalid="ignore"):
+            sin = np.minimum(first / (lengths[:, 0] * lengths[:, 1]),
+                             second / (lengths[:, 2] * lengths[:, 3]))
+            return np.arcsin(np.clip(sin, 0.0, 1.0))
+
+    def loops(self, values, variant, crank):
+        """(A, B, E, F, G, P): the joints of both loops, each (candidates, positions)
+        complex [m] in the canonical frame (``joints``), in closed form."""
         values = np.atleast_2d(values)
         a, b, c, d, ex, ey, gx, gy, f, g, p, q = (values[:, k, None] for k in range(12))
         first, second = self.dyad_variants(variant)
@@ -299,7 +320,7 @@ class SixBar(Topology):
         hx, hy = at(self.anchor, gx, gy)
         fx, fy = rrr(px, py, hx, hy, f, g, second)
         vx, vy = (fx - px) / f, (fy - py) / f
-        return (px + 1j * py, fx + 1j * fy, hx + 1j * hy,
+        return (ax + 1j * ay, bx + 1j * by, px + 1j * py, fx + 1j * fy, hx + 1j * hy,
                 (px + vx * p - vy * q) + 1j * (py + vy * p + vx * q))
 
     def turns(self, values):

@@ -46,6 +46,11 @@ def test_function_generation_writes_files_that_dyade_analyses(tmp_path):
         document["summary"]["M_drive_rms"]["value"], rel=1e-12)
 
 
+SHORT = ('[bounds]\nf = [0.01, 0.02]\ng = [0.01, 0.02]\n[search]\ncandidates = 200\n'
+         'rounds = 1\n')
+"""bounds no six-bar assembles with, and a short search"""
+
+
 @pytest.mark.parametrize("text, code, words", [
     ('[target]\nkind = "function"\ncrank = [10, 20]\noutput = [1, 2]\n', 2, "at least three"),
     ('[target]\nkind = "path"\npoints = [[0, 0], [1, 0], [1, 1]]\n', 2, "at least 8"),
@@ -54,6 +59,15 @@ def test_function_generation_writes_files_that_dyade_analyses(tmp_path):
      'c = [0.1, 0.2]\n[search]\ncandidates = 100\nrounds = 1\n', 2, "bounds"),
     ('[target]\nkind = "function"\ncrank = [0, 90, 180]\noutput = [0, 0, 0]\n'
      'method = "precision"\n', 1, "singular"),
+    # six-bars whose second dyad (f, g ≪ its joints' distance) never closes: the bounds'
+    ('topology = "stephenson-sixbar"\n[target]\nkind = "function"\n'
+     'crank = [0, 15, 30, 45, 60, 75, 90, 105, 120]\noutput = [0, 1, 2, 3, 4, 5, 6, 7, 8]\n'
+     + SHORT, 2, "none of the 200 Stephenson III six-bars drawn closes"),
+    ('topology = "watt1-sixbar"\n[target]\nkind = "poses"\n'
+     'poses = [[0, 0, 0], [1, 0, 10], [1, 1, 20]]\n' + SHORT, 2,
+     "none of the 200 Watt I six-bars drawn turns its crank fully"),
+    ('topology = "watt-sixbar"\n[target]\nkind = "poses"\nposes = [[0, 0, 0], [1, 0, 10]]\n',
+     2, "3 to 7 poses"),
 ])
 def test_bad_input_exits_with_its_code_and_no_traceback(tmp_path, text, code, words):
     path = tmp_path / "bad.toml"
@@ -61,6 +75,18 @@ def test_bad_input_exits_with_its_code_and_no_traceback(tmp_path, text, code, wo
     out = CliRunner().invoke(main, ["synthesise", str(path)])
     assert out.exit_code == code, out.output
     assert words in out.output and "Traceback" not in out.output
+
+
+@pytest.mark.slow
+def test_poses_no_six_bar_reaches_exit_1_with_the_best_error_and_why(tmp_path):
+    path = tmp_path / "seven.toml"
+    path.write_text('topology = "stephenson-sixbar"\n[target]\nkind = "poses"\nposes = [\n'
+                    '[0, 0, 0], [1, 0, 90], [0, 1, 180], [-1, 0, 270], [0, -1, 0],\n'
+                    '[0.5, 0.5, 45], [-0.5, 0.2, 200]]\n[search]\ncandidates = 200\n'
+                    'rounds = 1\n', encoding="utf-8")
+    out = CliRunner().invoke(main, ["synthesise", str(path)])
+    assert out.exit_code == 1, out.output
+    assert "misses them by" in out.output and "21 equations for its 22 unknowns" in out.output
 
 
 # `dyade init synthesis`, `dyade synthesise --write --plot` and `dyade analyse` of its

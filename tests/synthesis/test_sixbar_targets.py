@@ -53,6 +53,15 @@ def test_too_few_rows_or_too_many_poses_name_the_key():
     assert "target.poses" in str(err.value) and "7" in str(err.value)
     made = parse({"topology": "watt1-sixbar", "target": {"kind": "poses", "poses": poses[:5]}})
     assert made.target.poses.shape == (5, 3)
+    law = {"unit": "deg", "period": 360, "segment": [
+        {"kind": "rise", "law": "cycloid", "end": 120, "to": 40},
+        {"kind": "return", "law": "cycloid", "end": 360, "to": 0}]}
+    for zero, least in (({"output_zero": 150}, 9), ({}, 10)):  # ψ0 found: one more unknown
+        with pytest.raises(InputError) as err:
+            parse({"topology": "stephenson-sixbar", "target": {
+                "kind": "function", "profile": law, "range": [0, 120], "rows": least - 1,
+                **zero}})
+        assert "target.rows" in str(err.value) and f"at least {least}" in str(err.value)
 
 
 def test_the_cli_says_too_few_rows_with_exit_2(tmp_path):
