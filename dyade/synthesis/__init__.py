@@ -132,6 +132,8 @@ def _function(problem: Synthesis) -> Result:
              _step(made.crank))
     data = function.data(made.linkage, speed_rpm(problem), sweep, problem.name,
                          problem.masses)
+    if offsets is None:  # (a profile's fit holds the limit itself)
+        _transmission_kept(problem, data, made.crank, "four-bar")
     error = float(np.rad2deg(np.nanmax(np.abs(made.error)))) if np.isfinite(
         made.error).any() else math.inf
     notes = []
@@ -175,6 +177,7 @@ def _slider(problem: Synthesis) -> Result:
     sweep = (float(np.rad2deg(made.crank[0])), float(np.rad2deg(made.crank[-1])),
              _step(made.crank))
     data = slider.data(made.linkage, speed_rpm(problem), sweep, problem.name, problem.masses)
+    _transmission_kept(problem, data, made.crank, "slider-crank")
     error = float(np.nanmax(np.abs(made.error))) if np.isfinite(made.error).any() else math.inf
     if not np.isfinite(made.error).all():
         notes.append(f"the slider-crank does not close at "
@@ -184,6 +187,36 @@ def _slider(problem: Synthesis) -> Result:
     result = Result(problem, [design])
     result.function = made  # the structural error at every row, for the table
     return result
+
+
+TRANSMISSION_SAMPLES = 361  # [-] crank angles over a table's range the limit is checked at
+
+
+def _transmission_kept(problem: Synthesis, data: dict, crank: np.ndarray, what: str) -> None:
+    """A function generator solved in closed form or fitted to a table (one answer, no
+    candidates to choose from) whose transmission angle (through dyade's positions
+    stage, as ``dyade analyse`` reports it) falls below ``search.min_transmission``
+    somewhere over the table's crank range: a ``DyadeError`` that says where and by how
+    much (exit 1), not a design."""
+    limit = problem.min_transmission
+    if not limit > 0.0:
+        return
+    from dyade.files.mechanism import build
+    from dyade.linkage.positions import positions
+
+    at = np.linspace(crank[0], crank[-1], TRANSMISSION_SAMPLES)
+    mu = positions(build(data), at, []).transmission
+    off = np.min(np.minimum(mu, np.pi - mu), axis=1)  # the dyads' nearer dead centre
+    if np.isnan(off).all() or np.nanmin(off) >= limit:
+        return
+    k = int(np.nanargmin(off))
+    raise DyadeError(
+        f"the {what} through the table has a transmission angle of only "
+        f"{np.rad2deg(off[k]):.3g}° at the crank angle {np.rad2deg(at[k]):.6g}°, below "
+        f"search.min_transmission = {np.rad2deg(limit):.3g}° (a table has one "
+        f"{problem.target.method} solution, no candidates to choose from): choose other precision "
+        f"points, a shorter crank range or another output range, or lower "
+        f"search.min_transmission.")
 
 
 def _step(crank: np.ndarray) -> float:
