@@ -417,6 +417,15 @@ def _stretch(problem: Synthesis, jobs, executor, progress) -> Result:
             continue
         designs.append(refined)
     designs.sort(key=lambda r: r.error)
+    if designs[0].error > REACH:
+        raise DyadeError(
+            f"{problem.name}: no {topology.name} within the bounds keeps to a "
+            f"{'straight line' if target.kind == 'line' else 'circular arc'} over "
+            f"{np.rad2deg(target.stretch):.4g}° of crank: the best of {best.evaluated:,} "
+            f"candidates ({best.assembled:,} assembled) deviates by "
+            f"{100 * designs[0].error:.3g} % of the stretch's length after the local fit (at "
+            f"most {100 * REACH:g} % counts as reached): shorten the stretch, widen the "
+            f"bounds, draw more candidates, or try a six-bar.")
     out = []
     for rank, refined in enumerate(designs[:problem.keep], start=1):
         scaled = None

@@ -170,3 +170,19 @@ def test_a_dask_cluster_gives_the_same_best_candidates_as_one_process():
         there = search(FourBar(), points, settings, executor=client.get_executor())
     assert np.array_equal(here.number, there.number)
     assert np.array_equal(here.error, there.error)
+
+
+@pytest.mark.slow
+def test_a_stretch_the_topology_cannot_keep_says_the_best_deviation():
+    # a crank as long as the coupler and the rocker, the coupler point on the coupler's
+    # line near the rocker: its curve swings round and never runs straight for 200°
+    problem = parse({"target": {"kind": "line", "stretch": 200},
+                     "bounds": {"a": [0.9, 1], "b": [1, 1.1], "c": [1, 1.1],
+                                "p": [0.9, 1], "q": [0, 0.05]},
+                     "search": {"candidates": 200, "block": 100, "rounds": 1},
+                     "output": {"keep": 1}})
+    with pytest.raises(DyadeError, match=r"keeps to a straight line over 200° of crank: the "
+                                         r"best of 200 candidates .* deviates by ([\d.]+) % of"
+                       ) as err:
+        synthesise(problem)
+    assert not isinstance(err.value, InputError)
