@@ -482,8 +482,13 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     pseudo-arclength continuation over the whole range, through its folds, and every
     further solution it passes at a speed of the range is shot there too: the
     coexisting solutions of a resonance that folds over, the jump speeds of a sweep up
-    and down (``folds``). A speed without a solution periodic to the tolerance is a row
-    with ``converged`` False and its ``reason``: no verdict.
+    and down (``folds``). Speeds still without one are shot from their neighbours' on
+    meshes of their own, then in time (``_fill``, ``_fill_in_time``); last, every
+    stable solution is carried to the neighbouring speeds and on (``_carry``: the
+    coexisting stable motions a long integration from a neighbour's state settles on),
+    the fold where a carried branch ends located in time. A speed without a solution
+    periodic to the tolerance is a row with ``converged`` False and its ``reason``: no
+    verdict.
 
     Parameters
     ----------
