@@ -1412,12 +1412,12 @@ def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
             start[j], mult[j] = shot.start[m], shot.multipliers[m]
             used[j], accuracy[j] = shot.steps[m], shot.accuracy[m]
     for j in np.flatnonzero(flip & ~found):
-        reason[j] = (f"no period-2 orbit found beside the period-1 orbit: the shooting from its "
-                     f"flip direction converged to nothing else, and "
+        reason[j] = ("no period-2 orbit found beside the period-1 orbit: the shooting from its "
+                     "flip direction converged to nothing else, and "
                      + (f"{PERIOD_TWO_SETTLE} revolutions from it (a long integration) settle "
-                        f"on no period-2 motion (a longer period, a quasi-periodic or a "
-                        f"chaotic motion)" if settled[j] else
-                        f"a long integration from it is lost (the crank stops)"))
+                        "on no period-2 motion (a longer period, a quasi-periodic or a "
+                        "chaotic motion)" if settled[j] else
+                        "a long integration from it is lost (the crank stops)"))
     values = [np.full(speeds.size, np.nan) for _ in range(6)]
     for level in np.unique(used[found]):  # the orbit over its two revolutions, with works
         idx = np.flatnonzero(found & (used == level))
