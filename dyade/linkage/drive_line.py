@@ -482,8 +482,13 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     pseudo-arclength continuation over the whole range, through its folds, and every
     further solution it passes at a speed of the range is shot there too: the
     coexisting solutions of a resonance that folds over, the jump speeds of a sweep up
-    and down (``folds``). A speed without a solution periodic to the tolerance is a row
-    with ``converged`` False and its ``reason``: no verdict.
+    and down (``folds``). Speeds still without one are shot from their neighbours' on
+    meshes of their own, then in time (``_fill``, ``_fill_in_time``); last, every
+    stable solution is carried to the neighbouring speeds and on (``_carry``: the
+    coexisting stable motions a long integration from a neighbour's state settles on),
+    the fold where a carried branch ends located in time. A speed without a solution
+    periodic to the tolerance is a row with ``converged`` False and its ``reason``: no
+    verdict.
 
     Parameters
     ----------
@@ -608,6 +613,7 @@ def resonance_curve(mechanism: Mechanism, speeds_rpm, *, steps: int | None = Non
     if follow and speeds.size > 1:
         _fill(problem, p, speeds, records, found, n, tol, tick)
         _fill_in_time(line, shaft, problem, p, speeds, records, found, n, tol, tick)
+        folds += _carry(line, shaft, problem, p, speeds, records, found, n, tol, tick, folds)
     rows = []  # (record, speed index)
     for j in range(speeds.size):
         rows += [(r, j) for r in found[j]] or [(j, j)]
@@ -700,6 +706,167 @@ def _fill_in_time(line, shaft, problem, p, speeds, records, found, steps, tol, t
                                ("converged", True), ("reason", ""), ("speed", speeds[j]),
                                ("mesh", IN_TIME)):
                 records[key].append(value)
+
+
+CARRY_SAME = 1e-4  # [-] two solutions at one speed closer than this (scaled) are one orbit
+CARRY_SAME_ACROSS = 1e-3  # [-] ... when one is in crank angle and one in time (the section
+# s = 0 of the one in u by linear interpolation between its nodes), their multipliers then
+# also within CARRY_SAME
+CARRY_FOLD_POINTS = 16  # [-] the most points of the continuation that locates a fold
+CARRY_FOLD_INTEGRATIONS = 80  # [-] ... and its most integrations
+
+
+def _carry(line, shaft, problem, p, speeds, records, found, nodes, tol, tick,
+           known_folds) -> list:
+    """Every stable solution carried to the neighbouring speeds, whatever they hold
+    already: shot there from its state (in its own variable: on its steps, on a mesh of
+    its own, or in time), a converged solution that is no row of that speed yet becomes
+    one, and a new stable one is carried on (all fronts at once, round by round): the
+    coexisting stable motions that a long integration from a neighbour's state settles
+    on (the turning-back motion carried past the gap that ``_fill_in_time`` filled, a
+    stable motion where the shooting from the linear response found only a saddle).
+    Where a stable branch ends between two speeds (its shot at the next speed fails or
+    lands on a solution that does not lead back to it), the branch is continued in time
+    between the two (``periodic.continuation``) and the fold found there is returned
+    (speed [rad/s], upper) for the jump speeds (those within 1e-6 of ``known_folds``
+    left out)."""
+    from dyade.machine import periodic
+
+    in_time = engine.problem_in_time(line, shaft.tables_at, nodes)
+    scale = problem.scale(p)
+    sections: dict = {}
+
+    def section(r):
+        """The record's state at the section s = 0 of ``problem_in_time``."""
+        if r not in sections:
+            source = records["mesh"][r]
+            if isinstance(source, str):
+                sections[r] = np.asarray(records["start"][r])
+            else:
+                j = int(np.argmin(np.abs(speeds - records["speed"][r])))
+                n = int(records["steps"][r])
+                path = periodic.trajectory(problem, n, np.asarray(records["start"][r])[None, :],
+                                           p[j:j + 1], mesh=None if source is None
+                                           else source[None, :])
+                at = (np.linspace(0.0, 2.0 * math.pi, n + 1) if source is None
+                      else source)[:, None]
+                sections[r] = engine.section_in_time(path, at)[0]
+        return sections[r]
+
+    def same(r, x, mesh, mult, steps, k) -> bool:
+        """Record ``r`` is the solution (x, mesh, mult, steps) at speed k."""
+        timed = isinstance(mesh, str)
+        if timed == isinstance(records["mesh"][r], str):
+            return bool(np.max(np.abs(x - records["start"][r]) / scale[k]) <= CARRY_SAME)
+        a = x if timed else None
+        b = section(r) if timed else np.asarray(records["start"][r])
+        if a is None:  # x in u, r in time
+            a, b = _section_of(problem, p[k], x, mesh, int(steps)), records["start"][r]
+        close = np.max(np.abs(a - b) / scale[k]) <= CARRY_SAME_ACROSS
+        return bool(close and periodic.multiplier_change(
+            np.asarray(mult)[None], np.asarray(records["mult"][r])[None])[0] <= CARRY_SAME)
+
+    def stable(r) -> bool:
+        return bool(np.abs(records["mult"][r][0]) <= 1.0 + engine.UNSTABLE_MARGIN)
+
+    def shoot(pairs):
+        """Shoot the pairs (speed k, record r) from r's state: [(x, mesh, mult, steps,
+        accuracy) or None]."""
+        groups: dict = {}
+        for i, (k, r) in enumerate(pairs):
+            source = records["mesh"][r]
+            key = (IN_TIME if isinstance(source, str) else
+                   ("mesh", source.size) if source is not None else "uniform")
+            groups.setdefault(key, []).append(i)
+        out = [None] * len(pairs)
+        for key, members in groups.items():
+            ks = np.array([pairs[i][0] for i in members])
+            rs = [pairs[i][1] for i in members]
+            x = np.array([records["start"][r] for r in rs])
+            mesh = None
+            if key == IN_TIME:
+                shot = periodic.shoot(in_time, p[ks], x, tol=tol, progress=tick)
+            elif key == "uniform":
+                shot = periodic.shoot(problem, p[ks], x, tol=tol, progress=tick)
+            else:
+                p_from = np.array([p[int(np.argmin(np.abs(speeds - records["speed"][r])))]
+                                   for r in rs])
+                mesh = periodic.mesh_of(problem, key[1], x, p_from, nodes,
+                                        np.array([records["mesh"][r] for r in rs]))
+                shot = periodic.shoot(problem, p[ks], x, tol=tol, mesh=mesh, progress=tick)
+            for m, i in enumerate(members):
+                if shot.converged[m]:
+                    where = (IN_TIME if key == IN_TIME else None if key == "uniform"
+                             else shot.mesh[m])
+                    out[i] = (shot.start[m], where, shot.multipliers[m], shot.steps[m],
+                              shot.accuracy[m])
+        return out
+
+    hit: dict = {}  # (speed k, record r) -> the record at k the shot from r landed on
+    tried: set = set()
+    for _ in range(2 * speeds.size):  # rounds: at most one per speed and side
+        pairs = [(k, r) for j in range(speeds.size) for r in found[j] if stable(r)
+                 for k in (j - 1, j + 1) if 0 <= k < speeds.size and (k, r) not in tried]
+        if not pairs:
+            break
+        tried.update(pairs)
+        for (k, r), result in zip(pairs, shoot(pairs)):
+            if result is None:
+                hit[(k, r)] = None
+                continue
+            x, mesh, mult, steps, accuracy = result
+            match = [q for q in found[k] if same(q, x, mesh, mult, steps, k)]
+            if match:
+                hit[(k, r)] = match[0]
+                continue
+            hit[(k, r)] = len(records["start"])
+            found[k].append(len(records["start"]))
+            for key, value in (("start", x), ("steps", steps), ("accuracy", accuracy),
+                               ("mult", mult), ("converged", True), ("reason", ""),
+                               ("speed", speeds[k]), ("mesh", mesh)):
+                records[key].append(value)
+    # where a stable branch ends: its shot at the next speed failed, or landed on a
+    # solution whose shot back does not land on it (the unstable ones shot back now)
+    back = [(int(np.argmin(np.abs(speeds - records["speed"][r]))), q)
+            for (k, r), q in hit.items() if q is not None and (
+                int(np.argmin(np.abs(speeds - records["speed"][r]))), q) not in hit]
+    back = sorted(set(back))
+    for (j, q), result in zip(back, shoot(back) if back else []):
+        hit[(j, q)] = None if result is None else next(
+            (r for r in found[j] if same(r, *result[:4], j)), None)
+    ends = []
+    for (k, r), q in hit.items():
+        if not stable(r):
+            continue
+        j = int(np.argmin(np.abs(speeds - records["speed"][r])))
+        if q is None or hit.get((j, q)) != r:
+            ends.append((j, k, r))
+    out = []
+    whole = float(speeds.max() - speeds.min())
+    for j, k, r in ends:
+        low, high = sorted((float(speeds[j]), float(speeds[k])))
+        branch = periodic.continuation(in_time, section(r), p[j], (low, high), steps=2 * nodes,
+                                       direction=1.0 if k > j else -1.0, width=whole,
+                                       most=CARRY_FOLD_POINTS, ds=0.5 * (high - low) / whole,
+                                       integrations=CARRY_FOLD_INTEGRATIONS, progress=tick)
+        for fold in branch.folds:
+            if low <= fold.parameter <= high and not any(
+                    abs(fold.parameter - f) <= 1e-6 * f and up == fold.upper
+                    for f, up in known_folds + out):
+                out.append((fold.parameter, fold.upper))
+    return out
+
+
+def _section_of(problem, p, x, mesh, steps: int) -> FloatArray:
+    """The state (d,) at the section s = 0 of ``engine.problem_in_time`` of the solution
+    ``x`` in u at the parameters ``p`` (q,) on ``mesh`` (None: ``steps`` uniform steps)."""
+    from dyade.machine import periodic
+
+    n = steps
+    path = periodic.trajectory(problem, n, np.asarray(x)[None, :], np.asarray(p)[None, :],
+                               mesh=None if mesh is None else np.asarray(mesh)[None, :])
+    at = (np.linspace(0.0, 2.0 * math.pi, n + 1) if mesh is None else np.asarray(mesh))
+    return engine.section_in_time(path, at[:, None])[0]
 
 
 def _fill(problem, p, speeds, records, found, nodes, tol, tick) -> None:
@@ -1150,7 +1317,11 @@ def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
     period-1 orbit (shot in time from the linear response) has a multiplier below −1,
     shot over two revolutions from it displaced along that multiplier's eigenvector
     (``PERIOD_TWO_SEEDS``, all speeds and seeds at once), the steps doubled by accuracy;
-    a solution that is the period-1 orbit again does not count.
+    a solution that is the period-1 orbit again does not count. Where no seed leads to
+    one, the machine's own motion is followed: a long integration from the unstable
+    orbit (``_settle``: ``PERIOD_TWO_SETTLE`` revolutions) and the period-2 orbit shot
+    from where it arrives (dyade-16 at 3575 rpm: the period-2 motion lies about 1.7 rad
+    of twist away from the period-1 orbit, out of the seeds' reach).
 
     Parameters
     ----------
@@ -1213,22 +1384,40 @@ def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
     todo = np.flatnonzero(flip)
     used = np.zeros(speeds.size, dtype=int)
     accuracy = np.full(speeds.size, np.nan)
-    for amount in PERIOD_TWO_SEEDS:
+    settled = np.zeros(speeds.size, dtype=bool)
+    for stage in ("seeds", "settled"):
         todo = todo[~found[todo]]
         if not todo.size:
             break
-        seed = one.start[todo] + amount * vectors[todo] * scale[todo]
-        shot = periodic.shoot(problem, p[todo], seed, tol=tol, periods=2)
-        apart = np.max(np.abs(shot.start - one.start[todo]) / scale[todo], axis=1) > 1e-3
-        good = shot.converged & apart
-        found[todo[good]] = True
-        start[todo[good]] = shot.start[good]
-        mult[todo[good]] = shot.multipliers[good]
-        used[todo[good]] = shot.steps[good]
-        accuracy[todo[good]] = shot.accuracy[good]
+        if stage == "seeds":  # every speed's seeds along its flip direction at once
+            amounts = np.array(PERIOD_TWO_SEEDS)
+            lanes = np.repeat(todo, amounts.size)
+            seed = (one.start[lanes] + np.tile(amounts, todo.size)[:, None] * vectors[lanes]
+                    * scale[lanes])
+        else:  # what the machine does: a long integration from the unstable orbit
+            lanes = todo
+            seed = _settle(problem, one.start[todo], vectors[todo] * scale[todo], p[todo])
+            settled[todo] = np.all(np.isfinite(seed), axis=1)
+            lanes, seed = lanes[settled[todo]], seed[settled[todo]]
+            if not lanes.size:
+                break
+        shot = periodic.shoot(problem, p[lanes], seed, tol=tol, periods=2,
+                              retry=stage == "settled")
+        apart = np.max(np.abs(shot.start - one.start[lanes]) / scale[lanes], axis=1) > 1e-3
+        for m in np.flatnonzero(shot.converged & apart):
+            j = lanes[m]
+            if found[j]:
+                continue
+            found[j] = True
+            start[j], mult[j] = shot.start[m], shot.multipliers[m]
+            used[j], accuracy[j] = shot.steps[m], shot.accuracy[m]
     for j in np.flatnonzero(flip & ~found):
-        reason[j] = ("no period-2 orbit found beside the period-1 orbit (the shooting from "
-                     "its flip direction converged to nothing else)")
+        reason[j] = ("no period-2 orbit found beside the period-1 orbit: the shooting from its "
+                     "flip direction converged to nothing else, and "
+                     + (f"{PERIOD_TWO_SETTLE} revolutions from it (a long integration) settle "
+                        "on no period-2 motion (a longer period, a quasi-periodic or a "
+                        "chaotic motion)" if settled[j] else
+                        "a long integration from it is lost (the crank stops)"))
     values = [np.full(speeds.size, np.nan) for _ in range(6)]
     for level in np.unique(used[found]):  # the orbit over its two revolutions, with works
         idx = np.flatnonzero(found & (used == level))
@@ -1253,6 +1442,27 @@ def period_two(mechanism: Mechanism, speeds_rpm, *, steps: int | None = None,
                      f"of the largest work (tolerance {BALANCE_TOL:g})")
     return PeriodTwo(speeds, speeds / shaft.frequency.omega_bar, found, start, mult,
                      one.multipliers, reason, used, *values[:4], accuracy, *values[4:])
+
+
+PERIOD_TWO_SETTLE = 400  # [-] revolutions of the long integration from the unstable orbit
+PERIOD_TWO_SETTLE_STEPS = 90  # [-] its RK4 steps per revolution (a guess, not an answer: the
+# period-2 orbit is then shot from it with the steps by accuracy)
+PERIOD_TWO_PUSH = 0.1  # [-] the push off the unstable orbit along its flip direction, of the
+# state's scale
+
+
+def _settle(problem, start: FloatArray, direction: FloatArray, p: FloatArray) -> FloatArray:
+    """Where the machine goes from its unstable period-1 orbit ``start`` (L, d) pushed by
+    ``PERIOD_TWO_PUSH`` along its flip ``direction`` (L, d; of the scale): the state after
+    ``PERIOD_TWO_SETTLE`` revolutions (an even count) on a coarse grid of
+    ``PERIOD_TWO_SETTLE_STEPS`` per revolution, all speeds at once; NaN where lost. Near
+    a flip whose period-2 branch folds back (subcritical) the period-2 motion lies far
+    from the orbit, beyond the reach of the pushes of ``PERIOD_TWO_SEEDS``."""
+    from dyade.machine import periodic
+
+    x = periodic.flow(problem, PERIOD_TWO_SETTLE_STEPS, start + PERIOD_TWO_PUSH * direction, p,
+                      periods=PERIOD_TWO_SETTLE)
+    return np.where(np.all(np.isfinite(x), axis=1)[:, None], x, np.nan)
 
 
 def _scan_guess(line, shaft, curve: ResonanceCurve, speeds, p, guess) -> FloatArray:

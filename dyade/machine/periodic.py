@@ -379,8 +379,8 @@ def kind_of(multipliers: FloatArray) -> str:
 
 def shoot(problem: Problem, p: FloatArray, guess: FloatArray, *, steps: int | None = None,
           tol: float = ACCURACY, doublings: int = MOST_DOUBLINGS, periods: int = 1,
-          progress: Callable[[], None] | None = None, mesh: FloatArray | None = None
-          ) -> Solutions:
+          progress: Callable[[], None] | None = None, mesh: FloatArray | None = None,
+          retry: bool = True) -> Solutions:
     """The periodic solutions of all lanes with the steps chosen by accuracy (module
     docstring).
 
@@ -407,6 +407,9 @@ def shoot(problem: Problem, p: FloatArray, guess: FloatArray, *, steps: int | No
         Each lane's own nodes over one period (``mesh_of``; instead of ``steps``
         uniform steps): its steps are halved by accuracy (``refined``), the solution's
         mesh is ``Solutions.mesh``.
+    retry : bool
+        A lane whose shooting fails is tried once more with twice the steps (False: it
+        is given up, e.g. one of several seeds of one solution).
 
     Returns
     -------
@@ -427,7 +430,7 @@ def shoot(problem: Problem, p: FloatArray, guess: FloatArray, *, steps: int | No
     lane_steps = np.full(b, n)
     accuracy = np.full(b, np.nan)
     settled = np.zeros(b, dtype=bool)
-    retry = ~ok  # a lane whose shooting failed is tried once more with twice the steps
+    retry = ~ok & retry  # a lane whose shooting failed: once more with twice the steps
     for _ in range(doublings):
         todo = np.flatnonzero(~settled & (ok | retry))
         if not todo.size:
@@ -547,7 +550,7 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
                  *, steps: int, direction: float = 1.0, ds: float = 0.05, ds_max: float = 1.0,
                  ds_min: float = 1e-7, most: int = 400, turn: float = 0.4,
                  finest: int | None = None, refine: float = 1e-3,
-                 integrations: int | None = None,
+                 integrations: int | None = None, width: float | None = None,
                  progress: Callable[[], None] | None = None) -> Branch:
     """Follow the periodic solution through ``x0`` at ``p0`` (q,) in p[0] until it leaves
     ``bounds`` (the last point lies just beyond), by pseudo-arclength continuation
@@ -584,6 +587,10 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
     integrations : int, optional
         The most integrations (each one period of the 2d + 3 runs of a point): the
         continuation stops there, saying so in ``stopped``.
+    width : float, optional
+        The measure of p[0] in the scaled variables (default the width of ``bounds``):
+        a narrow ``bounds`` (a fold sought between two speeds) keeps the steps of a
+        whole range.
     progress : callable, optional
         ``progress()`` hears each integration.
 
@@ -593,7 +600,7 @@ def continuation(problem: Problem, x0: FloatArray, p0: FloatArray, bounds: tuple
     """
     p0 = np.asarray(p0, dtype=np.float64).ravel()
     low, high = bounds
-    width = (high - low) or abs(p0[0]) or 1.0
+    width = width or (high - low) or abs(p0[0]) or 1.0
     d = problem.dimension
     # the state measured against its own size at the start (at least the problem's scale):
     # steps along the branch follow the parameter unless the state changes by its size
