@@ -69,48 +69,71 @@ class Confirmed:
     seconds: float
 
 
-def confirm(inertia: float, stiffness: float, damping: float, speed, start, in_time, scale,
-            expected, periods: int = PERIODS, rtol: float = RTOL,
-            damping_sign: float = 1.0) -> Confirmed:
-    """Integrate every row at once (see the module's docstring). ``speed`` (n,) Ω
-    [rad/s], ``start`` (n, 2) the row's state (δv [rad/s], twist [rad]) at u = 0 or, where
-    ``in_time``, at s = 0; ``scale`` (n, 2) the state's scale; ``expected`` (n,) a |μ|
-    that sizes the perturbation (it stays below GROWN of the scale)."""
+@dataclass
+class Line:
+    """The line of the confirmation: J_c [kg·m²], k [N·m/rad], d [N·m·s/rad]; the
+    damping's sign is a handle for a mutation test."""
+
+    inertia: float
+    stiffness: float
+    damping: float
+    damping_sign: float = 1.0
+
+
+def phase(start, in_time):
+    """The motor's angle s₀ [rad] of each row's start: 0 in time; in the crank angle its
+    twist (u = 0: φ = s − twist = 0)."""
+    return np.where(in_time, 0.0, start[:, 1])
+
+
+def flow(line: Line, speed, s0, span, start, push, periods: int, rtol: float = RTOL):
+    """DOP853 on one stacked state of n runs, the independent variable σ ∈ [0, periods]
+    with the motor's angle s = s0 + span·σ per run: (8, n, periods) at σ = 1 … periods,
+    per run the orbit from ``start`` (n, 2), the orbit from ``start + push`` and Φ
+    (∂x/∂x(0), row by row); the seconds it took."""
     import time
 
     integrate = pytest.importorskip("scipy.integrate")
     n = speed.size
-    s0 = np.where(in_time, 0.0, start[:, 1])  # φ = s − twist = 0 there
-    size = np.minimum(EPSILON, GROWN / np.maximum(expected, 1.0) ** periods)
-    push = size[:, None] * scale * np.array([1.0, 0.7])  # any direction
+    k, b = line.stiffness, line.damping_sign * line.damping
 
-    def rates(t, flat):
+    def rates(sigma, flat):
         y = flat.reshape(8, n)
         out = np.empty_like(y)
         for a in (0, 2):  # the orbit, the perturbed orbit
-            inertia_, slope, curve = closed_form(t + s0 - y[a + 1], inertia)
+            inertia, slope, curve = closed_form(s0 + span * sigma - y[a + 1], line.inertia)
             v = speed + y[a]
-            out[a] = ((stiffness * y[a + 1] - damping_sign * damping * y[a]
-                       - 0.5 * slope * v * v) / (inertia_ * speed))
+            out[a] = (k * y[a + 1] - b * y[a] - 0.5 * slope * v * v) / (inertia * speed)
             out[a + 1] = -y[a] / speed
             if a == 0:  # A = ∂f/∂x along the orbit
-                a00 = (-damping_sign * damping - slope * v) / (inertia_ * speed)
-                a01 = ((stiffness + 0.5 * curve * v * v) / (inertia_ * speed)
-                       + out[0] * slope / inertia_)
+                a00 = (-b - slope * v) / (inertia * speed)
+                a01 = (k + 0.5 * curve * v * v) / (inertia * speed) + out[0] * slope / inertia
                 a10 = -1.0 / speed
         phi = y[4:].reshape(2, 2, n)
         out[4:6] = a00 * phi[0] + a01 * phi[1]
         out[6:8] = a10 * phi[0]
-        return out.ravel()
+        return (out * span).ravel()
 
     y0 = np.concatenate([start.T, (start + push).T, np.repeat(np.eye(2).reshape(4, 1), n, 1)])
-    ends = 2.0 * math.pi * np.arange(1, periods + 1)
+    ends = np.arange(1, periods + 1, dtype=float)
     clock = time.perf_counter()
     out = integrate.solve_ivp(rates, (0.0, ends[-1]), y0.ravel(), method="DOP853", rtol=rtol,
                               atol=1e-14, t_eval=ends)
-    seconds = time.perf_counter() - clock
     assert out.success, out.message
-    y = out.y.reshape(8, n, periods)
+    return out.y.reshape(8, n, periods), time.perf_counter() - clock
+
+
+def confirm(line: Line, speed, start, in_time, scale, expected, periods: int = PERIODS,
+            rtol: float = RTOL) -> Confirmed:
+    """Integrate every row at once (see the module's docstring). ``speed`` (n,) Ω
+    [rad/s], ``start`` (n, 2) the row's state (δv [rad/s], twist [rad]) at u = 0 or, where
+    ``in_time``, at s = 0; ``scale`` (n, 2) the state's scale; ``expected`` (n,) a |μ|
+    that sizes the perturbation (it stays below GROWN of the scale)."""
+    n = speed.size
+    size = np.minimum(EPSILON, GROWN / np.maximum(expected, 1.0) ** periods)
+    push = size[:, None] * scale * np.array([1.0, 0.7])  # any direction
+    y, seconds = flow(line, speed, phase(start, in_time), 2.0 * math.pi, start, push, periods,
+                      rtol)
     miss = np.max(np.abs(y[0:2, :, 0].T - start) / scale, axis=1)
     monodromy = np.moveaxis(y[4:, :, 0].reshape(2, 2, n), 2, 0)
     mu, vectors = np.linalg.eig(monodromy)
@@ -128,6 +151,80 @@ def confirm(inertia: float, stiffness: float, damping: float, speed, start, in_t
     along = (share[:, -1] / share[:, 0]) ** (1.0 / periods)
     return Confirmed(miss, monodromy, np.abs(lead), pair, np.where(pair, by_area, along),
                      seconds)
+
+
+NEWTON = 1e-10  # [-] the residual of x(2π) − x(0), of the state's scale, of an orbit found
+LEAP, LOST = 0.5, 5.0  # [-] Newton's longest step and the residual it gives up at (scale)
+SAME_ORBIT = 1e-5  # [-] two states on one orbit, of the state's scale (the scan's: 1e-6)
+
+
+def newton(line: Line, speed, s0, guess, scale, iterations: int = 12):
+    """Periodic orbits of the line by Newton's method on DOP853's period map from the
+    motor's angle ``s0`` (n,), Φ(2π) − I its Jacobian, all runs at once (each step at
+    most LEAP of the state's scale; a run whose residual exceeds LOST of it is given up):
+    the states (n, 2) and which converged to NEWTON."""
+    x = np.array(guess, dtype=float)
+    done = np.zeros(speed.size, dtype=bool)
+    live = np.ones(speed.size, dtype=bool)
+    for _ in range(iterations):
+        go = np.flatnonzero(live & ~done)
+        if not go.size:
+            break
+        y, _ = flow(line, speed[go], s0[go], 2.0 * math.pi, x[go], np.zeros((go.size, 2)), 1)
+        residual = y[0:2, :, 0].T - x[go]
+        size = np.max(np.abs(residual) / scale[go], axis=1)
+        done[go] = size <= NEWTON
+        live[go] = np.isfinite(size) & (size <= LOST)
+        jacobian = np.moveaxis(y[4:, :, 0].reshape(2, 2, -1), 2, 0) - np.eye(2)
+        step = -np.linalg.solve(jacobian, residual[:, :, None])[:, :, 0]
+        leap = np.max(np.abs(step) / scale[go], axis=1)
+        step *= np.minimum(1.0, LEAP / np.where(leap > 0.0, leap, 1.0))[:, None]
+        move = live[go] & ~done[go]
+        x[go[move]] += step[move]
+    return x, done
+
+
+def on_orbit(line: Line, speed, s0, x, s1, target, scale):
+    """(n,) bool: the orbit through ``x`` at the motor's angle ``s0`` passes ``target`` at
+    ``s1`` (carried from s0 to s1 by DOP853)."""
+    span = np.mod(s1 - s0, 2.0 * math.pi)
+    y, _ = flow(line, speed, s0, span, x, np.zeros_like(x), 1)
+    return np.all(np.abs(y[0:2, :, 0].T - target) <= SAME_ORBIT * scale, axis=1)
+
+
+def unlisted(line: Line, curve, scale) -> list:
+    """The periodic orbits one speed step away from a row that the scan does not list:
+    each row's orbit continued to the neighbouring speeds by Newton on DOP853's period
+    map (the continuation the scan claims to do), each orbit found compared with every
+    row at that speed. (η, |μ|, slowest crank speed over Ω) of each orbit not listed."""
+    ok = curve.converged
+    eta = np.round(curve.eta[ok], 9)
+    speeds, index = np.unique(eta, return_inverse=True)
+    speed, start, s0 = curve.speed[ok], curve.start[ok], phase(curve.start[ok],
+                                                                curve.in_time[ok])
+    seeds = [(r, j) for r in range(eta.size) for j in (index[r] - 1, index[r] + 1)
+             if 0 <= j < speeds.size]
+    rows_at = [np.flatnonzero(index == j) for j in range(speeds.size)]
+    to = np.array([rows_at[j][0] for _, j in seeds])  # a row of the target speed
+    frm = np.array([r for r, _ in seeds])
+    x, done = newton(line, speed[to], s0[frm], start[frm], scale[to])
+    found = []  # distinct orbits per target speed: (seed, target)
+    pairs = [(i, r) for i, (_, j) in enumerate(seeds) if done[i] for r in rows_at[j]]
+    if pairs:
+        i, r = np.array(pairs).T
+        listed = on_orbit(line, speed[r], s0[frm[i]], x[i], s0[r], start[r], scale[r])
+        for k in np.flatnonzero(done):
+            if not listed[i == k].any():
+                found.append(k)
+    out = []
+    for k in found:  # one per distinct orbit
+        j = seeds[k][1]
+        y, _ = flow(line, speed[to[k:k + 1]], s0[frm[k:k + 1]], 2.0 * math.pi, x[k:k + 1],
+                    np.zeros((1, 2)), 1)
+        mu = float(np.max(np.abs(np.linalg.eigvals(y[4:, 0, 0].reshape(2, 2)))))
+        if not any(abs(e - speeds[j]) < 1e-12 and abs(m - mu) < 1e-6 for e, m, _ in out):
+            out.append((float(speeds[j]), mu, k))
+    return out
 
 
 def test_the_closed_form_is_the_files_crank_shaft():
@@ -157,11 +254,17 @@ def scan(inertia: float, damping: float, eta):
     return shaft, curve, scale
 
 
-def confirmed(shaft, curve, scale, inertia: float, damping: float, **options) -> Confirmed:
+def line_of(shaft, inertia: float, damping: float, damping_sign: float = 1.0) -> Line:
+    return Line(inertia, float(shaft.line.stiffness[0]), damping, damping_sign)
+
+
+def confirmed(shaft, curve, scale, inertia: float, damping: float, damping_sign: float = 1.0,
+              **options) -> Confirmed:
     """``confirm`` of every converged row of a scan (``curve``) of ``shaft``."""
     ok = curve.converged
-    return confirm(inertia, float(shaft.line.stiffness[0]), damping, curve.speed[ok], curve.start[ok],
-                   curve.in_time[ok], scale[ok], curve.stability[ok], **options)
+    return confirm(line_of(shaft, inertia, damping, damping_sign), curve.speed[ok],
+                   curve.start[ok], curve.in_time[ok], scale[ok], curve.stability[ok],
+                   **options)
 
 
 LOW = (0.01, 0.7526)  # J_c [kg·m²], d [N·m·s/rad]: the flip region, the crank turning back
@@ -236,3 +339,108 @@ def test_every_verdict_in_the_flip_region_and_beyond_is_confirmed(low):
     print(f"\nη 0.6–1.3: {curve.speed.size} rows, DOP853 {seen.seconds:.1f} s; worst |Δμ| "
           + ", ".join(f"{k}: {v:.1e}" for k, v in worst(curve, seen).items()))
 
+
+
+
+MISSED = (0.975, 1.025, 1.075, 1.1, 1.125, 1.15)  # η where the scan of LOW_ETA lists
+# neither the orbit DOP853's Newton continues from a neighbouring row (measured: stable,
+# |μ| = 0.797226 and 0.798407 at 0.975 and 1.025, the crank turning back; saddles,
+# |μ| = 2.54, 2.32, 2.06 at 1.075–1.125; a second stable orbit, |μ| = 0.889916, at 1.15):
+# the scan shot the linear response there, found one orbit (a saddle at 0.975–1.05)
+# and fills only speeds without any; its continuation ran out of its integrations at
+# η = 0.958.
+
+
+@pytest.fixture(scope="module")
+def low_unlisted(low):
+    shaft, curve, scale, _ = low
+    return unlisted(line_of(shaft, *LOW), curve, scale)
+
+
+@pytest.mark.slow
+def test_no_orbit_next_to_a_row_goes_unlisted_but_the_known_ones(low_unlisted):
+    """Each row's orbit continued one speed step by Newton on DOP853's period map is a
+    row there, except at the speeds of MISSED (issue 37's open end; the next test): a
+    coexisting row dropped (the stable orbit beside the saddle at η = 0.925) is seen."""
+    assert {round(eta, 6) for eta, _, _ in low_unlisted} <= set(MISSED), low_unlisted
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="the scan misses coexisting orbits at the speeds of "
+                                       "MISSED (a speed with one orbit is not filled)")
+def test_every_orbit_next_to_a_row_is_listed(low_unlisted):
+    assert not low_unlisted, [(eta, mu) for eta, mu, _ in low_unlisted]
+
+
+HIGH = (0.2, 1.899)  # J_c [kg·m²], d [N·m·s/rad]: the crank at 5.6 % of Ω near η = 0.5
+HIGH_ETA = np.round(np.arange(0.46, 0.54 + 1e-9, 0.002), 6)  # 41 speeds: 44 s (0.48–0.52,
+# 21 speeds: 42 s; 0.49–0.51 alone converges nowhere; 0.2–1.6, 701 speeds: 102 s, the
+# continuation's 400 single-lane integrations 64 %, the meshes' shootings 26 %)
+
+
+@pytest.fixture(scope="module")
+def high():
+    """The scan of the near-stop stretch η 0.46–0.54 every 0.002 with J_c = 0.2 kg·m²,
+    d = 1.899 N·m·s/rad, DOP853's view of every row, the steady state at η = 0.5."""
+    from dyade.linkage import drive_line as api
+
+    shaft, curve, scale = scan(*HIGH, HIGH_ETA)
+    steady = api.steady_state(shaft.mechanism, shaft=shaft,
+                              speed_rpm=0.5 * shaft.frequency.omega_bar * 30.0 / math.pi)
+    return shaft, curve, scale, confirmed(shaft, curve, scale, *HIGH), steady
+
+
+def works(line: Line, speed: float, start) -> tuple[float, float]:
+    """The motor's work ∮ T·Ω dt = ∮ T ds and the damping's ∮ d·δv² dt [J] over one
+    period of the orbit from ``start`` (at u = 0) by DOP853 (T = k·twist − d·δv)."""
+    integrate = pytest.importorskip("scipy.integrate")
+    s0 = float(start[1])
+
+    def rates(s, y):
+        inertia, slope, _ = closed_form(s - y[1], line.inertia)
+        v = speed + y[0]
+        torque = line.stiffness * y[1] - line.damping * y[0]
+        return [(torque - 0.5 * slope * v * v) / (inertia * speed), -y[0] / speed, torque,
+                line.damping * y[0] ** 2 / speed]
+
+    out = integrate.solve_ivp(rates, (s0, s0 + 2.0 * math.pi), [start[0], start[1], 0.0, 0.0],
+                              method="DOP853", rtol=RTOL, atol=1e-14)
+    return float(out.y[2, -1]), float(out.y[3, -1])
+
+
+@pytest.mark.slow
+def test_every_verdict_where_the_crank_nearly_stops_is_confirmed(high):
+    """J_c = 0.2 kg·m², d = 1.899 N·m·s/rad (issue 37: 10 of 701 speeds near η = 0.5
+    had no periodic state): a converged periodic solution at every η in 0.46–0.54 every
+    0.002, the crank down to 5.6 % of Ω, each verdict confirmed."""
+    shaft, curve, scale, seen, _ = high
+    check_every_row(curve, seen, HIGH_ETA)
+    assert np.min(curve.slowest) < 0.06
+    print(f"\nη 0.46–0.54: {curve.speed.size} rows, DOP853 {seen.seconds:.1f} s; worst |Δμ| "
+          + ", ".join(f"{k}: {v:.1e}" for k, v in worst(curve, seen).items()))
+
+
+@pytest.mark.slow
+def test_the_steady_state_at_half_the_natural_frequency_closes_its_energy_balance(high):
+    """η = 0.5 (the crank at 5.6 % of Ω): ``steady_state`` finds the scan's stable
+    orbit; over the period the motor's work is the damping's (no load: the slider runs
+    level) to 1e-6 of it in its own figures, and its motor's work is DOP853's along its
+    orbit to 1e-6 (where it closes to 2e-9, the energy the start's 1e-8 off periodic)."""
+    shaft, curve, scale, _, steady = high
+    row = int(np.argmin(np.abs(curve.eta - 0.5)))
+    speed = float(curve.speed[row])
+    assert steady.stable and np.abs(steady.multipliers[0]) == pytest.approx(
+        curve.stability[row], abs=SAME_MU)
+    start = np.array([steady.crank_speed[0] - speed, steady.twist[0]])
+    assert np.all(np.abs(start - curve.start[row]) <= 1e-5 * scale[row])
+    assert min(steady.crank_speed) / speed == pytest.approx(curve.slowest[row], abs=1e-4)
+    f = steady.figures
+    motor, damping = f["work_motor"], f["work_damping"]
+    assert abs(f["work_load"]) < 1e-12 and abs(f["work_friction"]) < 1e-12
+    balance = abs(motor - damping) / motor
+    assert balance <= 1e-6
+    seen_motor, seen_damping = works(line_of(shaft, *HIGH), speed, start)
+    assert seen_motor == pytest.approx(seen_damping, rel=1e-8)  # the start: periodic to 1e-8
+    assert motor == pytest.approx(seen_motor, rel=1e-6)
+    print(f"\nη = 0.5: motor {motor:.6g} J, damping {damping:.6g} J, balance {balance:.1e}; "
+          f"DOP853 {seen_motor:.6g} J")
