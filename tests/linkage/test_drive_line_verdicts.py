@@ -196,7 +196,7 @@ def unlisted(line: Line, curve, scale) -> list:
     """The periodic orbits one speed step away from a row that the scan does not list:
     each row's orbit continued to the neighbouring speeds by Newton on DOP853's period
     map (the continuation the scan claims to do), each orbit found compared with every
-    row at that speed. (η, |μ|, slowest crank speed over Ω) of each orbit not listed."""
+    row at that speed: (η, |μ|, the seed's number) of each orbit not listed."""
     ok = curve.converged
     eta = np.round(curve.eta[ok], 9)
     speeds, index = np.unique(eta, return_inverse=True)
