@@ -14,11 +14,37 @@ import pytest
 from dyade.machine import drive_line as engine
 from dyade.machine import periodic
 from tests.linkage.test_drive_line_branches import independent_in_time, slider
-from tests.linkage.test_drive_line_verdicts import rates_of
 
 # the turning-back motion at η = 1.1011 (its state at s = 0 [rad/s, rad]), as the scan's
 # carried in-time branch passes it: a guess of the shooting, not an answer
 TURNING_BACK = (1.10113, [688.3917, 0.440641])
+
+
+def rates_of(shaft, speed: float, in_time: bool):
+    """The line's rates for scipy, several states at once (columns of x): in the crank
+    angle u or in time s = Ω·t, the tables as Fourier series (``engine.Periodic1D``)."""
+    tables = shaft.tables_at(720)
+    series = [engine.Periodic1D(values[0::2]) for values in (tables.inertia, tables.slope,
+                                                             tables.load)]
+
+    def at(table):  # the series at several angles at once
+        return lambda phi: (np.exp(1j * np.multiply.outer(phi, table.orders))
+                            @ table.coefficients).real
+
+    inertia, slope, load = (at(table) for table in series)
+    k, b = shaft.line.stiffness[0], shaft.line.damping[0]
+
+    def rates(s, flat):
+        x = flat.reshape(2, -1)
+        phi = s - x[1] if in_time else np.full(x.shape[1], s)
+        v = speed + x[0]
+        torque = k * x[1] - b * x[0]
+        accel = torque + load(phi) - 0.5 * slope(phi) * v * v
+        out = (np.array([accel / (inertia(phi) * speed), -x[0] / speed]) if in_time
+               else np.array([accel / (inertia(phi) * v), -x[0] / v]))
+        return out.ravel()
+
+    return rates
 
 
 @pytest.mark.slow

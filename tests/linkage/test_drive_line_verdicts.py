@@ -327,21 +327,6 @@ def worst(curve, seen: Confirmed) -> dict:
             if rows.any()}
 
 
-@pytest.mark.slow
-def test_every_verdict_in_the_flip_region_and_beyond_is_confirmed(low):
-    """J_c = 0.01 kg·m², d = 0.7526 N·m·s/rad, η 0.6–1.3 every 0.025: stable rows, the
-    flip region (a multiplier below −1, η ≈ 0.67–0.92), a saddle beside a stable orbit
-    (η = 0.925), saddles (a multiplier above +1) — every row confirmed."""
-    shaft, curve, scale, seen = low
-    check_every_row(curve, seen, LOW_ETA)
-    rows = kinds_of(curve)
-    assert rows["coexisting"].any() and rows[periodic.FLIP].any() and rows[periodic.FOLD].any()
-    print(f"\nη 0.6–1.3: {curve.speed.size} rows, DOP853 {seen.seconds:.1f} s; worst |Δμ| "
-          + ", ".join(f"{k}: {v:.1e}" for k, v in worst(curve, seen).items()))
-
-
-
-
 MISSED = (0.975, 1.025, 1.075, 1.1, 1.125, 1.15)  # η where the scan of LOW_ETA lists
 # neither the orbit DOP853's Newton continues from a neighbouring row (measured: stable,
 # |μ| = 0.797226 and 0.798407 at 0.975 and 1.025, the crank turning back; saddles,
@@ -351,25 +336,24 @@ MISSED = (0.975, 1.025, 1.075, 1.1, 1.125, 1.15)  # η where the scan of LOW_ETA
 # η = 0.961. (The scan every 0.005 misses 11 orbits at 9 speeds of 0.935–1.165.)
 
 
-@pytest.fixture(scope="module")
-def low_unlisted(low):
-    shaft, curve, scale, _ = low
-    return unlisted(line_of(shaft, *LOW), curve, scale)
-
-
 @pytest.mark.slow
-def test_no_orbit_next_to_a_row_goes_unlisted_but_the_known_ones(low_unlisted):
-    """Each row's orbit continued one speed step by Newton on DOP853's period map is a
-    row there, except at the speeds of MISSED (issue 37's open end; the next test): a
-    coexisting row dropped (the stable orbit beside the saddle at η = 0.925) is seen."""
-    assert {round(eta, 6) for eta, _, _ in low_unlisted} <= set(MISSED), low_unlisted
-
-
-@pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="the scan misses coexisting orbits at the speeds of "
-                                       "MISSED (a speed with one orbit is not filled)")
-def test_every_orbit_next_to_a_row_is_listed(low_unlisted):
-    assert not low_unlisted, [(eta, mu) for eta, mu, _ in low_unlisted]
+def test_every_verdict_in_the_flip_region_and_beyond_is_confirmed(low):
+    """J_c = 0.01 kg·m², d = 0.7526 N·m·s/rad, η 0.6–1.3 every 0.025: stable rows, the
+    flip region (a multiplier below −1, η ≈ 0.67–0.92), a saddle beside a stable orbit
+    (η = 0.925), saddles (a multiplier above +1) — every row confirmed; and each row's
+    orbit continued one speed step by Newton on DOP853's period map is a row there,
+    except at the speeds of MISSED (issue 37's open end): a coexisting row dropped (the
+    stable orbit beside the saddle at η = 0.925) is seen. (One test: the scan is made
+    once, whichever worker runs it.)"""
+    shaft, curve, scale, seen = low
+    check_every_row(curve, seen, LOW_ETA)
+    rows = kinds_of(curve)
+    assert rows["coexisting"].any() and rows[periodic.FLIP].any() and rows[periodic.FOLD].any()
+    print(f"\nη 0.6–1.3: {curve.speed.size} rows, DOP853 {seen.seconds:.1f} s; worst |Δμ| "
+          + ", ".join(f"{k}: {v:.1e}" for k, v in worst(curve, seen).items()))
+    missing = unlisted(line_of(shaft, *LOW), curve, scale)
+    print("unlisted:", [(eta, mu) for eta, mu, _ in missing])
+    assert {round(eta, 6) for eta, _, _ in missing} <= set(MISSED), missing
 
 
 HIGH = (0.2, 1.899)  # J_c [kg·m²], d [N·m·s/rad]: the crank at 5.6 % of Ω near η = 0.5
@@ -414,21 +398,16 @@ def works(line: Line, speed: float, start) -> tuple[float, float]:
 def test_every_verdict_where_the_crank_nearly_stops_is_confirmed(high):
     """J_c = 0.2 kg·m², d = 1.899 N·m·s/rad (issue 37: 10 of 701 speeds near η = 0.5
     had no periodic state): a converged periodic solution at every η in 0.46–0.54 every
-    0.002, the crank down to 5.6 % of Ω, each verdict confirmed."""
-    shaft, curve, scale, seen, _ = high
+    0.002, the crank down to 5.6 % of Ω, each verdict confirmed. And at η = 0.5
+    (the crank at 5.6 % of Ω): ``steady_state`` finds the scan's stable orbit; over the period the motor's work is the damping's (no load: the slider runs
+    level) to 1e-6 of it in its own figures, and its motor's work is DOP853's along its
+    orbit to 1e-6 (where it closes to 2e-9, the energy the start's 1e-8 off periodic).
+    (One test: the scan is made once, whichever worker runs it.)"""
+    shaft, curve, scale, seen, steady = high
     check_every_row(curve, seen, HIGH_ETA)
     assert np.min(curve.slowest) < 0.06
     print(f"\nη 0.46–0.54: {curve.speed.size} rows, DOP853 {seen.seconds:.1f} s; worst |Δμ| "
           + ", ".join(f"{k}: {v:.1e}" for k, v in worst(curve, seen).items()))
-
-
-@pytest.mark.slow
-def test_the_steady_state_at_half_the_natural_frequency_closes_its_energy_balance(high):
-    """η = 0.5 (the crank at 5.6 % of Ω): ``steady_state`` finds the scan's stable
-    orbit; over the period the motor's work is the damping's (no load: the slider runs
-    level) to 1e-6 of it in its own figures, and its motor's work is DOP853's along its
-    orbit to 1e-6 (where it closes to 2e-9, the energy the start's 1e-8 off periodic)."""
-    shaft, curve, scale, _, steady = high
     row = int(np.argmin(np.abs(curve.eta - 0.5)))
     speed = float(curve.speed[row])
     assert steady.stable and np.abs(steady.multipliers[0]) == pytest.approx(
