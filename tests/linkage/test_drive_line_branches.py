@@ -216,6 +216,17 @@ def test_a_near_stop_speed_on_a_mesh_of_its_own_against_an_independent_integrati
     assert seen == pytest.approx(found.stability[0], abs=1e-5)
 
 
+def largest_multiplier_in_time(shaft, speed: float, start, scale, periods: int = 1) -> float:
+    """The largest |μ| of the orbit through ``start`` over ``periods`` periods in time:
+    its monodromy matrix by central differences (steps of 1e-4 of ``scale``) of
+    ``independent_in_time``."""
+    delta = scale * 1e-4
+    columns = [(independent_in_time(shaft, speed, start + delta[i] * np.eye(2)[i], periods)
+                - independent_in_time(shaft, speed, start - delta[i] * np.eye(2)[i], periods))
+               / (2 * delta[i]) for i in range(2)]
+    return float(np.max(np.abs(np.linalg.eigvals(np.column_stack(columns)))))
+
+
 def independent_in_time(shaft, speed: float, start, periods: int = 1, every: bool = False):
     """x(2π·periods) of the line in time (s = Ω·t, the crank at φ = s − twist) by
     scipy's DOP853 at rtol 1e-11, the tables as Fourier series (``engine.Periodic1D``):
@@ -316,11 +327,7 @@ def test_the_period_two_motion_where_the_period_one_orbit_flips():
     after_one = independent_in_time(shaft, speed, start)
     assert np.all(np.abs(independent_in_time(shaft, speed, after_one) - start) <= 1e-6 * scale)
     assert np.max(np.abs(after_one - start) / scale) > 1e-2  # not the period-1 orbit
-    delta = scale * 1e-4
-    columns = [(independent_in_time(shaft, speed, start + delta[i] * np.eye(2)[i], 2)
-                - independent_in_time(shaft, speed, start - delta[i] * np.eye(2)[i], 2))
-               / (2 * delta[i]) for i in range(2)]
-    assert np.max(np.abs(np.linalg.eigvals(np.column_stack(columns)))) == pytest.approx(
+    assert largest_multiplier_in_time(shaft, speed, start, scale, 2) == pytest.approx(
         mu, abs=1e-5)
     # the unstable period-1 orbit: from the linear response, in time
     line = shaft.ideal_line

@@ -13,7 +13,8 @@ import pytest
 
 from dyade.machine import drive_line as engine
 from dyade.machine import periodic
-from tests.linkage.test_drive_line_branches import independent_in_time, slider
+from tests.linkage.test_drive_line_branches import (independent_in_time,
+                                                     largest_multiplier_in_time, slider)
 
 # the turning-back motion at η = 1.1011 (its state at s = 0 [rad/s, rad]), as the scan's
 # carried in-time branch passes it: a guess of the shooting, not an answer
@@ -120,11 +121,7 @@ def test_dyade_16_flips_at_3575_rpm_into_a_large_period_two_motion():
     after_one = independent_in_time(shaft, speed, start)
     assert np.all(np.abs(independent_in_time(shaft, speed, after_one) - start) <= 1e-6 * scale)
     assert np.max(np.abs(after_one - start) / scale) > 1.0  # not the period-1 orbit
-    delta = scale * 1e-4
-    columns = [(independent_in_time(shaft, speed, start + delta[i] * np.eye(2)[i], 2)
-                - independent_in_time(shaft, speed, start - delta[i] * np.eye(2)[i], 2))
-               / (2 * delta[i]) for i in range(2)]
-    assert np.max(np.abs(np.linalg.eigvals(np.column_stack(columns)))) == pytest.approx(
+    assert largest_multiplier_in_time(shaft, speed, start, scale, 2) == pytest.approx(
         mu, abs=1e-4)
     # what the machine does: from the unstable period-1 orbit, pushed by 1e-1 of the
     # scale, it leaves it and settles on the period-2 motion (either of its two phases)
