@@ -804,56 +804,82 @@ def _carry(line, shaft, problem, p, speeds, records, found, nodes, tol, tick,
 
     hit: dict = {}  # (speed k, record r) -> the record at k the shot from r landed on
     tried: set = set()
-    for _ in range(2 * speeds.size):  # rounds: at most one per speed and side
-        pairs = [(k, r) for j in range(speeds.size) for r in found[j] if stable(r)
-                 for k in (j - 1, j + 1) if 0 <= k < speeds.size and (k, r) not in tried]
-        if not pairs:
-            break
-        tried.update(pairs)
-        for (k, r), result in zip(pairs, shoot(pairs)):
-            if result is None:
-                hit[(k, r)] = None
-                continue
-            x, mesh, mult, steps, accuracy = result
-            match = [q for q in found[k] if same(q, x, mesh, mult, steps, k)]
-            if match:
-                hit[(k, r)] = match[0]
-                continue
-            hit[(k, r)] = len(records["start"])
-            found[k].append(len(records["start"]))
-            for key, value in (("start", x), ("steps", steps), ("accuracy", accuracy),
-                               ("mult", mult), ("converged", True), ("reason", ""),
-                               ("speed", speeds[k]), ("mesh", mesh)):
-                records[key].append(value)
-    # where a stable branch ends: its shot at the next speed failed, or landed on a
-    # solution whose shot back does not land on it (the unstable ones shot back now)
-    back = [(int(np.argmin(np.abs(speeds - records["speed"][r]))), q)
-            for (k, r), q in hit.items() if q is not None and (
-                int(np.argmin(np.abs(speeds - records["speed"][r]))), q) not in hit]
-    back = sorted(set(back))
-    for (j, q), result in zip(back, shoot(back) if back else []):
-        hit[(j, q)] = None if result is None else next(
-            (r for r in found[j] if same(r, *result[:4], j)), None)
-    ends = []
-    for (k, r), q in hit.items():
-        if not stable(r):
-            continue
-        j = int(np.argmin(np.abs(speeds - records["speed"][r])))
-        if q is None or hit.get((j, q)) != r:
-            ends.append((j, k, r))
+    continued: set = set()  # the ends continued in time already
     out = []
     whole = float(speeds.max() - speeds.min())
-    for j, k, r in ends:
-        low, high = sorted((float(speeds[j]), float(speeds[k])))
-        branch = periodic.continuation(in_time, section(r), p[j], (low, high), steps=2 * nodes,
-                                       direction=1.0 if k > j else -1.0, width=whole,
-                                       most=CARRY_FOLD_POINTS, ds=0.5 * (high - low) / whole,
-                                       integrations=CARRY_FOLD_INTEGRATIONS, progress=tick)
-        for fold in branch.folds:
-            if low <= fold.parameter <= high and not any(
-                    abs(fold.parameter - f) <= 1e-6 * f and up == fold.upper
-                    for f, up in known_folds + out):
-                out.append((fold.parameter, fold.upper))
+    while True:  # carried, then the ends continued; again where that gave new rows
+        for _ in range(2 * speeds.size):  # rounds: at most one per speed and side
+            pairs = [(k, r) for j in range(speeds.size) for r in found[j] if stable(r)
+                     for k in (j - 1, j + 1) if 0 <= k < speeds.size and (k, r) not in tried]
+            if not pairs:
+                break
+            tried.update(pairs)
+            for (k, r), result in zip(pairs, shoot(pairs)):
+                if result is None:
+                    hit[(k, r)] = None
+                    continue
+                x, mesh, mult, steps, accuracy = result
+                match = [q for q in found[k] if same(q, x, mesh, mult, steps, k)]
+                if match:
+                    hit[(k, r)] = match[0]
+                    continue
+                hit[(k, r)] = len(records["start"])
+                found[k].append(len(records["start"]))
+                for key, value in (("start", x), ("steps", steps), ("accuracy", accuracy),
+                                   ("mult", mult), ("converged", True), ("reason", ""),
+                                   ("speed", speeds[k]), ("mesh", mesh)):
+                    records[key].append(value)
+        # where a stable branch ends: its shot at the next speed failed, or landed on a
+        # solution whose shot back does not land on it (the unstable ones shot back now)
+        back = [(int(np.argmin(np.abs(speeds - records["speed"][r]))), q)
+                for (k, r), q in hit.items() if q is not None and (
+                    int(np.argmin(np.abs(speeds - records["speed"][r]))), q) not in hit]
+        back = sorted(set(back))
+        for (j, q), result in zip(back, shoot(back) if back else []):
+            hit[(j, q)] = None if result is None else next(
+                (r for r in found[j] if same(r, *result[:4], j)), None)
+        ends = []
+        for (k, r), q in hit.items():
+            if not stable(r) or (k, r) in continued:
+                continue
+            j = int(np.argmin(np.abs(speeds - records["speed"][r])))
+            if q is None or hit.get((j, q)) != r:
+                ends.append((j, k, r))
+        seeds = []  # (speed k, a state on the branch there): a shot too far for Newton
+        for j, k, r in ends:
+            continued.add((k, r))
+            low, high = sorted((float(speeds[j]), float(speeds[k])))
+            branch = periodic.continuation(in_time, section(r), p[j], (low, high),
+                                           steps=2 * nodes, direction=1.0 if k > j else -1.0,
+                                           width=whole, most=CARRY_FOLD_POINTS,
+                                           ds=0.5 * (high - low) / whole,
+                                           integrations=CARRY_FOLD_INTEGRATIONS, progress=tick)
+            between = [fold for fold in branch.folds if low <= fold.parameter <= high]
+            for fold in between:
+                if not any(abs(fold.parameter - f) <= 1e-6 * f and up == fold.upper
+                           for f, up in known_folds + out):
+                    out.append((fold.parameter, fold.upper))
+            if not between:  # the branch goes on to speed k: seeded from where it crosses
+                seeds += [(k, x) for x in periodic.branch_guesses(branch, float(speeds[k]))]
+        added = 0
+        if seeds:
+            ks = np.array([k for k, _ in seeds])
+            shot = periodic.shoot(in_time, p[ks], np.array([x for _, x in seeds]), tol=tol,
+                                  progress=tick)
+            for m, k in enumerate(ks.tolist()):
+                if not shot.converged[m] or any(
+                        same(q, shot.start[m], IN_TIME, shot.multipliers[m], shot.steps[m], k)
+                        for q in found[k]):
+                    continue
+                found[k].append(len(records["start"]))
+                added += 1
+                for key, value in (("start", shot.start[m]), ("steps", shot.steps[m]),
+                                   ("accuracy", shot.accuracy[m]), ("mult", shot.multipliers[m]),
+                                   ("converged", True), ("reason", ""), ("speed", speeds[k]),
+                                   ("mesh", IN_TIME)):
+                    records[key].append(value)
+        if not added:
+            break
     return out
 
 
