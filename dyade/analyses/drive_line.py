@@ -606,10 +606,12 @@ SCAN_INTEGRATIONS = 40  # [-] integrations of a typical scan (shooting, doubling
 
 def scan_seconds(steps: int, speeds: int, dimension: int) -> float:
     """The time estimate of a scan over ``speeds`` speeds [s]: the shooting of all speeds
-    at ``steps`` and twice the steps, and the continuation (one lane's 2d + 3 runs per
-    integration)."""
+    at ``steps`` and twice the steps, every speed's solution carried to both neighbours
+    (``linkage.drive_line``'s carry step: 2 lanes a speed, from a neighbour's solution:
+    few iterations), and the continuation (one lane's 2d + 3 runs per integration)."""
     return (shooting_seconds(steps, speeds, dimension, 4)
             + 2 * shooting_seconds(2 * steps, speeds, dimension, 1)
+            + shooting_seconds(steps, 2 * speeds, dimension, 1)
             + SCAN_INTEGRATIONS * steps * (SECONDS_PER_STEP * 0.3))
 
 
