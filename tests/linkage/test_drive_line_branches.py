@@ -30,22 +30,33 @@ def slider(inertia: float, damping: float):
     return crank_shaft(mechanism)
 
 
-def independent(shaft, speed: float, start, revolutions: int = 1):
-    """x(2π·revolutions) of the line by scipy's DOP853 at rtol 1e-11 over u, the crank
-    shaft's tables as Fourier series in u (``engine.Periodic1D``): an integrator that
-    shares nothing with the engine's RK4 on the grid."""
-    integrate = pytest.importorskip("scipy.integrate")
+def rates_of(shaft, speed: float, in_time: bool):
+    """The line's rates for scipy, of one state or of several at once (the columns of
+    x): in the crank angle u, or in time s = Ω·t (the crank at φ = s − twist), the crank
+    shaft's tables as Fourier series (``engine.Periodic1D``): they share nothing with
+    the engine's RK4 on its grid."""
     tables = shaft.tables_at(720)
-    inertia = engine.Periodic1D(tables.inertia[0::2])
-    slope = engine.Periodic1D(tables.slope[0::2])
-    load = engine.Periodic1D(tables.load[0::2])
+    inertia, slope, load = (engine.Periodic1D(values[0::2]).at
+                            for values in (tables.inertia, tables.slope, tables.load))
     k, b = shaft.line.stiffness[0], shaft.line.damping[0]
 
-    def rates(u, x):
+    def rates(s, flat):
+        x = np.reshape(flat, (2, -1))
+        phi = s - x[1] if in_time else np.full(x.shape[1], s)
         v = speed + x[0]
-        torque = k * x[1] - b * x[0]
-        return [(torque + load(u) - 0.5 * slope(u) * v * v) / (inertia(u) * v), -x[0] / v]
+        accel = k * x[1] - b * x[0] + load(phi) - 0.5 * slope(phi) * v * v
+        pace = speed if in_time else v  # ds/dt = Ω; du/dt = the crank's speed
+        return np.array([accel / (inertia(phi) * pace), -x[0] / pace]).reshape(np.shape(flat))
 
+    return rates
+
+
+def independent(shaft, speed: float, start, revolutions: int = 1):
+    """x(2π·revolutions) of the line by scipy's DOP853 at rtol 1e-11 over u
+    (``rates_of``): an integrator that shares nothing with the engine's RK4 on the
+    grid."""
+    integrate = pytest.importorskip("scipy.integrate")
+    rates = rates_of(shaft, speed, False)
     out = integrate.solve_ivp(rates, (0.0, 2 * math.pi * revolutions), start, method="DOP853",
                               rtol=1e-11, atol=1e-13)
     return out.y[:, -1]
@@ -84,11 +95,7 @@ def test_no_verdict_without_a_periodic_orbit_and_multipliers_converge_with_the_s
     start = found.start[0]
     scale = problem.scale(p)[0]
     assert np.all(np.abs(independent(shaft, speed, start) - start) <= 1e-6 * scale)
-    delta = scale * 1e-4
-    columns = [(independent(shaft, speed, start + delta[i] * np.eye(2)[i])
-                - independent(shaft, speed, start - delta[i] * np.eye(2)[i])) / (2 * delta[i])
-               for i in range(2)]
-    seen = np.max(np.abs(np.linalg.eigvals(np.column_stack(columns))))
+    seen = largest_multiplier(lambda x: independent(shaft, speed, x), start, scale)
     assert seen == pytest.approx(found.stability[0], abs=1e-5)
 
 
@@ -208,43 +215,27 @@ def test_a_near_stop_speed_on_a_mesh_of_its_own_against_an_independent_integrati
     start = x[0]
     scale = problem.scale(p_from)[0]
     assert np.all(np.abs(independent(shaft, speed, start) - start) <= 1e-6 * scale)
-    delta = scale * 1e-4
-    columns = [(independent(shaft, speed, start + delta[i] * np.eye(2)[i])
-                - independent(shaft, speed, start - delta[i] * np.eye(2)[i])) / (2 * delta[i])
-               for i in range(2)]
-    seen = np.max(np.abs(np.linalg.eigvals(np.column_stack(columns))))
+    seen = largest_multiplier(lambda x: independent(shaft, speed, x), start, scale)
     assert seen == pytest.approx(found.stability[0], abs=1e-5)
 
 
-def largest_multiplier_in_time(shaft, speed: float, start, scale, periods: int = 1) -> float:
-    """The largest |μ| of the orbit through ``start`` over ``periods`` periods in time:
-    its monodromy matrix by central differences (steps of 1e-4 of ``scale``) of
-    ``independent_in_time``."""
+def largest_multiplier(period_map, start, scale) -> float:
+    """The largest |μ| of the orbit through ``start``: the monodromy matrix of
+    ``period_map`` (a state -> the state a period later, e.g. ``independent``) by central
+    differences, steps of 1e-4 of ``scale``."""
     delta = scale * 1e-4
-    columns = [(independent_in_time(shaft, speed, start + delta[i] * np.eye(2)[i], periods)
-                - independent_in_time(shaft, speed, start - delta[i] * np.eye(2)[i], periods))
-               / (2 * delta[i]) for i in range(2)]
+    columns = [(period_map(start + delta[i] * np.eye(2)[i])
+                - period_map(start - delta[i] * np.eye(2)[i])) / (2 * delta[i])
+               for i in range(2)]
     return float(np.max(np.abs(np.linalg.eigvals(np.column_stack(columns)))))
 
 
 def independent_in_time(shaft, speed: float, start, periods: int = 1, every: bool = False):
     """x(2π·periods) of the line in time (s = Ω·t, the crank at φ = s − twist) by
-    scipy's DOP853 at rtol 1e-11, the tables as Fourier series (``engine.Periodic1D``):
-    shares nothing with ``engine.problem_in_time``'s RK4. ``every``: x at each period."""
+    scipy's DOP853 at rtol 1e-11 (``rates_of``): shares nothing with
+    ``engine.problem_in_time``'s RK4. ``every``: x at each period."""
     integrate = pytest.importorskip("scipy.integrate")
-    tables = shaft.tables_at(720)
-    inertia = engine.Periodic1D(tables.inertia[0::2])
-    slope = engine.Periodic1D(tables.slope[0::2])
-    load = engine.Periodic1D(tables.load[0::2])
-    k, b = shaft.line.stiffness[0], shaft.line.damping[0]
-
-    def rates(s, x):
-        phi = s - x[1]
-        v = speed + x[0]
-        torque = k * x[1] - b * x[0]
-        return [(torque + load(phi) - 0.5 * slope(phi) * v * v) / (inertia(phi) * speed),
-                -x[0] / speed]
-
+    rates = rates_of(shaft, speed, True)
     ends = 2 * math.pi * np.arange(1, periods + 1)
     out = integrate.solve_ivp(rates, (0.0, ends[-1]), start, method="DOP853", rtol=1e-11,
                               atol=1e-13, t_eval=ends if every else None)
@@ -327,8 +318,8 @@ def test_the_period_two_motion_where_the_period_one_orbit_flips():
     after_one = independent_in_time(shaft, speed, start)
     assert np.all(np.abs(independent_in_time(shaft, speed, after_one) - start) <= 1e-6 * scale)
     assert np.max(np.abs(after_one - start) / scale) > 1e-2  # not the period-1 orbit
-    assert largest_multiplier_in_time(shaft, speed, start, scale, 2) == pytest.approx(
-        mu, abs=1e-5)
+    assert largest_multiplier(lambda x: independent_in_time(shaft, speed, x, 2), start,
+                              scale) == pytest.approx(mu, abs=1e-5)
     # the unstable period-1 orbit: from the linear response, in time
     line = shaft.ideal_line
     p = engine.parameters(line, [speed])

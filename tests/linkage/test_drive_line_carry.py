@@ -14,38 +14,12 @@ import pytest
 from dyade.machine import drive_line as engine
 from dyade.machine import periodic
 from tests.linkage.test_drive_line_branches import (independent_in_time,
-                                                     largest_multiplier_in_time, slider)
+                                                     largest_multiplier, rates_of,
+                                                     slider)
 
 # the turning-back motion at η = 1.1011 (its state at s = 0 [rad/s, rad]), as the scan's
 # carried in-time branch passes it: a guess of the shooting, not an answer
 TURNING_BACK = (1.10113, [688.3917, 0.440641])
-
-
-def rates_of(shaft, speed: float, in_time: bool):
-    """The line's rates for scipy, several states at once (columns of x): in the crank
-    angle u or in time s = Ω·t, the tables as Fourier series (``engine.Periodic1D``)."""
-    tables = shaft.tables_at(720)
-    series = [engine.Periodic1D(values[0::2]) for values in (tables.inertia, tables.slope,
-                                                             tables.load)]
-
-    def at(table):  # the series at several angles at once
-        return lambda phi: (np.exp(1j * np.multiply.outer(phi, table.orders))
-                            @ table.coefficients).real
-
-    inertia, slope, load = (at(table) for table in series)
-    k, b = shaft.line.stiffness[0], shaft.line.damping[0]
-
-    def rates(s, flat):
-        x = flat.reshape(2, -1)
-        phi = s - x[1] if in_time else np.full(x.shape[1], s)
-        v = speed + x[0]
-        torque = k * x[1] - b * x[0]
-        accel = torque + load(phi) - 0.5 * slope(phi) * v * v
-        out = (np.array([accel / (inertia(phi) * speed), -x[0] / speed]) if in_time
-               else np.array([accel / (inertia(phi) * v), -x[0] / v]))
-        return out.ravel()
-
-    return rates
 
 
 @pytest.mark.slow
@@ -121,8 +95,8 @@ def test_dyade_16_flips_at_3575_rpm_into_a_large_period_two_motion():
     after_one = independent_in_time(shaft, speed, start)
     assert np.all(np.abs(independent_in_time(shaft, speed, after_one) - start) <= 1e-6 * scale)
     assert np.max(np.abs(after_one - start) / scale) > 1.0  # not the period-1 orbit
-    assert largest_multiplier_in_time(shaft, speed, start, scale, 2) == pytest.approx(
-        mu, abs=1e-4)
+    assert largest_multiplier(lambda x: independent_in_time(shaft, speed, x, 2), start,
+                              scale) == pytest.approx(mu, abs=1e-4)
     # what the machine does: from the unstable period-1 orbit, pushed by 1e-1 of the
     # scale, it leaves it and settles on the period-2 motion (either of its two phases)
     in_time = engine.problem_in_time(line, shaft.tables_at, 720)
